@@ -1,0 +1,49 @@
+# Lucent: the commands a newcomer needs.
+#   make demo   install what is needed, build, run the main job
+#   make test   install, build, run every test (then again under ASan + UBSan)
+#   make        build build/lucent and the library
+#   make setup  install Debian packages and fetch the sample meshes
+#   make bench  run the benchmarks in bench/
+BUILD      ?= build
+ASAN_BUILD ?= build-asan
+JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+CMAKE_FLAGS ?=
+DEMO_OUT   ?= out/demo
+
+.PHONY: all build setup test test-fast test-asan demo bench clean distclean
+
+all: build
+
+$(BUILD)/CMakeCache.txt:
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo $(CMAKE_FLAGS)
+
+build: $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS)
+
+setup:
+	scripts/setup.sh
+
+test: setup
+	$(MAKE) test-fast
+	$(MAKE) test-asan
+
+test-fast: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+test-asan:
+	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DLUCENT_SANITIZE=ON $(CMAKE_FLAGS)
+	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j $(JOBS) -L unit
+
+demo: setup build
+	scripts/demo.sh $(BUILD)/lucent $(DEMO_OUT)
+
+bench: build
+	scripts/bench.sh $(BUILD)/bench
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD)
+
+distclean: clean
+	rm -rf data/meshes out

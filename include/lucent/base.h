@@ -1,0 +1,207 @@
+/* Lucent base: status codes and error messages, logging, progress, thread pool,
+ * RNG streams, atomic file writes. Everything else in Lucent builds on this. */
+#ifndef LUCENT_BASE_H
+#define LUCENT_BASE_H
+
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define LUCENT_VERSION_MAJOR 0
+#define LUCENT_VERSION_MINOR 1
+#define LUCENT_VERSION_PATCH 0
+#define LUCENT_VERSION_STRING "0.1.0"
+
+#if defined(__GNUC__) || defined(__clang__)
+#define LUCENT_PRINTF(fmt, args) __attribute__((format(printf, fmt, args)))
+#else
+#define LUCENT_PRINTF(fmt, args)
+#endif
+
+/* ---- Status codes ------------------------------------------------------
+ * One table, so codes and their texts cannot drift apart. */
+#define LUCENT_STATUS_TABLE(X)                                     \
+    X(LUCENT_OK, "ok")                                             \
+    X(LUCENT_ERR_INVALID_ARGUMENT, "invalid argument")             \
+    X(LUCENT_ERR_OUT_OF_MEMORY, "out of memory")                   \
+    X(LUCENT_ERR_IO, "input/output error")                         \
+    X(LUCENT_ERR_PARSE, "malformed input")                         \
+    X(LUCENT_ERR_UNSUPPORTED, "unsupported")                       \
+    X(LUCENT_ERR_NOT_FOUND, "not found")                           \
+    X(LUCENT_ERR_NUMERIC, "numerical failure")                     \
+    X(LUCENT_ERR_GL, "OpenGL error")                               \
+    X(LUCENT_ERR_INTERNAL, "internal error")
+
+typedef enum lucent_status {
+#define LUCENT_X_ENUM(code, text) code,
+    LUCENT_STATUS_TABLE(LUCENT_X_ENUM)
+#undef LUCENT_X_ENUM
+    LUCENT_STATUS_COUNT
+} lucent_status;
+
+/* Returns a short constant text for a status code. */
+const char *lucent_status_string(lucent_status status);
+
+/* Sets this thread's error message (printf-style) and returns status, so that
+ * `return lucent_error(LUCENT_ERR_PARSE, "%s: line %d: ...", file, line);` reads well. */
+lucent_status lucent_error(lucent_status status, const char *fmt, ...) LUCENT_PRINTF(2, 3);
+lucent_status lucent_error_v(lucent_status status, const char *fmt, va_list ap);
+
+/* Prepends context ("<context>: ") to this thread's current message and returns status.
+ * Used when an error travels up through a caller that knows more (the file name). */
+lucent_status lucent_error_context(lucent_status status, const char *fmt, ...) LUCENT_PRINTF(2, 3);
+
+/* Returns this thread's last error message ("" when none). Valid until the next error call. */
+const char *lucent_last_error(void);
+
+/* Returns this thread's last error status (LUCENT_OK when none). */
+lucent_status lucent_last_status(void);
+
+/* Forgets this thread's error. */
+void lucent_clear_error(void);
+
+/* ---- Logging ------------------------------------------------------------
+ * The library never prints: log lines go to a sink the application installs. */
+typedef enum lucent_log_level {
+    LUCENT_LOG_DEBUG = 0,
+    LUCENT_LOG_INFO = 1,
+    LUCENT_LOG_WARN = 2,
+    LUCENT_LOG_ERROR = 3,
+    LUCENT_LOG_OFF = 4
+} lucent_log_level;
+
+typedef void (*lucent_log_fn)(lucent_log_level level, const char *message, void *user);
+
+/* Installs the log sink (NULL: drop everything) and the lowest level passed to it. */
+void lucent_log_set_sink(lucent_log_fn fn, void *user, lucent_log_level min_level);
+
+/* Writes one formatted line to the sink, if the level passes. Thread-safe. */
+void lucent_log(lucent_log_level level, const char *fmt, ...) LUCENT_PRINTF(2, 3);
+
+/* A ready-made sink that writes "lucent: [level] message\n" to the FILE* in user. */
+void lucent_log_stderr_sink(lucent_log_level level, const char *message, void *user);
+
+/* ---- Progress -----------------------------------------------------------
+ * A bar with rate and ETA. Silent unless the application names an output
+ * (the CLI does so when stderr is a terminal and --quiet is absent). */
+typedef struct lucent_progress lucent_progress;
+
+/* Sets where progress bars are drawn (NULL: nowhere, the default). */
+void lucent_progress_set_output(FILE *out);
+
+/* Starts a task of `total` units named `label`. Returns NULL only when out of memory;
+ * every progress function accepts NULL and then does nothing. */
+lucent_progress *lucent_progress_begin(const char *label, uint64_t total);
+
+/* Adds n finished units. Thread-safe, cheap (redraws at most ten times per second). */
+void lucent_progress_add(lucent_progress *p, uint64_t n);
+
+/* Returns the units finished so far. */
+uint64_t lucent_progress_done(const lucent_progress *p);
+
+/* Draws the final state, ends the line, and frees p. */
+void lucent_progress_end(lucent_progress *p);
+
+/* ---- Thread pool ----------------------------------------------------------
+ * Work is cut into fixed chunks (independent of the thread count), so results that
+ * depend on the chunk index are identical whatever the number of threads. */
+typedef struct lucent_pool lucent_pool;
+
+/* Creates a pool of `threads` workers (0: LUCENT_THREADS from the environment, else all cores).
+ * The calling thread works too, so a pool of 1 runs everything on the caller. */
+lucent_pool *lucent_pool_create(int threads);
+void lucent_pool_destroy(lucent_pool *pool);
+
+/* Returns the number of threads that execute work (callers included). */
+int lucent_pool_threads(const lucent_pool *pool);
+
+/* Returns the number of cores the system reports (at least 1). */
+int lucent_cpu_count(void);
+
+/* Body of a parallel loop: process items [begin, end) of chunk `chunk` on thread `thread`
+ * (0 <= thread < lucent_pool_threads). Returns LUCENT_OK or an error (set with lucent_error). */
+typedef lucent_status (*lucent_chunk_fn)(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end,
+                                         int thread);
+
+/* Runs fn over [0, count) cut into chunks of chunk_size items (the last may be shorter).
+ * Blocks until all chunks are done. If chunks fail, the error of the lowest failing chunk
+ * is returned and its message is set on the calling thread; chunks not yet started are skipped.
+ * pool may be NULL: then everything runs on the caller. */
+lucent_status lucent_parallel_for(lucent_pool *pool, uint64_t count, uint64_t chunk_size,
+                                  lucent_chunk_fn fn, void *ctx);
+
+/* ---- Random numbers -------------------------------------------------------
+ * xoshiro256** (Blackman & Vigna 2018). Each (seed, stream) pair gives an independent,
+ * reproducible sequence: the state is derived by hashing seed and stream with SplitMix64,
+ * so stream k of seed s does not depend on how many streams exist or which thread runs it. */
+typedef struct lucent_rng {
+    uint64_t s[4];
+} lucent_rng;
+
+/* Initialises dest for the given seed and stream. */
+void lucent_rng_init(uint64_t seed, uint64_t stream, lucent_rng *dest);
+
+/* Returns the next 64 random bits. */
+static inline uint64_t lucent_rng_next(lucent_rng *r)
+{
+    uint64_t *s = r->s;
+    uint64_t x = s[1] * 5u;
+    uint64_t result = ((x << 7) | (x >> 57)) * 9u;
+    uint64_t t = s[1] << 17;
+    s[2] ^= s[0];
+    s[3] ^= s[1];
+    s[1] ^= s[2];
+    s[0] ^= s[3];
+    s[2] ^= t;
+    s[3] = (s[3] << 45) | (s[3] >> 19);
+    return result;
+}
+
+/* Returns a uniform double in [0, 1) with 53 random bits. */
+static inline double lucent_rng_uniform(lucent_rng *r)
+{
+    return (double)(lucent_rng_next(r) >> 11) * (1.0 / 9007199254740992.0); /* 2^-53 */
+}
+
+/* Returns a uniform float in [0, 1) with 24 random bits. */
+static inline float lucent_rng_uniformf(lucent_rng *r)
+{
+    return (float)(lucent_rng_next(r) >> 40) * 5.9604644775390625e-8f; /* 2^-24 */
+}
+
+/* Advances r by 2^128 steps (the xoshiro256 jump), giving a non-overlapping subsequence. */
+void lucent_rng_jump(lucent_rng *r);
+
+/* ---- Files --------------------------------------------------------------------
+ * Outputs are never half-written: data goes to a temporary file beside the target,
+ * which is renamed over the target only once complete. */
+typedef struct lucent_atomic_file lucent_atomic_file;
+
+/* Opens a temporary file beside `path` for writing; *out receives its FILE*.
+ * Fails (with a message naming path) when the directory is missing or not writable. */
+lucent_status lucent_atomic_open(const char *path, lucent_atomic_file **dest, FILE **out);
+
+/* Flushes, syncs and renames the temporary file onto its target, then frees af.
+ * On failure the temporary is removed and the target is left as it was. */
+lucent_status lucent_atomic_commit(lucent_atomic_file *af);
+
+/* Removes the temporary file and frees af (af may be NULL). */
+void lucent_atomic_abort(lucent_atomic_file *af);
+
+/* Writes size bytes to path atomically. */
+lucent_status lucent_write_file(const char *path, const void *data, size_t size);
+
+/* Reads a whole file; *dest is NUL-terminated (not counted in *size) and freed with free(). */
+lucent_status lucent_read_file(const char *path, char **dest, size_t *size);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LUCENT_BASE_H */

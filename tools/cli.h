@@ -1,0 +1,57 @@
+/* The `lucent` command: shared declarations for main.c and the cmd_*.c files.
+ *
+ * Conventions every subcommand keeps:
+ *   - `lucent <command> --help` prints usage to stdout and exits 0;
+ *   - bad usage prints "lucent <command>: <what>" and a hint to stderr, exit 2;
+ *   - a failure (bad input, I/O) prints "lucent: <message>" (the message names the file and
+ *     the field) and exits 1; outputs are written atomically, so nothing partial is left;
+ *   - success exits 0; what was written is said on stdout ("wrote out/x.png").  */
+#ifndef LUCENT_TOOLS_CLI_H
+#define LUCENT_TOOLS_CLI_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "lucent/lucent.h"
+
+enum { CLI_OK = 0, CLI_FAIL = 1, CLI_USAGE = 2 };
+
+typedef struct cli_command {
+    const char *name;
+    const char *summary;                /* one line for `lucent --help` */
+    int (*run)(int argc, char **argv);  /* argv[0] is the command name */
+} cli_command;
+
+/* Options every command accepts, parsed and removed from argv by cli_common_options. */
+typedef struct cli_common {
+    bool quiet;  /* --quiet / -q: no progress bars, no info lines */
+    int threads; /* --threads N (0: LUCENT_THREADS or all cores) */
+} cli_common;
+
+extern cli_common g_cli;
+
+/* Strips --quiet/-q and --threads N / --threads=N from argv (updating *argc) into g_cli,
+ * and configures logging and progress output. Returns CLI_OK, or CLI_USAGE after a message. */
+int cli_common_options(const char *command, int *argc, char **argv);
+
+/* Prints "lucent: <lucent_last_error()>" to stderr and returns CLI_FAIL. */
+int cli_fail(void);
+
+/* Prints "lucent <command>: <message>\nTry 'lucent <command> --help'." to stderr; returns CLI_USAGE. */
+int cli_usage_error(const char *command, const char *fmt, ...) LUCENT_PRINTF(2, 3);
+
+/* Prints an informational line to stdout unless --quiet. */
+void cli_info(const char *fmt, ...) LUCENT_PRINTF(1, 2);
+
+/* Parses a whole non-negative integer / a finite double; false on garbage. */
+bool cli_parse_int(const char *text, int *dest);
+bool cli_parse_double(const char *text, double *dest);
+
+/* The pool shared by the command's work, sized by --threads (created on first use). */
+lucent_pool *cli_pool(void);
+
+/* The subcommands (one cmd_<name>.c each). */
+int cmd_materials(int argc, char **argv);
+int cmd_image(int argc, char **argv);
+
+#endif
