@@ -454,7 +454,8 @@ TEST(json_rejects_broken_text_nan_and_infinity)
     cJSON *root;
     CHECK_ERR(lucent_json_parse_text("{\n \"a\": 1,\n \"b\": }", "m.json", &root), LUCENT_ERR_PARSE,
               "m.json: line 3", "invalid JSON");
-    CHECK_ERR(lucent_json_parse_text("{\"a\": NaN}", "m.json", &root), LUCENT_ERR_PARSE, "m.json: line 1");
+    CHECK_ERR(lucent_json_parse_text("{\"a\": 1,\n \"sigma_a\": [0.1, NaN, 2]}", "m.json", &root),
+              LUCENT_ERR_PARSE, "m.json: line 2, column 19 (in field \"sigma_a\"): not a number JSON allows");
     CHECK_ERR(lucent_json_parse_text("{\"a\": [1, 2", "m.json", &root), LUCENT_ERR_PARSE,
               "unexpected end of file");
     CHECK_OK(lucent_json_parse_text("{\"a\": 1e999, \"a2\": 1, \"a2\": 2}", "m.json", &root));

@@ -15,6 +15,25 @@ static void location(const char *text, const char *at, int *line, int *column)
     }
 }
 
+/* Finds the name of the last field opened before `at` ("key": ...), for messages about
+ * broken values; copies it into dest (empty when there is none). */
+static void field_before(const char *text, const char *at, char *dest, size_t size)
+{
+    dest[0] = '\0';
+    const char *p = at;
+    while (p > text && p[-1] != ':') p--;
+    if (p == text) return;
+    const char *q = p - 1; /* at the ':' */
+    while (q > text && (q[-1] == ' ' || q[-1] == '\t' || q[-1] == '\n' || q[-1] == '\r')) q--;
+    if (q == text || q[-1] != '"') return;
+    const char *close = --q, *open = close;
+    while (open > text && open[-1] != '"') open--;
+    if (open == text) return;
+    size_t n = (size_t)(close - open) < size - 1 ? (size_t)(close - open) : size - 1;
+    memcpy(dest, open, n);
+    dest[n] = '\0';
+}
+
 lucent_status lucent_json_parse_text(const char *text, const char *name, cJSON **dest)
 {
     const char *end = NULL;
@@ -23,10 +42,22 @@ lucent_status lucent_json_parse_text(const char *text, const char *name, cJSON *
     if (!end) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory parsing JSON", name);
     int line, column;
     location(text, end, &line, &column);
-    if (!*end) return lucent_error(LUCENT_ERR_PARSE, "%s: line %d: invalid JSON: unexpected end of file",
-                                   name, line);
-    return lucent_error(LUCENT_ERR_PARSE, "%s: line %d, column %d: invalid JSON near '%.12s'", name,
-                        line, column, end);
+    char field[64], in_field[80] = "";
+    field_before(text, end, field, sizeof field);
+    if (field[0]) snprintf(in_field, sizeof in_field, " (in field \"%.60s\")", field);
+    if (!*end)
+        return lucent_error(LUCENT_ERR_PARSE, "%s: line %d: invalid JSON: unexpected end of file", name,
+                            line);
+    char near[16];
+    size_t n = 0;
+    while (n < sizeof near - 1 && end[n] && end[n] != '\n' && end[n] != '\r') near[n] = end[n], n++;
+    near[n] = '\0';
+    const char *why = (strncmp(end, "NaN", 3) == 0 || strncmp(end, "Inf", 3) == 0 ||
+                       strncmp(end, "-Inf", 4) == 0 || strncmp(end, "nan", 3) == 0)
+                          ? "not a number JSON allows"
+                          : "invalid JSON";
+    return lucent_error(LUCENT_ERR_PARSE, "%s: line %d, column %d%s: %s near '%s'", name, line,
+                        column, in_field, why, near);
 }
 
 lucent_status lucent_json_parse_file(const char *file, cJSON **dest)

@@ -1,0 +1,232 @@
+/* Lucent image: linear float RGB(A) images; PNG, OpenEXR and PFM files; tonemapping;
+ * difference images and error metrics (RMS, relative RMS, optionally under a mask).
+ *
+ * Pixels are linear light, row-major, top row first, channels interleaved.
+ * sRGB encoding happens only at the border, when a PNG is written or read. */
+#ifndef LUCENT_IMAGE_H
+#define LUCENT_IMAGE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "lucent/base.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Largest image accepted anywhere (creation and every reader): 2^28 pixels (4 GiB of RGBA
+ * floats) and 2^20 pixels on a side, so a corrupt header cannot ask for terabytes. */
+#define LUCENT_IMAGE_MAX_PIXELS (1ull << 28)
+#define LUCENT_IMAGE_MAX_SIDE (1 << 20)
+
+typedef struct lucent_image {
+    int width;
+    int height;
+    int channels; /* 1 (grey), 3 (RGB) or 4 (RGBA, alpha not premultiplied) */
+    float *data;  /* width * height * channels floats, row-major, top row first */
+} lucent_image;
+
+/* ---- Creation and pixel access ------------------------------------------- */
+
+/* Creates a zero-filled image. Sizes < 1, channels other than 1, 3, 4, or a size over
+ * the limits above give LUCENT_ERR_INVALID_ARGUMENT; *dest is NULL on failure. */
+lucent_status lucent_image_create(int width, int height, int channels, lucent_image **dest);
+
+/* Frees an image (NULL is allowed). */
+void lucent_image_destroy(lucent_image *img);
+
+/* Creates a deep copy of src. */
+lucent_status lucent_image_clone(const lucent_image *src, lucent_image **dest);
+
+/* Creates a copy of src with another channel count: 1 -> 3/4 replicates grey, 3 -> 4 adds
+ * alpha 1, 4 -> 3 drops alpha, 3/4 -> 1 takes Rec. 709 luminance 0.2126 R + 0.7152 G + 0.0722 B. */
+lucent_status lucent_image_convert_channels(const lucent_image *src, int channels,
+                                            lucent_image **dest);
+
+/* Returns the number of floats in the image (width * height * channels). */
+size_t lucent_image_value_count(const lucent_image *img);
+
+/* Returns the pointer to pixel (x, y) (asserts that it lies inside). */
+float *lucent_image_pixel(const lucent_image *img, int x, int y);
+
+/* Returns channel c of pixel (x, y) (asserts that all lie inside). */
+float lucent_image_get(const lucent_image *img, int x, int y, int c);
+
+/* Sets channel c of pixel (x, y) to value (asserts that all lie inside). */
+void lucent_image_set(lucent_image *img, int x, int y, int c, float value);
+
+/* Sets every value of channel c (all channels when c < 0) to value. */
+void lucent_image_fill(lucent_image *img, int c, float value);
+
+/* ---- Colour ------------------------------------------------------------------ */
+
+/* Linear -> sRGB-encoded with the exact IEC 61966-2-1 piecewise curve:
+ * 12.92 x for x <= 0.0031308, else 1.055 x^(1/2.4) - 0.055. Values <= 0 give 0 (NaN gives 0). */
+float lucent_srgb_encode(float linear);
+
+/* sRGB-encoded -> linear, the inverse: e / 12.92 for e <= 0.04045, else ((e + 0.055) / 1.055)^2.4. */
+float lucent_srgb_decode(float encoded);
+
+/* ---- Files ------------------------------------------------------------------- */
+
+typedef enum lucent_image_format {
+    LUCENT_IMAGE_FORMAT_AUTO = 0, /* from the file name's extension */
+    LUCENT_IMAGE_FORMAT_PNG,
+    LUCENT_IMAGE_FORMAT_EXR,
+    LUCENT_IMAGE_FORMAT_PFM
+} lucent_image_format;
+
+typedef enum lucent_exr_pixel {
+    LUCENT_EXR_PIXEL_DEFAULT = 0, /* float */
+    LUCENT_EXR_PIXEL_FLOAT,
+    LUCENT_EXR_PIXEL_HALF
+} lucent_exr_pixel;
+
+typedef enum lucent_exr_compression {
+    LUCENT_EXR_COMPRESSION_DEFAULT = 0, /* zip */
+    LUCENT_EXR_COMPRESSION_NONE,
+    LUCENT_EXR_COMPRESSION_RLE,
+    LUCENT_EXR_COMPRESSION_ZIPS,
+    LUCENT_EXR_COMPRESSION_ZIP,
+    LUCENT_EXR_COMPRESSION_PIZ
+} lucent_exr_compression;
+
+/* How to write an image; a zero field means the default (lucent_image_write_defaults). */
+typedef struct lucent_image_write_desc {
+    lucent_image_format format; /* default: from the extension (.png, .exr, .pfm) */
+    /* PNG: 8 (default) or 16 bits per sample. Colour samples are sRGB-encoded at both depths
+     * (and marked with sRGB, gAMA and cHRM chunks), unless png_linear, which stores them
+     * linearly and marks the file with gAMA 1.0. Alpha is always linear. Values are clamped
+     * to [0, 1] and rounded to the nearest code; NaN is written as 0. */
+    int png_bits;
+    bool png_linear;
+    lucent_exr_pixel exr_pixel;             /* default float */
+    lucent_exr_compression exr_compression; /* default zip */
+} lucent_image_write_desc;
+
+/* Returns the write defaults with every field resolved. */
+lucent_image_write_desc lucent_image_write_defaults(void);
+
+/* Tells the format from a path's extension (case-insensitive .png, .exr, .pfm);
+ * LUCENT_ERR_UNSUPPORTED with a message naming the path otherwise. */
+lucent_status lucent_image_format_from_path(const char *path, lucent_image_format *dest);
+
+/* Reads a PNG, EXR or PFM file, chosen by extension, into a new linear float image.
+ * Every failure names the file in the message. */
+lucent_status lucent_image_read(const char *path, lucent_image **dest);
+
+/* Reads a PNG: grey gives 1 channel; grey+alpha, RGB, palette and tRNS give 3 or 4 channels.
+ * 1, 2, 4, 8 and 16-bit samples are scaled to [0, 1]; colour is decoded with the sRGB curve,
+ * or with 1/gamma when the file has a gAMA chunk and no sRGB chunk (gAMA 1.0: linear). */
+lucent_status lucent_image_read_png(const char *path, lucent_image **dest);
+
+/* Reads part 0 of an OpenEXR file (scanline or tiled, level 0; half, float or uint samples):
+ * channels R, G, B [, A] give 3 or 4 channels; Y [, A] gives 1 or 4; a lone channel gives 1. */
+lucent_status lucent_image_read_exr(const char *path, lucent_image **dest);
+
+/* Reads a PFM file ("PF": RGB, "Pf": grey; negative scale: little endian; rows bottom-to-top). */
+lucent_status lucent_image_read_pfm(const char *path, lucent_image **dest);
+
+/* Writes img atomically (complete file or none) in the format of desc (NULL: defaults). */
+lucent_status lucent_image_write(const char *path, const lucent_image *img,
+                                 const lucent_image_write_desc *desc);
+
+/* Writes a PNG (grey, RGB or RGBA by channel count) as desc says. */
+lucent_status lucent_image_write_png(const char *path, const lucent_image *img,
+                                     const lucent_image_write_desc *desc);
+
+/* Writes a single-part scanline OpenEXR file with channels Y, or R, G, B [, A]. */
+lucent_status lucent_image_write_exr(const char *path, const lucent_image *img,
+                                     const lucent_image_write_desc *desc);
+
+/* Writes a little-endian PFM ("Pf" for 1 channel, "PF" for 3; 4 channels are refused). */
+lucent_status lucent_image_write_pfm(const char *path, const lucent_image *img);
+
+/* ---- Tonemapping -------------------------------------------------------------- */
+
+typedef enum lucent_tonemap_op {
+    LUCENT_TONEMAP_NONE = 0, /* identity (a PNG writer still clamps to [0, 1]) */
+    LUCENT_TONEMAP_CLAMP,    /* clamp to [0, 1] */
+    LUCENT_TONEMAP_REINHARD, /* x / (1 + x), per channel (Reinhard et al. 2002, eq. 3) */
+    LUCENT_TONEMAP_FILMIC    /* Narkowicz 2015 ACES fit: x(2.51x + 0.03) / (x(2.43x + 0.59) + 0.14) */
+} lucent_tonemap_op;
+
+typedef struct lucent_tonemap_desc {
+    lucent_tonemap_op op; /* default none */
+    float exposure;       /* stops: values are multiplied by 2^exposure first; default 0 */
+} lucent_tonemap_desc;
+
+/* Parses "none", "clamp", "reinhard" or "filmic"; false for anything else. */
+bool lucent_tonemap_op_parse(const char *name, lucent_tonemap_op *dest);
+
+/* Returns the operator applied to one linear value (already exposed); NaN gives 0 except for none. */
+float lucent_tonemap_value(lucent_tonemap_op op, float x);
+
+/* Applies exposure, then the operator, to every colour channel of img in place (alpha untouched).
+ * The result is still linear; sRGB encoding happens when writing a PNG. */
+void lucent_image_tonemap(lucent_image *img, const lucent_tonemap_desc *desc);
+
+/* ---- Statistics, differences and error metrics -------------------------------- */
+
+/* Per-channel summary of one image. Non-finite values are counted, not summed. */
+typedef struct lucent_image_stats {
+    int channels;
+    double min[4], max[4], mean[4];
+    uint64_t nonfinite[4];
+} lucent_image_stats;
+
+/* Computes per-channel min, max and mean of the finite values (0 when there are none). */
+void lucent_image_stats_compute(const lucent_image *img, lucent_image_stats *dest);
+
+/* Errors of an image a against a reference b over the counted pixels (all, or mask > 0.5):
+ *   rms[c]     = sqrt(mean((a - b)^2))
+ *   rel_rms[c] = rms[c] / sqrt(mean(b^2))   (0 when both are 0; +inf when only b's is 0)
+ *   max_abs[c] = max |a - b|
+ * and the same pooled over all channels in rms_all / rel_rms_all. */
+typedef struct lucent_image_error_stats {
+    int channels;
+    uint64_t pixel_count; /* pixels counted (those under the mask) */
+    double rms[4], rel_rms[4], max_abs[4];
+    double rms_all, rel_rms_all;
+} lucent_image_error_stats;
+
+/* Compares a with the reference b. mask: NULL (every pixel) or width * height floats, where
+ * pixels with mask > 0.5 count. Sizes or channel counts that differ give
+ * LUCENT_ERR_INVALID_ARGUMENT naming both; a mask selecting no pixel too. */
+lucent_status lucent_image_compare(const lucent_image *a, const lucent_image *b, const float *mask,
+                                   lucent_image_error_stats *dest);
+
+/* As lucent_image_compare, with the mask given as a 1-channel image of the same size (or NULL). */
+lucent_status lucent_image_compare_masked(const lucent_image *a, const lucent_image *b,
+                                          const lucent_image *mask, lucent_image_error_stats *dest);
+
+typedef enum lucent_diff_mode {
+    LUCENT_DIFF_SIGNED = 0, /* a - b per channel */
+    LUCENT_DIFF_ABSOLUTE    /* |a - b| per channel */
+} lucent_diff_mode;
+
+/* Creates the per-channel difference image of a and b (same size and channels). */
+lucent_status lucent_image_difference(const lucent_image *a, const lucent_image *b,
+                                      lucent_diff_mode mode, lucent_image **dest);
+
+/* Creates a 1-channel map of the per-pixel error of a against the reference b, averaged over the
+ * colour channels (alpha ignored): |a - b| when !relative, |a - b| / (|b| + epsilon) when relative
+ * (epsilon <= 0: 0.01). Same size and channels required. */
+lucent_status lucent_image_error_map(const lucent_image *a, const lucent_image *b, bool relative,
+                                     float epsilon, lucent_image **dest);
+
+/* Returns the p-th percentile (0 <= p <= 100, nearest rank) of channel c's finite values in *dest
+ * (0 when none). Allocates a scratch copy of the channel. */
+lucent_status lucent_image_percentile(const lucent_image *img, int c, double p, float *dest);
+
+/* Creates an RGB false-colour heat map of a 1-channel image: value / scale, clamped to [0, 1],
+ * through a black - purple - red - orange - yellow - white ramp (linear RGB, so the PNG shows
+ * the ramp's sRGB colours). scale <= 0: the 99th percentile of the values (1 when that is 0). */
+lucent_status lucent_image_heatmap(const lucent_image *values, float scale, lucent_image **dest);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LUCENT_IMAGE_H */

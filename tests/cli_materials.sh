@@ -1,0 +1,69 @@
+# shellcheck shell=bash
+# `lucent materials`: sourced by tests/cli_test.sh, which provides $LUCENT, $FIXTURES, $TMP,
+# expect_ok, expect_fail, expect_true and expect_no_file.
+MAT=$FIXTURES/materials
+
+# ---- the presets ----
+expect_ok -- "$LUCENT" materials
+for name in Apple Chicken1 Chicken2 Cream Ketchup Marble Potato Skimmilk Skin1 Skin2 Wholemilk; do
+  expect_true "materials lists $name in each of its 3 tables" -- \
+    test "$(grep -c "^$name " <<<"$OUT")" = 3
+done
+expect_true "materials shows Skin1's dipole Rd (0.436 0.2273 0.131)" -- \
+  grep -Eq "^Skin1 .* 0\.436 +0\.2273 +0\.131$" <<<"$OUT"
+expect_true "materials shows Marble's dipole Rd (0.8302 0.791 0.7526)" -- \
+  grep -Eq "^Marble .* 0\.8302 +0\.791 +0\.7526$" <<<"$OUT"
+expect_true "materials fits in 100 columns" -- awk 'length($0) > 100 { exit 1 }' <<<"$OUT"
+
+expect_ok -- "$LUCENT" materials SKIN1 marble
+expect_true "preset names are case-insensitive" -- \
+  test "$(grep -c "^Skin1 " <<<"$OUT")" = 3 -a "$(grep -c "^Marble " <<<"$OUT")" = 3
+
+# ---- JSON ----
+expect_ok -- "$LUCENT" materials --json
+printf '%s\n' "$OUT" >"$TMP/materials.json"
+if command -v python3 >/dev/null 2>&1; then
+  expect_true "materials --json is valid JSON with 11 materials" -- python3 -c \
+    'import json,sys; d=json.load(open(sys.argv[1])); assert len(d["materials"]) == 11' "$TMP/materials.json"
+fi
+expect_true "materials --json states its units" -- grep -q '"units":[[:space:]]*"mm^-1"' "$TMP/materials.json"
+expect_ok -- "$LUCENT" materials "$TMP/materials.json"
+expect_true "materials --json output reads back as a material file" -- \
+  test "$(grep -c "^Wholemilk " <<<"$OUT")" = 3
+
+expect_ok -- "$LUCENT" materials skin2 "$MAT/jade.json" "$MAT/two.json#soap" --out "$TMP/picked.json"
+expect_true "materials --out says what it wrote" -- grep -q "^wrote $TMP/picked.json$" <<<"$OUT"
+expect_true "materials --out wrote the 3 named materials" -- \
+  test "$(grep -c '"name":' "$TMP/picked.json")" = 3
+expect_fail 1 "$TMP/missing/x.json" -- "$LUCENT" materials --out "$TMP/missing/x.json"
+expect_no_file "$TMP/missing/x.json"
+
+# ---- user files ----
+expect_ok -- "$LUCENT" materials "$MAT/jade.json" "$MAT/two.json"
+expect_true "materials reads a file's materials (jade, wax, soap)" -- \
+  test "$(grep -cE "^(jade|wax|soap) " <<<"$OUT")" = 9
+
+# ---- bad input: exit 1, the message names the file and the field, nothing printed or written ----
+bad_material() { # FIXTURE MESSAGE
+  expect_fail 1 "$MAT/$1: $2" -- "$LUCENT" materials "$MAT/$1"
+  expect_true "no output for $1" -- test -z "$("$LUCENT" materials "$MAT/$1" 2>/dev/null)"
+  expect_fail 1 "$1" -- "$LUCENT" materials skin1 "$MAT/$1" --out "$TMP/bad-$1"
+  expect_no_file "$TMP/bad-$1"
+}
+bad_material missing_field.json "eta: missing field"
+bad_material negative.json "sigma_a[1]: must be >= 0, got -0.02"
+bad_material nan.json "line 4, column 21 (in field \"sigma_a\"): not a number JSON allows" # NaN is not JSON: located by line and field
+bad_material huge.json "sigma_s_prime[1]: expected a finite number" # 1e999
+bad_material wrong_type.json "eta: expected a number, got a string"
+bad_material broken.json "line 5: invalid JSON: unexpected end of file"
+bad_material unknown_key.json "anisotropy: unknown field"
+bad_material no_units.json "units: missing field"
+bad_material list_bad.json "materials[1].sigma_s_prime[2]: must be >= 0"
+expect_fail 1 "$MAT/absent.json" -- "$LUCENT" materials "$MAT/absent.json"
+expect_fail 1 'unknown material "jade"' -- "$LUCENT" materials jade
+expect_fail 1 'no material named "tallow"' -- "$LUCENT" materials "$MAT/two.json#tallow"
+expect_fail 1 "holds 2 materials" -- "$LUCENT" materials "$MAT/two.json#"
+
+# ---- usage ----
+expect_fail 2 "unknown option '--frobnicate'" -- "$LUCENT" materials --frobnicate
+expect_fail 2 "--out needs a file name" -- "$LUCENT" materials --out

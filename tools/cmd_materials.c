@@ -1,0 +1,252 @@
+/* `lucent materials`: lists material presets (or materials from files) with their derived
+ * optical quantities, as aligned tables or as JSON. */
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "cli.h"
+
+static const char k_usage[] =
+    "usage: lucent materials [NAME | FILE.json | FILE.json#NAME ...] [--json] [--out FILE]\n"
+    "\n"
+    "Prints materials with their derived quantities: reduced coefficients, albedos, the\n"
+    "transport coefficient sigma_tr, the diffusion constant D, mean free paths and the\n"
+    "classical-dipole total diffuse reflectance Rd (Jensen et al. 2001).\n"
+    "Without arguments: the 11 measured presets of Jensen et al. 2001.\n"
+    "Arguments name presets (case-insensitive) or material files (docs/materials.md).\n"
+    "\n"
+    "options:\n"
+    "  --json        print JSON (coefficients in mm^-1, lengths in mm) instead of tables\n"
+    "  --out FILE    write that JSON to FILE (atomically) instead of printing it\n"
+    "  -h, --help    show this help\n"
+    "\n"
+    "examples:\n"
+    "  lucent materials\n"
+    "  lucent materials skin1 marble --json\n"
+    "  lucent materials my_jade.json --out out/jade.json\n";
+
+typedef struct options {
+    bool json;
+    const char *out;
+    lucent_material *list;
+    int count, capacity;
+} options;
+
+static lucent_status append(options *o, const lucent_material *m, int n)
+{
+    if (o->count + n > o->capacity) {
+        int cap = o->capacity * 2 + n + 16;
+        lucent_material *grown = realloc(o->list, (size_t)cap * sizeof *grown);
+        if (!grown) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+        o->list = grown;
+        o->capacity = cap;
+    }
+    memcpy(o->list + o->count, m, (size_t)n * sizeof *m);
+    o->count += n;
+    return LUCENT_OK;
+}
+
+static bool is_file_spec(const char *spec)
+{
+    size_t len = strlen(spec);
+    return strchr(spec, '/') || strchr(spec, '#') ||
+           (len > 5 && strcasecmp(spec + len - 5, ".json") == 0);
+}
+
+/* Adds what spec names: one preset, one material of a file (FILE#NAME) or a whole file. */
+static lucent_status add_spec(options *o, const char *spec)
+{
+    if (is_file_spec(spec) && !strchr(spec, '#')) {
+        lucent_material *m;
+        int n;
+        lucent_status s = lucent_material_load(spec, &m, &n);
+        if (s == LUCENT_OK) s = append(o, m, n);
+        free(m);
+        return s;
+    }
+    lucent_material m;
+    lucent_status s = lucent_material_resolve(spec, &m);
+    return s == LUCENT_OK ? append(o, &m, 1) : s;
+}
+
+static lucent_status add_presets(options *o)
+{
+    int n = lucent_material_preset_count();
+    if (n == 0) return lucent_error(LUCENT_ERR_INTERNAL, "no presets: %s", lucent_last_error());
+    for (int i = 0; i < n; i++) {
+        lucent_material m;
+        lucent_status s = lucent_material_preset(i, &m);
+        if (s == LUCENT_OK) s = append(o, &m, 1);
+        if (s != LUCENT_OK) return s;
+    }
+    return LUCENT_OK;
+}
+
+/* ---- tables ---- */
+
+typedef struct row {
+    lucent_material m;
+    lucent_material_derived d;
+} row;
+
+typedef struct quantity {
+    const char *title;
+    size_t offset; /* of a double (the scalar) or double[3] in row */
+} quantity;
+
+typedef struct table {
+    const char *title;
+    quantity scalar;
+    quantity rgb[3];
+} table;
+
+static const table k_tables[] = {
+    {"Coefficients (mm^-1)",
+     {"eta", offsetof(row, m.eta)},
+     {{"sigma_a", offsetof(row, m.sigma_a)},
+      {"sigma_s' = sigma_s(1-g)", offsetof(row, d.sigma_s_prime)},
+      {"sigma_tr=sqrt(3 sa st')", offsetof(row, d.sigma_tr)}}},
+    {"Albedos and total diffuse reflectance (classical dipole, Jensen et al. 2001)",
+     {"Fdr", offsetof(row, d.fdr)},
+     {{"albedo ss/st", offsetof(row, d.albedo)},
+      {"reduced albedo a'", offsetof(row, d.albedo_prime)},
+      {"Rd", offsetof(row, d.rd)}}},
+    {"Lengths (mm)",
+     {"A", offsetof(row, d.a)},
+     {{"l' = 1/sigma_t'", offsetof(row, d.mfp_prime)},
+      {"ld = 1/sigma_tr", offsetof(row, d.mfp_diffuse)},
+      {"D = 1/(3 sigma_t')", offsetof(row, d.diffusion)}}},
+};
+
+static const double *at(const row *r, size_t offset)
+{
+    return (const double *)((const char *)r + offset);
+}
+
+static void print_header(const table *t, int name_width)
+{
+    printf("%s\n%*s%6s", t->title, name_width, "", "");
+    for (int q = 0; q < 3; q++) printf(q < 2 ? "  %-24.24s" : "  %.24s", t->rgb[q].title);
+    printf("\n%-*s%6s", name_width, "name", t->scalar.title);
+    for (int q = 0; q < 3; q++) printf("  %8s%8s%8s", "R", "G", "B");
+    putchar('\n');
+}
+
+static void print_table(const table *t, const row *rows, int count, int name_width)
+{
+    print_header(t, name_width);
+    for (int i = 0; i < count; i++) {
+        printf("%-*s%6.3f", name_width, rows[i].m.name, *at(&rows[i], t->scalar.offset));
+        for (int q = 0; q < 3; q++) {
+            const double *v = at(&rows[i], t->rgb[q].offset);
+            printf("  %8.4g%8.4g%8.4g", v[0], v[1], v[2]);
+        }
+        putchar('\n');
+    }
+    putchar('\n');
+}
+
+static void print_anisotropic(const row *rows, int count)
+{
+    for (int i = 0; i < count; i++) {
+        const lucent_material *m = &rows[i].m;
+        if (m->g[0] == 0 && m->g[1] == 0 && m->g[2] == 0) continue;
+        printf("%s: g = (%.4g, %.4g, %.4g), sigma_s = (%.4g, %.4g, %.4g) mm^-1\n", m->name, m->g[0],
+               m->g[1], m->g[2], m->sigma_s[0], m->sigma_s[1], m->sigma_s[2]);
+    }
+}
+
+static lucent_status print_tables(const options *o)
+{
+    row *rows = calloc((size_t)o->count, sizeof *rows);
+    if (!rows) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    int name_width = 12;
+    for (int i = 0; i < o->count; i++) {
+        rows[i].m = o->list[i];
+        lucent_material_derive(&rows[i].m, &rows[i].d);
+        int len = (int)strlen(rows[i].m.name) + 1;
+        if (len > name_width) name_width = len;
+    }
+    for (size_t t = 0; t < sizeof k_tables / sizeof k_tables[0]; t++)
+        print_table(&k_tables[t], rows, o->count, name_width);
+    print_anisotropic(rows, o->count);
+    free(rows);
+    return LUCENT_OK;
+}
+
+/* ---- JSON ---- */
+
+static lucent_status emit_json(const options *o)
+{
+    char *text;
+    lucent_status s = lucent_material_to_json(o->list, o->count, true, &text);
+    if (s != LUCENT_OK) return s;
+    if (o->out) {
+        s = lucent_write_file(o->out, text, strlen(text));
+        if (s == LUCENT_OK) cli_info("wrote %s", o->out);
+    } else {
+        fputs(text, stdout);
+    }
+    free(text);
+    return s;
+}
+
+/* ---- the command ---- */
+
+/* Reads the options; positional arguments stay in argv (their count in *specs). */
+static int parse_args(int argc, char **argv, options *o, int *specs)
+{
+    *specs = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--json") == 0) {
+            o->json = true;
+        } else if (strcmp(a, "--out") == 0 || strncmp(a, "--out=", 6) == 0) {
+            o->out = a[5] == '=' ? a + 6 : (i + 1 < argc ? argv[++i] : NULL);
+            if (!o->out || !o->out[0])
+                return cli_usage_error("materials", "--out needs a file name");
+        } else if (a[0] == '-' && a[1]) {
+            return cli_usage_error("materials", "unknown option '%s'", a);
+        } else {
+            argv[1 + (*specs)++] = argv[i];
+        }
+    }
+    return CLI_OK;
+}
+
+/* Reads every named material (all presets when none is named) before anything is printed. */
+static lucent_status gather(options *o, char **specs, int count)
+{
+    if (count == 0) return add_presets(o);
+    for (int i = 0; i < count; i++) {
+        lucent_status s = add_spec(o, specs[i]);
+        if (s != LUCENT_OK) return s;
+    }
+    return LUCENT_OK;
+}
+
+static bool wants_help(int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++)
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) return true;
+    return false;
+}
+
+int cmd_materials(int argc, char **argv)
+{
+    if (wants_help(argc, argv)) {
+        fputs(k_usage, stdout);
+        return CLI_OK;
+    }
+    options o = {0};
+    int specs;
+    int rc = parse_args(argc, argv, &o, &specs);
+    if (rc == CLI_OK) {
+        lucent_status s = gather(&o, argv + 1, specs);
+        if (s == LUCENT_OK) s = (o.json || o.out) ? emit_json(&o) : print_tables(&o);
+        if (s != LUCENT_OK) rc = cli_fail();
+    }
+    free(o.list);
+    return rc;
+}
