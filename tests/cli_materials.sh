@@ -9,10 +9,21 @@ for name in Apple Chicken1 Chicken2 Cream Ketchup Marble Potato Skimmilk Skin1 S
   expect_true "materials lists $name in each of its 3 tables" -- \
     test "$(grep -c "^$name " <<<"$OUT")" = 3
 done
-expect_true "materials shows Skin1's dipole Rd (0.436 0.2273 0.131)" -- \
-  grep -Eq "^Skin1 .* 0\.436 +0\.2273 +0\.131$" <<<"$OUT"
-expect_true "materials shows Marble's dipole Rd (0.8302 0.791 0.7526)" -- \
-  grep -Eq "^Marble .* 0\.8302 +0\.791 +0\.7526$" <<<"$OUT"
+# The Rd columns (the last three of the albedo table) against Jensen et al. 2001's table,
+# to +-0.001: Skin1 (0.436, 0.227, 0.131), Marble (0.830, 0.791, 0.753).
+rd_row() { # NAME: the last three numbers of NAME's row in the "Albedos" table
+  awk -v n="$1" '/^Albedos/{t=1} /^Lengths/{t=0} t && $1==n {print $(NF-2), $(NF-1), $NF}' <<<"$OUT"
+}
+near3() { # "a b c" "x y z" TOL
+  awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN{split(a,p," "); split(b,q," ");
+    for(i=1;i<=3;i++) if ((p[i]-q[i])>t || (q[i]-p[i])>t || p[i]=="") exit 1}'
+}
+expect_true "materials shows Skin1's dipole Rd (0.436, 0.227, 0.131) +-0.001" -- \
+  near3 "$(rd_row Skin1)" "0.436 0.227 0.131" 0.001
+expect_true "materials shows Marble's dipole Rd (0.830, 0.791, 0.753) +-0.001" -- \
+  near3 "$(rd_row Marble)" "0.830 0.791 0.753" 0.001
+not() { ! "$@"; }
+expect_true "the Rd check itself rejects a value 0.01 off" -- not near3 "$(rd_row Skin1)" "0.446 0.227 0.131" 0.001
 expect_true "materials fits in 100 columns" -- awk 'length($0) > 100 { exit 1 }' <<<"$OUT"
 
 expect_ok -- "$LUCENT" materials SKIN1 marble
@@ -37,6 +48,10 @@ expect_true "materials --out wrote the 3 named materials" -- \
   test "$(grep -c '"name":' "$TMP/picked.json")" = 3
 expect_fail 1 "$TMP/missing/x.json" -- "$LUCENT" materials --out "$TMP/missing/x.json"
 expect_no_file "$TMP/missing/x.json"
+mkdir -p "$TMP/ro" && chmod 555 "$TMP/ro"
+expect_fail 1 "$TMP/ro/x.json: cannot create: Permission denied" -- \
+  as_nobody "$LUCENT" materials --out "$TMP/ro/x.json"
+expect_no_file "$TMP/ro/x.json"
 
 # ---- user files ----
 expect_ok -- "$LUCENT" materials "$MAT/jade.json" "$MAT/two.json"

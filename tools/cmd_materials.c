@@ -1,5 +1,6 @@
 /* `lucent materials`: lists material presets (or materials from files) with their derived
  * optical quantities, as aligned tables or as JSON. */
+#include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
@@ -124,6 +125,15 @@ static const double *at(const row *r, size_t offset)
     return (const double *)((const char *)r + offset);
 }
 
+/* Prints v in exactly 8 columns (a space, then 7 characters), as many decimals as fit. */
+static void print_value(double v)
+{
+    double a = fabs(v);
+    if (!isfinite(v) || a >= 1e5) printf(" %7.2g", v);
+    else if (a >= 100) printf(" %7.1f", v);
+    else printf(" %7.4f", v);
+}
+
 static void print_header(const table *t, int name_width)
 {
     printf("%s\n%*s%6s", t->title, name_width, "", "");
@@ -140,7 +150,8 @@ static void print_table(const table *t, const row *rows, int count, int name_wid
         printf("%-*s%6.3f", name_width, rows[i].m.name, *at(&rows[i], t->scalar.offset));
         for (int q = 0; q < 3; q++) {
             const double *v = at(&rows[i], t->rgb[q].offset);
-            printf("  %8.4g%8.4g%8.4g", v[0], v[1], v[2]);
+            printf("  ");
+            for (int c = 0; c < 3; c++) print_value(v[c]);
         }
         putchar('\n');
     }
