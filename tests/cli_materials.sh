@@ -82,3 +82,19 @@ expect_fail 1 "holds 2 materials" -- "$LUCENT" materials "$MAT/two.json#"
 # ---- usage ----
 expect_fail 2 "unknown option '--frobnicate'" -- "$LUCENT" materials --frobnicate
 expect_fail 2 "--out needs a file name" -- "$LUCENT" materials --out
+
+# ---- swatches ----
+# One Skin1 swatch (96x96 at Rd) on a 112x112 backdrop of 0.18: the Rd values appear as the
+# red maximum and the blue minimum (Jensen 2001: 0.436 and 0.131, +-0.001).
+expect_ok -- "$LUCENT" materials skin1 --swatches "$TMP/skin1.pfm"
+expect_true "materials --swatches says what it wrote" -- grep -q "^wrote $TMP/skin1.pfm" <<<"$OUT"
+expect_ok -- "$LUCENT" image info "$TMP/skin1.pfm"
+expect_true "the swatch image is 112x112 RGB" -- grep -q "112x112, 3 channels" <<<"$OUT"
+expect_true "the Skin1 swatch shows Rd (0.436 red, 0.131 blue)" -- \
+  near3 "$(awk '$1=="R"{r=$3} $1=="B"{b=$2} END{print r, b, 0}' <<<"$OUT")" "0.436 0.131 0" 0.001
+expect_ok -- "$LUCENT" materials --swatches "$TMP/all.png"
+expect_ok -- "$LUCENT" image info "$TMP/all.png"
+expect_true "11 swatches make a 1152x112 image" -- grep -q "1152x112" <<<"$OUT"
+expect_fail 1 "$TMP/missing/s.png: cannot create" -- "$LUCENT" materials --swatches "$TMP/missing/s.png"
+expect_no_file "$TMP/missing/s.png"
+expect_fail 2 "--swatches needs an image file name" -- "$LUCENT" materials --swatches

@@ -20,16 +20,21 @@ static const char k_usage[] =
     "options:\n"
     "  --json        print JSON (coefficients in mm^-1, lengths in mm) instead of tables\n"
     "  --out FILE    write that JSON to FILE (atomically) instead of printing it\n"
+    "  --swatches IMAGE\n"
+    "                write a row of colour swatches, one per material, showing its total\n"
+    "                diffuse reflectance Rd under white light (PNG, EXR or PFM by extension)\n"
     "  -h, --help    show this help\n"
     "\n"
     "examples:\n"
     "  lucent materials\n"
     "  lucent materials skin1 marble --json\n"
-    "  lucent materials my_jade.json --out out/jade.json\n";
+    "  lucent materials my_jade.json --out out/jade.json\n"
+    "  lucent materials --swatches out/materials.png\n";
 
 typedef struct options {
     bool json;
     const char *out;
+    const char *swatches;
     lucent_material *list;
     int count, capacity;
 } options;
@@ -203,6 +208,50 @@ static lucent_status emit_json(const options *o)
     return s;
 }
 
+/* ---- swatches ---- */
+
+enum { SWATCH_SIZE = 96, SWATCH_GAP = 8 };
+
+/* Draws one swatch: the material's dipole Rd as a linear RGB colour. */
+static void draw_swatch(lucent_image *img, int index, const lucent_material *m)
+{
+    lucent_material_derived d;
+    lucent_material_derive(m, &d);
+    int x0 = SWATCH_GAP + index * (SWATCH_SIZE + SWATCH_GAP);
+    for (int y = SWATCH_GAP; y < SWATCH_GAP + SWATCH_SIZE; y++)
+        for (int x = x0; x < x0 + SWATCH_SIZE; x++)
+            for (int c = 0; c < 3; c++) lucent_image_set(img, x, y, c, (float)d.rd[c]);
+}
+
+static lucent_status write_swatches(const options *o)
+{
+    lucent_image *img;
+    int width = SWATCH_GAP + o->count * (SWATCH_SIZE + SWATCH_GAP);
+    lucent_status s = lucent_image_create(width, SWATCH_SIZE + 2 * SWATCH_GAP, 3, &img);
+    if (s != LUCENT_OK) return s;
+    for (int c = 0; c < 3; c++) lucent_image_fill(img, c, 0.18f); /* middle grey backdrop */
+    for (int i = 0; i < o->count; i++) draw_swatch(img, i, &o->list[i]);
+    s = lucent_image_write(o->swatches, img, NULL);
+    lucent_image_destroy(img);
+    if (s != LUCENT_OK) return s;
+    if (!g_cli.quiet) {
+        printf("wrote %s (dipole Rd swatches, left to right:", o->swatches);
+        for (int i = 0; i < o->count; i++) printf(" %s", o->list[i].name);
+        printf(")\n");
+    }
+    return LUCENT_OK;
+}
+
+/* Writes what was asked: files (--out, --swatches) or, when none, tables or JSON on stdout. */
+static lucent_status emit(const options *o)
+{
+    lucent_status s = LUCENT_OK;
+    if (o->swatches) s = write_swatches(o);
+    if (s == LUCENT_OK && (o->json || o->out) && (o->out || !o->swatches)) s = emit_json(o);
+    if (s == LUCENT_OK && !o->json && !o->out && !o->swatches) s = print_tables(o);
+    return s;
+}
+
 /* ---- the command ---- */
 
 /* Reads the options; positional arguments stay in argv (their count in *specs). */
@@ -217,6 +266,10 @@ static int parse_args(int argc, char **argv, options *o, int *specs)
             o->out = a[5] == '=' ? a + 6 : (i + 1 < argc ? argv[++i] : NULL);
             if (!o->out || !o->out[0])
                 return cli_usage_error("materials", "--out needs a file name");
+        } else if (strcmp(a, "--swatches") == 0 || strncmp(a, "--swatches=", 11) == 0) {
+            o->swatches = a[10] == '=' ? a + 11 : (i + 1 < argc ? argv[++i] : NULL);
+            if (!o->swatches || !o->swatches[0])
+                return cli_usage_error("materials", "--swatches needs an image file name");
         } else if (a[0] == '-' && a[1]) {
             return cli_usage_error("materials", "unknown option '%s'", a);
         } else {
@@ -255,7 +308,7 @@ int cmd_materials(int argc, char **argv)
     int rc = parse_args(argc, argv, &o, &specs);
     if (rc == CLI_OK) {
         lucent_status s = gather(&o, argv + 1, specs);
-        if (s == LUCENT_OK) s = (o.json || o.out) ? emit_json(&o) : print_tables(&o);
+        if (s == LUCENT_OK) s = emit(&o);
         if (s != LUCENT_OK) rc = cli_fail();
     }
     free(o.list);
