@@ -5,5 +5,6 @@
 #include "lucent/base.h"
 #include "lucent/image.h"
 #include "lucent/material.h"
+#include "lucent/report.h"
 
 #endif

@@ -1,0 +1,253 @@
+/* SVG line charts: panels side by side, linear or logarithmic y, legends, error bands. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/strbuf.h"
+#include "lucent/report.h"
+
+enum { MARGIN_LEFT = 72, MARGIN_RIGHT = 16, MARGIN_TOP = 36, MARGIN_BOTTOM = 48, MAX_TICKS = 8 };
+enum { LOG_MAX_DECADES = 12 };
+
+static const char *const k_palette[] = {"#c0392b", "#27ae60", "#2e64c8", "#8e44ad",
+                                        "#d68910", "#17a589", "#5d6d7e", "#cb4335"};
+
+/* The data rectangle of one panel, in SVG pixels, and its value ranges. */
+typedef struct frame {
+    double left, top, width, height;
+    double x0, x1, y0, y1; /* y in log10 units when log */
+    bool log_y;
+} frame;
+
+int lucent_plot_nice_ticks(double lo, double hi, int max_ticks, double *dest)
+{
+    if (!(hi > lo) || max_ticks < 2) return 0;
+    double raw = (hi - lo) / (max_ticks - 1), mag = pow(10, floor(log10(raw)));
+    double step = mag * (raw / mag <= 1 ? 1 : raw / mag <= 2 ? 2 : raw / mag <= 5 ? 5 : 10);
+    int n = 0;
+    for (double t = ceil(lo / step - 1e-9) * step; t <= hi + 1e-9 * step && n < max_ticks; t += step)
+        dest[n++] = fabs(t) < 1e-12 * step ? 0 : t;
+    return n;
+}
+
+static bool usable(const lucent_plot_panel *p, double x, double y)
+{
+    if (!isfinite(x) || !isfinite(y) || (p->log_y && y <= 0)) return false;
+    bool fixed_x = p->x_min != 0 || p->x_max != 0;
+    return !fixed_x || (x >= p->x_min && x <= p->x_max);
+}
+
+/* Fits the ranges to the data where the panel leaves them open. */
+static void fit_ranges(const lucent_plot_panel *p, frame *f)
+{
+    double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+    for (int s = 0; s < p->series_count; s++)
+        for (int i = 0; i < p->series[s].count; i++) {
+            double x = p->series[s].x[i], y = p->series[s].y[i];
+            if (!usable(p, x, y)) continue;
+            xmin = fmin(xmin, x), xmax = fmax(xmax, x);
+            ymin = fmin(ymin, y), ymax = fmax(ymax, y);
+        }
+    if (!(xmax >= xmin)) xmin = 0, xmax = 1, ymin = p->log_y ? 0.1 : 0, ymax = 1;
+    if (p->x_min != 0 || p->x_max != 0) {
+        xmin = p->x_min, xmax = p->x_max;
+    } else if (xmax > xmin) { /* open x: widen to whole ticks */
+        double t[MAX_TICKS];
+        int n = lucent_plot_nice_ticks(xmin, xmax, 7, t);
+        double step = n > 1 ? t[1] - t[0] : xmax - xmin;
+        xmin = floor(xmin / step + 1e-9) * step, xmax = ceil(xmax / step - 1e-9) * step;
+    }
+    if (p->y_min != 0 || p->y_max != 0) ymin = p->y_min, ymax = p->y_max;
+    if (xmax <= xmin) xmax = xmin + 1;
+    f->log_y = p->log_y;
+    if (p->log_y) {
+        f->y1 = ceil(log10(ymax));
+        f->y0 = fmax(floor(log10(fmax(ymin, 1e-300))), f->y1 - LOG_MAX_DECADES);
+        if (f->y1 <= f->y0) f->y1 = f->y0 + 1;
+    } else {
+        double t[MAX_TICKS];
+        if (ymax <= ymin) ymax = ymin + (ymin == 0 ? 1 : fabs(ymin));
+        int n = lucent_plot_nice_ticks(ymin, ymax, 6, t);
+        double step = n > 1 ? t[1] - t[0] : ymax - ymin;
+        f->y0 = floor(ymin / step + 1e-9) * step, f->y1 = ceil(ymax / step - 1e-9) * step;
+    }
+    f->x0 = xmin, f->x1 = xmax;
+}
+
+static double px(const frame *f, double x)
+{
+    return f->left + (x - f->x0) / (f->x1 - f->x0) * f->width;
+}
+
+static double py(const frame *f, double y)
+{
+    double v = f->log_y ? log10(y) : y;
+    return f->top + f->height - (v - f->y0) / (f->y1 - f->y0) * f->height;
+}
+
+static void axis_label(lucent_strbuf *b, double x, double y, const char *anchor, double rotate,
+                       const char *text)
+{
+    lucent_strbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"%s\"", x, y, anchor);
+    if (rotate != 0) lucent_strbuf_printf(b, " transform=\"rotate(%g %.1f %.1f)\"", rotate, x, y);
+    lucent_strbuf_printf(b, ">");
+    lucent_strbuf_xml(b, text);
+    lucent_strbuf_printf(b, "</text>\n");
+}
+
+static void draw_x_ticks(lucent_strbuf *b, const frame *f)
+{
+    double t[MAX_TICKS];
+    int n = lucent_plot_nice_ticks(f->x0, f->x1, 7, t);
+    for (int i = 0; i < n; i++) {
+        double x = px(f, t[i]);
+        lucent_strbuf_printf(b, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"/>\n",
+                             x, f->top, x, f->top + f->height);
+        lucent_strbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%g</text>\n", x,
+                             f->top + f->height + 16, t[i]);
+    }
+}
+
+static void draw_y_ticks(lucent_strbuf *b, const frame *f)
+{
+    double t[LOG_MAX_DECADES + 2];
+    int n = 0;
+    if (f->log_y) {
+        int stride = (int)ceil((f->y1 - f->y0) / 7);
+        for (double e = f->y0; e <= f->y1 + 1e-9; e += stride) t[n++] = e;
+    } else {
+        n = lucent_plot_nice_ticks(f->y0, f->y1, 7, t);
+    }
+    for (int i = 0; i < n; i++) {
+        double y = f->log_y ? f->top + f->height - (t[i] - f->y0) / (f->y1 - f->y0) * f->height
+                            : py(f, t[i]);
+        lucent_strbuf_printf(b, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"/>\n",
+                             f->left, y, f->left + f->width, y);
+        if (f->log_y)
+            lucent_strbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">10<tspan dy=\"-6\" "
+                                 "font-size=\"9\">%d</tspan></text>\n", f->left - 6, y + 4, (int)t[i]);
+        else
+            lucent_strbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n",
+                                 f->left - 6, y + 4, t[i]);
+    }
+}
+
+/* Error band: the polygon y + err forward, y - err backward (log: only where y - err > 0). */
+static void draw_band(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p,
+                      const lucent_plot_series *s, const char *color)
+{
+    lucent_strbuf_printf(b, "<polygon fill=\"%s\" fill-opacity=\"0.18\" stroke=\"none\" points=\"", color);
+    for (int i = 0; i < s->count; i++)
+        if (usable(p, s->x[i], s->y[i] + s->err[i]))
+            lucent_strbuf_printf(b, "%.2f,%.2f ", px(f, s->x[i]), py(f, s->y[i] + s->err[i]));
+    for (int i = s->count - 1; i >= 0; i--) {
+        double lo = s->y[i] - s->err[i];
+        if (p->log_y && lo <= 0) lo = pow(10, f->y0);
+        if (usable(p, s->x[i], lo)) lucent_strbuf_printf(b, "%.2f,%.2f ", px(f, s->x[i]), py(f, lo));
+    }
+    lucent_strbuf_printf(b, "\"/>\n");
+}
+
+/* The curve as polylines, broken where points cannot be drawn. */
+static void draw_series(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p,
+                        const lucent_plot_series *s, const char *color)
+{
+    if (s->err) draw_band(b, f, p, s, color);
+    bool open = false;
+    for (int i = 0; i < s->count; i++) {
+        bool ok = usable(p, s->x[i], s->y[i]);
+        if (ok && !open)
+            lucent_strbuf_printf(b, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.6\"%s points=\"",
+                                 color, s->dashed ? " stroke-dasharray=\"6 4\"" : "");
+        else if (!ok && open)
+            lucent_strbuf_printf(b, "\"/>\n");
+        if (ok) lucent_strbuf_printf(b, "%.2f,%.2f ", px(f, s->x[i]), py(f, s->y[i]));
+        open = ok;
+    }
+    if (open) lucent_strbuf_printf(b, "\"/>\n");
+    for (int i = 0; s->markers && i < s->count; i++)
+        if (usable(p, s->x[i], s->y[i]))
+            lucent_strbuf_printf(b, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"2.2\" fill=\"%s\"/>\n",
+                                 px(f, s->x[i]), py(f, s->y[i]), color);
+}
+
+static void draw_legend(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p)
+{
+    int row = 0;
+    for (int s = 0; s < p->series_count; s++) {
+        const lucent_plot_series *ser = &p->series[s];
+        if (!ser->label) continue;
+        const char *color = ser->color ? ser->color : k_palette[s % 8];
+        double x = f->left + f->width - 150, y = f->top + 14 + 16 * row++;
+        lucent_strbuf_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
+                             "stroke-width=\"2\"%s/>\n", x, y - 4, x + 22, y - 4, color,
+                             ser->dashed ? " stroke-dasharray=\"6 4\"" : "");
+        axis_label(b, x + 28, y, "start", 0, ser->label);
+    }
+}
+
+static void draw_panel(lucent_strbuf *b, const lucent_plot_desc *d, int index, double top)
+{
+    const lucent_plot_panel *p = &d->panels[index];
+    int w = d->panel_width ? d->panel_width : 480, h = d->panel_height ? d->panel_height : 360;
+    frame f = {.left = index * w + MARGIN_LEFT, .top = top + MARGIN_TOP,
+               .width = w - MARGIN_LEFT - MARGIN_RIGHT, .height = h - MARGIN_TOP - MARGIN_BOTTOM};
+    fit_ranges(p, &f);
+    lucent_strbuf_printf(b, "<clipPath id=\"clip%d\"><rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" "
+                         "height=\"%.1f\"/></clipPath>\n", index, f.left, f.top, f.width, f.height);
+    draw_x_ticks(b, &f);
+    draw_y_ticks(b, &f);
+    lucent_strbuf_printf(b, "<rect class=\"frame\" x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\"/>\n",
+                         f.left, f.top, f.width, f.height);
+    lucent_strbuf_printf(b, "<g clip-path=\"url(#clip%d)\">\n", index);
+    for (int s = 0; s < p->series_count; s++)
+        draw_series(b, &f, p, &p->series[s], p->series[s].color ? p->series[s].color : k_palette[s % 8]);
+    lucent_strbuf_printf(b, "</g>\n");
+    draw_legend(b, &f, p);
+    if (p->title) axis_label(b, f.left + f.width / 2, f.top - 12, "middle", 0, p->title);
+    if (p->x_label) axis_label(b, f.left + f.width / 2, f.top + f.height + 38, "middle", 0, p->x_label);
+    if (p->y_label) axis_label(b, f.left - 52, f.top + f.height / 2, "middle", -90, p->y_label);
+}
+
+static lucent_status check_desc(const lucent_plot_desc *d)
+{
+    if (!d || d->panel_count < 1 || !d->panels)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "plot: no panels");
+    for (int i = 0; i < d->panel_count; i++)
+        for (int s = 0; s < d->panels[i].series_count; s++) {
+            const lucent_plot_series *ser = &d->panels[i].series[s];
+            if (ser->count < 0 || (ser->count > 0 && (!ser->x || !ser->y)))
+                return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "plot: panel %d, series %d: no data", i, s);
+        }
+    return LUCENT_OK;
+}
+
+lucent_status lucent_plot_svg(const lucent_plot_desc *d, char **dest)
+{
+    *dest = NULL;
+    lucent_status s = check_desc(d);
+    if (s != LUCENT_OK) return s;
+    int w = d->panel_width ? d->panel_width : 480, h = d->panel_height ? d->panel_height : 360;
+    double top = d->title ? 28 : 0;
+    lucent_strbuf b = {0};
+    lucent_strbuf_printf(&b, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
+                         "version=\"1.1\" width=\"%d\" height=\"%.0f\" viewBox=\"0 0 %d %.0f\" "
+                         "font-family=\"sans-serif\" font-size=\"12\">\n", w * d->panel_count, h + top,
+                         w * d->panel_count, h + top);
+    lucent_strbuf_printf(&b, "<style>.grid{stroke:#e3e3e3;stroke-width:1}.frame{fill:none;stroke:#444}</style>\n"
+                         "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n");
+    if (d->title) axis_label(&b, w * d->panel_count / 2.0, 20, "middle", 0, d->title);
+    for (int i = 0; i < d->panel_count; i++) draw_panel(&b, d, i, top);
+    lucent_strbuf_printf(&b, "</svg>\n");
+    return lucent_strbuf_finish(&b, dest);
+}
+
+lucent_status lucent_plot_write_svg(const char *path, const lucent_plot_desc *desc)
+{
+    char *text;
+    lucent_status s = lucent_plot_svg(desc, &text);
+    if (s != LUCENT_OK) return s;
+    s = lucent_write_file(path, text, strlen(text));
+    free(text);
+    return s;
+}
