@@ -30,8 +30,9 @@ typedef struct cli_common {
 
 extern cli_common g_cli;
 
-/* Strips --quiet/-q and --threads N / --threads=N from argv (updating *argc) into g_cli,
- * and configures logging and progress output. Returns CLI_OK, or CLI_USAGE after a message. */
+/* Strips --quiet/-q and --threads N / --threads=N from argv[1..] (updating *argc) into g_cli,
+ * and configures logging and progress output. Returns CLI_OK, or CLI_USAGE after a message
+ * (command names the subcommand in it; NULL: the program). main.c calls it once for all. */
 int cli_common_options(const char *command, int *argc, char **argv);
 
 /* Prints "lucent: <lucent_last_error()>" to stderr and returns CLI_FAIL. */
@@ -47,11 +48,21 @@ void cli_info(const char *fmt, ...) LUCENT_PRINTF(1, 2);
 bool cli_parse_int(const char *text, int *dest);
 bool cli_parse_double(const char *text, double *dest);
 
+/* True when argv[1..argc-1] holds --help or -h. */
+bool cli_wants_help(int argc, char **argv);
+
+/* Matches argv[*i] against an option that takes a value, given as `NAME VALUE` or `NAME=VALUE`.
+ * On a match sets *value (NULL when the value is missing or empty), moves *i past a separate
+ * value, and returns true; otherwise returns false and changes nothing. */
+bool cli_option(int argc, char **argv, int *i, const char *name, const char **value);
+
 /* The pool shared by the command's work, sized by --threads (created on first use). */
 lucent_pool *cli_pool(void);
 
 /* The subcommands (one cmd_<name>.c each). */
 int cmd_materials(int argc, char **argv);
 int cmd_image(int argc, char **argv);
+int cmd_profile(int argc, char **argv);
+int cmd_mcml(int argc, char **argv);
 
 #endif

@@ -12,6 +12,8 @@ static lucent_pool *g_pool;
 static const cli_command k_commands[] = {
     {"materials", "list material presets and their derived optical quantities", cmd_materials},
     {"image", "inspect, convert and compare images (PNG, EXR, PFM)", cmd_image},
+    {"mcml", "run MCML input files (.mci), write MCML output (.mco)", cmd_mcml},
+    {"profile", "radial diffuse reflectance profiles: Monte Carlo and analytic models", cmd_profile},
 };
 enum { COMMAND_COUNT = sizeof k_commands / sizeof k_commands[0] };
 
@@ -43,10 +45,11 @@ int cli_usage_error(const char *command, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    fprintf(stderr, "lucent %s: ", command);
+    fprintf(stderr, command ? "lucent %s: " : "lucent: ", command);
     vfprintf(stderr, fmt, ap);
     va_end(ap);
-    fprintf(stderr, "\nTry 'lucent %s --help'.\n", command);
+    if (command) fprintf(stderr, "\nTry 'lucent %s --help'.\n", command);
+    else fprintf(stderr, "\nTry 'lucent --help'.\n");
     return CLI_USAGE;
 }
 
@@ -77,6 +80,24 @@ bool cli_parse_double(const char *text, double *dest)
     double v = text ? strtod(text, &end) : 0;
     if (!text || !*text || *end || errno || v != v || v > 1e300 || v < -1e300) return false;
     *dest = v;
+    return true;
+}
+
+bool cli_wants_help(int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++)
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) return true;
+    return false;
+}
+
+bool cli_option(int argc, char **argv, int *i, const char *name, const char **value)
+{
+    const char *a = argv[*i];
+    size_t n = strlen(name);
+    if (strncmp(a, name, n) != 0 || (a[n] != '\0' && a[n] != '=')) return false;
+    if (a[n] == '=') *value = a + n + 1;
+    else *value = *i + 1 < argc ? argv[++*i] : NULL;
+    if (*value && !**value) *value = NULL;
     return true;
 }
 
@@ -124,6 +145,8 @@ static const cli_command *find_command(const char *name)
 
 int main(int argc, char **argv)
 {
+    /* The common options may stand anywhere: `lucent -q profile ...`, `lucent profile ... -q`. */
+    if (cli_common_options(NULL, &argc, argv) != CLI_OK) return CLI_USAGE;
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
         strcmp(argv[1], "help") == 0) {
         if (argc >= 3 && find_command(argv[2])) {
@@ -142,10 +165,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "lucent: unknown command '%s'\nTry 'lucent --help'.\n", argv[1]);
         return CLI_USAGE;
     }
-    int sub_argc = argc - 1;
-    char **sub_argv = argv + 1;
-    int rc = cli_common_options(cmd->name, &sub_argc, sub_argv);
-    if (rc == CLI_OK) rc = cmd->run(sub_argc, sub_argv);
+    int rc = cmd->run(argc - 1, argv + 1);
     lucent_pool_destroy(g_pool);
     return rc;
 }

@@ -5,6 +5,8 @@
 #include "lucent/base.h"
 #include "lucent/image.h"
 #include "lucent/material.h"
+#include "lucent/mc.h"
+#include "lucent/profile.h"
 #include "lucent/report.h"
 
 #endif

@@ -132,20 +132,41 @@ static void draw_y_ticks(lucent_strbuf *b, const frame *f)
     }
 }
 
-/* Error band: the polygon y + err forward, y - err backward (log: only where y - err > 0). */
+static bool band_point(const lucent_plot_panel *p, const lucent_plot_series *s, int i)
+{
+    return usable(p, s->x[i], s->y[i]) && isfinite(s->err[i]);
+}
+
+/* Error band over points [begin, end): y + err forward, y - err backward (on a log axis a
+ * lower edge at or below zero sits on the bottom of the panel). */
+static void draw_band_run(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p,
+                          const lucent_plot_series *s, int begin, int end, const char *color)
+{
+    lucent_strbuf_printf(b, "<polygon fill=\"%s\" fill-opacity=\"0.18\" stroke=\"none\" points=\"", color);
+    for (int i = begin; i < end; i++)
+        lucent_strbuf_printf(b, "%.2f,%.2f ", px(f, s->x[i]), py(f, s->y[i] + fabs(s->err[i])));
+    for (int i = end - 1; i >= begin; i--) {
+        double lo = s->y[i] - fabs(s->err[i]);
+        if (p->log_y && lo <= 0) lo = pow(10, f->y0);
+        lucent_strbuf_printf(b, "%.2f,%.2f ", px(f, s->x[i]), py(f, lo));
+    }
+    lucent_strbuf_printf(b, "\"/>\n");
+}
+
+/* One band polygon per run of drawable points, so gaps stay gaps. */
 static void draw_band(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p,
                       const lucent_plot_series *s, const char *color)
 {
-    lucent_strbuf_printf(b, "<polygon fill=\"%s\" fill-opacity=\"0.18\" stroke=\"none\" points=\"", color);
-    for (int i = 0; i < s->count; i++)
-        if (usable(p, s->x[i], s->y[i] + s->err[i]))
-            lucent_strbuf_printf(b, "%.2f,%.2f ", px(f, s->x[i]), py(f, s->y[i] + s->err[i]));
-    for (int i = s->count - 1; i >= 0; i--) {
-        double lo = s->y[i] - s->err[i];
-        if (p->log_y && lo <= 0) lo = pow(10, f->y0);
-        if (usable(p, s->x[i], lo)) lucent_strbuf_printf(b, "%.2f,%.2f ", px(f, s->x[i]), py(f, lo));
+    for (int i = 0; i < s->count;) {
+        if (!band_point(p, s, i)) {
+            i++;
+            continue;
+        }
+        int end = i;
+        while (end < s->count && band_point(p, s, end)) end++;
+        if (end - i > 1) draw_band_run(b, f, p, s, i, end, color);
+        i = end;
     }
-    lucent_strbuf_printf(b, "\"/>\n");
 }
 
 /* The curve as polylines, broken where points cannot be drawn. */

@@ -1,0 +1,204 @@
+/* Lucent profiles: radial diffuse reflectance profiles R_d(r) on a radial grid, the analytic
+ * diffusion models (classical dipole, better dipole, multipole slabs and their layered
+ * composition, Burley's normalized diffusion) and sum-of-Gaussians fits of a profile.
+ *
+ * Units: r in mm, coefficients in mm^-1, R_d in mm^-2 (reflected power per unit area for a
+ * unit incident power), Gaussian variances in mm^2. See docs/profiles.md for the formulas. */
+#ifndef LUCENT_PROFILE_H
+#define LUCENT_PROFILE_H
+
+#include <stdbool.h>
+
+#include "lucent/base.h"
+#include "lucent/material.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { LUCENT_PROFILE_MODEL_SIZE = 32, LUCENT_SOG_MAX = 16 };
+
+/* ---- Tabulated profiles ---------------------------------------------------------------
+ * Bin j covers [j dr, (j + 1) dr] (j = 0 .. count-1); r[j] = (j + 0.5) dr is its centre.
+ * value[c][j] is the average of R_d over the bin's annulus,
+ *   value = (2 pi integral_bin R_d(r) r dr) / (pi ((j+1)^2 - j^2) dr^2),
+ * so value[c][j] times the annulus area is the power reflected into the bin.
+ * error[c][j] is its standard error (0 for analytic models). */
+typedef struct lucent_profile {
+    int count;                             /* number of bins, > 0 */
+    double dr;                             /* bin width, mm, > 0 */
+    double *r;                             /* bin centres, mm */
+    double *value[3];                      /* R_d per channel, mm^-2 */
+    double *error[3];                      /* standard error per channel, mm^-2 */
+    char model[LUCENT_PROFILE_MODEL_SIZE]; /* "dipole", "better-dipole", "mc", ... */
+} lucent_profile;
+
+/* A radial grid. A zero field means "the default for the material" (see
+ * lucent_profile_grid_default). */
+typedef struct lucent_profile_grid {
+    double dr; /* bin width, mm */
+    int count; /* number of bins */
+} lucent_profile_grid;
+
+/* Fills dest with the grid of Freude 2014, Table 6.1: dr = min(MFP_rgb) / 20 and
+ * count = ceil(32 max(MFP_rgb) / dr), with MFP = 1 / sigma_t' (mm). m must be valid. */
+void lucent_profile_grid_default(const lucent_material *m, lucent_profile_grid *dest);
+
+/* Resolves grid (NULL or zero fields: the default for m; m may be NULL when grid is complete)
+ * into dest. Fails with LUCENT_ERR_INVALID_ARGUMENT naming "dr" or "count". */
+lucent_status lucent_profile_grid_resolve(const lucent_profile_grid *grid, const lucent_material *m,
+                                          lucent_profile_grid *dest);
+
+/* Creates a zeroed profile on grid (dr > 0, 0 < count <= 10^8), with r filled in and model
+ * set to model (may be NULL). Free with lucent_profile_destroy. */
+lucent_status lucent_profile_create(const lucent_profile_grid *grid, const char *model,
+                                    lucent_profile **dest);
+
+/* Frees p (NULL is fine). */
+void lucent_profile_destroy(lucent_profile *p);
+
+/* Returns the reflectance carried by the profile's bins for channel c (0..2):
+ * sum_j value[c][j] pi ((j+1)^2 - j^2) dr^2. */
+double lucent_profile_total(const lucent_profile *p, int c);
+
+/* ---- One channel of a medium, as the diffusion models see it ---- */
+typedef struct lucent_medium {
+    double sigma_a;       /* absorption, mm^-1, >= 0 */
+    double sigma_s_prime; /* reduced scattering sigma_s (1 - g), mm^-1, >= 0; sum > 0 */
+    double eta;           /* relative index of refraction, >= 1 */
+} lucent_medium;
+
+/* Fills dest with channel c (0..2) of m: sigma_a, sigma_s (1 - g), eta. */
+void lucent_medium_from_material(const lucent_material *m, int c, lucent_medium *dest);
+
+/* Checks a medium; the message names the field ("sigma_a", "sigma_s_prime", "eta"). */
+lucent_status lucent_medium_validate(const lucent_medium *md);
+
+/* ---- Classical dipole (Jensen et al. 2001) ---- */
+
+/* Returns R_d(r) of the classical dipole, mm^-2 (Jensen et al. 2001, eq. 4 with
+ * z_r = 1/sigma_t', z_v = z_r (1 + 4A/3)). Invalid medium or r < 0: NaN. */
+double lucent_dipole_profile(const lucent_medium *md, double r);
+
+/* Fills dest with the classical-dipole profile of m (bin averages, integrated exactly);
+ * grid may be NULL (the default grid). */
+lucent_status lucent_profile_dipole(const lucent_material *m, const lucent_profile_grid *grid,
+                                    lucent_profile **dest);
+
+/* ---- Better dipole (d'Eon 2012, "A Better Dipole") ---- */
+
+/* Returns R_d(r) of the better dipole, mm^-2: alpha' (C_phi phi(r) + C_E E(r)) with Grosjean's
+ * D = (2 sigma_a + sigma_s') / (3 sigma_t'^2), z_v = -z_r - 4AD. Invalid input: NaN. */
+double lucent_better_dipole_profile(const lucent_medium *md, double r);
+
+/* Returns the better dipole's total diffuse reflectance 2 pi integral_0^inf R_d(r) r dr in
+ * closed form. Invalid medium: NaN. */
+double lucent_better_dipole_total(const lucent_medium *md);
+
+/* Fills dest with the better-dipole profile of m; grid may be NULL. */
+lucent_status lucent_profile_better_dipole(const lucent_material *m,
+                                           const lucent_profile_grid *grid, lucent_profile **dest);
+
+/* ---- Multipole slabs (Donner & Jensen 2005) ---- */
+typedef struct lucent_slab_desc {
+    double thickness; /* slab thickness d, mm, > 0 */
+    int poles;        /* dipole pairs i = -n .. n; 0: the default (10); at most 1000 */
+} lucent_slab_desc;
+
+/* Fills dest[0] with the reflectance R(r) and dest[1] with the transmittance T(r) of a slab
+ * (mm^-2), Donner & Jensen 2005 eqs. for the multipole; poles 0 means 10. NaN when invalid. */
+void lucent_multipole_profile(const lucent_medium *md, const lucent_slab_desc *slab, double r,
+                              double dest[2]);
+
+/* Fills dest[0] and dest[1] with the totals (integrals over the plane) of R and T of the same
+ * truncated multipole, in closed form per pole. Requires sigma_a > 0 (otherwise NaN). */
+void lucent_multipole_totals(const lucent_medium *md, const lucent_slab_desc *slab,
+                             double dest[2]);
+
+/* Creates dest[0] (reflectance, model "multipole-R") and dest[1] (transmittance,
+ * "multipole-T") for a slab of material m; grid may be NULL. */
+lucent_status lucent_profile_multipole(const lucent_material *m, const lucent_slab_desc *slab,
+                                       const lucent_profile_grid *grid, lucent_profile *dest[2]);
+
+/* One layer of a layered slab: its material (eta applies to both of its faces) and shape. */
+typedef struct lucent_layer {
+    lucent_material material;
+    lucent_slab_desc slab;
+} lucent_layer;
+
+/* Composes count (1..16) multipole layers, top first, by the Kubelka-Munk style adding rule in
+ * the frequency (Hankel) domain, Donner & Jensen 2005:
+ *   R12 = R1 + T1 R2 T1 / (1 - R2 R1),  T12 = T1 T2 / (1 - R2 R1),
+ * and inverts the transform numerically into bin averages. dest[0] is the reflectance of the
+ * stack seen from the top, dest[1] its transmittance. grid may be NULL (default for layer 0). */
+lucent_status lucent_profile_layered(const lucent_layer *layers, int count,
+                                     const lucent_profile_grid *grid, lucent_profile *dest[2]);
+
+/* ---- Burley normalized diffusion (Christensen & Burley 2015) ---- */
+typedef enum lucent_burley_fit {
+    LUCENT_BURLEY_SEARCHLIGHT_MFP, /* s = 1.85 - A + 7 |A - 0.8|^3, l = mean free path */
+    LUCENT_BURLEY_DIFFUSE_MFP,     /* s = 1.9 - A + 3.5 (A - 0.8)^2, l = mean free path */
+    LUCENT_BURLEY_SEARCHLIGHT_DMFP /* s = 3.5 + 100 (A - 0.33)^4, l = diffuse mean free path */
+} lucent_burley_fit;
+
+/* Returns the dimensionless scaling factor s(A) of the given fit; A is clamped to [0, 1]. */
+double lucent_burley_scale(lucent_burley_fit fit, double albedo);
+
+/* Returns R(r) = A s (e^{-s r} + e^{-s r / 3}) / (8 pi r), mm^-2, for the surface albedo A and
+ * the inverse length s (mm^-1, s = scale / l). Integrates to A over the plane. r = 0: +inf. */
+double lucent_burley_profile(double albedo, double s, double r);
+
+/* Per-channel parameters of Burley's profile. */
+typedef struct lucent_burley_params {
+    double albedo[3]; /* surface albedo A, [0, 1] */
+    double length[3]; /* l: mean free path or diffuse mean free path (per fit), mm, > 0 */
+    lucent_burley_fit fit;
+} lucent_burley_params;
+
+/* Fills dest from a material: A = classical-dipole total Rd, l = 1 / sigma_t' for the _MFP fits
+ * and 1 / sigma_tr for the _DMFP fit (sigma_a = 0 then fails: infinite length). */
+lucent_status lucent_burley_params_from_material(const lucent_material *m, lucent_burley_fit fit,
+                                                 lucent_burley_params *dest);
+
+/* Fills dest with Burley's profile (bin averages, integrated exactly); grid NULL or zero fields:
+ * the Table 6.1 rule applied to the profile's lengths l / s. */
+lucent_status lucent_profile_burley(const lucent_burley_params *params,
+                                    const lucent_profile_grid *grid, lucent_profile **dest);
+
+/* ---- Sum of Gaussians (d'Eon & Luebke 2007, GPU Gems 3 ch. 14) ----
+ * R(r) ~ sum_i w_i G(v_i, r), G(v, r) = exp(-r^2 / (2 v)) / (2 pi v) (integrates to 1). */
+typedef struct lucent_sog {
+    int count;                          /* Gaussians per channel, 1..16 */
+    double variance[3][LUCENT_SOG_MAX]; /* v_i per channel, mm^2, ascending */
+    double weight[3][LUCENT_SOG_MAX];   /* w_i per channel, >= 0 */
+    double rms[3];                      /* sqrt(sum r dr (R - fit)^2 / sum r dr R^2) per channel */
+} lucent_sog;
+
+typedef struct lucent_sog_desc {
+    int count;             /* N, 1..16 (required) */
+    bool shared_variances; /* one set of variances for the three channels (d'Eon's skin) */
+    int starts;            /* multi-start count; 0: the default (8) */
+    int max_iterations;    /* Levenberg-Marquardt iterations per start; 0: the default (300) */
+} lucent_sog_desc;
+
+/* Returns G(v, r) = exp(-r^2 / (2 v)) / (2 pi v), mm^-2 (v > 0). */
+double lucent_gaussian(double v, double r);
+
+/* Returns the fitted R(r) of channel c of s. */
+double lucent_sog_eval(const lucent_sog *s, int c, double r);
+
+/* Fits p with desc->count Gaussians per channel, minimising sum_j r_j dr (R_j - fit_j)^2
+ * (fit_j: the bin average of the mixture) by variable projection: non-negative least squares
+ * for the weights, Levenberg-Marquardt on log variances, multi-start. Deterministic. */
+lucent_status lucent_sog_fit(const lucent_profile *p, const lucent_sog_desc *desc,
+                             lucent_sog *dest);
+
+/* Creates a profile on grid holding the bin averages of the mixture s (model "sog"). */
+lucent_status lucent_profile_from_sog(const lucent_sog *s, const lucent_profile_grid *grid,
+                                      lucent_profile **dest);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LUCENT_PROFILE_H */

@@ -1,0 +1,55 @@
+/* Internal to the Monte Carlo transport (src/profile/mc*.c): the prepared plan that the photon
+ * kernel reads, and the fixed-point accumulators it writes. */
+#ifndef LUCENT_SRC_PROFILE_MC_INTERNAL_H
+#define LUCENT_SRC_PROFILE_MC_INTERNAL_H
+
+#include <stdint.h>
+
+#include "lucent/mc.h"
+
+/* Per-layer constants, precomputed in float for the kernel. */
+typedef struct mc_layer_k {
+    float z0, z1;          /* top and bottom, mm (z1 = +inf for a semi-infinite layer) */
+    float mut, inv_mut;    /* extinction sigma_a + sigma_s and its inverse */
+    float absorb;          /* sigma_a / sigma_t: the fraction of weight dropped per interaction */
+    float g;               /* HG anisotropy */
+    float hg_a, hg_b, hg_c, hg_d, hg_e; /* 1+g^2, 1-g^2, 1-g, 2g, 1/(2g) */
+    int hg_kind;           /* 0: isotropic, 1: float HG, 2: double HG (|g| small), 3: |g| = 1 */
+    float n;               /* index of refraction */
+    float n_up, n_down;    /* the indices beyond the top and the bottom boundary */
+    float cos_crit_up, cos_crit_down; /* total internal reflection when |uz| <= these */
+    int clear;             /* sigma_t == 0: photons fly to the boundary */
+} mc_layer_k;
+
+/* Offsets (in int64 counters) of the per-batch 1-D scores. Radial and depth arrays hold one
+ * more bin than the grid: weight beyond the grid, unless the last bin collects it. */
+typedef struct mc_layout {
+    size_t rd_r, tt_r, rd_a, tt_a, a_z, a_l, batch_size;
+    size_t rd_ra, tt_ra, a_rz, grid_size;
+} mc_layout;
+
+typedef struct mc_plan {
+    int layer_count;
+    mc_layer_k layers[LUCENT_MC_MAX_LAYERS];
+    int nr, nz, na;
+    int r_lim, z_lim;        /* clamp for bin indices: n - 1 (MCML) or n (beyond bin) */
+    double dr, dz;
+    float inv_dr, inv_dz;
+    double inv_da;
+    double scale;            /* fixed-point: counters hold weight * scale */
+    uint64_t photons;
+    int batches;
+    float w_launch;          /* 1 - Rsp */
+    int launch_layer;
+    float launch_z;
+    int score_a_rz;
+    uint64_t seed;
+    mc_layout lay;
+} mc_plan;
+
+/* Traces photons [begin, end) with rng, adding to batch counters `batch` (batches * batch_size)
+ * and grid counters `grid` (grid_size). */
+void mc_trace(const mc_plan *plan, lucent_rng *rng, uint64_t begin, uint64_t end,
+              int64_t *batch, int64_t *grid);
+
+#endif

@@ -1,0 +1,362 @@
+/* MCML files: the .mci input reader and the .mco output writer (Wang, Jacques & Zheng 1995,
+ * "MCML - Monte Carlo modeling of light transport in multi-layered tissues", the MCML manual's
+ * chapters on the input and output files). MCML speaks cm and cm^-1; Lucent speaks mm and
+ * mm^-1: values are converted here and nowhere else. */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "lucent/mc.h"
+
+#define CM 10.0 /* mm per cm */
+
+/* ---- the reader: data lines, with comments (# to the end of the line) and blank lines skipped */
+
+typedef struct reader {
+    const char *name;
+    const char *p;   /* next unread character */
+    int line;        /* lines consumed so far */
+    int at;          /* line number of the current data line */
+    char buf[1024];  /* the current data line, comment stripped */
+} reader;
+
+static lucent_status fail(const reader *r, const char *fmt, ...) LUCENT_PRINTF(2, 3);
+static lucent_status fail(const reader *r, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return lucent_error(LUCENT_ERR_PARSE, "%s: line %d: %s", r->name, r->at, msg);
+}
+
+/* Moves to the next data line; `what` names the expected content for the end-of-file message. */
+static lucent_status next_line(reader *r, const char *what)
+{
+    while (*r->p) {
+        const char *end = strchr(r->p, '\n');
+        size_t len = end ? (size_t)(end - r->p) : strlen(r->p);
+        r->line++;
+        r->at = r->line;
+        const char *hash = memchr(r->p, '#', len);
+        size_t data = hash ? (size_t)(hash - r->p) : len;
+        if (data >= sizeof r->buf) return fail(r, "line too long");
+        memcpy(r->buf, r->p, data);
+        r->buf[data] = '\0';
+        r->p += len + (end ? 1 : 0);
+        for (char *c = r->buf; *c; c++)
+            if (!isspace((unsigned char)*c)) return LUCENT_OK;
+    }
+    r->at = r->line + 1;
+    return fail(r, "unexpected end of file, expected %s", what);
+}
+
+/* Reads exactly `count` numbers from the current data line. */
+static lucent_status numbers(reader *r, int count, double *dest, const char *what)
+{
+    char *p = r->buf;
+    for (int i = 0; i < count; i++) {
+        while (isspace((unsigned char)*p)) p++;
+        if (!*p) return fail(r, "expected %s (%d number%s), got %d", what, count,
+                             count > 1 ? "s" : "", i);
+        char *end;
+        errno = 0;
+        dest[i] = strtod(p, &end);
+        if (end == p || (*end && !isspace((unsigned char)*end)))
+            return fail(r, "expected %s, got '%.*s'", what, (int)strcspn(p, " \t\r"), p);
+        if (isnan(dest[i]) || errno == ERANGE) return fail(r, "%s: not a usable number", what);
+        p = end;
+    }
+    while (isspace((unsigned char)*p)) p++;
+    if (*p) return fail(r, "unexpected '%.*s' after %s", (int)strcspn(p, " \t\r"), p, what);
+    return LUCENT_OK;
+}
+
+static lucent_status whole(reader *r, double v, double lo, double hi, const char *what, int *dest)
+{
+    if (v != floor(v) || v < lo) return fail(r, "%s must be a whole number >= %g, got %g", what, lo, v);
+    if (v > hi) return fail(r, "too many %s: %g (at most %g)", what, v, hi);
+    *dest = (int)v;
+    return LUCENT_OK;
+}
+
+static lucent_status read_output(reader *r, lucent_mcml_run *run)
+{
+    lucent_status s = next_line(r, "the output file name and format (A)");
+    if (s != LUCENT_OK) return s;
+    char name[1024], fmt[16] = "A", extra[16];
+    int n = sscanf(r->buf, "%1023s %15s %15s", name, fmt, extra);
+    if (n == 3) return fail(r, "unexpected '%s' after the output file name and format", extra);
+    if (strcasecmp(fmt, "A") != 0)
+        return fail(r, "output format '%s' is not supported (only A, ASCII, as in MCML)", fmt);
+    run->line = r->at;
+    run->output = strdup(name);
+    return run->output ? LUCENT_OK : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+}
+
+static lucent_status read_grid(reader *r, lucent_mc_desc *d)
+{
+    double v[3];
+    lucent_status s = next_line(r, "the number of photons");
+    if (s == LUCENT_OK) s = numbers(r, 1, v, "the number of photons");
+    if (s != LUCENT_OK) return s;
+    if (v[0] != floor(v[0]) || v[0] < 1 || v[0] > LUCENT_MC_MAX_PHOTONS)
+        return fail(r, "the number of photons must be a whole number in [1, 1e12], got %g", v[0]);
+    d->photons = (uint64_t)v[0];
+    if ((s = next_line(r, "dz and dr [cm]")) != LUCENT_OK) return s;
+    if ((s = numbers(r, 2, v, "dz and dr [cm]")) != LUCENT_OK) return s;
+    if (!(v[0] > 0 && v[1] > 0 && isfinite(v[0]) && isfinite(v[1])))
+        return fail(r, "dz and dr must be > 0, got %g and %g", v[0], v[1]);
+    d->grid.dz = v[0] * CM;
+    d->grid.dr = v[1] * CM;
+    if ((s = next_line(r, "the numbers of bins nz, nr, na")) != LUCENT_OK) return s;
+    if ((s = numbers(r, 3, v, "the numbers of bins nz, nr, na")) != LUCENT_OK) return s;
+    if ((s = whole(r, v[0], 1, LUCENT_MC_MAX_RADIAL_BINS, "depth bins (nz)", &d->grid.nz)) ||
+        (s = whole(r, v[1], 1, LUCENT_MC_MAX_RADIAL_BINS, "radial bins (nr)", &d->grid.nr)) ||
+        (s = whole(r, v[2], 1, LUCENT_MC_MAX_ANGLE_BINS, "angle bins (na)", &d->grid.na)))
+        return s;
+    double cells = v[0] * v[1] > v[1] * v[2] ? v[0] * v[1] : v[1] * v[2];
+    if (cells > LUCENT_MC_MAX_GRID_CELLS)
+        return fail(r, "too many bins: nr x nz = %g cells (at most %d)", cells,
+                    LUCENT_MC_MAX_GRID_CELLS);
+    return LUCENT_OK;
+}
+
+static lucent_status read_index(reader *r, const char *what, double *dest)
+{
+    lucent_status s = next_line(r, what);
+    if (s == LUCENT_OK) s = numbers(r, 1, dest, what);
+    if (s == LUCENT_OK && !(*dest >= 1.0 && *dest <= 10.0))
+        return fail(r, "%s must be in [1, 10], got %g", what, *dest);
+    return s;
+}
+
+/* One layer line: n mua mus g d (cm^-1, cm). The last layer may say d = inf (a half-space,
+ * a Lucent extension). */
+static lucent_status read_layer(reader *r, int i, int count, lucent_mc_layer *l)
+{
+    char what[64];
+    snprintf(what, sizeof what, "layer %d (n mua mus g d)", i + 1);
+    double v[5];
+    lucent_status s = next_line(r, what);
+    if (s == LUCENT_OK) s = numbers(r, 5, v, what);
+    if (s != LUCENT_OK) return s;
+    if (!(v[0] >= 1.0 && v[0] <= 10.0))
+        return fail(r, "layer %d: n must be in [1, 10], got %g", i + 1, v[0]);
+    if (!(v[1] >= 0 && isfinite(v[1])) || !(v[2] >= 0 && isfinite(v[2])))
+        return fail(r, "layer %d: mua and mus must be >= 0, got %g and %g", i + 1, v[1], v[2]);
+    if (!(v[3] >= -1.0 && v[3] <= 1.0))
+        return fail(r, "layer %d: g must be in [-1, 1], got %g", i + 1, v[3]);
+    if (!(v[4] > 0))
+        return fail(r, "layer %d: thickness d must be > 0, got %g", i + 1, v[4]);
+    if (isinf(v[4]) && i != count - 1)
+        return fail(r, "layer %d: only the last layer may be semi-infinite", i + 1);
+    if (isinf(v[4]) && v[1] + v[2] == 0)
+        return fail(r, "layer %d: a semi-infinite layer must absorb or scatter", i + 1);
+    *l = (lucent_mc_layer){v[0], v[1] / CM, v[2] / CM, v[3], v[4] * CM};
+    return LUCENT_OK;
+}
+
+static lucent_status read_layers(reader *r, lucent_mcml_run *run)
+{
+    double v;
+    lucent_status s = next_line(r, "the number of layers");
+    if (s == LUCENT_OK) s = numbers(r, 1, &v, "the number of layers");
+    int count = 0;
+    if (s == LUCENT_OK) s = whole(r, v, 1, LUCENT_MC_MAX_LAYERS, "layers", &count);
+    if (s != LUCENT_OK) return s;
+    run->layers = calloc((size_t)count, sizeof *run->layers);
+    if (!run->layers) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    run->desc.layers = run->layers;
+    run->desc.layer_count = count;
+    if ((s = read_index(r, "n for the medium above", &run->desc.n_above)) != LUCENT_OK) return s;
+    for (int i = 0; i < count; i++)
+        if ((s = read_layer(r, i, count, &run->layers[i])) != LUCENT_OK) return s;
+    return read_index(r, "n for the medium below", &run->desc.n_below);
+}
+
+static lucent_status read_run(reader *r, lucent_mcml_run *run)
+{
+    lucent_status s = read_output(r, run);
+    if (s == LUCENT_OK) s = read_grid(r, &run->desc);
+    if (s == LUCENT_OK) s = read_layers(r, run);
+    if (s != LUCENT_OK) return s;
+    run->desc.score_a_rz = true;        /* MCML always scores A(r, z) */
+    run->desc.last_bin_collects = true; /* and collects beyond the grid in the last bins */
+    s = lucent_mc_validate(&run->desc);
+    return s == LUCENT_OK ? s : lucent_error_context(s, "%s: line %d (run)", r->name, run->line);
+}
+
+lucent_status lucent_mcml_parse(const char *text, const char *name, lucent_mcml_file *dest)
+{
+    memset(dest, 0, sizeof *dest);
+    reader r = {.name = name, .p = text};
+    double v;
+    lucent_status s = next_line(&r, "the file version (1.0)");
+    if (s == LUCENT_OK) s = numbers(&r, 1, &v, "the file version");
+    if (s == LUCENT_OK && v != 1.0) s = fail(&r, "file version %g is not supported (1.0 is)", v);
+    if (s != LUCENT_OK) return s;
+    dest->version = v;
+    if ((s = next_line(&r, "the number of runs")) != LUCENT_OK ||
+        (s = numbers(&r, 1, &v, "the number of runs")) != LUCENT_OK ||
+        (s = whole(&r, v, 1, 10000, "runs", &dest->run_count)) != LUCENT_OK)
+        return s;
+    dest->runs = calloc((size_t)dest->run_count, sizeof *dest->runs);
+    if (!dest->runs) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    for (int i = 0; i < dest->run_count && s == LUCENT_OK; i++) s = read_run(&r, &dest->runs[i]);
+    if (s == LUCENT_OK) { /* anything but comments after the last run is a mistake */
+        reader tail = r;
+        if (next_line(&tail, "") == LUCENT_OK)
+            s = fail(&tail, "unexpected data after the last of %d run%s", dest->run_count,
+                     dest->run_count > 1 ? "s" : "");
+        else
+            lucent_clear_error();
+    }
+    if (s != LUCENT_OK) lucent_mcml_file_free(dest);
+    return s;
+}
+
+lucent_status lucent_mcml_read(const char *path, lucent_mcml_file *dest)
+{
+    memset(dest, 0, sizeof *dest);
+    char *text;
+    size_t size;
+    lucent_status s = lucent_read_file(path, &text, &size);
+    if (s != LUCENT_OK) return s;
+    if (strlen(text) != size) s = lucent_error(LUCENT_ERR_PARSE, "%s: not a text file", path);
+    if (s == LUCENT_OK) s = lucent_mcml_parse(text, path, dest);
+    free(text);
+    return s;
+}
+
+void lucent_mcml_file_free(lucent_mcml_file *f)
+{
+    for (int i = 0; f->runs && i < f->run_count; i++) {
+        free(f->runs[i].output);
+        free(f->runs[i].layers);
+    }
+    free(f->runs);
+    memset(f, 0, sizeof *f);
+}
+
+/* ---- the writer: format A1 of MCML 1.2 ---- */
+
+static void write_column(FILE *f, const char *head, const double *v, int n, double k)
+{
+    fprintf(f, "%s\n", head);
+    for (int i = 0; i < n; i++) fprintf(f, "%12.4E\n", v ? v[i] * k : 0.0);
+    fputc('\n', f);
+}
+
+/* A 2-D array, row-major, 5 numbers per line (MCML's layout). */
+static void write_grid(FILE *f, const char *comment, const char *head, const double *v, size_t n,
+                       double k)
+{
+    fprintf(f, "%s%s\n", comment, head);
+    for (size_t i = 0; i < n; i++)
+        fprintf(f, "%12.4E%s", v ? v[i] * k : 0.0, (i + 1) % 5 == 0 || i + 1 == n ? "\n" : " ");
+    fputc('\n', f);
+}
+
+static void write_inparm(FILE *f, const lucent_mcml_run *run, const lucent_mc_desc *d)
+{
+    fprintf(f, "InParm \t\t\t# Input parameters. cm is used.\n");
+    fprintf(f, "%s \tA\t\t# output file name, ASCII.\n", run->output);
+    fprintf(f, "%llu \t\t\t# No. of photons\n", (unsigned long long)d->photons);
+    fprintf(f, "%G\t%G\t\t# dz, dr [cm]\n", d->grid.dz / CM, d->grid.dr / CM);
+    fprintf(f, "%d\t%d\t%d\t# No. of dz, dr, da.\n\n", d->grid.nz, d->grid.nr, d->grid.na);
+    fprintf(f, "%d\t\t\t\t# Number of layers\n", d->layer_count);
+    fprintf(f, "#n\tmua\tmus\tg\td\t# One line for each layer\n");
+    fprintf(f, "%G\t\t\t\t# n for medium above\n", d->n_above);
+    for (int i = 0; i < d->layer_count; i++) {
+        const lucent_mc_layer *l = &d->layers[i];
+        fprintf(f, "%G\t%G\t%G\t%G\t%G\t# layer %d\n", l->n, l->sigma_a * CM, l->sigma_s * CM, l->g,
+                l->thickness / CM, i + 1);
+    }
+    fprintf(f, "%G\t\t\t\t# n for medium below\n\n", d->n_below);
+}
+
+/* The last radial / depth bins hold everything beyond the grid when the run collected it there
+ * (MCML's convention); a run that did not is written with the weight beyond added back, so the
+ * file always follows MCML. */
+static void fold_beyond(const lucent_mc_result *r, double *rd_r, double *tt_r, double *a_z)
+{
+    int nr = r->grid.nr, nz = r->grid.nz;
+    double dr = r->grid.dr;
+    double ring = 2.0 * 3.14159265358979323846 * (nr - 0.5) * dr * dr;
+    rd_r[nr - 1] += r->rd_beyond / ring;
+    tt_r[nr - 1] += r->tt_beyond / ring;
+    a_z[nz - 1] += r->a_z_beyond / r->grid.dz;
+}
+
+static void write_results(FILE *f, const lucent_mc_result *r, double *rd_r, double *tt_r,
+                          double *a_z)
+{
+    int nr = r->grid.nr, nz = r->grid.nz, na = r->grid.na;
+    fprintf(f, "RAT #Reflectance, absorption, transmission. \n");
+    fprintf(f, "%-14.6G \t#Specular reflectance [-]\n", r->rsp);
+    fprintf(f, "%-14.6G \t#Diffuse reflectance [-]\n", r->rd);
+    fprintf(f, "%-14.6G \t#Absorbed fraction [-]\n", r->a);
+    fprintf(f, "%-14.6G \t#Transmittance [-]\n\n", r->tt);
+    fprintf(f, "A_l #Absorption as a function of layer. [-]\n");
+    for (int i = 0; i < r->layer_count; i++) fprintf(f, "%12.4G\n", r->a_layer[i]);
+    fputc('\n', f);
+    /* densities: per mm^k -> per cm^k */
+    write_column(f, "A_z #A[0], [1],..A[nz-1]. [1/cm]", a_z, nz, CM);
+    write_column(f, "Rd_r #Rd[0], [1],..Rd[nr-1]. [1/cm2]", rd_r, nr, CM * CM);
+    write_column(f, "Rd_a #Rd[0], [1],..Rd[na-1]. [sr-1]", r->rd_a, na, 1.0);
+    write_column(f, "Tt_r #Tt[0], [1],..Tt[nr-1]. [1/cm2]", tt_r, nr, CM * CM);
+    write_column(f, "Tt_a #Tt[0], [1],..Tt[na-1]. [sr-1]", r->tt_a, na, 1.0);
+    write_grid(f,
+               "# A[r][z]. [1/cm3]\n# A[0][0], [0][1],..[0][nz-1]\n# A[1][0], [1][1],..[1][nz-1]\n"
+               "# ...\n# A[nr-1][0], [nr-1][1],..[nr-1][nz-1]\n",
+               "A_rz", r->a_rz, (size_t)nr * (size_t)nz, CM * CM * CM);
+    write_grid(f,
+               "# Rd[r][angle]. [1/(cm2sr)].\n# Rd[0][0], [0][1],..[0][na-1]\n"
+               "# Rd[1][0], [1][1],..[1][na-1]\n# ...\n# Rd[nr-1][0], [nr-1][1],..[nr-1][na-1]\n",
+               "Rd_ra", r->rd_ra, (size_t)nr * (size_t)na, CM * CM);
+    write_grid(f,
+               "# T[r][angle]. [1/(cm2sr)].\n# T[0][0], [0][1],..[0][na-1]\n"
+               "# T[1][0], [1][1],..[1][na-1]\n# ...\n# T[nr-1][0], [nr-1][1],..[nr-1][na-1]\n",
+               "Tt_ra", r->tt_ra, (size_t)nr * (size_t)na, CM * CM);
+}
+
+lucent_status lucent_mcml_write(const char *path, const lucent_mcml_run *run,
+                                const lucent_mc_result *result)
+{
+    const lucent_mc_result *r = result;
+    size_t nr = (size_t)r->grid.nr, nz = (size_t)r->grid.nz;
+    double *buf = malloc((2 * nr + nz) * sizeof *buf);
+    if (!buf) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    double *rd_r = buf, *tt_r = buf + nr, *a_z = buf + 2 * nr;
+    memcpy(rd_r, r->rd_r, nr * sizeof *buf);
+    memcpy(tt_r, r->tt_r, nr * sizeof *buf);
+    memcpy(a_z, r->a_z, nz * sizeof *buf);
+    fold_beyond(r, rd_r, tt_r, a_z);
+    lucent_atomic_file *af;
+    FILE *f;
+    lucent_status s = lucent_atomic_open(path, &af, &f);
+    if (s != LUCENT_OK) {
+        free(buf);
+        return s;
+    }
+    fprintf(f, "A1 \t# Version number of the file format.\n\n####\n# Data categories include: \n"
+               "# InParm, RAT, \n# A_l, A_z, Rd_r, Rd_a, Tt_r, Tt_a, \n# A_rz, Rd_ra, Tt_ra \n"
+               "####\n\n");
+    fprintf(f, "# Written by Lucent %s (lucent mcml), %d batches for the standard errors:\n"
+               "# Rd %.6G +- %.2G, A %.6G +- %.2G, Tt %.6G +- %.2G%s\n\n",
+            LUCENT_VERSION_STRING, r->batches, r->rd, r->rd_se, r->a, r->a_se, r->tt, r->tt_se,
+            r->a_rz ? "" : "\n# A(r,z) was not scored: A_rz holds zeros.");
+    write_inparm(f, run, &run->desc);
+    write_results(f, r, rd_r, tt_r, a_z);
+    free(buf);
+    if (ferror(f)) {
+        lucent_atomic_abort(af);
+        return lucent_error(LUCENT_ERR_IO, "%s: write failed", path);
+    }
+    return lucent_atomic_commit(af);
+}

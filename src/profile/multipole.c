@@ -1,0 +1,332 @@
+/* Multipole slabs and their layered composition (Donner & Jensen 2005, "Light Diffusion in
+ * Multi-Layered Translucent Materials", Section 3 and 4).
+ *
+ * A slab of thickness d with extrapolated boundaries z_b = 2 A D (D = 1/(3 sigma_t')) on both
+ * faces is solved by mirroring the dipole of z_r = l = 1/sigma_t' about both boundaries:
+ *   z_{r,i} = 2 i (d + 2 z_b) + l,   z_{v,i} = 2 i (d + 2 z_b) - l - 2 z_b,   i = -n .. n,
+ *   R(r) = alpha' sum_i [E(z_{r,i}, r) - E(z_{v,i}, r)],
+ *   T(r) = alpha' sum_i [E(d - z_{r,i}, r) - E(d - z_{v,i}, r)],
+ * with E the normal flux of a unit point source (profile/pole.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lucent/profile.h"
+#include "profile/pole.h"
+
+enum { MULTIPOLE_DEFAULT_POLES = 10, MULTIPOLE_MAX_POLES = 1000, LAYERS_MAX = 16 };
+
+typedef struct slab {
+    double alpha, s, d, l, zb;
+    int n;
+} slab;
+
+static void slab_setup(const lucent_medium *md, const lucent_slab_desc *desc, slab *dest)
+{
+    double stp = md->sigma_a + md->sigma_s_prime;
+    double fdr = lucent_fdr(md->eta);
+    double a = (1.0 + fdr) / (1.0 - fdr);
+    *dest = (slab){.alpha = md->sigma_s_prime / stp,
+                   .s = sqrt(3.0 * md->sigma_a * stp),
+                   .d = desc->thickness,
+                   .l = 1.0 / stp,
+                   .zb = 2.0 * a / (3.0 * stp), /* z_b = 2 A D */
+                   .n = desc->poles ? desc->poles : MULTIPOLE_DEFAULT_POLES};
+}
+
+/* Signed depths of pole pair i. */
+static void slab_pair(const slab *s, int i, double *zr, double *zv)
+{
+    double shift = 2.0 * i * (s->d + 2.0 * s->zb);
+    *zr = shift + s->l;
+    *zv = shift - s->l - 2.0 * s->zb;
+}
+
+static lucent_status slab_validate(const lucent_medium *md, const lucent_slab_desc *desc)
+{
+    lucent_status st = lucent_medium_validate(md);
+    if (st != LUCENT_OK) return st;
+    if (!(desc->thickness > 0.0) || !isfinite(desc->thickness))
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                            "slab: thickness must be finite and > 0, got %g", desc->thickness);
+    if (desc->poles < 0 || desc->poles > MULTIPOLE_MAX_POLES)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "slab: poles must be in [0, %d], got %d",
+                            MULTIPOLE_MAX_POLES, desc->poles);
+    return LUCENT_OK;
+}
+
+void lucent_multipole_profile(const lucent_medium *md, const lucent_slab_desc *slab_desc, double r,
+                              double dest[2])
+{
+    dest[0] = dest[1] = NAN;
+    if (slab_validate(md, slab_desc) != LUCENT_OK || !(r >= 0.0)) return;
+    slab s;
+    slab_setup(md, slab_desc, &s);
+    double rsum = 0.0, tsum = 0.0;
+    for (int i = -s.n; i <= s.n; i++) {
+        double zr, zv;
+        slab_pair(&s, i, &zr, &zv);
+        rsum += pole_flux(zr, s.s, r) - pole_flux(zv, s.s, r);
+        tsum += pole_flux(s.d - zr, s.s, r) - pole_flux(s.d - zv, s.s, r);
+    }
+    dest[0] = s.alpha * rsum;
+    dest[1] = s.alpha * tsum;
+}
+
+void lucent_multipole_totals(const lucent_medium *md, const lucent_slab_desc *slab_desc,
+                             double dest[2])
+{
+    dest[0] = dest[1] = NAN;
+    if (slab_validate(md, slab_desc) != LUCENT_OK || !(md->sigma_a > 0.0)) return;
+    slab s;
+    slab_setup(md, slab_desc, &s);
+    double rsum = 0.0, tsum = 0.0;
+    for (int i = -s.n; i <= s.n; i++) {
+        double zr, zv;
+        slab_pair(&s, i, &zr, &zv);
+        rsum += pole_flux_total(zr, s.s) - pole_flux_total(zv, s.s);
+        tsum += pole_flux_total(s.d - zr, s.s) - pole_flux_total(s.d - zv, s.s);
+    }
+    dest[0] = s.alpha * rsum;
+    dest[1] = s.alpha * tsum;
+}
+
+/* Bin integrals of R (which 0) or T (which 1) of one channel. */
+static double slab_bin(const slab *s, int which, double r0, double r1)
+{
+    double sum = 0.0;
+    for (int i = -s->n; i <= s->n; i++) {
+        double zr, zv;
+        slab_pair(s, i, &zr, &zv);
+        double hr = which ? s->d - zr : zr, hv = which ? s->d - zv : zv;
+        sum += pole_flux_bin(hr, s->s, r0, r1) - pole_flux_bin(hv, s->s, r0, r1);
+    }
+    return s->alpha * sum;
+}
+
+static void destroy_pair(lucent_profile *dest[2])
+{
+    for (int k = 0; k < 2; k++) {
+        lucent_profile_destroy(dest[k]);
+        dest[k] = NULL;
+    }
+}
+
+static lucent_status create_pair(const lucent_profile_grid *g, const char *r_name,
+                                 const char *t_name, lucent_profile *dest[2])
+{
+    dest[0] = dest[1] = NULL;
+    lucent_status st = lucent_profile_create(g, r_name, &dest[0]);
+    if (st == LUCENT_OK) st = lucent_profile_create(g, t_name, &dest[1]);
+    if (st != LUCENT_OK) destroy_pair(dest);
+    return st;
+}
+
+static lucent_status check_material_slab(const lucent_material *m, const lucent_slab_desc *desc)
+{
+    lucent_status st = lucent_material_validate(m);
+    if (st != LUCENT_OK) return st;
+    lucent_medium md;
+    lucent_medium_from_material(m, 0, &md);
+    return slab_validate(&md, desc);
+}
+
+lucent_status lucent_profile_multipole(const lucent_material *m, const lucent_slab_desc *desc,
+                                       const lucent_profile_grid *grid, lucent_profile *dest[2])
+{
+    dest[0] = dest[1] = NULL;
+    lucent_profile_grid g;
+    lucent_status st = check_material_slab(m, desc);
+    if (st == LUCENT_OK) st = lucent_profile_grid_resolve(grid, m, &g);
+    if (st == LUCENT_OK) st = create_pair(&g, "multipole-R", "multipole-T", dest);
+    if (st != LUCENT_OK) return st;
+    for (int c = 0; c < 3; c++) {
+        lucent_medium md;
+        slab s;
+        lucent_medium_from_material(m, c, &md);
+        slab_setup(&md, desc, &s);
+        for (int j = 0; j < g.count; j++) {
+            double r0 = j * g.dr, r1 = (j + 1) * g.dr;
+            for (int k = 0; k < 2; k++)
+                dest[k]->value[c][j] = bin_average(slab_bin(&s, k, r0, r1), r0, r1);
+        }
+    }
+    return LUCENT_OK;
+}
+
+/* ---- Layered composition in the frequency domain ----
+ * The 2-D Fourier transform of a radial f is its Hankel transform F(k) = 2 pi int f(r) J0(kr) r dr.
+ * For a point source, F[E(h, .)](k) = sign(h) e^{-|h| sqrt(s^2 + k^2)} / 2 (the transform of
+ * e^{-sD}/(4 pi D) is e^{-|h| q}/(2 q), q = sqrt(s^2 + k^2), and E = -d/dh of it). */
+static double pole_hat(double h, double q)
+{
+    if (h == 0.0) return 0.0;
+    return (h > 0.0 ? 0.5 : -0.5) * exp(-fabs(h) * q);
+}
+
+/* R and T of one slab at frequency k. */
+static void slab_hat(const slab *s, double k, double *r_hat, double *t_hat)
+{
+    double q = sqrt(s->s * s->s + k * k), rs = 0.0, ts = 0.0;
+    for (int i = -s->n; i <= s->n; i++) {
+        double zr, zv;
+        slab_pair(s, i, &zr, &zv);
+        rs += pole_hat(zr, q) - pole_hat(zv, q);
+        ts += pole_hat(s->d - zr, q) - pole_hat(s->d - zv, q);
+    }
+    *r_hat = s->alpha * rs;
+    *t_hat = s->alpha * ts;
+}
+
+/* A stack at one frequency: reflectance from the top and from the bottom, transmittance. */
+typedef struct stack_hat {
+    double rt, rb, t;
+} stack_hat;
+
+/* Donner & Jensen 2005, the adding rule with the inter-reflection series summed:
+ *   R12 = R1 + T1 R2 T1 / (1 - R2 R1),  T12 = T1 T2 / (1 - R2 R1). */
+static stack_hat stack_add(stack_hat a, stack_hat b)
+{
+    double den = 1.0 - a.rb * b.rt;
+    return (stack_hat){.rt = a.rt + a.t * a.t * b.rt / den,
+                       .rb = b.rb + b.t * b.t * a.rb / den,
+                       .t = a.t * b.t / den};
+}
+
+static stack_hat stack_eval(const slab *slabs, int count, double k)
+{
+    stack_hat acc;
+    slab_hat(&slabs[0], k, &acc.rt, &acc.t);
+    acc.rb = acc.rt;
+    for (int i = 1; i < count; i++) {
+        stack_hat h;
+        slab_hat(&slabs[i], k, &h.rt, &h.t);
+        h.rb = h.rt;
+        acc = stack_add(acc, h);
+    }
+    return acc;
+}
+
+/* 8-point Gauss-Legendre on [-1, 1]. */
+static const double gl_x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
+                               0.9602898564975363};
+static const double gl_w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
+                               0.1012285362903763};
+
+typedef struct inverse_ctx {
+    const slab *slabs; /* 3 channels x count layers */
+    int count, edges;
+    double dr;
+    double *cum[2][3]; /* C(r_e) = 2 pi int_0^{r_e} f r dr = int_0^inf F(k) r_e J1(k r_e) dk */
+} inverse_ctx;
+
+/* Adds the contribution of one quadrature node (k, weight w) to every channel and edge. */
+static void inverse_node(inverse_ctx *x, double k, double w)
+{
+    stack_hat h[3];
+    for (int c = 0; c < 3; c++) h[c] = stack_eval(x->slabs + (size_t)c * (size_t)x->count, x->count, k);
+    for (int e = 1; e < x->edges; e++) {
+        double r = e * x->dr;
+        double v = w * r * j1(k * r);
+        for (int c = 0; c < 3; c++) {
+            x->cum[0][c][e] += h[c].rt * v;
+            x->cum[1][c][e] += h[c].t * v;
+        }
+    }
+}
+
+static void inverse_panel(inverse_ctx *x, double k0, double k1)
+{
+    double mid = 0.5 * (k0 + k1), half = 0.5 * (k1 - k0);
+    for (int i = 0; i < 4; i++) {
+        inverse_node(x, mid - half * gl_x[i], half * gl_w[i]);
+        inverse_node(x, mid + half * gl_x[i], half * gl_w[i]);
+    }
+}
+
+/* Smallest pole height of the stacks (all channels): the transforms decay like e^{-h_min k}.
+ * Floored at half the smallest l = 1/sigma_t', so a layer whose thickness is close to l
+ * (source on its bottom face) has its highest frequencies cut (see docs/profiles.md). */
+static double stack_min_height(const slab *slabs, int n)
+{
+    double h = INFINITY, lmin = INFINITY;
+    for (int i = 0; i < n; i++) {
+        lmin = fmin(lmin, slabs[i].l);
+        h = fmin(h, fmin(slabs[i].l, fabs(slabs[i].d - slabs[i].l)));
+    }
+    return fmax(h, 0.5 * lmin);
+}
+
+/* Gauss-Legendre panels of width 2 pi / r_max (one period of J1(k r_max); 8 nodes integrate
+ * e^{i pi t} on [-1, 1] to ~1e-15) up to k_max = 36 / h_min (e^{-36} ~ 2e-16); the first panel is
+ * refined geometrically towards k = 0, where F varies on the scale s. */
+static void inverse_all(inverse_ctx *x)
+{
+    double rmax = (x->edges - 1) * x->dr;
+    double w = 2.0 * M_PI / rmax;
+    double kmax = fmax(36.0 / stack_min_height(x->slabs, 3 * x->count), 2.0 * w);
+    double lo = w * ldexp(1.0, -30);
+    inverse_panel(x, 0.0, lo);
+    for (double k = lo; k < w; k *= 2.0) inverse_panel(x, k, fmin(2.0 * k, w));
+    int panels = (int)ceil((kmax - w) / w);
+    for (int p = 0; p < panels; p++) inverse_panel(x, w + p * w, w + (p + 1) * w);
+}
+
+static lucent_status layers_check(const lucent_layer *layers, int count)
+{
+    if (count < 1 || count > LAYERS_MAX)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "layers: count must be in [1, %d], got %d",
+                            LAYERS_MAX, count);
+    for (int i = 0; i < count; i++) {
+        lucent_status st = check_material_slab(&layers[i].material, &layers[i].slab);
+        if (st != LUCENT_OK) return lucent_error_context(st, "layers[%d]", i);
+    }
+    return LUCENT_OK;
+}
+
+static void layers_slabs(const lucent_layer *layers, int count, slab *dest)
+{
+    for (int c = 0; c < 3; c++)
+        for (int i = 0; i < count; i++) {
+            lucent_medium md;
+            lucent_medium_from_material(&layers[i].material, c, &md);
+            slab_setup(&md, &layers[i].slab, &dest[c * count + i]);
+        }
+}
+
+static void layers_fill(inverse_ctx *x, lucent_profile *dest[2])
+{
+    inverse_all(x);
+    for (int c = 0; c < 3; c++) {
+        for (int k = 0; k < 2; k++)
+            for (int j = 0; j + 1 < x->edges; j++) {
+                double r0 = j * x->dr, r1 = (j + 1) * x->dr;
+                double bin = x->cum[k][c][j + 1] - x->cum[k][c][j];
+                dest[k]->value[c][j] = bin_average(bin, r0, r1);
+            }
+    }
+}
+
+lucent_status lucent_profile_layered(const lucent_layer *layers, int count,
+                                     const lucent_profile_grid *grid, lucent_profile *dest[2])
+{
+    dest[0] = dest[1] = NULL;
+    lucent_profile_grid g;
+    lucent_status st = layers_check(layers, count);
+    if (st == LUCENT_OK) st = lucent_profile_grid_resolve(grid, &layers[0].material, &g);
+    if (st == LUCENT_OK) st = create_pair(&g, "layered-R", "layered-T", dest);
+    if (st != LUCENT_OK) return st;
+    slab slabs[3 * LAYERS_MAX];
+    layers_slabs(layers, count, slabs);
+    inverse_ctx x = {.slabs = slabs, .count = count, .edges = g.count + 1, .dr = g.dr};
+    double *block = calloc((size_t)x.edges * 6u, sizeof *block);
+    if (!block) {
+        destroy_pair(dest);
+        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "layers: %d bins", g.count);
+    }
+    for (int k = 0; k < 2; k++)
+        for (int c = 0; c < 3; c++) x.cum[k][c] = block + (size_t)(k * 3 + c) * (size_t)x.edges;
+    layers_fill(&x, dest);
+    free(block);
+    return LUCENT_OK;
+}
