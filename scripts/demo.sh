@@ -12,5 +12,13 @@ echo "== Measured materials (Jensen et al. 2001) and their derived optical quant
 "$lucent" materials --swatches "$out/materials.png"
 
 echo
+echo "== Diffuse reflectance profiles R_d(r): Monte Carlo against the analytic models"
+for m in skin1 marble; do
+  "$lucent" profile "$m" --compare mc,dipole,better-dipole,burley --photons 200000 --sog 4 \
+    --out "$out/$m-profiles"
+done
+"$lucent" profile skin1 --model mc --photons 200000 --out "$out/skin1-mc"
+
+echo
 echo "Demo outputs are in $out/:"
 ls -1 "$out" | sed 's/^/  /'

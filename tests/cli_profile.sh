@@ -46,3 +46,5 @@ expect_fail 2 "--model takes one model" -- "$LUCENT" profile skin1 --model mc,di
 expect_fail 2 "expected a material" -- "$LUCENT" profile --model dipole
 expect_fail 2 "--photons needs a whole number > 0" -- "$LUCENT" profile skin1 --photons 0
 expect_fail 2 "--sog needs a count from 1 to 16" -- "$LUCENT" profile skin1 --sog 17
+expect_ok -- "$LUCENT" profile skin1 --model burley --burley-fit dmfp --out "$TMP/burley"
+expect_fail 2 "--burley-fit must be searchlight, diffuse or dmfp" -- "$LUCENT" profile skin1 --model burley --burley-fit mfp2

@@ -34,7 +34,9 @@ static const char k_usage[] =
     "  --layers LIST      a layered slab, top first: MATERIAL:THICKNESS_MM,...; the last may be\n"
     "                     'inf' (a half-space). Models: mc, multipole (finite layers only)\n"
     "  --thickness D      slab thickness in mm for multipole (default: a half-space for mc)\n"
-    "  --burley-fit F     mfp | diffuse-mfp | dmfp (the scaling-factor fit; default mfp)\n"
+    "  --burley-fit F     Burley's scaling factor s(A) (Christensen & Burley 2015): searchlight\n"
+    "                     (mean free path, the default), diffuse (mean free path, diffuse\n"
+    "                     transmission) or dmfp (diffuse mean free path)\n"
     "  --dr D             radial bin width in mm  } default: Freude 2014, Table 6.1:\n"
     "  --bins N           number of radial bins   } dr = min l'/20, N = 32 max l'/dr\n"
     "  --sog N            also fit N Gaussians per channel (d'Eon & Luebke 2007), to JSON\n"
@@ -135,10 +137,10 @@ static lucent_status parse_layers(const char *list, options *o)
 
 static int parse_burley_fit(const char *v, options *o)
 {
-    if (v && strcmp(v, "mfp") == 0) o->burley_fit = LUCENT_BURLEY_SEARCHLIGHT_MFP;
-    else if (v && strcmp(v, "diffuse-mfp") == 0) o->burley_fit = LUCENT_BURLEY_DIFFUSE_MFP;
+    if (v && strcmp(v, "searchlight") == 0) o->burley_fit = LUCENT_BURLEY_SEARCHLIGHT_MFP;
+    else if (v && strcmp(v, "diffuse") == 0) o->burley_fit = LUCENT_BURLEY_DIFFUSE_MFP;
     else if (v && strcmp(v, "dmfp") == 0) o->burley_fit = LUCENT_BURLEY_SEARCHLIGHT_DMFP;
-    else return cli_usage_error("profile", "--burley-fit must be mfp, diffuse-mfp or dmfp");
+    else return cli_usage_error("profile", "--burley-fit must be searchlight, diffuse or dmfp");
     return CLI_OK;
 }
 
