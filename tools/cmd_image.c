@@ -61,13 +61,6 @@ static bool take_option(int argc, char **argv, int *i, const char *name, const c
     return true;
 }
 
-static bool wants_help(int argc, char **argv)
-{
-    for (int i = 1; i < argc; i++)
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) return true;
-    return false;
-}
-
 /* Collects a positional argument into pos (at most max); false when there are too many. */
 static bool add_positional(const char **pos, int *count, int max, const char *arg)
 {
@@ -129,7 +122,7 @@ static void print_info_json(const char *path, const lucent_image *img, const luc
 
 static int run_info(int argc, char **argv)
 {
-    if (wants_help(argc, argv)) return fputs(k_info_usage, stdout), CLI_OK;
+    if (cli_wants_help(argc, argv)) return fputs(k_info_usage, stdout), CLI_OK;
     const char *pos[1];
     int npos = 0;
     bool json = false;
@@ -222,7 +215,7 @@ static lucent_status fit_channels(lucent_image **img, lucent_image_format f)
 
 static int run_convert(int argc, char **argv)
 {
-    if (wants_help(argc, argv)) return fputs(k_convert_usage, stdout), CLI_OK;
+    if (cli_wants_help(argc, argv)) return fputs(k_convert_usage, stdout), CLI_OK;
     convert_args a = {0};
     int rc = parse_convert(argc, argv, &a);
     if (rc != CLI_OK) return rc;
@@ -360,7 +353,7 @@ static void print_diff_json(const diff_args *d, const lucent_image *a, const luc
 
 static int run_diff(int argc, char **argv)
 {
-    if (wants_help(argc, argv)) return fputs(k_diff_usage, stdout), CLI_OK;
+    if (cli_wants_help(argc, argv)) return fputs(k_diff_usage, stdout), CLI_OK;
     diff_args d = {0};
     int rc = parse_diff(argc, argv, &d);
     if (rc != CLI_OK) return rc;

@@ -290,16 +290,9 @@ static lucent_status gather(options *o, char **specs, int count)
     return LUCENT_OK;
 }
 
-static bool wants_help(int argc, char **argv)
-{
-    for (int i = 1; i < argc; i++)
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) return true;
-    return false;
-}
-
 int cmd_materials(int argc, char **argv)
 {
-    if (wants_help(argc, argv)) {
+    if (cli_wants_help(argc, argv)) {
         fputs(k_usage, stdout);
         return CLI_OK;
     }

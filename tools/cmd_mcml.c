@@ -34,13 +34,6 @@ typedef struct options {
     unsigned long long seed;
 } options;
 
-static bool wants_help(int argc, char **argv)
-{
-    for (int i = 1; i < argc; i++)
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) return true;
-    return false;
-}
-
 static bool parse_seed(const char *text, unsigned long long *dest)
 {
     if (!text || !*text || *text == '-') return false;
@@ -125,7 +118,7 @@ static lucent_status run_one(const options *o, lucent_mcml_run *run, int k, int 
 
 int cmd_mcml(int argc, char **argv)
 {
-    if (wants_help(argc, argv)) {
+    if (cli_wants_help(argc, argv)) {
         fputs(k_usage, stdout);
         return CLI_OK;
     }
