@@ -4,13 +4,14 @@
 #   make        build build/lucent and the library
 #   make setup  install Debian packages and fetch the sample meshes
 #   make bench  run the benchmarks in bench/
+#   make fuzz   fuzz the parsers (clang's libFuzzer; FUZZ_SECONDS per target)
 BUILD      ?= build
 ASAN_BUILD ?= build-asan
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 DEMO_OUT   ?= out/demo
 
-.PHONY: all build setup test test-fast test-asan demo bench clean distclean
+.PHONY: all build setup test test-fast test-asan demo bench fuzz clean distclean
 
 all: build
 
@@ -42,8 +43,16 @@ demo: setup build
 bench: build
 	scripts/bench.sh $(BUILD)/bench
 
-clean:
-	rm -rf $(BUILD) $(ASAN_BUILD)
+FUZZ_SECONDS ?= 60
+fuzz:
+	fuzz/build.sh $(FUZZ_SECONDS)
 
-distclean: clean
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD) build-fuzz
+
+distFUZZ_SECONDS ?= 60
+fuzz:
+	fuzz/build.sh $(FUZZ_SECONDS)
+
+clean: clean
 	rm -rf data/meshes out
