@@ -2,11 +2,13 @@
  * equations numbered as in the MCML manual, Wang & Jacques 1992/1995 "MCML" chapter 3).
  *
  * Differences from MCML that do not change the physics, only the cost:
- *   - float state; the direction is renormalised by one Newton step after each scattering;
- *   - the azimuth's cosine and sine come from the polar (rejection) method, without cos/sin;
- *   - the step length and the HG cosine share one 64-bit draw (two independent 24-bit fields);
- *   - sqrt(1 - cos^2 theta) sqrt(1 - uz^2) is one sqrt, and one division serves the update;
- *   - scores go to fixed-point counters (order-independent sums: identical for any thread count). */
+ *   - float state; the direction is renormalised by one Newton step after each HG scattering;
+ *   - random draws are prepared 64 at a time (rbuf_fill, a vectorisable loop): one 64-bit draw
+ *     per interaction gives the step length (24 bits, -ln by a polynomial), the deflection
+ *     (20 bits) and the azimuth (20 bits, cos and sin by polynomials, no rejection);
+ *   - isotropic layers (g = 0) draw the new direction directly, uniform on the sphere;
+ *   - scores go to fixed-point counters (order-independent sums: identical for any thread
+ *     count); A(r, z) scores pass through a short log applied in bulk (cache misses overlap). */
 #include <math.h>
 #include <string.h>
 
