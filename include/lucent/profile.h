@@ -99,14 +99,24 @@ double lucent_better_dipole_total(const lucent_medium *md);
 lucent_status lucent_profile_better_dipole(const lucent_material *m,
                                            const lucent_profile_grid *grid, lucent_profile **dest);
 
-/* ---- Multipole slabs (Donner & Jensen 2005) ---- */
+/* ---- Multipole slabs (Donner & Jensen 2005) ----
+ * Each face of a slab has its own boundary condition, from the relative index across it
+ * (Donner & Jensen 2005, Section 3): eta / eta_above on the top face and eta / eta_below on the
+ * bottom face, where eta is the slab's own index (lucent_medium.eta, relative to vacuum). A
+ * relative index below 1 (a denser medium outside) uses the Fdr fit for eta < 1 (Egan &
+ * Hilgeman 1979); see docs/profiles.md. */
 typedef struct lucent_slab_desc {
     double thickness; /* slab thickness d, mm, > 0 */
     int poles;        /* dipole pairs i = -n .. n; 0: the default (10); at most 1000 */
+    double eta_above; /* index of the medium above the top face, [1, 3]; 0: 1 (vacuum / air) */
+    double eta_below; /* index of the medium below the bottom face, [1, 3]; 0: 1 (vacuum / air) */
 } lucent_slab_desc;
 
 /* Fills dest[0] with the reflectance R(r) and dest[1] with the transmittance T(r) of a slab
- * (mm^-2), Donner & Jensen 2005 eqs. for the multipole; poles 0 means 10. NaN when invalid. */
+ * (mm^-2), Donner & Jensen 2005 eqs. for the multipole with the extrapolation distances of
+ * the top and bottom faces; poles 0 means 10. NaN when invalid. A slab thinner than its
+ * transport mean free path 1/sigma_t' is computed as is (T can be negative; no warning here,
+ * the profile builders warn). */
 void lucent_multipole_profile(const lucent_medium *md, const lucent_slab_desc *slab, double r,
                               double dest[2]);
 
@@ -116,11 +126,15 @@ void lucent_multipole_totals(const lucent_medium *md, const lucent_slab_desc *sl
                              double dest[2]);
 
 /* Creates dest[0] (reflectance, model "multipole-R") and dest[1] (transmittance,
- * "multipole-T") for a slab of material m; grid may be NULL. */
+ * "multipole-T") for a slab of material m; grid may be NULL. Logs a LUCENT_LOG_WARN line when
+ * the thickness is below the material's transport mean free path 1/sigma_t' (any channel). */
 lucent_status lucent_profile_multipole(const lucent_material *m, const lucent_slab_desc *slab,
                                        const lucent_profile_grid *grid, lucent_profile *dest[2]);
 
-/* One layer of a layered slab: its material (eta applies to both of its faces) and shape. */
+/* One layer of a layered slab: its material (eta: the layer's own index) and shape. In a
+ * stack, lucent_profile_layered takes the indices of a layer's faces from its neighbours; only
+ * the top layer's slab.eta_above and the bottom layer's slab.eta_below are read (the media
+ * above and below the stack, 0: vacuum / air); the other eta_above / eta_below are ignored. */
 typedef struct lucent_layer {
     lucent_material material;
     lucent_slab_desc slab;
@@ -128,9 +142,13 @@ typedef struct lucent_layer {
 
 /* Composes count (1..16) multipole layers, top first, by the Kubelka-Munk style adding rule in
  * the frequency (Hankel) domain, Donner & Jensen 2005:
- *   R12 = R1 + T1 R2 T1 / (1 - R2 R1),  T12 = T1 T2 / (1 - R2 R1),
+ *   R12 = R1 + T1 R2 T1' / (1 - R2 R1'),  T12 = T1 T2 / (1 - R2 R1')
+ * (primes: the upper stack seen from below; a layer's faces differ, so R1' != R1, T1' != T1),
  * and inverts the transform numerically into bin averages. dest[0] is the reflectance of the
- * stack seen from the top, dest[1] its transmittance. grid may be NULL (default for layer 0). */
+ * stack seen from the top, dest[1] its transmittance. grid may be NULL (default for layer 0).
+ * Logs a LUCENT_LOG_WARN line for each layer thinner than its transport mean free path
+ * 1/sigma_t' (the multipole's source then lies outside it and T can be negative); the values
+ * are returned as computed. */
 lucent_status lucent_profile_layered(const lucent_layer *layers, int count,
                                      const lucent_profile_grid *grid, lucent_profile *dest[2]);
 

@@ -1,13 +1,22 @@
 /* Multipole slabs and their layered composition (Donner & Jensen 2005, "Light Diffusion in
- * Multi-Layered Translucent Materials", Section 3 and 4).
+ * Multi-Layered Translucent Materials", SIGGRAPH 2005, Section 3 and 4).
  *
- * A slab of thickness d with extrapolated boundaries z_b = 2 A D (D = 1/(3 sigma_t')) on both
- * faces is solved by mirroring the dipole of z_r = l = 1/sigma_t' about both boundaries:
- *   z_{r,i} = 2 i (d + 2 z_b) + l,   z_{v,i} = 2 i (d + 2 z_b) - l - 2 z_b,   i = -n .. n,
+ * A slab of thickness d has an extrapolated boundary on each face, z_b = 2 A D (D = 1/(3 sigma_t'),
+ * A = (1 + Fdr)/(1 - Fdr)), where Fdr comes from the relative index across that face: the slab's
+ * index over the index above for the top face (z_b(0)), over the index below for the bottom face
+ * (z_b(d)) (Donner & Jensen 2005, Section 3). Mirroring the dipole of z_r = l = 1/sigma_t' about
+ * both extrapolated boundaries (u = -z_b(0) and u = d + z_b(d); period 2 (d + z_b(0) + z_b(d)))
+ * gives the multipole with mismatched boundaries (Donner & Jensen 2005, Section 3, the multipole
+ * pole positions with z_b(0) and z_b(d); the equation numbers were not checked against the PDF
+ * here, the positions are re-derived from the two zero-fluence conditions):
+ *   z_{r,i} = 2 i (d + z_b(0) + z_b(d)) + l,   z_{v,i} = 2 i (d + z_b(0) + z_b(d)) - l - 2 z_b(0),
+ *   i = -n .. n,
  *   R(r) = alpha' sum_i [E(z_{r,i}, r) - E(z_{v,i}, r)],
  *   T(r) = alpha' sum_i [E(d - z_{r,i}, r) - E(d - z_{v,i}, r)],
- * with E the normal flux of a unit point source (profile/pole.h). */
+ * with E the normal flux of a unit point source (profile/pole.h). z_b(0) = z_b(d) = z_b gives the
+ * paper's symmetric form 2 i (d + 2 z_b) + l, 2 i (d + 2 z_b) - l - 2 z_b. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -16,30 +25,74 @@
 
 enum { MULTIPOLE_DEFAULT_POLES = 10, MULTIPOLE_MAX_POLES = 1000, LAYERS_MAX = 16 };
 
+/* Diffuse Fresnel reflectance for any relative index eta = n_inside / n_outside.
+ * eta >= 1: Jensen et al. 2001's fit (lucent_fdr, material.c).
+ * eta < 1 (the outside is denser: no total internal reflection): the fit of Egan & Hilgeman
+ * 1979 ("Optical Properties of Inhomogeneous Materials", Academic Press), in the same convention,
+ *   Fdr = -0.4399 + 0.7099/eta - 0.3319/eta^2 + 0.0636/eta^3
+ * (the coefficients pbrt-v2 uses in core/reflection.h, Fdr). Checked here against the hemispherical
+ * integral 2 int_0^1 F_r(eta, mu) mu dmu of the unpolarised Fresnel reflectance: within 0.0013 for
+ * eta in [0.5, 1) (0.0611 vs fit 0.0618 at 1/1.3, 0.1606 vs 0.1611 at 0.5); it degrades below 0.5
+ * (0.276 vs 0.420 at 1/3). Both fits give about 0.0016 at eta = 1 (exact: 0); that value is kept
+ * (A = 1.0032 at a matched interface), so the two branches meet continuously. */
+static double fdr_relative(double eta)
+{
+    if (eta >= 1.0) return lucent_fdr(eta);
+    double r = 1.0 / eta;
+    return -0.4399 + r * (0.7099 + r * (-0.3319 + r * 0.0636));
+}
+
+/* z_b = 2 A D, D = 1/(3 sigma_t'), for relative index eta. */
+static double extrapolation_distance(double eta, double sigma_t_prime)
+{
+    double fdr = fdr_relative(eta);
+    double a = (1.0 + fdr) / (1.0 - fdr);
+    return 2.0 * a / (3.0 * sigma_t_prime);
+}
+
+static double index_or_vacuum(double eta) { return eta > 0.0 ? eta : 1.0; }
+
 typedef struct slab {
-    double alpha, s, d, l, zb;
+    double alpha, s, d, l;
+    double zb_top, zb_bottom; /* z_b(0) and z_b(d) */
     int n;
 } slab;
 
 static void slab_setup(const lucent_medium *md, const lucent_slab_desc *desc, slab *dest)
 {
     double stp = md->sigma_a + md->sigma_s_prime;
-    double fdr = lucent_fdr(md->eta);
-    double a = (1.0 + fdr) / (1.0 - fdr);
-    *dest = (slab){.alpha = md->sigma_s_prime / stp,
-                   .s = sqrt(3.0 * md->sigma_a * stp),
-                   .d = desc->thickness,
-                   .l = 1.0 / stp,
-                   .zb = 2.0 * a / (3.0 * stp), /* z_b = 2 A D */
-                   .n = desc->poles ? desc->poles : MULTIPOLE_DEFAULT_POLES};
+    *dest = (slab){
+        .alpha = md->sigma_s_prime / stp,
+        .s = sqrt(3.0 * md->sigma_a * stp),
+        .d = desc->thickness,
+        .l = 1.0 / stp,
+        .zb_top = extrapolation_distance(md->eta / index_or_vacuum(desc->eta_above), stp),
+        .zb_bottom = extrapolation_distance(md->eta / index_or_vacuum(desc->eta_below), stp),
+        .n = desc->poles ? desc->poles : MULTIPOLE_DEFAULT_POLES};
 }
 
-/* Signed depths of pole pair i. */
+/* The same slab turned upside down (light entering through its bottom face). */
+static slab slab_flipped(const slab *s)
+{
+    slab f = *s;
+    f.zb_top = s->zb_bottom;
+    f.zb_bottom = s->zb_top;
+    return f;
+}
+
+/* Signed depths of pole pair i (Donner & Jensen 2005, multipole with z_b(0) != z_b(d)). */
 static void slab_pair(const slab *s, int i, double *zr, double *zv)
 {
-    double shift = 2.0 * i * (s->d + 2.0 * s->zb);
+    double shift = 2.0 * i * (s->d + s->zb_top + s->zb_bottom);
     *zr = shift + s->l;
-    *zv = shift - s->l - 2.0 * s->zb;
+    *zv = shift - s->l - 2.0 * s->zb_top;
+}
+
+static lucent_status check_index(double eta, const char *name)
+{
+    if (eta == 0.0 || (eta >= 1.0 && eta <= 3.0)) return LUCENT_OK;
+    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                        "slab: %s must be 0 (vacuum) or in [1, 3], got %g", name, eta);
 }
 
 static lucent_status slab_validate(const lucent_medium *md, const lucent_slab_desc *desc)
@@ -52,7 +105,32 @@ static lucent_status slab_validate(const lucent_medium *md, const lucent_slab_de
     if (desc->poles < 0 || desc->poles > MULTIPOLE_MAX_POLES)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "slab: poles must be in [0, %d], got %d",
                             MULTIPOLE_MAX_POLES, desc->poles);
-    return LUCENT_OK;
+    st = check_index(desc->eta_above, "eta_above");
+    if (st == LUCENT_OK) st = check_index(desc->eta_below, "eta_below");
+    return st;
+}
+
+/* Donner & Jensen 2005 place the source at depth l = 1/sigma_t'; for d < l it lies below the
+ * slab and the multipole's T (or R, with unequal faces) can come out negative: a 0.25 mm Skin1
+ * slab alone has T = -0.235 (red); on 5 mm of Skin2 the stack's red R is -0.069.
+ * Such layers are still computed (the paper uses them); this says so through the log sink.
+ * what: "slab" or "layers[i]". */
+static void warn_if_thin(const lucent_material *m, double thickness, const char *what)
+{
+    double lmax = 0.0;
+    int cmax = 0;
+    for (int c = 0; c < 3; c++) {
+        lucent_medium md;
+        lucent_medium_from_material(m, c, &md);
+        double l = 1.0 / (md.sigma_a + md.sigma_s_prime);
+        if (l > lmax) lmax = l, cmax = c;
+    }
+    if (thickness < lmax)
+        lucent_log(LUCENT_LOG_WARN,
+                   "multipole: %s (%s): thickness %g mm is below its transport mean free path "
+                   "1/sigma_t' = %g mm (channel %d); the diffusion multipole is inaccurate there "
+                   "and its R or T can come out negative (values returned as computed)",
+                   what, m->name, thickness, lmax, cmax);
 }
 
 void lucent_multipole_profile(const lucent_medium *md, const lucent_slab_desc *slab_desc, double r,
@@ -140,6 +218,7 @@ lucent_status lucent_profile_multipole(const lucent_material *m, const lucent_sl
     if (st == LUCENT_OK) st = lucent_profile_grid_resolve(grid, m, &g);
     if (st == LUCENT_OK) st = create_pair(&g, "multipole-R", "multipole-T", dest);
     if (st != LUCENT_OK) return st;
+    warn_if_thin(m, desc->thickness, "slab");
     for (int c = 0; c < 3; c++) {
         lucent_medium md;
         slab s;
@@ -178,32 +257,46 @@ static void slab_hat(const slab *s, double k, double *r_hat, double *t_hat)
     *t_hat = s->alpha * ts;
 }
 
-/* A stack at one frequency: reflectance from the top and from the bottom, transmittance. */
+/* A stack at one frequency: reflectance from the top (rt) and from the bottom (rb),
+ * transmittance downwards (td) and upwards (tu). A layer's two faces see different relative
+ * indices, so rb != rt and tu != td in general. */
 typedef struct stack_hat {
-    double rt, rb, t;
+    double rt, rb, td, tu;
 } stack_hat;
 
-/* Donner & Jensen 2005, the adding rule with the inter-reflection series summed:
- *   R12 = R1 + T1 R2 T1 / (1 - R2 R1),  T12 = T1 T2 / (1 - R2 R1). */
+/* Donner & Jensen 2005, the adding rule with the inter-reflection series summed, for a stack a
+ * above a stack b (primes: seen from below):
+ *   R12 = R1 + T1 R2 T1' / (1 - R1' R2),    T12 = T1 T2 / (1 - R1' R2),
+ *   R12' = R2' + T2' R1' T2 / (1 - R1' R2), T12' = T2' T1' / (1 - R1' R2). */
 static stack_hat stack_add(stack_hat a, stack_hat b)
 {
     double den = 1.0 - a.rb * b.rt;
-    return (stack_hat){.rt = a.rt + a.t * a.t * b.rt / den,
-                       .rb = b.rb + b.t * b.t * a.rb / den,
-                       .t = a.t * b.t / den};
+    return (stack_hat){.rt = a.rt + a.td * b.rt * a.tu / den,
+                       .rb = b.rb + b.tu * a.rb * b.td / den,
+                       .td = a.td * b.td / den,
+                       .tu = b.tu * a.tu / den};
+}
+
+/* One layer at frequency k; seen from below too unless last (nothing is below it then). */
+static stack_hat layer_hat(const slab *s, double k, int last)
+{
+    stack_hat h;
+    slab_hat(s, k, &h.rt, &h.td);
+    if (last) {
+        h.rb = h.tu = NAN; /* never read: only the stack's rt and td are output */
+    } else if (s->zb_top == s->zb_bottom) {
+        h.rb = h.rt, h.tu = h.td; /* symmetric slab */
+    } else {
+        slab f = slab_flipped(s);
+        slab_hat(&f, k, &h.rb, &h.tu);
+    }
+    return h;
 }
 
 static stack_hat stack_eval(const slab *slabs, int count, double k)
 {
-    stack_hat acc;
-    slab_hat(&slabs[0], k, &acc.rt, &acc.t);
-    acc.rb = acc.rt;
-    for (int i = 1; i < count; i++) {
-        stack_hat h;
-        slab_hat(&slabs[i], k, &h.rt, &h.t);
-        h.rb = h.rt;
-        acc = stack_add(acc, h);
-    }
+    stack_hat acc = layer_hat(&slabs[0], k, count == 1);
+    for (int i = 1; i < count; i++) acc = stack_add(acc, layer_hat(&slabs[i], k, i == count - 1));
     return acc;
 }
 
@@ -230,7 +323,7 @@ static void inverse_node(inverse_ctx *x, double k, double w)
         double v = w * r * j1(k * r);
         for (int c = 0; c < 3; c++) {
             x->cum[0][c][e] += h[c].rt * v;
-            x->cum[1][c][e] += h[c].t * v;
+            x->cum[1][c][e] += h[c].td * v;
         }
     }
 }
@@ -284,14 +377,21 @@ static lucent_status layers_check(const lucent_layer *layers, int count)
     return LUCENT_OK;
 }
 
+/* Each layer's faces take the indices of its neighbours (Donner & Jensen 2005, layered model: the
+ * boundary condition of an interface comes from the relative index across it); the top layer's
+ * eta_above and the bottom layer's eta_below are the media around the stack. */
 static void layers_slabs(const lucent_layer *layers, int count, slab *dest)
 {
-    for (int c = 0; c < 3; c++)
-        for (int i = 0; i < count; i++) {
+    for (int i = 0; i < count; i++) {
+        lucent_slab_desc desc = layers[i].slab;
+        if (i > 0) desc.eta_above = layers[i - 1].material.eta;
+        if (i + 1 < count) desc.eta_below = layers[i + 1].material.eta;
+        for (int c = 0; c < 3; c++) {
             lucent_medium md;
             lucent_medium_from_material(&layers[i].material, c, &md);
-            slab_setup(&md, &layers[i].slab, &dest[c * count + i]);
+            slab_setup(&md, &desc, &dest[c * count + i]);
         }
+    }
 }
 
 static void layers_fill(inverse_ctx *x, lucent_profile *dest[2])
@@ -316,6 +416,11 @@ lucent_status lucent_profile_layered(const lucent_layer *layers, int count,
     if (st == LUCENT_OK) st = lucent_profile_grid_resolve(grid, &layers[0].material, &g);
     if (st == LUCENT_OK) st = create_pair(&g, "layered-R", "layered-T", dest);
     if (st != LUCENT_OK) return st;
+    for (int i = 0; i < count; i++) {
+        char what[32];
+        snprintf(what, sizeof what, "layers[%d]", i);
+        warn_if_thin(&layers[i].material, layers[i].slab.thickness, what);
+    }
     slab slabs[3 * LAYERS_MAX];
     layers_slabs(layers, count, slabs);
     inverse_ctx x = {.slabs = slabs, .count = count, .edges = g.count + 1, .dr = g.dr};
