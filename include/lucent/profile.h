@@ -65,7 +65,9 @@ double lucent_profile_total(const lucent_profile *p, int c);
 typedef struct lucent_medium {
     double sigma_a;       /* absorption, mm^-1, >= 0 */
     double sigma_s_prime; /* reduced scattering sigma_s (1 - g), mm^-1, >= 0; sum > 0 */
-    double eta;           /* relative index of refraction, >= 1 */
+    double eta;           /* index of refraction relative to the medium outside (vacuum or air
+                           for the half-space models; slabs take their neighbours from
+                           lucent_slab_desc), >= 1 */
 } lucent_medium;
 
 /* Fills dest with channel c (0..2) of m: sigma_a, sigma_s (1 - g), eta. */
