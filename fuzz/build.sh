@@ -9,7 +9,7 @@ mkdir -p "$out"
 cmake -S . -B build >/dev/null && cmake --build build --target lucent_lib -j2 >/dev/null
 srcs=$(ls src/*/*.c build/generated/embedded.c)
 flags=(-std=c11 -D_GNU_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined -Iinclude -Isrc -I/usr/include/OpenEXR)
-libs=(-lcjson -lOpenEXRCore -lpng -lz -lpthread -lm)
+libs=(-lcjson -lOpenEXRCore -lpng -lz $(pkg-config --libs assimp lapacke nlopt fftw3) -lpthread -lm)
 for t in material mcml image; do
   clang "${flags[@]}" fuzz/fuzz_$t.c $srcs "${libs[@]}" -o "$out/fuzz_$t"
 done

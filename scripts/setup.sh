@@ -5,8 +5,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# Build tools and the libraries of DESIGN.md that the code uses so far.
-PACKAGES=(build-essential cmake pkg-config zlib1g-dev libpng-dev libopenexr-dev libcjson-dev)
+# Build tools and the libraries of DESIGN.md that the code uses so far (glslang-tools: the
+# tests compile the exported GLSL/HLSL kernels with glslangValidator).
+PACKAGES=(build-essential cmake pkg-config zlib1g-dev libpng-dev libopenexr-dev libcjson-dev
+          libassimp-dev liblapacke-dev libopenblas-dev libnlopt-dev libfftw3-dev glslang-tools)
 command -v npm >/dev/null 2>&1 || PACKAGES+=(nodejs npm)
 
 missing=()
