@@ -3,8 +3,8 @@
 # file and the field, outputs that are complete or absent. Each tests/cli_*.sh adds cases.
 # Usage: cli_test.sh path/to/lucent path/to/tests/fixtures
 set -u
-LUCENT=$1
-FIXTURES=$2
+LUCENT=$(cd "$(dirname "$1")" && pwd)/$(basename "$1") # absolute: some cases cd elsewhere
+FIXTURES=$(cd "$2" && pwd)
 TESTS=$(cd "$(dirname "$0")" && pwd)
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/lucent-cli-XXXXXX")
 chmod 755 "$TMP"
