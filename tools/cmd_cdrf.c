@@ -1,0 +1,412 @@
+/* `lucent cdrf-lut` and `lucent cdrf-fit`: the curvature-dependent reflectance function of Kubo,
+ * Dobashi & Morishima as a look-up table, and sigma0 fitted to Monte Carlo spheres of a material. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "base/json.h"
+#include "base/strbuf.h"
+#include "cli.h"
+#include "lucent/cdrf.h"
+
+#define PI 3.14159265358979323846
+enum { MAX_OUTS = 8, MAX_RADII = 16, CURVE_POINTS = 91 };
+
+static const char k_lut_usage[] =
+    "usage: lucent cdrf-lut [--variant kubo|collomb] [options] --out FILE...\n"
+    "\n"
+    "Tabulates the curvature-dependent reflectance function (Kubo, Dobashi & Morishima 2011,\n"
+    "section V): column i holds cos theta = -1 + 2 i / (width - 1), row j (top first) holds\n"
+    "sigma = sigma0 kappa = sigma_max j / (height - 1) radians. Single-channel float.\n"
+    "\n"
+    "options:\n"
+    "  --variant V     kubo (Eq. 1-3: max(cos, 0) convolved with a Gaussian, the default) or\n"
+    "                  collomb (the blog's closed-form fit, its kappa read as sigma)\n"
+    "  --width N       cos theta samples (default 256)\n"
+    "  --height N      sigma samples (default 256)\n"
+    "  --sigma-max S   largest sigma in radians (default 3)\n"
+    "  --out FILE      output by extension: .exr, .pfm, or .c/.h (a C array); may be repeated\n"
+    "                  (default: cdrf-VARIANT.exr)\n"
+    "  --name NAME     the C array's name (default lucent_cdrf_lut)\n"
+    "  -h, --help      show this help\n"
+    "\n"
+    "examples:\n"
+    "  lucent cdrf-lut --out lut.exr\n"
+    "  lucent cdrf-lut --variant collomb --width 128 --height 64 --out lut.pfm --out lut.c\n";
+
+static const char k_fit_usage[] =
+    "usage: lucent cdrf-fit MATERIAL [--radii R1,R2,...] [options]\n"
+    "\n"
+    "Simulates spheres of MATERIAL (a preset, FILE.json or FILE.json#NAME) of the given radii (mm)\n"
+    "under a directional light from the side, seen from the front (Kubo et al., Figure 6), by Monte\n"
+    "Carlo transport through a dielectric boundary; scores the radiance toward the camera against\n"
+    "the angle theta between the normal and the light; fits sigma0 (mm) and the albedo scale k_d\n"
+    "per channel by weighted least squares, and Lambert (sigma0 = 0) for comparison. Prints sigma0\n"
+    "and the RMS errors over the equator's pixels; writes PREFIX.json, PREFIX.csv (the data) and PREFIX.svg (data and fits).\n"
+    "\n"
+    "options:\n"
+    "  --radii LIST       sphere radii in mm (default 2,5,10,20)\n"
+    "  --photons N        photons per channel and sphere (default 400000)\n"
+    "  --bins N           theta bins over [0, 180] degrees (default 36)\n"
+    "  --cone DEG         half-angle of the camera's acceptance cone (default 11.46 = 0.2 rad)\n"
+    "  --roughness A      GGX alpha of the boundary (default 0: smooth, Fresnel)\n"
+    "  --variant V        kubo (default) or collomb, the function fitted\n"
+    "  --sigma0-max MM    upper end of the sigma0 search (default 20)\n"
+    "  --seed S           seed (default 1)\n"
+    "  --out PREFIX       output prefix (default NAME-cdrf)\n"
+    "  -h, --help         show this help\n"
+    "\n"
+    "example:\n"
+    "  lucent cdrf-fit skin1 --radii 2,5,10,20 --out out/skin1-cdrf\n";
+
+static bool parse_u64(const char *text, uint64_t *dest)
+{
+    double v;
+    if (!cli_parse_double(text, &v) || v < 0 || v > 1e15 || v != floor(v)) return false;
+    *dest = (uint64_t)v;
+    return true;
+}
+
+/* ---- cdrf-lut ---- */
+
+typedef struct lut_options {
+    lucent_cdrf_lut_desc desc;
+    const char *outs[MAX_OUTS];
+    int out_count;
+    const char *name;
+} lut_options;
+
+static int parse_lut_args(int argc, char **argv, lut_options *o)
+{
+    for (int i = 1; i < argc; i++) {
+        const char *v;
+        if (cli_option(argc, argv, &i, "--variant", &v)) {
+            if (!lucent_cdrf_variant_parse(v, &o->desc.variant))
+                return cli_usage_error("cdrf-lut", "--variant must be kubo or collomb");
+        } else if (cli_option(argc, argv, &i, "--width", &v)) {
+            if (!cli_parse_int(v, &o->desc.width) || o->desc.width < 2 || o->desc.width > 8192)
+                return cli_usage_error("cdrf-lut", "--width needs a whole number from 2 to 8192");
+        } else if (cli_option(argc, argv, &i, "--height", &v)) {
+            if (!cli_parse_int(v, &o->desc.height) || o->desc.height < 2 || o->desc.height > 8192)
+                return cli_usage_error("cdrf-lut", "--height needs a whole number from 2 to 8192");
+        } else if (cli_option(argc, argv, &i, "--sigma-max", &v)) {
+            if (!cli_parse_double(v, &o->desc.sigma_max) || !(o->desc.sigma_max > 0) || o->desc.sigma_max > 100)
+                return cli_usage_error("cdrf-lut", "--sigma-max needs an angle in (0, 100] radians");
+        } else if (cli_option(argc, argv, &i, "--out", &v)) {
+            if (!v) return cli_usage_error("cdrf-lut", "--out needs a file name");
+            if (o->out_count == MAX_OUTS) return cli_usage_error("cdrf-lut", "at most %d --out files", MAX_OUTS);
+            o->outs[o->out_count++] = v;
+        } else if (cli_option(argc, argv, &i, "--name", &v)) {
+            if (!v) return cli_usage_error("cdrf-lut", "--name needs a C identifier");
+            for (const char *p = v; *p; p++)
+                if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || *p == '_' ||
+                      (p > v && *p >= '0' && *p <= '9')))
+                    return cli_usage_error("cdrf-lut", "--name '%s' is not a C identifier", v);
+            o->name = v;
+        } else {
+            return cli_usage_error("cdrf-lut", argv[i][0] == '-' ? "unknown option '%s'" : "unexpected argument '%s'",
+                                   argv[i]);
+        }
+    }
+    return CLI_OK;
+}
+
+static const char *lut_extension_check(const lut_options *o)
+{
+    static const char *const exts[] = {".exr", ".pfm", ".c", ".h"};
+    for (int k = 0; k < o->out_count; k++) {
+        const char *p = o->outs[k], *dot = strrchr(p, '.');
+        bool ok = false;
+        for (int e = 0; e < 4 && dot; e++) ok |= strcasecmp(dot, exts[e]) == 0;
+        if (!ok) return p;
+    }
+    return NULL;
+}
+
+/* Prints what the acceptance checks say about the table. */
+static void lut_summary(const lucent_image *lut, const lucent_cdrf_lut_desc *d)
+{
+    int w = lut->width, h = lut->height;
+    double dev = 0;
+    for (int i = 0; i < w; i++) dev = fmax(dev, fabs(lut->data[i] - fmax(-1.0 + 2.0 * i / (w - 1), 0.0)));
+    bool peak_falls = true, shadow_rises = true;
+    for (int j = 1; j < h; j++) {
+        const float *row = lut->data + (size_t)j * (size_t)w, *up = row - w;
+        peak_falls &= row[w - 1] <= up[w - 1];
+        for (int i = 0; i < w && -1.0 + 2.0 * i / (w - 1) <= 0; i++) shadow_rises &= row[i] >= up[i];
+    }
+    cli_info("cdrf-lut: %s, %d x %d (cos theta in [-1, 1] x sigma in [0, %g])", lucent_cdrf_variant_name(d->variant),
+             w, h, d->sigma_max ? d->sigma_max : 3.0);
+    cli_info("  row sigma = 0: max |LUT - max(cos theta, 0)| = %.3g", dev);
+    cli_info("  widening with sigma: peak falls monotonically: %s; shadow (cos <= 0) rises monotonically: %s",
+             peak_falls ? "yes" : "no", shadow_rises ? "yes" : "no");
+}
+
+int cmd_cdrf_lut(int argc, char **argv)
+{
+    if (cli_wants_help(argc, argv)) {
+        fputs(k_lut_usage, stdout);
+        return CLI_OK;
+    }
+    lut_options o = {0};
+    int rc = parse_lut_args(argc, argv, &o);
+    if (rc != CLI_OK) return rc;
+    char def[64];
+    if (!o.out_count) {
+        snprintf(def, sizeof def, "cdrf-%s.exr", lucent_cdrf_variant_name(o.desc.variant));
+        o.outs[o.out_count++] = def;
+    }
+    const char *bad = lut_extension_check(&o);
+    if (bad) return cli_usage_error("cdrf-lut", "--out '%s': use .exr, .pfm or .c", bad);
+    o.desc.pool = cli_pool();
+    lucent_image *lut = NULL;
+    lucent_status s = lucent_cdrf_lut_build(&o.desc, &lut);
+    double smax = o.desc.sigma_max ? o.desc.sigma_max : 3.0;
+    for (int k = 0; k < o.out_count && s == LUCENT_OK; k++) {
+        s = lucent_cdrf_lut_write(o.outs[k], lut, smax, o.name);
+        if (s == LUCENT_OK) cli_info("wrote %s", o.outs[k]);
+    }
+    if (s == LUCENT_OK) lut_summary(lut, &o.desc);
+    lucent_image_destroy(lut);
+    return s == LUCENT_OK ? CLI_OK : cli_fail();
+}
+
+/* ---- cdrf-fit ---- */
+
+typedef struct fit_options {
+    const char *spec, *out;
+    lucent_material material;
+    double radii[MAX_RADII];
+    int radius_count;
+    uint64_t photons, seed;
+    int bins;
+    double cone_deg, roughness, sigma0_max;
+    lucent_cdrf_variant variant;
+} fit_options;
+
+static int parse_radii(const char *list, fit_options *o)
+{
+    char buf[512];
+    if (!list) return cli_usage_error("cdrf-fit", "--radii needs a list of radii in mm");
+    snprintf(buf, sizeof buf, "%s", list);
+    o->radius_count = 0;
+    for (char *save, *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+        double r;
+        if (!cli_parse_double(t, &r) || !(r > 0) || r > 1e6)
+            return cli_usage_error("cdrf-fit", "--radii: '%s' is not a radius > 0 (mm)", t);
+        if (o->radius_count == MAX_RADII) return cli_usage_error("cdrf-fit", "--radii: at most %d radii", MAX_RADII);
+        o->radii[o->radius_count++] = r;
+    }
+    return o->radius_count ? CLI_OK : cli_usage_error("cdrf-fit", "--radii needs a list of radii in mm");
+}
+
+static int parse_fit_number(int argc, char **argv, int *i, fit_options *o)
+{
+    const char *v;
+    if (cli_option(argc, argv, i, "--photons", &v))
+        return parse_u64(v, &o->photons) && o->photons >= 100 ? CLI_OK
+               : cli_usage_error("cdrf-fit", "--photons needs a whole number >= 100");
+    if (cli_option(argc, argv, i, "--seed", &v))
+        return parse_u64(v, &o->seed) ? CLI_OK : cli_usage_error("cdrf-fit", "--seed needs a whole number >= 0");
+    if (cli_option(argc, argv, i, "--bins", &v))
+        return cli_parse_int(v, &o->bins) && o->bins >= 2 && o->bins <= LUCENT_CDRF_MAX_BINS
+                   ? CLI_OK : cli_usage_error("cdrf-fit", "--bins needs a count from 2 to %d", LUCENT_CDRF_MAX_BINS);
+    if (cli_option(argc, argv, i, "--cone", &v))
+        return cli_parse_double(v, &o->cone_deg) && o->cone_deg > 0 && o->cone_deg <= 90
+                   ? CLI_OK : cli_usage_error("cdrf-fit", "--cone needs an angle in (0, 90] degrees");
+    if (cli_option(argc, argv, i, "--roughness", &v))
+        return cli_parse_double(v, &o->roughness) && o->roughness >= 0 && o->roughness <= 1
+                   ? CLI_OK : cli_usage_error("cdrf-fit", "--roughness needs a GGX alpha in [0, 1]");
+    if (cli_option(argc, argv, i, "--sigma0-max", &v))
+        return cli_parse_double(v, &o->sigma0_max) && o->sigma0_max > 0 && o->sigma0_max <= 1e4
+                   ? CLI_OK : cli_usage_error("cdrf-fit", "--sigma0-max needs a length > 0 (mm)");
+    return -1;
+}
+
+static int parse_fit_args(int argc, char **argv, fit_options *o)
+{
+    int rc = CLI_OK;
+    for (int i = 1; i < argc && rc == CLI_OK; i++) {
+        const char *v;
+        if ((rc = parse_fit_number(argc, argv, &i, o)) != -1) continue;
+        rc = CLI_OK;
+        if (cli_option(argc, argv, &i, "--radii", &v)) rc = parse_radii(v, o);
+        else if (cli_option(argc, argv, &i, "--variant", &v))
+            rc = lucent_cdrf_variant_parse(v, &o->variant) ? CLI_OK
+                 : cli_usage_error("cdrf-fit", "--variant must be kubo or collomb");
+        else if (cli_option(argc, argv, &i, "--out", &v))
+            rc = (o->out = v) ? CLI_OK : cli_usage_error("cdrf-fit", "--out needs a file prefix");
+        else if (argv[i][0] == '-' && argv[i][1])
+            rc = cli_usage_error("cdrf-fit", "unknown option '%s'", argv[i]);
+        else if (o->spec)
+            rc = cli_usage_error("cdrf-fit", "one material at a time (got '%s' and '%s')", o->spec, argv[i]);
+        else
+            o->spec = argv[i];
+    }
+    if (rc == CLI_OK && !o->spec) rc = cli_usage_error("cdrf-fit", "expected a material");
+    return rc;
+}
+
+static const char *const k_channel[] = {"R", "G", "B"};
+
+static lucent_status write_fit_json(const char *path, const fit_options *o, const lucent_cdrf_sphere_result *sp,
+                                    const lucent_cdrf_fit *fit)
+{
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "material", o->material.name);
+    cJSON_AddStringToObject(root, "variant", lucent_cdrf_variant_name(fit->variant));
+    cJSON_AddStringToObject(root, "model", "L(theta) = k_d f(theta; sigma0 / r), theta = angle(normal, light)");
+    cJSON_AddStringToObject(root, "units", "r and sigma0 in mm, theta in radians, L per unit irradiance");
+    cJSON_AddNumberToObject(root, "photons_per_channel", (double)sp[0].photons);
+    cJSON_AddNumberToObject(root, "seed", (double)o->seed);
+    cJSON_AddNumberToObject(root, "cone_radians", o->cone_deg * PI / 180);
+    cJSON_AddNumberToObject(root, "roughness", o->roughness);
+    cJSON *fj = cJSON_AddObjectToObject(root, "fit");
+    lucent_json_add_numbers(fj, "sigma0", fit->sigma0, 3);
+    lucent_json_add_numbers(fj, "kd", fit->kd, 3);
+    lucent_json_add_numbers(fj, "rms", fit->rms, 3);
+    lucent_json_add_numbers(fj, "chi2", fit->chi2, 3);
+    lucent_json_add_numbers(fj, "lambert_kd", fit->lambert_kd, 3);
+    lucent_json_add_numbers(fj, "lambert_rms", fit->lambert_rms, 3);
+    lucent_json_add_numbers(fj, "lambert_chi2", fit->lambert_chi2, 3);
+    cJSON *arr = cJSON_AddArrayToObject(root, "spheres");
+    for (int i = 0; i < o->radius_count; i++) {
+        cJSON *s = cJSON_CreateObject();
+        cJSON_AddItemToArray(arr, s);
+        cJSON_AddNumberToObject(s, "radius", sp[i].radius);
+        lucent_json_add_numbers(s, "entered", sp[i].entered, 3);
+        lucent_json_add_numbers(s, "exited", sp[i].exited, 3);
+        lucent_json_add_numbers(s, "absorbed", sp[i].absorbed, 3);
+        lucent_json_add_numbers(s, "theta", sp[i].theta, sp[i].bins);
+        for (int c = 0; c < 3; c++) {
+            cJSON *ch = cJSON_AddObjectToObject(s, k_channel[c]);
+            lucent_json_add_numbers(ch, "radiance", sp[i].radiance[c], sp[i].bins);
+            lucent_json_add_numbers(ch, "error", sp[i].radiance_se[c], sp[i].bins);
+        }
+    }
+    lucent_status st = lucent_json_write_file(path, root);
+    cJSON_Delete(root);
+    return st;
+}
+
+static lucent_status write_fit_csv(const char *path, const fit_options *o, const lucent_cdrf_sphere_result *sp,
+                                   const lucent_cdrf_fit *fit)
+{
+    lucent_strbuf b = {0};
+    char *text = NULL;
+    lucent_strbuf_printf(&b, "# lucent cdrf-fit: %s; L per unit irradiance, *_se standard errors, *_fit = k_d f(theta; "
+                         "sigma0 / r) (%s)\n", o->material.name, lucent_cdrf_variant_name(fit->variant));
+    lucent_strbuf_printf(&b, "radius_mm,theta_deg,R,R_se,R_fit,G,G_se,G_fit,B,B_se,B_fit\n");
+    for (int i = 0; i < o->radius_count; i++)
+        for (int j = 0; j < sp[i].bins; j++) {
+            lucent_strbuf_printf(&b, "%.9g,%.9g", sp[i].radius, sp[i].theta[j] * 180 / PI);
+            for (int c = 0; c < 3; c++)
+                lucent_strbuf_printf(&b, ",%.9g,%.9g,%.9g", sp[i].radiance[c][j], sp[i].radiance_se[c][j],
+                                     fit->kd[c] * lucent_cdrf_eval(fit->variant, sp[i].theta[j],
+                                                                   fit->sigma0[c] / sp[i].radius));
+            lucent_strbuf_printf(&b, "\n");
+        }
+    lucent_status s = lucent_strbuf_finish(&b, &text);
+    if (s == LUCENT_OK) s = lucent_write_file(path, text, strlen(text));
+    free(text);
+    return s;
+}
+
+static const char *const k_palette[] = {"#c0392b", "#27ae60", "#2e64c8", "#8e44ad", "#d35400", "#16a085",
+                                        "#7f8c8d", "#2c3e50"};
+
+static lucent_status write_fit_svg(const char *path, const fit_options *o, const lucent_cdrf_sphere_result *sp,
+                                   const lucent_cdrf_fit *fit)
+{
+    int n = o->radius_count;
+    lucent_plot_series *series = calloc((size_t)(6 * n), sizeof *series);
+    double *deg = calloc((size_t)(n * LUCENT_CDRF_MAX_BINS), sizeof *deg);
+    double *cx = calloc(CURVE_POINTS, sizeof *cx), *cy = calloc((size_t)(3 * n * CURVE_POINTS), sizeof *cy);
+    char (*labels)[48] = calloc((size_t)(6 * n), sizeof *labels);
+    lucent_status s = LUCENT_OK;
+    if (!series || !deg || !cx || !cy || !labels) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
+    lucent_plot_panel panels[3];
+    static const char *const titles[] = {"red channel", "green channel", "blue channel"};
+    for (int c = 0; c < 3 && s == LUCENT_OK; c++) {
+        for (int i = 0; i < n; i++) {
+            double *d = deg + i * LUCENT_CDRF_MAX_BINS, *y = cy + (c * n + i) * CURVE_POINTS;
+            for (int j = 0; j < sp[i].bins; j++) d[j] = sp[i].theta[j] * 180 / PI;
+            for (int k = 0; k < CURVE_POINTS; k++) {
+                cx[k] = 180.0 * k / (CURVE_POINTS - 1);
+                y[k] = fit->kd[c] * lucent_cdrf_eval(fit->variant, cx[k] * PI / 180, fit->sigma0[c] / sp[i].radius);
+            }
+            char *l1 = labels[(c * n + i) * 2], *l2 = labels[(c * n + i) * 2 + 1];
+            snprintf(l1, 48, "r = %g mm (MC)", sp[i].radius);
+            snprintf(l2, 48, "r = %g mm (fit)", sp[i].radius);
+            const char *col = k_palette[i % 8];
+            series[(c * n + i) * 2] = (lucent_plot_series){.label = l1, .x = d, .y = sp[i].radiance[c],
+                                                           .err = sp[i].radiance_se[c], .count = sp[i].bins,
+                                                           .color = col, .markers = true};
+            series[(c * n + i) * 2 + 1] = (lucent_plot_series){.label = l2, .x = cx, .y = y, .count = CURVE_POINTS,
+                                                               .color = col, .dashed = true};
+        }
+        panels[c] = (lucent_plot_panel){.title = titles[c], .x_label = "theta (degrees, normal to light)",
+                                        .x_min = 0, .x_max = 180,
+                                        .y_label = c == 0 ? "radiance toward the camera" : NULL,
+                                        .series = series + c * 2 * n, .series_count = 2 * n};
+    }
+    char title[200];
+    snprintf(title, sizeof title, "%s: CDRF (%s) fitted to Monte Carlo spheres; sigma0 = %.3g, %.3g, %.3g mm",
+             o->material.name, lucent_cdrf_variant_name(fit->variant), fit->sigma0[0], fit->sigma0[1], fit->sigma0[2]);
+    lucent_plot_desc desc = {.title = title, .panels = panels, .panel_count = 3, .panel_width = 440};
+    if (s == LUCENT_OK) s = lucent_plot_write_svg(path, &desc);
+    free(series), free(deg), free(cx), free(cy), free(labels);
+    return s;
+}
+
+static lucent_status run_fit(fit_options *o)
+{
+    lucent_status s = lucent_material_resolve(o->spec, &o->material);
+    if (s != LUCENT_OK) return s;
+    lucent_cdrf_sphere_result *sp = calloc((size_t)o->radius_count, sizeof *sp);
+    if (!sp) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "cdrf-fit: out of memory");
+    for (int i = 0; i < o->radius_count && s == LUCENT_OK; i++) {
+        char label[64];
+        snprintf(label, sizeof label, "sphere r = %g mm", o->radii[i]);
+        lucent_cdrf_sphere_desc d = {.material = &o->material, .radius = o->radii[i], .roughness = o->roughness,
+                                     .photons = o->photons, .bins = o->bins, .cone = o->cone_deg * PI / 180,
+                                     .seed = o->seed * 64 + (uint64_t)i, .pool = cli_pool(), .label = label};
+        s = lucent_cdrf_sphere_run(&d, &sp[i]);
+    }
+    lucent_cdrf_fit fit;
+    if (s == LUCENT_OK) s = lucent_cdrf_fit_spheres(sp, o->radius_count, o->variant, o->sigma0_max, &fit);
+    char prefix[512], path[600];
+    if (o->out) snprintf(prefix, sizeof prefix, "%s", o->out);
+    else snprintf(prefix, sizeof prefix, "%s-cdrf", o->material.name);
+    static const char *const exts[] = {"json", "csv", "svg"};
+    for (int k = 0; k < 3 && s == LUCENT_OK; k++) {
+        snprintf(path, sizeof path, "%s.%s", prefix, exts[k]);
+        s = k == 0 ? write_fit_json(path, o, sp, &fit)
+            : k == 1 ? write_fit_csv(path, o, sp, &fit) : write_fit_svg(path, o, sp, &fit);
+        if (s == LUCENT_OK) cli_info("wrote %s", path);
+    }
+    if (s == LUCENT_OK) {
+        printf("%s: CDRF (%s) fitted to %d spheres, %llu photons per channel each\n", o->material.name,
+               lucent_cdrf_variant_name(fit.variant), o->radius_count, (unsigned long long)sp[0].photons);
+        printf("channel  sigma0_mm  k_d       rms_cdrf   rms_lambert  better\n");
+        for (int c = 0; c < 3; c++)
+            printf("%-7s  %-9.4g  %-8.4g  %-9.4g  %-11.4g  %s\n", k_channel[c], fit.sigma0[c], fit.kd[c], fit.rms[c],
+                   fit.lambert_rms[c], fit.rms[c] < fit.lambert_rms[c] ? "cdrf" : "lambert");
+    }
+    free(sp);
+    return s;
+}
+
+int cmd_cdrf_fit(int argc, char **argv)
+{
+    if (cli_wants_help(argc, argv)) {
+        fputs(k_fit_usage, stdout);
+        return CLI_OK;
+    }
+    fit_options o = {.radii = {2, 5, 10, 20}, .radius_count = 4, .photons = 400000, .seed = 1, .bins = 36,
+                     .cone_deg = 0.2 * 180 / PI};
+    int rc = parse_fit_args(argc, argv, &o);
+    if (rc != CLI_OK) return rc;
+    return run_fit(&o) == LUCENT_OK ? CLI_OK : cli_fail();
+}
