@@ -3,7 +3,10 @@
 #define LUCENT_H
 
 #include "lucent/base.h"
+#include "lucent/cdrf.h"
+#include "lucent/convolve.h"
 #include "lucent/image.h"
+#include "lucent/kernel.h"
 #include "lucent/material.h"
 #include "lucent/mc.h"
 #include "lucent/profile.h"
