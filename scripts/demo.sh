@@ -20,5 +20,16 @@ done
 "$lucent" profile skin1 --model mc --photons 200000 --out "$out/skin1-mc"
 
 echo
+echo "== Separable kernels (Freude 2014): shader-ready taps for Skin1 and Marble"
+"$lucent" kernel skin1 --model svd --export glsl --out "$out/skin1-svd.glsl"
+"$lucent" kernel marble --model preint --export json --out "$out/marble-preint.json"
+"$lucent" kernel skin1 --model jimenez --export hlsl --out "$out/jimenez.hlsl"
+
+echo
+echo "== The curvature-dependent reflectance function (Kubo et al.)"
+"$lucent" cdrf-lut --out "$out/cdrf-lut.exr"
+"$lucent" cdrf-fit skin1 --radii 2,5,10,20 --photons 200000 --out "$out/skin1-cdrf"
+
+echo
 echo "Demo outputs are in $out/:"
 ls -1 "$out" | sed 's/^/  /'
