@@ -1,0 +1,62 @@
+/* The area-weighted normal-curvature estimate (Garimella & Swartz 2003, as used by the CDRF
+ * blog): H_i = sum_j A_ij k_ij / sum_j A_ij with k_ij = 2 (x_i - x_j) . n_i / |x_i - x_j|^2,
+ * the normal curvature of the circle through x_j tangent to the surface at x_i, A_ij the area
+ * of the faces sharing edge ij. Gaussian curvature from the angle deficit (Meyer 2003, eq. 9);
+ * k1, k2 = H +- sqrt(max(0, H^2 - K)). Normals: Max 1999 weights (exact on a sphere). */
+#include <stdlib.h>
+
+#include "mesh/internal.h"
+
+typedef struct gar_job {
+    const lucent_mesh *mesh;
+    const mesh_adjacency *adj;
+    const double *normals;
+    lucent_curvature *out;
+} gar_job;
+
+static void garimella_vertex(const gar_job *j, uint32_t v)
+{
+    const double *P = j->mesh->positions, *n = j->normals + 3 * v;
+    lucent_curvature *o = j->out;
+    double sum = 0, wsum = 0, e1[3], e2[3], x[3], d[3];
+    for (uint32_t a = j->adj->start[v]; a < j->adj->start[v + 1]; a++) {
+        const uint32_t *t = j->mesh->faces + 3 * j->adj->face[a];
+        int c = j->adj->corner[a];
+        v3_sub(P + 3 * t[(c + 1) % 3], P + 3 * v, e1), v3_sub(P + 3 * t[(c + 2) % 3], P + 3 * v, e2);
+        v3_cross(e1, e2, x);
+        double area = 0.5 * v3_len(x);
+        if (!(area > 0)) continue;
+        for (int k = 1; k <= 2; k++) {
+            v3_sub(P + 3 * v, P + 3 * t[(c + k) % 3], d);
+            sum += area * 2 * v3_dot(d, n) / v3_dot(d, d), wsum += area;
+        }
+    }
+    int boundary = o->flags[v] & LUCENT_CURVATURE_BOUNDARY;
+    double mixed;
+    double K = mesh_angle_deficit_gauss(j->mesh, j->adj, v, boundary, &mixed);
+    if (!(wsum > 0) || !(mixed > 0) || v3_dot(n, n) == 0) {
+        o->flags[v] |= LUCENT_CURVATURE_INVALID;
+        return;
+    }
+    double H = sum / wsum, disc = sqrt(fmax(0, H * H - K));
+    o->mean[v] = H, o->gauss[v] = K, o->k1[v] = H + disc, o->k2[v] = H - disc;
+}
+
+static lucent_status gar_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
+{
+    (void)chunk, (void)thread;
+    for (uint64_t v = begin; v < end; v++) garimella_vertex(ctx, (uint32_t)v);
+    return LUCENT_OK;
+}
+
+lucent_status mesh_curvature_garimella(const lucent_mesh *mesh, const mesh_adjacency *adj,
+                                       lucent_pool *pool, lucent_curvature *dest)
+{
+    double *normals = malloc((3 * mesh->vertex_count + 1) * sizeof *normals);
+    if (!normals) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "curvature: out of memory");
+    gar_job job = {mesh, adj, normals, dest};
+    lucent_status s = mesh_max_normals(mesh, adj, pool, normals);
+    if (s == LUCENT_OK) s = lucent_parallel_for(pool, mesh->vertex_count, 4096, gar_chunk, &job);
+    free(normals);
+    return s;
+}

@@ -1,0 +1,268 @@
+/* Triangle meshes: allocation, area-weighted normals, welding, statistics. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "mesh/internal.h"
+
+lucent_status lucent_mesh_create(size_t vertex_count, size_t face_count, lucent_mesh **dest)
+{
+    *dest = NULL;
+    if (vertex_count > UINT32_MAX || face_count > UINT32_MAX / 3)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "mesh too large (%zu vertices, %zu faces)",
+                            vertex_count, face_count);
+    lucent_mesh *m = calloc(1, sizeof *m);
+    if (!m) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for a mesh");
+    m->vertex_count = vertex_count, m->face_count = face_count;
+    m->positions = calloc(vertex_count * 3 + 1, sizeof *m->positions);
+    m->normals = calloc(vertex_count * 3 + 1, sizeof *m->normals);
+    m->faces = calloc(face_count * 3 + 1, sizeof *m->faces);
+    if (!m->positions || !m->normals || !m->faces) {
+        lucent_mesh_destroy(m);
+        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for a mesh of %zu vertices",
+                            vertex_count);
+    }
+    *dest = m;
+    return LUCENT_OK;
+}
+
+void lucent_mesh_destroy(lucent_mesh *mesh)
+{
+    if (!mesh) return;
+    free(mesh->positions), free(mesh->normals), free(mesh->faces);
+    free(mesh);
+}
+
+void lucent_mesh_compute_normals(lucent_mesh *mesh)
+{
+    double *n = mesh->normals;
+    memset(n, 0, mesh->vertex_count * 3 * sizeof *n);
+    for (size_t f = 0; f < mesh->face_count; f++) {
+        const uint32_t *t = mesh->faces + 3 * f;
+        double e1[3], e2[3], c[3];
+        v3_sub(mesh->positions + 3 * t[1], mesh->positions + 3 * t[0], e1);
+        v3_sub(mesh->positions + 3 * t[2], mesh->positions + 3 * t[0], e2);
+        v3_cross(e1, e2, c); /* twice the area times the unit normal */
+        for (int j = 0; j < 3; j++)
+            for (int k = 0; k < 3; k++) n[3 * t[j] + k] += c[k];
+    }
+    for (size_t v = 0; v < mesh->vertex_count; v++) v3_normalize(n + 3 * v);
+}
+
+/* ---- welding: an open-addressing hash of exact positions ---- */
+
+static uint64_t hash_position(const double *p)
+{
+    uint64_t h = 1469598103934665603ull, bits;
+    for (int k = 0; k < 3; k++) {
+        double x = p[k] == 0 ? 0 : p[k]; /* -0 and +0 weld */
+        memcpy(&bits, &x, sizeof bits);
+        h = (h ^ bits) * 1099511628211ull;
+        h ^= h >> 29;
+    }
+    return h;
+}
+
+/* remap[v] = index of the first vertex at v's position. */
+static lucent_status weld_map(const lucent_mesh *m, uint32_t *remap)
+{
+    size_t cap = 16;
+    while (cap < 2 * m->vertex_count) cap *= 2;
+    uint32_t *slot = malloc(cap * sizeof *slot);
+    if (!slot) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory welding a mesh");
+    memset(slot, 0xff, cap * sizeof *slot);
+    for (size_t v = 0; v < m->vertex_count; v++) {
+        const double *p = m->positions + 3 * v;
+        size_t h = (size_t)hash_position(p) & (cap - 1);
+        while (slot[h] != UINT32_MAX) {
+            const double *q = m->positions + 3 * slot[h];
+            if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) break;
+            h = (h + 1) & (cap - 1);
+        }
+        if (slot[h] == UINT32_MAX) slot[h] = (uint32_t)v;
+        remap[v] = slot[h];
+    }
+    free(slot);
+    return LUCENT_OK;
+}
+
+/* Rewrites faces through remap, drops faces with a repeated index, then compacts vertices in
+ * order of first use (remap is reused as the new index table). */
+static void weld_apply(lucent_mesh *m, uint32_t *remap, uint32_t *newidx)
+{
+    size_t nf = 0, nv = 0;
+    for (size_t f = 0; f < m->face_count; f++) {
+        uint32_t a = remap[m->faces[3 * f]], b = remap[m->faces[3 * f + 1]], c = remap[m->faces[3 * f + 2]];
+        if (a == b || b == c || a == c) continue;
+        m->faces[3 * nf] = a, m->faces[3 * nf + 1] = b, m->faces[3 * nf + 2] = c;
+        nf++;
+    }
+    memset(newidx, 0xff, m->vertex_count * sizeof *newidx);
+    for (size_t i = 0; i < 3 * nf; i++) {
+        uint32_t v = m->faces[i];
+        if (newidx[v] == UINT32_MAX) {
+            newidx[v] = (uint32_t)nv++;
+        }
+        m->faces[i] = newidx[v];
+    }
+    /* Gather positions through the inverse table (built in remap, no longer needed). */
+    for (size_t v = 0; v < m->vertex_count; v++)
+        if (newidx[v] != UINT32_MAX) remap[newidx[v]] = (uint32_t)v;
+    double *pos = m->normals; /* scratch, normals are recomputed */
+    for (size_t n = 0; n < nv; n++) memcpy(pos + 3 * n, m->positions + 3 * remap[n], 3 * sizeof *pos);
+    double *old = m->positions;
+    m->positions = pos, m->normals = old;
+    m->vertex_count = nv, m->face_count = nf;
+}
+
+lucent_status lucent_mesh_weld(lucent_mesh *mesh)
+{
+    uint32_t *remap = malloc((mesh->vertex_count + 1) * sizeof *remap);
+    uint32_t *newidx = malloc((mesh->vertex_count + 1) * sizeof *newidx);
+    lucent_status s = remap && newidx ? weld_map(mesh, remap)
+                                      : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory welding a mesh");
+    if (s == LUCENT_OK) weld_apply(mesh, remap, newidx);
+    free(remap), free(newidx);
+    if (s == LUCENT_OK) lucent_mesh_compute_normals(mesh);
+    return s;
+}
+
+/* ---- adjacency ---- */
+
+lucent_status mesh_adjacency_build(const lucent_mesh *mesh, mesh_adjacency *dest)
+{
+    size_t nv = mesh->vertex_count, nc = 3 * mesh->face_count;
+    dest->start = calloc(nv + 2, sizeof *dest->start);
+    dest->face = malloc((nc + 1) * sizeof *dest->face);
+    dest->corner = malloc(nc + 1);
+    if (!dest->start || !dest->face || !dest->corner) {
+        mesh_adjacency_free(dest);
+        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for mesh adjacency");
+    }
+    for (size_t i = 0; i < nc; i++) dest->start[mesh->faces[i] + 2]++;
+    for (size_t v = 0; v < nv; v++) dest->start[v + 2] += dest->start[v + 1];
+    for (size_t i = 0; i < nc; i++) {
+        uint32_t at = dest->start[mesh->faces[i] + 1]++;
+        dest->face[at] = (uint32_t)(i / 3), dest->corner[at] = (uint8_t)(i % 3);
+    }
+    return LUCENT_OK;
+}
+
+void mesh_adjacency_free(mesh_adjacency *adj)
+{
+    free(adj->start), free(adj->face), free(adj->corner);
+    adj->start = adj->face = NULL, adj->corner = NULL;
+}
+
+/* Slow path for vertices of high valence: counts, for each neighbour, the faces holding it. */
+static int on_boundary_slow(const lucent_mesh *mesh, const mesh_adjacency *adj, uint32_t v)
+{
+    for (uint32_t a = adj->start[v]; a < adj->start[v + 1]; a++) {
+        const uint32_t *t = mesh->faces + 3 * adj->face[a];
+        for (int k = 1; k <= 2; k++) {
+            uint32_t other = t[(adj->corner[a] + k) % 3];
+            int count = 0;
+            for (uint32_t b = adj->start[v]; b < adj->start[v + 1] && count < 2; b++) {
+                const uint32_t *u = mesh->faces + 3 * adj->face[b];
+                count += u[0] == other || u[1] == other || u[2] == other;
+            }
+            if (count == 1) return 1;
+        }
+    }
+    return 0;
+}
+
+int mesh_vertex_on_boundary(const lucent_mesh *mesh, const mesh_adjacency *adj, uint32_t v)
+{
+    enum { LOCAL = 64 };
+    uint32_t nb[LOCAL];
+    int n = 0;
+    if (adj->start[v + 1] - adj->start[v] > LOCAL / 2) return on_boundary_slow(mesh, adj, v);
+    for (uint32_t a = adj->start[v]; a < adj->start[v + 1]; a++) {
+        const uint32_t *t = mesh->faces + 3 * adj->face[a];
+        nb[n++] = t[(adj->corner[a] + 1) % 3], nb[n++] = t[(adj->corner[a] + 2) % 3];
+    }
+    uint8_t seen[LOCAL] = {0}; /* an edge (v, u) with one face: u appears once */
+    for (int i = 0; i < n; i++)
+        for (int k = i + 1; k < n; k++)
+            if (nb[k] == nb[i]) seen[i] = seen[k] = 1;
+    for (int i = 0; i < n; i++)
+        if (!seen[i]) return 1;
+    return 0;
+}
+
+/* ---- corner areas ---- */
+
+void mesh_corner_areas(const lucent_mesh *mesh, size_t f, double dest[3])
+{
+    const uint32_t *t = mesh->faces + 3 * f;
+    const double *p[3] = {mesh->positions + 3 * t[0], mesh->positions + 3 * t[1], mesh->positions + 3 * t[2]};
+    double e[3][3], c[3], l2[3], ew[3];
+    for (int j = 0; j < 3; j++) v3_sub(p[(j + 2) % 3], p[(j + 1) % 3], e[j]); /* e[j] opposite j */
+    v3_cross(e[0], e[1], c);
+    double area = 0.5 * v3_len(c);
+    dest[0] = dest[1] = dest[2] = 0;
+    if (!(area > 0) || !isfinite(area)) return;
+    for (int j = 0; j < 3; j++) l2[j] = v3_dot(e[j], e[j]);
+    for (int j = 0; j < 3; j++) ew[j] = l2[j] * (l2[(j + 1) % 3] + l2[(j + 2) % 3] - l2[j]);
+    for (int j = 0; j < 3; j++) {
+        if (ew[j] > 0) continue; /* obtuse at corner j: it gets half, the others a quarter */
+        dest[j] = 0.5 * area, dest[(j + 1) % 3] = dest[(j + 2) % 3] = 0.25 * area;
+        return;
+    }
+    double s = 0.5 * area / (ew[0] + ew[1] + ew[2]);
+    for (int j = 0; j < 3; j++) dest[j] = s * (ew[(j + 1) % 3] + ew[(j + 2) % 3]);
+}
+
+/* ---- statistics ---- */
+
+static int cmp_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+static void count_edges(const lucent_mesh *m, uint64_t *keys, lucent_mesh_stats *dest)
+{
+    size_t n = 3 * m->face_count;
+    for (size_t i = 0; i < n; i++) {
+        uint64_t a = m->faces[i], b = m->faces[i - i % 3 + (i + 1) % 3];
+        keys[i] = a < b ? a << 32 | b : b << 32 | a;
+    }
+    qsort(keys, n, sizeof *keys, cmp_u64);
+    for (size_t i = 0; i < n;) {
+        size_t j = i;
+        while (j < n && keys[j] == keys[i]) j++;
+        dest->boundary_edges += j - i == 1;
+        dest->nonmanifold_edges += j - i >= 3;
+        i = j;
+    }
+}
+
+lucent_status lucent_mesh_stats_compute(const lucent_mesh *mesh, lucent_mesh_stats *dest)
+{
+    *dest = (lucent_mesh_stats){0};
+    uint64_t *keys = malloc((3 * mesh->face_count + 1) * sizeof *keys);
+    uint8_t *used = calloc(mesh->vertex_count + 1, 1);
+    if (!keys || !used) {
+        free(keys), free(used);
+        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for mesh statistics");
+    }
+    count_edges(mesh, keys, dest);
+    for (size_t f = 0; f < mesh->face_count; f++) {
+        double a[3];
+        mesh_corner_areas(mesh, f, a);
+        dest->degenerate_faces += a[0] + a[1] + a[2] == 0;
+        for (int j = 0; j < 3; j++) used[mesh->faces[3 * f + j]] = 1;
+    }
+    for (int k = 0; k < 3; k++) dest->bbox_min[k] = mesh->vertex_count ? INFINITY : 0;
+    for (int k = 0; k < 3; k++) dest->bbox_max[k] = mesh->vertex_count ? -INFINITY : 0;
+    for (size_t v = 0; v < mesh->vertex_count; v++) {
+        dest->unused_vertices += !used[v];
+        for (int k = 0; k < 3; k++) {
+            dest->bbox_min[k] = fmin(dest->bbox_min[k], mesh->positions[3 * v + k]);
+            dest->bbox_max[k] = fmax(dest->bbox_max[k], mesh->positions[3 * v + k]);
+        }
+    }
+    free(keys), free(used);
+    return LUCENT_OK;
+}

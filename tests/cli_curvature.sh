@@ -1,0 +1,40 @@
+# Cases for `lucent curvature` (sourced by cli_test.sh: $LUCENT, $TMP, $FIXTURES, expect_ok,
+# expect_fail, expect_true, expect_no_file).
+
+# The tetrahedron fixture: CSV with a header and one row per vertex; PLY that reads back.
+expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/tetra.csv"
+expect_true "curvature CSV has its header" -- \
+  test "$(head -1 "$TMP/tetra.csv")" = "vertex,x,y,z,k1,k2,mean,gauss,flags"
+expect_true "curvature CSV has one row per vertex" -- test "$(wc -l <"$TMP/tetra.csv")" -eq 5
+expect_true "curvature CSV holds no NaN or Inf" -- sh -c "! grep -qi 'nan\|inf' '$TMP/tetra.csv'"
+expect_true "curvature says what it wrote" -- grep -q "^wrote $TMP/tetra.csv$" <<<"$OUT"
+for m in rusinkiewicz meyer garimella; do
+  expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --method "$m" --smooth 1 --out "$TMP/tetra-$m.ply"
+  expect_true "curvature --method $m writes a binary PLY with colours" -- \
+    grep -aq "property uchar red" "$TMP/tetra-$m.ply"
+done
+expect_ok -- "$LUCENT" curvature "$TMP/tetra-meyer.ply" --out "$TMP/again.csv"
+expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --fast --out "$TMP/fast.csv"
+
+# A sample mesh when present (make setup fetches them): the bunny, all finite.
+BUNNY="$(dirname "$FIXTURES")/../data/meshes/bunny.ply"
+if [ -f "$BUNNY" ]; then
+  expect_ok -- "$LUCENT" curvature "$BUNNY" --mm-per-unit 10 --out "$TMP/bunny.csv"
+  expect_true "bunny curvature has no NaN or Inf" -- sh -c "! grep -qi 'nan\|inf' '$TMP/bunny.csv'"
+else
+  echo "note: $BUNNY absent (make setup fetches it); bunny case skipped"
+fi
+
+# Bad input names the file; nothing is left behind.
+for f in empty truncated garbage; do
+  expect_fail 1 "$FIXTURES/mesh/$f.ply" -- "$LUCENT" curvature "$FIXTURES/mesh/$f.ply" --out "$TMP/$f.ply"
+  expect_no_file "$TMP/$f.ply"
+done
+expect_fail 1 "$TMP/missing.ply: cannot open" -- "$LUCENT" curvature "$TMP/missing.ply"
+expect_fail 1 "$TMP/nodir/c.csv" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/nodir/c.csv"
+expect_no_file "$TMP/nodir/c.csv"
+expect_fail 2 "--method must be rusinkiewicz, meyer or garimella" -- \
+  "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --method taubin
+expect_fail 2 "--smooth needs a whole number" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --smooth -1
+expect_fail 2 "--out must end in .ply or .csv" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out x.png
+expect_fail 2 "expected a mesh file" -- "$LUCENT" curvature --method meyer
