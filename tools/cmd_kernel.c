@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "kernel_common.h"
 #include "lucent/kernel.h"
 #include "lucent/mc.h"
 #include "lucent/profile.h"
@@ -105,8 +106,7 @@ static int parse_named(options *o, const char *name, const char *v)
                    : cli_usage_error("kernel", "unknown export format '%s' (glsl, hlsl, c, json)", v);
     if (!strcmp(name, "--profile")) {
         o->profile = v;
-        return !strcmp(v, "dipole") || !strcmp(v, "better-dipole") || !strcmp(v, "burley") || !strcmp(v, "mc")
-                   ? CLI_OK
+        return kernel_profile_known(v) ? CLI_OK
                    : cli_usage_error("kernel", "--profile must be dipole, better-dipole, burley or mc");
     }
     if (!strcmp(name, "--out")) return (o->out = v), CLI_OK;
@@ -144,48 +144,6 @@ static int parse_args(int argc, char **argv, options *o)
     return CLI_OK;
 }
 
-/* Monte Carlo R_d(r) of a half-space of m, per channel, on the default grid (Freude Table 6.1). */
-static lucent_status profile_mc(const options *o, const lucent_material *m, lucent_profile **dest)
-{
-    lucent_profile_grid g;
-    lucent_profile_grid_default(m, &g);
-    lucent_status s = lucent_profile_create(&g, "mc", dest);
-    static const char *const labels[] = {"Monte Carlo R", "Monte Carlo G", "Monte Carlo B"};
-    for (int c = 0; c < 3 && s == LUCENT_OK; c++) {
-        lucent_mc_layer layer = {.n = m->eta,
-                                 .sigma_a = m->sigma_a[c],
-                                 .sigma_s = m->sigma_s[c],
-                                 .g = m->g[c],
-                                 .thickness = INFINITY};
-        lucent_mc_desc d = {.layers = &layer,
-                            .layer_count = 1,
-                            .photons = (uint64_t)o->photons,
-                            .seed = 4 * (uint64_t)o->seed + (uint64_t)c,
-                            .grid = {.dr = g.dr, .nr = g.count},
-                            .pool = cli_pool(),
-                            .label = labels[c]};
-        lucent_mc_result r = {0};
-        if ((s = lucent_mc_run(&d, &r)) != LUCENT_OK) break;
-        for (int j = 0; j < g.count; j++)
-            (*dest)->value[c][j] = r.rd_r[j], (*dest)->error[c][j] = r.rd_r_se[j];
-        lucent_mc_result_free(&r);
-    }
-    if (s != LUCENT_OK) lucent_profile_destroy(*dest), *dest = NULL;
-    return s;
-}
-
-static lucent_status make_profile(const options *o, const lucent_material *m, lucent_profile **dest)
-{
-    if (!strcmp(o->profile, "mc")) return profile_mc(o, m, dest);
-    if (!strcmp(o->profile, "better-dipole")) return lucent_profile_better_dipole(m, NULL, dest);
-    if (!strcmp(o->profile, "burley")) {
-        lucent_burley_params bp;
-        lucent_status s = lucent_burley_params_from_material(m, LUCENT_BURLEY_SEARCHLIGHT_MFP, &bp);
-        return s == LUCENT_OK ? lucent_profile_burley(&bp, NULL, dest) : s;
-    }
-    return lucent_profile_dipole(m, NULL, dest);
-}
-
 static lucent_status write_out(const options *o, const char *text)
 {
     if (!o->out)
@@ -216,7 +174,7 @@ static lucent_status run(options *o)
     lucent_taps *t = NULL;
     char *text = NULL, label[160];
     lucent_status s = o->spec ? lucent_material_resolve(o->spec, &m) : LUCENT_OK;
-    if (s == LUCENT_OK && o->spec) s = make_profile(o, &m, &p);
+    if (s == LUCENT_OK && o->spec) s = kernel_make_profile(o->profile, o->photons, o->seed, &m, &p);
     if (s == LUCENT_OK && p) s = lucent_kernel2d_from_profile(p, NULL, &gt);
     if (s == LUCENT_OK) s = lucent_kernel_build(gt, p, o->spec ? m.name : NULL, &o->desc, &k);
     if (s == LUCENT_OK) s = lucent_kernel_taps(k, &o->taps, &t);

@@ -15,9 +15,10 @@ static const cli_command k_commands[] = {
     {"mcml", "run MCML input files (.mci), write MCML output (.mco)", cmd_mcml},
     {"profile", "radial diffuse reflectance profiles: Monte Carlo and analytic models", cmd_profile},
     {"curvature", "per-vertex mesh curvature (Rusinkiewicz, Meyer, Garimella)", cmd_curvature},
-    {"kernel", "separable subsurface-scattering kernels for a material, with taps and shader exports", cmd_kernel},
     {"cdrf-lut", "the curvature-dependent reflectance look-up table (Kubo et al.)", cmd_cdrf_lut},
     {"cdrf-fit", "fit the CDRF's sigma0 to Monte Carlo spheres of a material", cmd_cdrf_fit},
+    {"kernel", "separable subsurface-scattering kernels for a material, with taps and shader exports", cmd_kernel},
+    {"kernel-eval", "evaluate every kernel model of a material against the exact 2-D convolution", cmd_kernel_eval},
 };
 enum { COMMAND_COUNT = sizeof k_commands / sizeof k_commands[0] };
 
