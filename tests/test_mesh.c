@@ -415,8 +415,43 @@ TEST(stanford_scans_finite)
     check_scan("bunny.ply", 0, 0, 0);
 }
 
+/* Boundary flags: none on a closed torus, none when one face is flipped (inconsistent
+ * orientation, the exact path), exactly the three corners when one face is removed. */
+TEST(boundary_flags)
+{
+    lucent_primitive_desc d = {.kind = LUCENT_PRIMITIVE_TORUS, .major_radius = 3, .radius = 1,
+                               .u_count = 24, .v_count = 12};
+    lucent_mesh *m, *open, *flip;
+    CHECK_OK(lucent_mesh_primitive(&d, &m));
+    CHECK_OK(lucent_mesh_create(m->vertex_count, m->face_count - 1, &open));
+    CHECK_OK(lucent_mesh_create(m->vertex_count, m->face_count, &flip));
+    memcpy(open->positions, m->positions, 3 * m->vertex_count * sizeof *m->positions);
+    memcpy(flip->positions, m->positions, 3 * m->vertex_count * sizeof *m->positions);
+    memcpy(open->faces, m->faces + 3, 3 * (m->face_count - 1) * sizeof *m->faces); /* face 0 removed */
+    memcpy(flip->faces, m->faces, 3 * m->face_count * sizeof *m->faces);
+    uint32_t x = flip->faces[0];
+    flip->faces[0] = flip->faces[1], flip->faces[1] = x;
+    lucent_curvature c = {0};
+    size_t count = 0;
+    CHECK_OK(lucent_mesh_curvature(m, NULL, &c));
+    for (size_t v = 0; v < c.count; v++) count += (c.flags[v] & LUCENT_CURVATURE_BOUNDARY) != 0;
+    CHECK(count == 0);
+    lucent_curvature_free(&c);
+    CHECK_OK(lucent_mesh_curvature(flip, NULL, &c));
+    for (size_t v = 0; v < c.count; v++) count += (c.flags[v] & LUCENT_CURVATURE_BOUNDARY) != 0;
+    CHECK(count == 0);
+    lucent_curvature_free(&c);
+    CHECK_OK(lucent_mesh_curvature(open, NULL, &c));
+    for (size_t v = 0; v < c.count; v++) {
+        int corner = v == m->faces[0] || v == m->faces[1] || v == m->faces[2];
+        CHECK(!(c.flags[v] & LUCENT_CURVATURE_BOUNDARY) == !corner);
+    }
+    lucent_curvature_free(&c);
+    lucent_mesh_destroy(m), lucent_mesh_destroy(open), lucent_mesh_destroy(flip);
+}
+
 TEST_MAIN(TEST_ENTRY(torus_rusinkiewicz_accuracy), TEST_ENTRY(torus_meyer_garimella), TEST_ENTRY(spheres_exact),
           TEST_ENTRY(ellipsoid_within_one_percent), TEST_ENTRY(units_smoothing_directions),
           TEST_ENTRY(thread_count_independent), TEST_ENTRY(ascii_ply_welds), TEST_ENTRY(binary_ply_gz_obj_gltf),
           TEST_ENTRY(bad_files_name_the_file), TEST_ENTRY(dirty_mesh_no_nan), TEST_ENTRY(ply_round_trip),
-          TEST_ENTRY(stanford_scans_finite))
+          TEST_ENTRY(stanford_scans_finite), TEST_ENTRY(boundary_flags))

@@ -19,6 +19,8 @@ typedef struct face_tensor {
     float pad;
 } face_tensor;
 
+enum { PREFETCH_AHEAD = 4 };
+
 typedef struct rus_job {
     const lucent_mesh *mesh;
     const mesh_adjacency *adj;
@@ -36,9 +38,10 @@ static int solve_fit(double a, double b, double c, const double *m, double *x)
     if (!(det > 1e-12 * scale)) return 0;
     double i00 = (a + c) * c - b * b, i01 = -b * c, i02 = b * b;
     double i11 = a * c, i12 = -a * b, i22 = a * (a + c) - b * b;
-    x[0] = (i00 * m[0] + i01 * m[1] + i02 * m[2]) / det;
-    x[1] = (i01 * m[0] + i11 * m[1] + i12 * m[2]) / det;
-    x[2] = (i02 * m[0] + i12 * m[1] + i22 * m[2]) / det;
+    double inv = 1 / det;
+    x[0] = (i00 * m[0] + i01 * m[1] + i02 * m[2]) * inv;
+    x[1] = (i01 * m[0] + i11 * m[1] + i12 * m[2]) * inv;
+    x[2] = (i02 * m[0] + i12 * m[1] + i22 * m[2]) * inv;
     return 1;
 }
 
@@ -105,7 +108,8 @@ static void rotate_frame(const double *u, const double *v, const double *old_n, 
         for (int k = 0; k < 3; k++) ru[k] = -ru[k], rv[k] = -rv[k];
         return;
     }
-    for (int k = 0; k < 3; k++) perp[k] = new_n[k] - nd * old_n[k], dperp[k] = (old_n[k] + new_n[k]) / (1 + nd);
+    double inv = 1 / (1 + nd);
+    for (int k = 0; k < 3; k++) perp[k] = new_n[k] - nd * old_n[k], dperp[k] = (old_n[k] + new_n[k]) * inv;
     double su = v3_dot(ru, perp), sv = v3_dot(rv, perp);
     for (int k = 0; k < 3; k++) ru[k] -= dperp[k] * su, rv[k] -= dperp[k] * sv;
 }
@@ -184,7 +188,15 @@ static void vertex_curvature(const rus_job *j, uint32_t v)
 static lucent_status vertices_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
 {
     (void)chunk, (void)thread;
-    for (uint64_t v = begin; v < end; v++) vertex_curvature(ctx, (uint32_t)v);
+    const rus_job *j = ctx;
+    const mesh_adjacency *adj = j->adj;
+    for (uint64_t v = begin; v < end; v++) {
+        /* the face records are far apart in memory: fetch those of a later vertex now */
+        if (v + PREFETCH_AHEAD < end)
+            for (uint32_t a = adj->start[v + PREFETCH_AHEAD]; a < adj->start[v + PREFETCH_AHEAD + 1]; a++)
+                __builtin_prefetch(j->ft + adj->face[a]);
+        vertex_curvature(j, (uint32_t)v);
+    }
     return LUCENT_OK;
 }
 
@@ -207,7 +219,7 @@ static void lift(const rus_job *j, uint32_t v, uint32_t nb, double *dest)
     double kb = r2 > 0 && !(o->flags[nb] & LUCENT_CURVATURE_INVALID) ? normal_curvature(o, nb, e) : kn;
     /* a curve whose curvature goes linearly from kn to kb: height -(2 kn + kb)/3 s^2/2 */
     double kc = (2 * kn + kb) / 3;
-    double h = -kc * r2 / (1 + sqrt(fmax(0, 1 - kc * kc * r2)));
+    double q = 1 - kc * kc * r2, h = -kc * r2 / (1 + sqrt(q > 0 ? q : 0)); /* fmax is a libm call here */
     for (int i = 0; i < 3; i++) dest[i] = du * d1[i] + dv * d2[i] + h * n[i];
 }
 
@@ -247,7 +259,8 @@ static void refine_normal(const rus_job *j, uint32_t v, double *dest)
         double w = v3_dot(e0, e0) * v3_dot(e1, e1);
         if (!(w > 0)) continue;
         v3_cross(e0, e1, x);
-        for (int i = 0; i < 3; i++) m[i] += x[i] / w;
+        double iw = 1 / w;
+        for (int i = 0; i < 3; i++) m[i] += x[i] * iw;
     }
     if (v3_normalize(m) == 0) return;
     double mn = v3_dot(m, n);

@@ -30,7 +30,8 @@ static inline double v3_normalize(double *a)
         a[0] = a[1] = a[2] = 0;
         return 0;
     }
-    a[0] /= l, a[1] /= l, a[2] /= l;
+    double inv = 1 / l; /* one division, not three */
+    a[0] *= inv, a[1] *= inv, a[2] *= inv;
     return l;
 }
 

@@ -181,6 +181,20 @@ int mesh_vertex_on_boundary(const lucent_mesh *mesh, const mesh_adjacency *adj, 
         const uint32_t *t = mesh->faces + 3 * adj->face[a];
         nb[n++] = t[(adj->corner[a] + 1) % 3], nb[n++] = t[(adj->corner[a] + 2) % 3];
     }
+    /* Fast path (closed, consistently oriented fans): when every face's next neighbour is
+     * some face's previous neighbour, matched one to one, each neighbour appears an even
+     * number of times, so none appears once. */
+    {
+        uint32_t used = 0; /* n / 2 <= 32 faces */
+        int all = 1;
+        for (int i = 0; i < n && all; i += 2) {
+            int k = 1;
+            while (k < n && (nb[k] != nb[i] || (used >> (k / 2) & 1))) k += 2;
+            if (k >= n) all = 0;
+            else used |= 1u << (k / 2);
+        }
+        if (all) return 0;
+    }
     uint8_t seen[LOCAL] = {0}; /* an edge (v, u) with one face: u appears once */
     for (int i = 0; i < n; i++)
         for (int k = i + 1; k < n; k++)

@@ -26,9 +26,10 @@ static lucent_status normals_chunk(void *ctx, uint64_t chunk, uint64_t begin, ui
             double w = v3_dot(e1, e1) * v3_dot(e2, e2);
             if (!(w > 0)) continue;
             v3_cross(e1, e2, x);
-            for (int k = 0; k < 3; k++) n[k] += x[k] / w;
+            double iw = 1 / w;
+            for (int k = 0; k < 3; k++) n[k] += x[k] * iw;
             double l2 = v3_dot(x, x);
-            mag += l2 / (w * w);
+            mag += l2 * iw * iw;
             if (l2 > big) big = l2, fallback[0] = x[0], fallback[1] = x[1], fallback[2] = x[2];
         }
         /* Sheets of opposite orientation meeting at v (non-manifold scans) can cancel the sum:
