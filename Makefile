@@ -50,9 +50,5 @@ fuzz:
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) build-fuzz
 
-distFUZZ_SECONDS ?= 60
-fuzz:
-	fuzz/build.sh $(FUZZ_SECONDS)
-
-clean: clean
+distclean: clean
 	rm -rf data/meshes out
