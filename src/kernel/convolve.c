@@ -15,6 +15,7 @@
 
 #include <fftw3.h>
 
+#include "kernel/convolve_internal.h"
 #include "lucent/convolve.h"
 
 /* FFTW's planner is not thread-safe; executing a plan is. */
@@ -38,7 +39,7 @@ bool lucent_border_parse(const char *name, lucent_border *dest)
 }
 
 /* Checks src and dest: present, 1, 3 or 4 channels, the same size. */
-static lucent_status check_images(const char *fn, const lucent_image *src, const lucent_image *dest)
+lucent_status conv_check_images(const char *fn, const lucent_image *src, const lucent_image *dest)
 {
     if (!src || !src->data) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: src is NULL", fn);
     if (!dest || !dest->data)
@@ -145,7 +146,7 @@ static lucent_status direct_rows(void *vctx, uint64_t chunk, uint64_t begin, uin
 lucent_status lucent_convolve_2d_direct(const lucent_image *src, const lucent_conv_kernel2d *kernel,
                                         lucent_border border, lucent_pool *pool, lucent_image *dest)
 {
-    lucent_status s = check_images("lucent_convolve_2d_direct", src, dest);
+    lucent_status s = conv_check_images("lucent_convolve_2d_direct", src, dest);
     if (s == LUCENT_OK) s = lucent_conv_kernel2d_check(kernel);
     if (s != LUCENT_OK) return s;
     lucent_image *copy = NULL;
@@ -294,7 +295,7 @@ static void fft_unplan(fft_ctx *ctx)
 lucent_status lucent_convolve_2d(const lucent_image *src, const lucent_conv_kernel2d *kernel,
                                  lucent_border border, lucent_pool *pool, lucent_image *dest)
 {
-    lucent_status s = check_images("lucent_convolve_2d", src, dest);
+    lucent_status s = conv_check_images("lucent_convolve_2d", src, dest);
     if (s == LUCENT_OK) s = lucent_conv_kernel2d_check(kernel);
     if (s != LUCENT_OK) return s;
     int r = kernel->size / 2;

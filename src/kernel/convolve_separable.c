@@ -10,23 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "kernel/convolve_internal.h"
 #include "lucent/convolve.h"
-
-static lucent_status check_images(const char *fn, const lucent_image *src, const lucent_image *dest)
-{
-    if (!src || !src->data) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: src is NULL", fn);
-    if (!dest || !dest->data)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: dest is NULL", fn);
-    if (src->channels != 1 && src->channels != 3 && src->channels != 4)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: src has %d channels (1, 3 or 4)", fn,
-                            src->channels);
-    if (dest->width != src->width || dest->height != src->height || dest->channels != src->channels)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "%s: dest is %dx%dx%d but src is %dx%dx%d (sizes must match)", fn,
-                            dest->width, dest->height, dest->channels, src->width, src->height,
-                            src->channels);
-    return LUCENT_OK;
-}
 
 static int colour_channels(const lucent_image *img)
 {
@@ -202,7 +187,7 @@ lucent_status lucent_convolve_separable_sum(const lucent_image *src, int rank,
                                             lucent_image *dest)
 {
     static const char fn[] = "lucent_convolve_separable";
-    lucent_status s = check_images(fn, src, dest);
+    lucent_status s = conv_check_images(fn, src, dest);
     if (s == LUCENT_OK) s = check_length(length);
     if (s != LUCENT_OK) return s;
     if (rank < 1 || rank > 1024)
@@ -278,7 +263,7 @@ lucent_status lucent_convolve_taps(const lucent_image *src, const lucent_conv_ta
                                    lucent_border border, lucent_pool *pool, lucent_image *dest)
 {
     static const char fn[] = "lucent_convolve_taps";
-    lucent_status s = check_images(fn, src, dest);
+    lucent_status s = conv_check_images(fn, src, dest);
     if (s != LUCENT_OK) return s;
     if (!taps) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: taps is NULL", fn);
     if (taps->count < 1 || taps->count > LUCENT_CONVOLVE_MAX_SIZE)
