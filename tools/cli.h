@@ -30,15 +30,16 @@ typedef struct cli_common {
 
 extern cli_common g_cli;
 
-/* Strips --quiet/-q and --threads N / --threads=N from argv[1..] (updating *argc) into g_cli,
- * and configures logging and progress output. Returns CLI_OK, or CLI_USAGE after a message
- * (command names the subcommand in it; NULL: the program). main.c calls it once for all. */
-int cli_common_options(const char *command, int *argc, char **argv);
+/* Strips --quiet/-q and --threads N / --threads=N from argv[1..], wherever they stand (updating
+ * *argc), into g_cli, and configures logging and progress output. Returns CLI_OK, or CLI_USAGE
+ * after a message. main.c calls it once, before choosing the command. */
+int cli_common_options(int *argc, char **argv);
 
 /* Prints "lucent: <lucent_last_error()>" to stderr and returns CLI_FAIL. */
 int cli_fail(void);
 
-/* Prints "lucent <command>: <message>\nTry 'lucent <command> --help'." to stderr; returns CLI_USAGE. */
+/* Prints "lucent <command>: <message>\nTry 'lucent <command> --help'." to stderr (command NULL:
+ * "lucent: ..."); returns CLI_USAGE. */
 int cli_usage_error(const char *command, const char *fmt, ...) LUCENT_PRINTF(2, 3);
 
 /* Prints an informational line to stdout unless --quiet. */

@@ -113,7 +113,7 @@ static void remove_args(int *argc, char **argv, int i, int n)
     *argc -= n;
 }
 
-int cli_common_options(const char *command, int *argc, char **argv)
+int cli_common_options(int *argc, char **argv)
 {
     for (int i = 1; i < *argc;) {
         const char *a = argv[i];
@@ -124,7 +124,7 @@ int cli_common_options(const char *command, int *argc, char **argv)
         } else if (strcmp(a, "--threads") == 0 || strncmp(a, "--threads=", 10) == 0) {
             const char *v = a[9] == '=' ? a + 10 : (i + 1 < *argc ? argv[i + 1] : NULL);
             if (!cli_parse_int(v, &g_cli.threads) || g_cli.threads < 1)
-                return cli_usage_error(command, "--threads needs a positive whole number");
+                return cli_usage_error(NULL, "--threads needs a positive whole number");
             remove_args(argc, argv, i, a[9] == '=' ? 1 : 2);
         } else {
             i++;
@@ -151,7 +151,7 @@ static const cli_command *find_command(const char *name)
 int main(int argc, char **argv)
 {
     /* The common options may stand anywhere: `lucent -q profile ...`, `lucent profile ... -q`. */
-    if (cli_common_options(NULL, &argc, argv) != CLI_OK) return CLI_USAGE;
+    if (cli_common_options(&argc, argv) != CLI_OK) return CLI_USAGE;
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
         strcmp(argv[1], "help") == 0) {
         if (argc >= 3 && find_command(argv[2])) {

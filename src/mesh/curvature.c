@@ -61,6 +61,31 @@ static void finish(lucent_curvature *c, double mm_per_unit)
     }
 }
 
+typedef struct per_vertex_job {
+    mesh_vertex_job job;
+    mesh_vertex_fn fn;
+} per_vertex_job;
+
+static lucent_status per_vertex_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
+{
+    (void)chunk, (void)thread;
+    const per_vertex_job *j = ctx;
+    for (uint64_t v = begin; v < end; v++) j->fn(&j->job, (uint32_t)v);
+    return LUCENT_OK;
+}
+
+lucent_status mesh_curvature_per_vertex(const lucent_mesh *mesh, const mesh_adjacency *adj,
+                                        lucent_pool *pool, mesh_vertex_fn fn, lucent_curvature *dest)
+{
+    double *normals = malloc((3 * mesh->vertex_count + 1) * sizeof *normals);
+    if (!normals) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "curvature: out of memory");
+    per_vertex_job j = {{mesh, adj, normals, dest}, fn};
+    lucent_status s = mesh_max_normals(mesh, adj, pool, normals);
+    if (s == LUCENT_OK) s = lucent_parallel_for(pool, mesh->vertex_count, 4096, per_vertex_chunk, &j);
+    free(normals);
+    return s;
+}
+
 typedef struct boundary_job {
     const lucent_mesh *mesh;
     const mesh_adjacency *adj;
@@ -99,8 +124,9 @@ lucent_status lucent_mesh_curvature(const lucent_mesh *mesh, const lucent_curvat
     if (s == LUCENT_OK) s = mark_boundaries(mesh, &adj, d.pool, dest);
     if (s == LUCENT_OK) {
         if (d.method == LUCENT_CURVATURE_RUSINKIEWICZ) s = mesh_curvature_rusinkiewicz(mesh, &adj, d.pool, d.fast, dest);
-        else if (d.method == LUCENT_CURVATURE_MEYER) s = mesh_curvature_meyer(mesh, &adj, d.pool, dest);
-        else s = mesh_curvature_garimella(mesh, &adj, d.pool, dest);
+        else if (d.method == LUCENT_CURVATURE_MEYER)
+            s = mesh_curvature_per_vertex(mesh, &adj, d.pool, mesh_meyer_vertex, dest);
+        else s = mesh_curvature_per_vertex(mesh, &adj, d.pool, mesh_garimella_vertex, dest);
         if (s == LUCENT_OK && d.smooth_rings > 0) s = mesh_smooth(mesh, &adj, d.smooth_rings, dest);
         mesh_adjacency_free(&adj);
     }

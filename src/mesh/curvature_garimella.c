@@ -7,14 +7,7 @@
 
 #include "mesh/internal.h"
 
-typedef struct gar_job {
-    const lucent_mesh *mesh;
-    const mesh_adjacency *adj;
-    const double *normals;
-    lucent_curvature *out;
-} gar_job;
-
-static void garimella_vertex(const gar_job *j, uint32_t v)
+void mesh_garimella_vertex(const mesh_vertex_job *j, uint32_t v)
 {
     const double *P = j->mesh->positions, *n = j->normals + 3 * v;
     lucent_curvature *o = j->out;
@@ -40,23 +33,4 @@ static void garimella_vertex(const gar_job *j, uint32_t v)
     }
     double H = sum / wsum, disc = sqrt(fmax(0, H * H - K));
     o->mean[v] = H, o->gauss[v] = K, o->k1[v] = H + disc, o->k2[v] = H - disc;
-}
-
-static lucent_status gar_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
-{
-    (void)chunk, (void)thread;
-    for (uint64_t v = begin; v < end; v++) garimella_vertex(ctx, (uint32_t)v);
-    return LUCENT_OK;
-}
-
-lucent_status mesh_curvature_garimella(const lucent_mesh *mesh, const mesh_adjacency *adj,
-                                       lucent_pool *pool, lucent_curvature *dest)
-{
-    double *normals = malloc((3 * mesh->vertex_count + 1) * sizeof *normals);
-    if (!normals) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "curvature: out of memory");
-    gar_job job = {mesh, adj, normals, dest};
-    lucent_status s = mesh_max_normals(mesh, adj, pool, normals);
-    if (s == LUCENT_OK) s = lucent_parallel_for(pool, mesh->vertex_count, 4096, gar_chunk, &job);
-    free(normals);
-    return s;
 }

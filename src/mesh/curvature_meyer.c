@@ -8,13 +8,6 @@
 
 static const double k_pi = 3.14159265358979323846;
 
-typedef struct meyer_job {
-    const lucent_mesh *mesh;
-    const mesh_adjacency *adj;
-    const double *normals;
-    lucent_curvature *out;
-} meyer_job;
-
 /* cot of the corner between edges a and b; 0 when degenerate. */
 static int corner_cot(const double *a, const double *b, double *cot)
 {
@@ -47,7 +40,7 @@ double mesh_angle_deficit_gauss(const lucent_mesh *mesh, const mesh_adjacency *a
 }
 
 /* Accumulates the cotangent Laplacian of v over its faces (sum of cot(x_i - x_j)). */
-static void cot_laplacian(const meyer_job *j, uint32_t v, double *lap)
+static void cot_laplacian(const mesh_vertex_job *j, uint32_t v, double *lap)
 {
     const double *P = j->mesh->positions;
     lap[0] = lap[1] = lap[2] = 0;
@@ -65,7 +58,7 @@ static void cot_laplacian(const meyer_job *j, uint32_t v, double *lap)
     }
 }
 
-static void meyer_vertex(const meyer_job *j, uint32_t v)
+void mesh_meyer_vertex(const mesh_vertex_job *j, uint32_t v)
 {
     lucent_curvature *o = j->out;
     int boundary = o->flags[v] & LUCENT_CURVATURE_BOUNDARY;
@@ -81,23 +74,4 @@ static void meyer_vertex(const meyer_job *j, uint32_t v)
     if (v3_dot(lap, j->normals + 3 * v) < 0) H = -H;
     double disc = sqrt(fmax(0, H * H - K));
     o->mean[v] = H, o->gauss[v] = K, o->k1[v] = H + disc, o->k2[v] = H - disc;
-}
-
-static lucent_status meyer_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
-{
-    (void)chunk, (void)thread;
-    for (uint64_t v = begin; v < end; v++) meyer_vertex(ctx, (uint32_t)v);
-    return LUCENT_OK;
-}
-
-lucent_status mesh_curvature_meyer(const lucent_mesh *mesh, const mesh_adjacency *adj,
-                                   lucent_pool *pool, lucent_curvature *dest)
-{
-    double *normals = malloc((3 * mesh->vertex_count + 1) * sizeof *normals);
-    if (!normals) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "curvature: out of memory");
-    meyer_job job = {mesh, adj, normals, dest};
-    lucent_status s = mesh_max_normals(mesh, adj, pool, normals);
-    if (s == LUCENT_OK) s = lucent_parallel_for(pool, mesh->vertex_count, 4096, meyer_chunk, &job);
-    free(normals);
-    return s;
 }

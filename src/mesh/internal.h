@@ -61,10 +61,24 @@ int mesh_vertex_on_boundary(const lucent_mesh *mesh, const mesh_adjacency *adj, 
 /* Per-method estimators: fill k1, k2, mean, gauss (and dir1/dir2 for Rusinkiewicz). */
 lucent_status mesh_curvature_rusinkiewicz(const lucent_mesh *mesh, const mesh_adjacency *adj,
                                           lucent_pool *pool, int fast, lucent_curvature *dest);
-lucent_status mesh_curvature_meyer(const lucent_mesh *mesh, const mesh_adjacency *adj,
-                                   lucent_pool *pool, lucent_curvature *dest);
-lucent_status mesh_curvature_garimella(const lucent_mesh *mesh, const mesh_adjacency *adj,
-                                       lucent_pool *pool, lucent_curvature *dest);
+
+/* What a per-vertex estimator that works from Max's vertex normals sees (Meyer, Garimella). */
+typedef struct mesh_vertex_job {
+    const lucent_mesh *mesh;
+    const mesh_adjacency *adj;
+    const double *normals; /* 3 per vertex */
+    lucent_curvature *out;
+} mesh_vertex_job;
+
+typedef void (*mesh_vertex_fn)(const mesh_vertex_job *job, uint32_t v);
+
+/* Computes Max's normals, then runs fn for every vertex in fixed chunks. */
+lucent_status mesh_curvature_per_vertex(const lucent_mesh *mesh, const mesh_adjacency *adj,
+                                        lucent_pool *pool, mesh_vertex_fn fn, lucent_curvature *dest);
+
+/* The per-vertex estimators: Meyer et al. 2003 and Garimella & Swartz 2003. */
+void mesh_meyer_vertex(const mesh_vertex_job *job, uint32_t v);
+void mesh_garimella_vertex(const mesh_vertex_job *job, uint32_t v);
 
 /* Angle-deficit Gaussian curvature of vertex v over its mixed area (Meyer et al. 2003, eq. 9);
  * pi instead of 2 pi at a boundary vertex. *area receives the mixed area. */

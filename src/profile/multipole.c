@@ -133,22 +133,33 @@ static void warn_if_thin(const lucent_material *m, double thickness, const char 
                    what, m->name, thickness, lmax, cmax);
 }
 
+/* Sums the dipole pairs of the slab: the flux at radius r through the top (dest[0]) and the
+ * bottom (dest[1]) face, or, when r < 0, its integral over the plane. */
+static void sum_poles(const lucent_medium *md, const lucent_slab_desc *slab_desc, double r,
+                      double dest[2])
+{
+    slab s;
+    slab_setup(md, slab_desc, &s);
+    double rsum = 0.0, tsum = 0.0;
+    for (int i = -s.n; i <= s.n; i++) {
+        double zr, zv, h[4];
+        slab_pair(&s, i, &zr, &zv);
+        h[0] = zr, h[1] = zv, h[2] = s.d - zr, h[3] = s.d - zv;
+        double f[4];
+        for (int k = 0; k < 4; k++) f[k] = r < 0 ? pole_flux_total(h[k], s.s) : pole_flux(h[k], s.s, r);
+        rsum += f[0] - f[1];
+        tsum += f[2] - f[3];
+    }
+    dest[0] = s.alpha * rsum;
+    dest[1] = s.alpha * tsum;
+}
+
 void lucent_multipole_profile(const lucent_medium *md, const lucent_slab_desc *slab_desc, double r,
                               double dest[2])
 {
     dest[0] = dest[1] = NAN;
     if (slab_validate(md, slab_desc) != LUCENT_OK || !(r >= 0.0)) return;
-    slab s;
-    slab_setup(md, slab_desc, &s);
-    double rsum = 0.0, tsum = 0.0;
-    for (int i = -s.n; i <= s.n; i++) {
-        double zr, zv;
-        slab_pair(&s, i, &zr, &zv);
-        rsum += pole_flux(zr, s.s, r) - pole_flux(zv, s.s, r);
-        tsum += pole_flux(s.d - zr, s.s, r) - pole_flux(s.d - zv, s.s, r);
-    }
-    dest[0] = s.alpha * rsum;
-    dest[1] = s.alpha * tsum;
+    sum_poles(md, slab_desc, r, dest);
 }
 
 void lucent_multipole_totals(const lucent_medium *md, const lucent_slab_desc *slab_desc,
@@ -156,17 +167,7 @@ void lucent_multipole_totals(const lucent_medium *md, const lucent_slab_desc *sl
 {
     dest[0] = dest[1] = NAN;
     if (slab_validate(md, slab_desc) != LUCENT_OK || !(md->sigma_a > 0.0)) return;
-    slab s;
-    slab_setup(md, slab_desc, &s);
-    double rsum = 0.0, tsum = 0.0;
-    for (int i = -s.n; i <= s.n; i++) {
-        double zr, zv;
-        slab_pair(&s, i, &zr, &zv);
-        rsum += pole_flux_total(zr, s.s) - pole_flux_total(zv, s.s);
-        tsum += pole_flux_total(s.d - zr, s.s) - pole_flux_total(s.d - zv, s.s);
-    }
-    dest[0] = s.alpha * rsum;
-    dest[1] = s.alpha * tsum;
+    sum_poles(md, slab_desc, -1.0, dest);
 }
 
 /* Bin integrals of R (which 0) or T (which 1) of one channel. */
