@@ -5,7 +5,6 @@
 #include <string.h>
 
 #include "cli.h"
-#include "kernel_common.h"
 #include "lucent/kernel.h"
 #include "lucent/mc.h"
 #include "lucent/profile.h"
@@ -106,7 +105,7 @@ static int parse_named(options *o, const char *name, const char *v)
                    : cli_usage_error("kernel", "unknown export format '%s' (glsl, hlsl, c, json)", v);
     if (!strcmp(name, "--profile")) {
         o->profile = v;
-        return kernel_profile_known(v) ? CLI_OK
+        return lucent_profile_source_known(v) ? CLI_OK
                    : cli_usage_error("kernel", "--profile must be dipole, better-dipole, burley or mc");
     }
     if (!strcmp(name, "--out")) return (o->out = v), CLI_OK;
@@ -174,7 +173,10 @@ static lucent_status run(options *o)
     lucent_taps *t = NULL;
     char *text = NULL, label[160];
     lucent_status s = o->spec ? lucent_material_resolve(o->spec, &m) : LUCENT_OK;
-    if (s == LUCENT_OK && o->spec) s = kernel_make_profile(o->profile, o->photons, o->seed, &m, &p);
+    if (s == LUCENT_OK && o->spec) s = lucent_profile_from_source(
+            &(lucent_profile_source_desc){.source = o->profile, .photons = (uint64_t)o->photons,
+                                          .seed = (uint64_t)o->seed, .pool = cli_pool()},
+            &m, &p);
     if (s == LUCENT_OK && p) s = lucent_kernel2d_from_profile(p, NULL, &gt);
     if (s == LUCENT_OK) s = lucent_kernel_build(gt, p, o->spec ? m.name : NULL, &o->desc, &k);
     if (s == LUCENT_OK) s = lucent_kernel_taps(k, &o->taps, &t);

@@ -11,7 +11,6 @@
 #include "base/json.h"
 #include "base/strbuf.h"
 #include "cli.h"
-#include "kernel_common.h"
 #include "lucent/lucent.h"
 
 static const char k_usage[] =
@@ -110,7 +109,7 @@ static int parse_args(int argc, char **argv, options *o)
         case 5:
             ok = cli_parse_int(v, &o->taps) && (o->taps == 0 || (o->taps % 2 == 1 && o->taps >= 3 && o->taps <= 255));
             break;
-        case 6: ok = kernel_profile_known(o->profile = v); break;
+        case 6: ok = lucent_profile_source_known(o->profile = v); break;
         case 7: ok = cli_parse_int(v, &o->photons) && o->photons > 0; break;
         case 8: ok = cli_parse_int(v, &o->seed); break;
         case 9: ok = cli_parse_double(v, &o->heat_scale) && o->heat_scale > 0; break;
@@ -608,7 +607,10 @@ static lucent_status run(eval *ev)
         snprintf(ev->dir, sizeof ev->dir, "%s-eval", ev->m.name);
     if (o->table65 || !strcasecmp(ev->m.name, "skin1")) add_table65(ev);
     s = make_dir(ev->dir);
-    if (s == LUCENT_OK) s = kernel_make_profile(o->profile, o->photons, o->seed, &ev->m, &ev->p);
+    if (s == LUCENT_OK) s = lucent_profile_from_source(
+            &(lucent_profile_source_desc){.source = o->profile, .photons = (uint64_t)o->photons,
+                                          .seed = (uint64_t)o->seed, .pool = cli_pool()},
+            &ev->m, &ev->p);
     if (s == LUCENT_OK) s = lucent_kernel2d_from_profile(ev->p, NULL, &ev->gt);
     if (s == LUCENT_OK) s = make_resampler(ev);
     if (s == LUCENT_OK) s = lucent_signal_load(o->signal, o->size, o->size, &ev->signal);

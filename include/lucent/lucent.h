@@ -12,5 +12,6 @@
 #include "lucent/mesh.h"
 #include "lucent/profile.h"
 #include "lucent/report.h"
+#include "lucent/scene.h"
 
 #endif

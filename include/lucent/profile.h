@@ -217,6 +217,25 @@ lucent_status lucent_sog_fit(const lucent_profile *p, const lucent_sog_desc *des
 lucent_status lucent_profile_from_sog(const lucent_sog *s, const lucent_profile_grid *grid,
                                       lucent_profile **dest);
 
+/* ---- Profiles by name ----
+ * The profile a kernel or a renderer builds from a material: "dipole" (the default),
+ * "better-dipole", "burley" (searchlight fit) or "mc" (Monte Carlo of a half-space on the default
+ * grid, Freude Table 6.1). */
+typedef struct lucent_profile_source_desc {
+    const char *source; /* NULL: "dipole" */
+    uint64_t photons;   /* mc only, per channel (0: 200000) */
+    uint64_t seed;      /* mc only */
+    lucent_pool *pool;  /* mc only; NULL: serial */
+} lucent_profile_source_desc;
+
+/* True when name is one of the profile names above. */
+bool lucent_profile_source_known(const char *name);
+
+/* Builds the profile of m named by desc (NULL: the dipole). Unknown names fail with
+ * LUCENT_ERR_INVALID_ARGUMENT listing the known ones. Free with lucent_profile_destroy. */
+lucent_status lucent_profile_from_source(const lucent_profile_source_desc *desc, const lucent_material *m,
+                                         lucent_profile **dest);
+
 #ifdef __cplusplus
 }
 #endif

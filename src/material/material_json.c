@@ -5,8 +5,7 @@
 #include <string.h>
 #include <strings.h>
 
-#include "base/json.h"
-#include "lucent/material.h"
+#include "material/internal.h"
 
 /* A closed or open numeric interval, with the rule as users read it. */
 typedef struct range {
@@ -206,8 +205,7 @@ static lucent_status read_informational(const lucent_json_node *n)
 }
 
 /* Reads one material object; def_name is used when it has no "name" (NULL: required). */
-static lucent_status read_material(const lucent_json_node *n, const char *def_name,
-                                   lucent_material *m)
+lucent_status material_read_json(const lucent_json_node *n, const char *def_name, lucent_material *m)
 {
     form f = FORM_COEFFICIENTS;
     memset(m, 0, sizeof *m);
@@ -257,7 +255,7 @@ static lucent_status read_list(const lucent_json_node *root, lucent_material **d
     if (!m) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", root->file);
     for (int i = 0; i < n && s == LUCENT_OK; i++) {
         s = lucent_json_element(&list, i, &e);
-        if (s == LUCENT_OK) s = read_material(&e, NULL, &m[i]);
+        if (s == LUCENT_OK) s = material_read_json(&e, NULL, &m[i]);
     }
     if (s == LUCENT_OK) s = check_unique(&list, m, n);
     if (s != LUCENT_OK) {
@@ -293,7 +291,7 @@ static lucent_status read_root(const cJSON *json, const char *file, lucent_mater
     if (!m) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", file);
     char def[LUCENT_MATERIAL_NAME_SIZE];
     stem(file, def, sizeof def);
-    lucent_status s = read_material(&root, def[0] ? def : "material", m);
+    lucent_status s = material_read_json(&root, def[0] ? def : "material", m);
     if (s != LUCENT_OK) {
         free(m);
         return s;

@@ -1,0 +1,64 @@
+/* Internal helpers of the scene module. */
+#ifndef LUCENT_SCENE_INTERNAL_H
+#define LUCENT_SCENE_INTERNAL_H
+
+#include <math.h>
+
+#include "base/json.h"
+#include "lucent/scene.h"
+
+static inline void scene_v3_sub(const double *a, const double *b, double *dest)
+{
+    dest[0] = a[0] - b[0], dest[1] = a[1] - b[1], dest[2] = a[2] - b[2];
+}
+static inline double scene_v3_dot(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+static inline void scene_v3_cross(const double *a, const double *b, double *dest)
+{
+    double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2], z = a[0] * b[1] - a[1] * b[0];
+    dest[0] = x, dest[1] = y, dest[2] = z;
+}
+/* Normalises in place; a zero or non-finite vector becomes zero. Returns the old length. */
+static inline double scene_v3_normalize(double *a)
+{
+    double l = sqrt(scene_v3_dot(a, a));
+    if (!(l > 0) || !isfinite(l)) {
+        a[0] = a[1] = a[2] = 0;
+        return 0;
+    }
+    a[0] /= l, a[1] /= l, a[2] /= l;
+    return l;
+}
+
+/* Applies "key=value" overrides to a parsed scene document; errors name the override. */
+lucent_status scene_apply_overrides(cJSON *root, const char *file, const char *const *overrides, int count);
+
+/* Reads the "render" object (absent: the defaults). */
+lucent_status scene_read_render(const lucent_json_node *root, lucent_render_settings *dest);
+
+/* Reads the "camera" object (required). */
+lucent_status scene_read_camera(const lucent_json_node *root, lucent_camera *dest);
+
+/* Reads the "lights" array (at least one light). Free *dest with free(). */
+lucent_status scene_read_lights(const lucent_json_node *root, lucent_light **dest, int *count);
+
+/* Reads object n: mesh (unless skip_meshes), transform, material, appearance. */
+lucent_status scene_read_object(const lucent_json_node *n, const char *base_dir, bool skip_meshes,
+                                lucent_scene_object *dest);
+
+/* Frees what an object owns (mesh, texture, texcoords). */
+void scene_object_free(lucent_scene_object *o);
+
+/* Reads an optional 3-vector of finite numbers with a default. */
+lucent_status scene_read_vec3(const lucent_json_node *n, const char *key, const double def[3], double dest[3]);
+
+/* Reads an optional number with a default, checked to lie in [lo, hi]. */
+lucent_status scene_read_range(const lucent_json_node *n, const char *key, double def, double lo, double hi,
+                               double *dest);
+
+/* Reads an optional integer with a default, checked to lie in [lo, hi]. */
+lucent_status scene_read_int(const lucent_json_node *n, const char *key, int def, int lo, int hi, int *dest);
+
+#endif
