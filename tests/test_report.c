@@ -1,4 +1,4 @@
-/* Tests of src/report: SVG charts. */
+/* Tests of src/report: SVG charts and the comparison report (HTML, Markdown, CSV). */
 #include <math.h>
 
 #include "lucent/report.h"
@@ -72,5 +72,94 @@ TEST(svg_rejects_empty_figures)
     free(svg);
 }
 
+/* Two scenes with two methods each; one name needs escaping. */
+static const lucent_compare_method k_methods[2][2] = {
+    {{"lambert", "a/lambert.png", "a/lambert-err.png", 0.25, {0.3, 0.2, 0.1}, 1.5, 10, "Blinn-Phong"},
+     {"ssss:preint", "a/ssss.png", "a/ssss-err.png", 0.05, {0.06, 0.05, 0.04}, 2.25, 300, "17 taps"}},
+    {{"cdrf", "b/cdrf.png", "b/cdrf-err.png", 0.125, {0.1, 0.1, 0.2}, 1.75, 900, "LUT"},
+     {"x<y&\"z\"", "b/x.png", "b/x-err.png", 0.5, {0.5, 0.5, 0.5}, 3, 1, "a, b"}}};
+
+static void make_scenes(lucent_compare_scene sc[2])
+{
+    for (int i = 0; i < 2; i++)
+        sc[i] = (lucent_compare_scene){.name = i ? "bunny" : "dragon",
+                                       .description = "test",
+                                       .width = 64,
+                                       .height = 32,
+                                       .reference_image = i ? "b/ref.png" : "a/ref.png",
+                                       .reference_spp = 256,
+                                       .reference_seconds = 12.5,
+                                       .reference_noise = 0.01,
+                                       .device = "llvmpipe",
+                                       .scene_json = "{\"camera\": {}}",
+                                       .methods = k_methods[i],
+                                       .method_count = 2};
+}
+
+TEST(compare_html_has_every_scene_method_and_image)
+{
+    lucent_compare_scene sc[2];
+    make_scenes(sc);
+    const char *path = test_path("report.html");
+    CHECK_OK(lucent_compare_write_html(path, "Lucent <test>", sc, 2));
+    char *html;
+    size_t size;
+    CHECK_OK(lucent_read_file(path, &html, &size));
+    if (!html) return;
+    CHECK(strstr(html, "<title>Lucent &lt;test&gt;</title>") != NULL);
+    CHECK(count_of(html, "<section id=") == 2);
+    CHECK(count_of(html, "<tr") == 2 * 3); /* a header row and two method rows per scene */
+    CHECK(count_of(html, "class=\"best\"") == 2);
+    /* the best row of the first scene is ssss:preint (5% < 25%) */
+    const char *best = strstr(html, "class=\"best\"");
+    static const char want[] = "class=\"best\"><td>ssss:preint<";
+    CHECK(best && strncmp(best, want, strlen(want)) == 0);
+    CHECK(strstr(html, "x&lt;y&amp;&quot;z&quot;") != NULL && strstr(html, "x<y") == NULL);
+    CHECK(count_of(html, "<img src=") == 2 * (1 + 2 + 2)); /* reference, methods, error maps */
+    CHECK(strstr(html, "<td>5.00%</td><td>6.00%</td>") != NULL);
+    CHECK(strstr(html, "256 samples per pixel in 12.5 s") != NULL);
+    free(html);
+}
+
+TEST(compare_markdown_and_csv_tables)
+{
+    lucent_compare_scene sc[2];
+    make_scenes(sc);
+    const char *md = test_path("report.md");
+    CHECK_OK(lucent_compare_write_markdown(md, sc, 2));
+    char *text;
+    size_t size;
+    CHECK_OK(lucent_read_file(md, &text, &size));
+    if (text) {
+        CHECK(count_of(text, "\n## ") + (strncmp(text, "## ", 3) == 0) == 2);
+        CHECK(strstr(text, "| cdrf | 12.50% | 10.00% | 10.00% | 20.00% | 1.750 | 900 |") != NULL);
+        free(text);
+    }
+    const char *csv = test_path("report.csv");
+    CHECK_OK(lucent_compare_write_csv(csv, sc, 2));
+    CHECK_OK(lucent_read_file(csv, &text, &size));
+    if (!text) return;
+    CHECK(count_of(text, "\n") == 1 + 4);
+    CHECK(strstr(text, "\"dragon\",\"lambert\",0.25,0.3,0.2,0.1,1.5,10,256,0.01\n") != NULL);
+    CHECK(strstr(text, "\"x<y&\"\"z\"\"\"") != NULL); /* quotes doubled */
+    free(text);
+}
+
+TEST(compare_chart_has_a_marker_per_method)
+{
+    lucent_compare_scene sc[2];
+    make_scenes(sc);
+    const char *path = test_path("chart.svg");
+    CHECK_OK(lucent_compare_write_chart(path, &sc[0]));
+    char *svg;
+    size_t size;
+    CHECK_OK(lucent_read_file(path, &svg, &size));
+    if (!svg) return;
+    CHECK(count_of(svg, "<circle") >= 2);
+    CHECK(strstr(svg, "ssss:preint") != NULL);
+    free(svg);
+}
+
 TEST_MAIN(TEST_ENTRY(nice_ticks_are_1_2_5_steps), TEST_ENTRY(svg_has_a_curve_per_series_and_log_decades),
-          TEST_ENTRY(svg_rejects_empty_figures))
+          TEST_ENTRY(svg_rejects_empty_figures), TEST_ENTRY(compare_html_has_every_scene_method_and_image),
+          TEST_ENTRY(compare_markdown_and_csv_tables), TEST_ENTRY(compare_chart_has_a_marker_per_method))

@@ -54,6 +54,51 @@ lucent_status lucent_plot_write_svg(const char *path, const lucent_plot_desc *de
  * [lo, hi]; returns how many (at most max_ticks). */
 int lucent_plot_nice_ticks(double lo, double hi, int max_ticks, double *dest);
 
+/* ---- The comparison report (lucent compare) ------------------------------------------------
+ * Every real-time method of a scene beside the path-traced reference: images, error heat maps,
+ * relative RMS errors over the object's pixels and frame times, as HTML (one page, every scene),
+ * Markdown and CSV. Image paths are relative to the report. */
+typedef struct lucent_compare_method {
+    const char *name;        /* "lambert", "ssss:preint", ... */
+    const char *image;       /* the method's tonemapped PNG */
+    const char *error_image; /* heat map of the per-pixel relative error against the reference */
+    double rel_rms;          /* relative RMS error over the object's pixels, pooled over R, G, B */
+    double rel_rms_rgb[3];   /* per channel */
+    double frame_ms;         /* GPU time of one frame (timer queries) */
+    double setup_ms;         /* CPU preparation: kernels, LUTs, curvature, sigma0 (once per scene) */
+    const char *settings;    /* what distinguishes this method's run (free text) */
+} lucent_compare_method;
+
+typedef struct lucent_compare_scene {
+    const char *name;
+    const char *description;
+    int width, height;
+    const char *reference_image; /* the path tracer's tonemapped PNG */
+    int reference_spp;
+    double reference_seconds;
+    double reference_noise;      /* the reference's own relative standard error over the object:
+                                    differences below it are noise, not method error */
+    const char *device;          /* the GL renderer that ran the methods */
+    const char *chart;           /* an SVG of error against frame time (NULL: none) */
+    const char *scene_json;      /* the scene after overrides: what made the images */
+    const lucent_compare_method *methods;
+    int method_count;
+} lucent_compare_scene;
+
+/* Writes the HTML report of count scenes to path (atomically); title heads the page. */
+lucent_status lucent_compare_write_html(const char *path, const char *title, const lucent_compare_scene *scenes,
+                                        int count);
+
+/* Writes the tables as Markdown (one table per scene) to path. */
+lucent_status lucent_compare_write_markdown(const char *path, const lucent_compare_scene *scenes, int count);
+
+/* Writes one CSV row per scene and method: scene,method,rel_rms,rel_rms_r,rel_rms_g,rel_rms_b,
+ * frame_ms,setup_ms,reference_spp,reference_noise. */
+lucent_status lucent_compare_write_csv(const char *path, const lucent_compare_scene *scenes, int count);
+
+/* Draws error against frame time, one marker per method, and writes it as SVG to path. */
+lucent_status lucent_compare_write_chart(const char *path, const lucent_compare_scene *scene);
+
 #ifdef __cplusplus
 }
 #endif
