@@ -176,6 +176,7 @@ lucent_status lucent_render_method_parse(const char *text, lucent_render_method 
 typedef struct lucent_scene {
     char path[LUCENT_SCENE_PATH_SIZE]; /* the file it came from ("" from memory) */
     char name[LUCENT_SCENE_NAME_SIZE];
+    char description[512];
     lucent_camera camera; /* near and far resolved */
     int light_count;
     lucent_light *lights;

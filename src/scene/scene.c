@@ -66,6 +66,7 @@ static lucent_status read_scene(const lucent_json_node *root, const char *base_d
     if (s == LUCENT_OK) s = lucent_json_string_or(root, "name", "", &name);
     if (s == LUCENT_OK) s = lucent_json_string_or(root, "description", "", &description);
     if (s == LUCENT_OK) snprintf(sc->name, sizeof sc->name, "%s", name);
+    if (s == LUCENT_OK) snprintf(sc->description, sizeof sc->description, "%s", description);
     if (s == LUCENT_OK) s = scene_read_camera(root, &sc->camera);
     if (s == LUCENT_OK) s = scene_read_lights(root, &sc->lights, &sc->light_count);
     if (s == LUCENT_OK) s = scene_read_render(root, &sc->render);
