@@ -122,14 +122,15 @@ typedef struct lucent_frame_times {
     double gpu_ms;   /* GPU milliseconds from the first pass's start to the last pass's end */
     double cpu_ms;   /* wall-clock milliseconds from the frame's first command to its completion */
     double blur_ms;  /* the blur passes together (ssss; 0 otherwise) */
+    double setup_ms; /* CPU milliseconds spent preparing before the frame (curvature, kernels, sigma0
+                        fits, tables, targets, shader variants); 0 when everything was cached */
 } lucent_frame_times;
 
 /* What lucent_render returns. */
 typedef struct lucent_render_result {
     lucent_image *image;       /* RGB linear HDR radiance, settings->width x height */
     lucent_image *mask;        /* 1 channel: 1 where an object covers the pixel's centre, else 0 */
-    lucent_frame_times times;  /* the frame that made the image */
-    double setup_ms;           /* CPU milliseconds this call spent preparing (0: all was cached) */
+    lucent_frame_times times;  /* the frame that made the image, its setup included */
     double readback_ms;        /* CPU milliseconds reading the images back */
 } lucent_render_result;
 

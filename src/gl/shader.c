@@ -105,7 +105,7 @@ static lucent_status add_file(gl_source_fn fn, void *user, const char *name, gl_
     const char *text = fn(name, user);
     if (!text && from) return lucent_error(LUCENT_ERR_GL, "%s:%d: cannot include \"%s\"", from, from_line, name);
     if (!text) return lucent_error(LUCENT_ERR_GL, "shader \"%s\": no such file", name);
-    if (depth > MAX_DEPTH || s->file_count == GL_SHADER_MAX_FILES)
+    if (depth > MAX_DEPTH || s->file_count == GLR_SHADER_MAX_FILES)
         return lucent_error(LUCENT_ERR_GL, "%s:%d: includes nest too deep", from ? from : name, from_line);
     int index = s->file_count++;
     snprintf(s->files[index], sizeof s->files[index], "%s", name);

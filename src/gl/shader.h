@@ -9,7 +9,7 @@
 
 #include "lucent/base.h"
 
-enum { GL_SHADER_MAX_FILES = 16 };
+enum { GLR_SHADER_MAX_FILES = 16 };
 
 /* Where sources come from: returns the text of the file called name, or NULL. */
 typedef const char *(*gl_source_fn)(const char *name, void *user);
@@ -21,7 +21,7 @@ const char *gl_embedded_source(const char *name, void *user);
 typedef struct gl_source {
     char *text;
     size_t len, cap;
-    char files[GL_SHADER_MAX_FILES][96]; /* source-string number -> file name */
+    char files[GLR_SHADER_MAX_FILES][96]; /* source-string number -> file name */
     int file_count;
     bool failed; /* out of memory */
 } gl_source;
