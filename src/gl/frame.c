@@ -25,7 +25,7 @@ lucent_status gl_targets_resize(lucent_renderer *r, int width, int height)
     free_targets(r);
     r->width = width, r->height = height;
     r->tex_diffuse = gl_texture(GL_RGBA32F, width, height, GL_NEAREST);
-    r->tex_specular = gl_texture(GL_RGBA16F, width, height, GL_NEAREST);
+    r->tex_specular = gl_texture(GL_RGBA32F, width, height, GL_NEAREST);
     r->tex_depth = gl_texture(GL_RG32F, width, height, GL_NEAREST);
     r->tex_zbuffer = gl_texture(GL_DEPTH_COMPONENT32F, width, height, GL_NEAREST);
     r->tex_final = gl_texture(GL_RGBA32F, width, height, GL_LINEAR);

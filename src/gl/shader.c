@@ -202,6 +202,10 @@ static lucent_status compile(gl_source_fn fn, void *user, GLenum stage, const ch
     lucent_status s = gl_source_assemble(fn, user, name, defines, &src);
     if (s != LUCENT_OK) return s;
     GLuint sh = glCreateShader(stage);
+    if (!sh) {
+        gl_source_free(&src);
+        return lucent_error(LUCENT_ERR_GL, "%s: cannot create a shader (no current GL context?)", name);
+    }
     const GLchar *text = src.text;
     glShaderSource(sh, 1, &text, NULL);
     glCompileShader(sh);
