@@ -297,7 +297,10 @@ TEST(context_errors_name_their_cause)
     if (!display && !wayland)
         CHECK_ERR(lucent_gl_create(&(lucent_gl_desc){.platform = LUCENT_GL_WINDOW}, &c), LUCENT_ERR_GL,
                   "no OpenGL window");
-    if (context()) {
+    if (context()) { /* contexts share EGL's display: ending one must not end another */
+        CHECK_OK(lucent_gl_create(&(lucent_gl_desc){.platform = LUCENT_GL_SURFACELESS}, &c));
+        lucent_gl_destroy(c);
+        CHECK_OK(lucent_gl_make_current(g_ctx));
         lucent_gl_info info;
         lucent_gl_get_info(g_ctx, &info);
         CHECK(info.renderer[0] && info.vendor[0] && strstr(info.version, "4.") && info.platform[0]);

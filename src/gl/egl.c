@@ -2,6 +2,7 @@
  * a Mesa GPU driver) and the EGL device platform (NVIDIA's headless path). No window system, no
  * surface: the renderer draws into framebuffer objects. */
 #include <epoxy/egl.h>
+#include <pthread.h>
 #include <string.h>
 
 #include "gl/context_internal.h"
@@ -59,12 +60,38 @@ static int hardware_device(const EGLDeviceEXT *devices, int n)
     return -1;
 }
 
+/* EGL hands out one display per platform and device, shared by every context of the process:
+ * eglTerminate on it would end every context. Contexts count their uses; the last one terminates. */
+enum { MAX_DISPLAYS = 16 };
+static pthread_mutex_t g_display_lock = PTHREAD_MUTEX_INITIALIZER;
+static struct {
+    EGLDisplay display;
+    int users;
+} g_displays[MAX_DISPLAYS];
+
+static int display_use(EGLDisplay d, int delta)
+{
+    int users = 0;
+    pthread_mutex_lock(&g_display_lock);
+    int i = 0, free_slot = -1;
+    for (; i < MAX_DISPLAYS && g_displays[i].display != d; i++)
+        if (!g_displays[i].display && free_slot < 0) free_slot = i;
+    if (i == MAX_DISPLAYS && free_slot >= 0 && delta > 0) g_displays[i = free_slot].display = d;
+    if (i < MAX_DISPLAYS) {
+        users = g_displays[i].users += delta;
+        if (users <= 0) g_displays[i].display = NULL, g_displays[i].users = 0;
+    }
+    pthread_mutex_unlock(&g_display_lock);
+    return users;
+}
+
 static lucent_status open_display(lucent_gl_context *ctx, EGLenum platform, void *native)
 {
     EGLDisplay d = eglGetPlatformDisplayEXT(platform, native, NULL);
     if (d == EGL_NO_DISPLAY) return egl_fail("eglGetPlatformDisplayEXT gave no display");
     EGLint major, minor;
     if (!eglInitialize(d, &major, &minor)) return egl_fail("eglInitialize failed");
+    display_use(d, +1);
     ctx->egl_display = d;
     return LUCENT_OK;
 }
@@ -138,9 +165,10 @@ lucent_status gl_egl_create(lucent_gl_context *ctx, lucent_gl_platform platform,
 void gl_egl_destroy(lucent_gl_context *ctx)
 {
     if (ctx->egl_display) {
-        eglMakeCurrent(ctx->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (ctx->egl_context && eglGetCurrentContext() == ctx->egl_context)
+            eglMakeCurrent(ctx->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (ctx->egl_context) eglDestroyContext(ctx->egl_display, ctx->egl_context);
-        eglTerminate(ctx->egl_display);
+        if (display_use(ctx->egl_display, -1) == 0) eglTerminate(ctx->egl_display);
     }
     ctx->egl_display = ctx->egl_context = NULL;
 }
