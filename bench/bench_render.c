@@ -7,7 +7,8 @@
  *   texture-space blur 41.5 / 35.3 fps: 13.9x / 19.6x.
  *   Jimenez's separable SSS passes: 1.05 ms at 1080p on a GTX 580 (Freude 4.5).
  *   Targets: CDRF within 5% of Lambert's frame time; the blur within 1 ms at 1080p on a current GPU.
- * Usage: bench_render [MIN_SECONDS_PER_CASE] [SCENE.json] */
+ * Times: the best frame (and the median) of rounds that render every method once in turn.
+ * Usage: bench_render [MIN_SECONDS_PER_METHOD] [SCENE.json] */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,9 +30,15 @@ static const method_case k_cases[] = {
 enum { CASES = sizeof k_cases / sizeof k_cases[0], MAX_FRAMES = 200 };
 
 typedef struct measured {
-    double frame_ms, geometry_ms, blur_ms, cpu_ms; /* medians */
+    double frame_ms, geometry_ms, blur_ms, cpu_ms; /* best (minimum) of the frames */
+    double frame_median;
     int frames;
 } measured;
+
+typedef struct samples {
+    double f[MAX_FRAMES], g[MAX_FRAMES], b[MAX_FRAMES], c[MAX_FRAMES];
+    int n;
+} samples;
 
 static void fail(const char *what)
 {
@@ -51,6 +58,13 @@ static double median(double *v, int n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+static double minimum(const double *v, int n)
+{
+    double m = v[0];
+    for (int i = 1; i < n; i++) m = fmin(m, v[i]);
+    return m;
+}
+
 static double pass_ms(const lucent_frame_times *t, const char *name)
 {
     for (int i = 0; i < t->pass_count; i++)
@@ -58,22 +72,31 @@ static double pass_ms(const lucent_frame_times *t, const char *name)
     return 0;
 }
 
-/* One warm-up frame (it prepares and compiles), then frames until min_seconds have passed (3 at
- * least, MAX_FRAMES at most); medians. */
-static measured run(lucent_renderer *r, const lucent_render_settings *s, double min_seconds)
+/* One warm-up frame per method (it prepares and compiles), then rounds of one frame per method, so
+ * that a machine shared with other jobs slows every method alike, until each method has had
+ * min_seconds (3 rounds at least). The best frame is the figure least disturbed by the others. */
+static void run(lucent_renderer *r, const lucent_render_settings *s, double min_seconds, measured *dest)
 {
-    static double f[MAX_FRAMES], g[MAX_FRAMES], b[MAX_FRAMES], c[MAX_FRAMES];
+    static samples smp[CASES];
     lucent_frame_times t;
-    if (lucent_render_frame(r, s, &t) != LUCENT_OK) fail("warm-up frame");
     double spent = 0;
-    int n = 0;
-    while (n < MAX_FRAMES && (n < 3 || spent < min_seconds * 1e3)) {
-        if (lucent_render_frame(r, s, &t) != LUCENT_OK) fail("frame");
-        f[n] = t.gpu_ms, g[n] = pass_ms(&t, "geometry"), b[n] = t.blur_ms, c[n] = t.cpu_ms;
-        spent += t.cpu_ms;
-        n++;
+    for (int m = 0; m < CASES; m++) {
+        if (lucent_render_frame(r, &s[m], &t) != LUCENT_OK) fail("warm-up frame");
+        smp[m].n = 0;
     }
-    return (measured){median(f, n), median(g, n), median(b, n), median(c, n), n};
+    for (int round = 0; round < MAX_FRAMES && (round < 3 || spent < min_seconds * 1e3 * CASES); round++)
+        for (int m = 0; m < CASES; m++) {
+            if (lucent_render_frame(r, &s[m], &t) != LUCENT_OK) fail("frame");
+            samples *p = &smp[m];
+            p->f[p->n] = t.gpu_ms, p->g[p->n] = pass_ms(&t, "geometry"), p->b[p->n] = t.blur_ms, p->c[p->n] = t.cpu_ms;
+            p->n++;
+            spent += t.cpu_ms;
+        }
+    for (int m = 0; m < CASES; m++) {
+        samples *p = &smp[m];
+        dest[m] = (measured){minimum(p->f, p->n), minimum(p->g, p->n), minimum(p->b, p->n), minimum(p->c, p->n),
+                             median(p->f, p->n), p->n};
+    }
 }
 
 static lucent_scene *load(const char *path, const char *mesh)
@@ -133,7 +156,7 @@ int main(int argc, char **argv)
     lucent_gl_info info;
     lucent_gl_get_info(ctx, &info);
     printf("renderer: %s on %s | %s | %s (%s)\n", sc->name, info.renderer, info.vendor, info.version, info.platform);
-    printf("mesh: %s, %zu triangles; shadow map %d^2; median of >= 3 frames (>= %.1f s) after one warm-up\n",
+    printf("mesh: %s, %zu triangles; shadow map %d^2; best of >= 3 rounds (>= %.1f s per method) after one warm-up; methods interleaved\n",
            res1 ? "dragon res1" : "dragon res2 (res1 missing)", sc->objects[0].mesh->face_count,
            sc->render.shadow_map_size, min_seconds);
     static const int sizes[2][2] = {{512, 512}, {1920, 1080}};
@@ -141,14 +164,14 @@ int main(int argc, char **argv)
         measured res[CASES];
         char size[32];
         snprintf(size, sizeof size, "%dx%d", sizes[k][0], sizes[k][1]);
-        printf("%-10s %-20s %10s %10s %10s %10s %7s\n", size, "method", "frame ms", "geometry", "blur", "cpu ms", "frames");
-        for (int m = 0; m < CASES; m++) {
-            lucent_render_settings s;
-            settings_for(sc, &k_cases[m], sizes[k][0], sizes[k][1], &s);
-            res[m] = run(r, &s, min_seconds);
-            printf("%-10s %-20s %10.3f %10.3f %10.3f %10.3f %7d\n", "", k_cases[m].label, res[m].frame_ms,
-                   res[m].geometry_ms, res[m].blur_ms, res[m].cpu_ms, res[m].frames);
-        }
+        printf("%-10s %-20s %10s %10s %10s %10s %10s %7s\n", size, "method", "frame ms", "median", "geometry", "blur",
+               "cpu ms", "frames");
+        lucent_render_settings s[CASES];
+        for (int m = 0; m < CASES; m++) settings_for(sc, &k_cases[m], sizes[k][0], sizes[k][1], &s[m]);
+        run(r, s, min_seconds, res);
+        for (int m = 0; m < CASES; m++)
+            printf("%-10s %-20s %10.3f %10.3f %10.3f %10.3f %10.3f %7d\n", "", k_cases[m].label, res[m].frame_ms,
+                   res[m].frame_median, res[m].geometry_ms, res[m].blur_ms, res[m].cpu_ms, res[m].frames);
         print_ratios(res, size);
     }
     if (info.software)

@@ -36,7 +36,7 @@ layout(location = 2) out vec2 o_depth;    // x: linear depth (mm, 0 = background
 #if AOV
 layout(location = 3) out vec4 o_aov_normal;   // xyz: shading normal; w: curvature
 layout(location = 4) out vec4 o_aov_position; // xyz: position (mm); w: object index
-layout(location = 5) out vec4 o_aov_light;    // light 0: visibility, CDRF visibility, thickness
+layout(location = 5) out vec4 o_aov_light;    // light 0: visibility, 0, thickness
 #endif
 
 // The transmittance through thickness s, normalised to 1 at s = 0 (table samples on the end points).
@@ -72,16 +72,18 @@ void main()
     vec3 albedo = u_use_map != 0 ? texture(u_albedo_map, v_uv).rgb : u_albedo;
     vec3 sigma0 = u_sigma0_from_map != 0 ? albedo * albedo : u_sigma0;
     vec3 irradiance = vec3(0.0), specular = vec3(0.0);
-    float vis0 = 1.0, vis_c0 = 1.0;
+    float vis0 = 1.0;
     for (int i = 0; i < u_counts.x; i++) {
         vec3 l, e = light_incident(i, v_position, l);
         float ndl = dot(n, l), offset = u_light_texel[i].x * u_shadow_offset;
-        float vis = shadow_visibility(i, v_position + n * offset);
 #if METHOD == 1 || METHOD == 2
-        float vis_c = shadow_visibility(i, v_position + n * offset + l * u_cdrf_reach);
-        irradiance += e * cdrf3(ndl, sigma0 * v_curvature) * vis_c; // Kubo Eq. 5
-        if (i == 0) vis_c0 = vis_c;
+        // The CDRF spreads light over an arc of sigma0 mm: visibility is tested where light enters,
+        // up to u_cdrf_reach mm toward the light past the terminator (none where the light faces the
+        // surface), one lookup serving diffuse and specular as Lambert's one does.
+        float vis = shadow_visibility(i, v_position + n * offset + l * u_cdrf_reach * (1.0 - max(ndl, 0.0)));
+        irradiance += e * cdrf3(ndl, sigma0 * v_curvature) * vis; // Kubo Eq. 5
 #else
+        float vis = shadow_visibility(i, v_position + n * offset);
         irradiance += e * max(ndl, 0.0) * vis;
 #endif
         irradiance += transmitted(i, n, e, ndl, offset, sigma0);
@@ -94,7 +96,7 @@ void main()
 #if AOV
     o_aov_normal = vec4(n, v_curvature);
     o_aov_position = vec4(v_position, u_object);
-    o_aov_light = vec4(vis0, vis_c0, u_counts.x > 0 ? shadow_thickness(0, v_position - n * u_light_texel[0].x *
+    o_aov_light = vec4(vis0, 0.0, u_counts.x > 0 ? shadow_thickness(0, v_position - n * u_light_texel[0].x *
                                                                                        u_shadow_offset) : -1.0, 0.0);
 #endif
 }
