@@ -165,8 +165,3 @@ lucent_status gl_renderer_read_aov(lucent_renderer *r, int which, lucent_image *
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "no auxiliary output %d", which);
     return gl_read_image(r->fbo_scene, 3 + which, r->width, r->height, 4, true, dest);
 }
-
-GLuint gl_renderer_lut(const lucent_renderer *r)
-{
-    return r->lut_tex;
-}

@@ -145,7 +145,6 @@ lucent_status gl_settings_check(const lucent_render_settings *s);
 /* ---- tests: auxiliary outputs (normal + curvature, position + object, light 0 terms) ---- */
 void gl_renderer_set_aov(lucent_renderer *r, bool on);
 lucent_status gl_renderer_read_aov(lucent_renderer *r, int which, lucent_image **dest);
-GLuint gl_renderer_lut(const lucent_renderer *r);
 
 /* Small double-precision 4x4 helpers (column-major). */
 void gl_mat4_mul(const double a[16], const double b[16], double dest[16]);

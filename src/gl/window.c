@@ -4,7 +4,6 @@
 #include <GLFW/glfw3.h>
 #include <string.h>
 
-
 static _Thread_local char t_glfw_error[512];
 
 static void on_glfw_error(int code, const char *text)
