@@ -11,6 +11,7 @@
 #include "lucent/mc.h"
 #include "lucent/mesh.h"
 #include "lucent/profile.h"
+#include "lucent/render.h"
 #include "lucent/report.h"
 #include "lucent/scene.h"
 

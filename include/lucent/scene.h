@@ -141,6 +141,8 @@ typedef struct lucent_render_settings {
     double width_scale;               /* an artist's multiplier on the physical kernel width; default 1 */
     lucent_depth_filter depth_filter; /* default follow */
     bool translucency;                /* light through thin parts (shadow-map thickness); default true */
+    double translucency_curvature;    /* cdrf+translucency: the transmitted light times
+                                         1 + this x sigma0 x curvature (the CDRF blog); default 1 */
     /* cdrf */
     lucent_cdrf_variant cdrf_variant; /* default kubo */
     bool cdrf_lut;                    /* true (default): the LUT texture; false: the closed form */

@@ -179,7 +179,7 @@ static const char *const k_cdrf_variants[] = {"kubo", "collomb", NULL};
 static const char *const k_tonemaps[] = {"none", "clamp", "reinhard", "filmic", NULL};
 static const char *const k_render_keys[] = {
     "width",       "height",      "method",         "kernel",   "rank",     "taps",       "profile",
-    "strength",    "width_scale", "depth_filter",   "translucency", "cdrf_variant", "cdrf_lut", "sigma0",
+    "strength",    "width_scale", "depth_filter",   "translucency", "translucency_curvature", "cdrf_variant", "cdrf_lut", "sigma0",
     "curvature_smooth", "shadow_map_size", "background", "tonemap", "exposure", "spp", "seed",
     "max_bounces", "max_scatter", "time_limit", NULL};
 
@@ -196,6 +196,7 @@ lucent_render_settings lucent_render_settings_defaults(void)
                                     .width_scale = 1,
                                     .depth_filter = LUCENT_DEPTH_FOLLOW,
                                     .translucency = true,
+                                    .translucency_curvature = 1,
                                     .cdrf_variant = LUCENT_CDRF_KUBO,
                                     .cdrf_lut = true,
                                     .sigma0_source = LUCENT_SIGMA0_FIT,
@@ -309,6 +310,7 @@ static lucent_status read_numbers(const lucent_json_node *n, lucent_render_setti
         s = lucent_json_fail(n, "taps", LUCENT_ERR_PARSE, "must be odd (a centre tap and pairs), got %d", r->taps);
     if (s == LUCENT_OK) s = scene_read_range(n, "strength", 1, 0, 1, &r->strength);
     if (s == LUCENT_OK) s = scene_read_range(n, "width_scale", 1, 1e-6, 1e6, &r->width_scale);
+    if (s == LUCENT_OK) s = scene_read_range(n, "translucency_curvature", 1, -100, 100, &r->translucency_curvature);
     if (s == LUCENT_OK) s = scene_read_int(n, "curvature_smooth", 1, 0, 16, &r->curvature_smooth);
     if (s == LUCENT_OK) s = scene_read_int(n, "shadow_map_size", 2048, 16, 16384, &r->shadow_map_size);
     if (s == LUCENT_OK) s = read_color(n, "background", 0, r->background);

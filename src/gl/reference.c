@@ -1,0 +1,89 @@
+/* CPU reference of the Lambert and CDRF shading with the specular lobe (see reference.h). */
+#include <math.h>
+
+#include "gl/reference.h"
+
+static double dot3(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void normalise3(double *a)
+{
+    double l = sqrt(dot3(a, a));
+    if (l > 0) a[0] /= l, a[1] /= l, a[2] /= l;
+}
+
+double gl_ref_lut(const lucent_image *lut, double sigma_max, double cos_theta, double sigma)
+{
+    double x = (fmin(fmax(cos_theta, -1), 1) + 1) / 2 * (lut->width - 1);
+    double y = fmin(fmax(sigma / sigma_max, 0), 1) * (lut->height - 1);
+    int x0 = (int)fmin(floor(x), lut->width - 2), y0 = (int)fmin(floor(y), lut->height - 2);
+    double fx = x - x0, fy = y - y0;
+    const float *row0 = lut->data + (size_t)y0 * (size_t)lut->width, *row1 = row0 + lut->width;
+    double top = (1 - fx) * row0[x0] + fx * row0[x0 + 1], bottom = (1 - fx) * row1[x0] + fx * row1[x0 + 1];
+    return (1 - fy) * top + fy * bottom;
+}
+
+/* Direction toward light l from p and the irradiance on a surface facing it. */
+static double incident(const lucent_light *l, const double *p, double *dir)
+{
+    if (l->type == LUCENT_LIGHT_DIRECTIONAL) {
+        for (int i = 0; i < 3; i++) dir[i] = -l->direction[i];
+        return l->intensity;
+    }
+    for (int i = 0; i < 3; i++) dir[i] = l->position[i] - p[i];
+    double d2 = fmax(dot3(dir, dir), 1e-12);
+    normalise3(dir);
+    return l->intensity / d2;
+}
+
+/* Beckmann D, Schlick F, visibility 1 / |l + v|^2 (Kelemen & Szirmay-Kalos), times cos_i. */
+static double ksk(const double *n, const double *v, const double *l, double alpha, double f0)
+{
+    double h[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]}, hh = dot3(h, h), ndl = dot3(n, l);
+    if (ndl <= 0 || dot3(n, v) <= 0 || hh < 1e-8) return 0;
+    double hn[3] = {h[0] / sqrt(hh), h[1] / sqrt(hh), h[2] / sqrt(hh)};
+    double c = fmax(dot3(n, hn), 1e-4), a2 = fmax(alpha * alpha, 1e-6);
+    double tan2 = (1 - c * c) / (c * c), d = exp(-tan2 / a2) / (M_PI * a2 * pow(c, 4));
+    double f = f0 + (1 - f0) * pow(1 - fmin(fmax(dot3(hn, v), 0), 1), 5);
+    return d * f / hh * ndl;
+}
+
+static double cdrf_value(lucent_cdrf_variant variant, const lucent_image *lut, double sigma_max, double ndl, double sigma)
+{
+    sigma = fmin(fmax(sigma, 0), sigma_max);
+    if (lut) return gl_ref_lut(lut, sigma_max, ndl, sigma);
+    return lucent_cdrf_eval(variant, acos(fmin(fmax(ndl, -1), 1)), sigma);
+}
+
+void gl_ref_shade(const lucent_scene *scene, lucent_render_method method, lucent_cdrf_variant variant,
+                  const lucent_image *lut, double sigma_max, const gl_ref_material *m, const gl_ref_point *p,
+                  double diffuse[3], double specular[3])
+{
+    double v[3], e_sum[3] = {0}, ambient[3] = {0}, spec[3] = {0};
+    for (int i = 0; i < 3; i++) v[i] = scene->camera.position[i] - p->position[i];
+    normalise3(v);
+    int k = 0; /* index among the non-environment lights (the visibility array's order) */
+    for (int i = 0; i < scene->light_count; i++) {
+        const lucent_light *l = &scene->lights[i];
+        if (l->type == LUCENT_LIGHT_ENVIRONMENT) {
+            for (int c = 0; c < 3; c++) ambient[c] += l->intensity * l->color[c];
+            continue;
+        }
+        double dir[3], e = incident(l, p->position, dir), ndl = dot3(p->normal, dir);
+        double vis = p->visibility ? p->visibility[k] : 1, s = ksk(p->normal, v, dir, m->roughness, m->f0);
+        for (int c = 0; c < 3; c++) {
+            double f = method == LUCENT_METHOD_LAMBERT
+                           ? fmax(ndl, 0)
+                           : cdrf_value(variant, lut, sigma_max, ndl, m->sigma0[c] * p->curvature); /* Kubo Eq. 4, 5 */
+            e_sum[c] += e * l->color[c] * f * vis;
+            spec[c] += e * l->color[c] * vis * s;
+        }
+        k++;
+    }
+    for (int c = 0; c < 3; c++) {
+        diffuse[c] = m->albedo[c] * (e_sum[c] / M_PI + ambient[c]);
+        specular[c] = spec[c];
+    }
+}

@@ -1,0 +1,35 @@
+/* CPU reference of the scene pass's shading (scene.frag.glsl), written separately in double
+ * precision: what one surface point gives for Lambert and the CDRF (LUT or function), with the
+ * Kelemen/Szirmay-Kalos specular. The tests feed it the GPU's own normal, curvature and position
+ * (auxiliary outputs) and compare pixel by pixel. */
+#ifndef LUCENT_SRC_GL_REFERENCE_H
+#define LUCENT_SRC_GL_REFERENCE_H
+
+#include "lucent/scene.h"
+
+/* A shaded point: where it is, its shading normal (unit, facing the viewer's side), its mean
+ * curvature (mm^-1), and the shadow visibility of each light (NULL: all 1). */
+typedef struct gl_ref_point {
+    double position[3];
+    double normal[3];
+    double curvature;
+    const double *visibility;
+} gl_ref_point;
+
+/* What the renderer uses for an object. */
+typedef struct gl_ref_material {
+    double albedo[3];
+    double sigma0[3];
+    double roughness, f0;
+} gl_ref_material;
+
+/* Bilinear read of the CDRF LUT (lucent_cdrf_lut_build's layout: samples on the end points). */
+double gl_ref_lut(const lucent_image *lut, double sigma_max, double cos_theta, double sigma);
+
+/* The diffuse and specular radiance of point p under the scene's lights for method (lambert or
+ * cdrf; lut NULL: the exact function of `variant`), sigma clamped to [0, sigma_max]. */
+void gl_ref_shade(const lucent_scene *scene, lucent_render_method method, lucent_cdrf_variant variant,
+                  const lucent_image *lut, double sigma_max, const gl_ref_material *m, const gl_ref_point *p,
+                  double diffuse[3], double specular[3]);
+
+#endif

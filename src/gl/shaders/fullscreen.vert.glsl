@@ -1,0 +1,6 @@
+// One triangle that covers the viewport; fragments address pixels with gl_FragCoord.
+void main()
+{
+    vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);
+    gl_Position = vec4(p, 0.0, 1.0);
+}

@@ -1,0 +1,102 @@
+// The scene pass: diffuse (pre-blur), specular and linear depth in separate targets (Freude 4.2,
+// pass 1). METHOD chooses the diffuse term: 0 Lambert, 1 CDRF, 2 CDRF + translucency, 3 ssss
+// (Lambert irradiance plus transmission, blurred afterwards). Radiance units: a light's irradiance E
+// on a surface of albedo a gives a E cos / pi.
+#include "common.glsl"
+#include "lights.glsl"
+#include "cdrf.glsl"
+
+in vec3 v_position;
+in vec3 v_normal;
+in float v_curvature;
+in vec2 v_uv;
+
+layout(binding = 0) uniform sampler2D u_albedo_map;
+layout(binding = 4) uniform sampler2D u_transmit; // T(s) / T(0) per channel; a row per material
+
+uniform vec3 u_albedo;
+uniform vec3 u_sigma0;          // mm
+uniform int u_use_map;          // albedo from u_albedo_map (linear RGB)
+uniform int u_sigma0_from_map;  // sigma0 = d_c^2 (Kubo Eq. 6) from the diffuse map
+uniform float u_roughness;
+uniform float u_f0;
+uniform float u_strength;       // ssss: the blur's share here (object's sss_strength x settings)
+uniform float u_material;       // material index (kernel and transmittance row)
+uniform float u_object;
+uniform int u_translucency;     // ssss: light through thin parts
+uniform float u_transmit_range; // mm: thickness where the table ends
+uniform float u_transmit_v;     // the material's row, as a texture coordinate
+uniform float u_curvature_gain; // cdrf+translucency: m = 1 + gain sigma0 kappa
+uniform float u_cdrf_reach;     // mm: CDRF visibility is tested this far toward the light
+uniform float u_shadow_offset;  // normal offset, in shadow-map texels
+
+layout(location = 0) out vec4 o_diffuse;  // rgb: diffuse radiance; a: blur strength
+layout(location = 1) out vec4 o_specular; // rgb: specular radiance
+layout(location = 2) out vec2 o_depth;    // x: linear depth (mm, 0 = background); y: material
+#if AOV
+layout(location = 3) out vec4 o_aov_normal;   // xyz: shading normal; w: curvature
+layout(location = 4) out vec4 o_aov_position; // xyz: position (mm); w: object index
+layout(location = 5) out vec4 o_aov_light;    // light 0: visibility, 0, thickness
+#endif
+
+// The transmittance through thickness s, normalised to 1 at s = 0 (table samples on the end points).
+vec3 transmittance(float s)
+{
+    if (s < 0.0) return vec3(0.0);
+    float size = float(textureSize(u_transmit, 0).x);
+    float u = (0.5 + clamp(s / u_transmit_range, 0.0, 1.0) * (size - 1.0)) / size;
+    return texture(u_transmit, vec2(u, u_transmit_v)).rgb;
+}
+
+// Light reaching the back of a thin part and leaving here: E max(-n.l, 0) T(s) (Jimenez 2010; T
+// from the material's own profile, docs/render.md), the curvature modulation of the CDRF blog for
+// cdrf+translucency.
+vec3 transmitted(int i, vec3 n, vec3 e, float ndl, float offset, vec3 sigma0)
+{
+#if METHOD == 2
+    vec3 m = clamp(1.0 + u_curvature_gain * sigma0 * v_curvature, 0.0, 2.0);
+#elif METHOD == 3
+    vec3 m = vec3(u_translucency != 0 ? 1.0 : 0.0);
+#else
+    vec3 m = vec3(0.0);
+#endif
+    if (ndl >= 0.0 || all(equal(m, vec3(0.0)))) return vec3(0.0);
+    return e * -ndl * transmittance(shadow_thickness(i, v_position - n * offset)) * m;
+}
+
+void main()
+{
+    vec3 n = normalize(v_normal);
+    if (!gl_FrontFacing) n = -n;
+    vec3 v = normalize(u_eye.xyz - v_position);
+    vec3 albedo = u_use_map != 0 ? texture(u_albedo_map, v_uv).rgb : u_albedo;
+    vec3 sigma0 = u_sigma0_from_map != 0 ? albedo * albedo : u_sigma0;
+    vec3 irradiance = vec3(0.0), specular = vec3(0.0);
+    float vis0 = 1.0;
+    for (int i = 0; i < u_counts.x; i++) {
+        vec3 l, e = light_incident(i, v_position, l);
+        float ndl = dot(n, l), offset = u_light_texel[i].x * u_shadow_offset;
+#if METHOD == 1 || METHOD == 2
+        // The CDRF spreads light over an arc of sigma0 mm: visibility is tested where light enters,
+        // up to u_cdrf_reach mm toward the light past the terminator (none where the light faces the
+        // surface), one lookup serving diffuse and specular as Lambert's one does.
+        float vis = shadow_visibility(i, v_position + n * offset + l * u_cdrf_reach * (1.0 - max(ndl, 0.0)));
+        irradiance += e * cdrf3(ndl, sigma0 * v_curvature) * vis; // Kubo Eq. 5
+#else
+        float vis = shadow_visibility(i, v_position + n * offset);
+        irradiance += e * max(ndl, 0.0) * vis;
+#endif
+        irradiance += transmitted(i, n, e, ndl, offset, sigma0);
+        specular += e * specular_ksk(n, v, l, u_roughness, u_f0) * vis;
+        if (i == 0) vis0 = vis;
+    }
+    o_diffuse = vec4(albedo * (irradiance / PI + u_ambient.rgb), u_strength);
+    o_specular = vec4(specular, 1.0);
+    o_depth = vec2(dot(v_position - u_eye.xyz, u_forward.xyz), u_material);
+#if AOV
+    o_aov_normal = vec4(n, v_curvature);
+    o_aov_position = vec4(v_position, u_object);
+    o_aov_light = vec4(vis0, 0.0, u_counts.x > 0 ? shadow_thickness(0, v_position - n * u_light_texel[0].x *
+                                                                                       u_shadow_offset) : -1.0, 0.0);
+#endif
+}

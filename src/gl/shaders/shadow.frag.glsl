@@ -1,0 +1,4 @@
+// Depth only: the rasteriser writes the depth; no colour.
+void main()
+{
+}

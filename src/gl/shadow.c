@@ -1,0 +1,167 @@
+/* Lights and shadow maps: one layer of a depth-texture array per shadow-casting light, an
+ * orthographic projection around the scene's bounding sphere for directional lights and a
+ * perspective one toward it for point and sphere lights (a sphere light shadows as a point). The
+ * same maps give the thickness the translucency reads (Jimenez 2010). */
+#include <math.h>
+#include <string.h>
+
+#include "gl/renderer_internal.h"
+
+void gl_mat4_mul(const double a[16], const double b[16], double dest[16])
+{
+    double t[16];
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++) {
+            double s = 0;
+            for (int k = 0; k < 4; k++) s += a[4 * k + r] * b[4 * c + k];
+            t[4 * c + r] = s;
+        }
+    memcpy(dest, t, sizeof t);
+}
+
+void gl_mat4_to_float(const double m[16], float dest[16])
+{
+    for (int i = 0; i < 16; i++) dest[i] = (float)m[i];
+}
+
+static void scene_sphere(lucent_renderer *r)
+{
+    double lo[3], hi[3], rr = 0;
+    lucent_scene_bounds(r->scene, lo, hi);
+    for (int i = 0; i < 3; i++) {
+        r->bound_centre[i] = lo[i] <= hi[i] ? 0.5 * (lo[i] + hi[i]) : 0;
+        rr += lo[i] <= hi[i] ? 0.25 * (hi[i] - lo[i]) * (hi[i] - lo[i]) : 0;
+    }
+    r->bound_radius = fmax(sqrt(rr), 1e-3);
+}
+
+/* The light looks at the bounding sphere's centre from eye; up is any axis not along the view. */
+static void light_view(const double eye[3], const double centre[3], double dest[16])
+{
+    lucent_camera cam = {.fov_y = 30};
+    double d[3], len = 0;
+    for (int i = 0; i < 3; i++) cam.position[i] = eye[i], cam.target[i] = centre[i], d[i] = centre[i] - eye[i];
+    for (int i = 0; i < 3; i++) len += d[i] * d[i];
+    bool vertical = fabs(d[1]) > 0.99 * sqrt(len);
+    cam.up[0] = vertical ? 1 : 0, cam.up[1] = vertical ? 0 : 1, cam.up[2] = 0;
+    lucent_camera_view(&cam, dest);
+}
+
+static void directional(lucent_renderer *r, const lucent_light *l, gl_light *g)
+{
+    double R = r->bound_radius, eye[3], proj[16] = {0}, view[16];
+    for (int i = 0; i < 3; i++) eye[i] = r->bound_centre[i] - l->direction[i] * 2 * R;
+    light_view(eye, r->bound_centre, view);
+    g->near_plane = R, g->far_plane = 3 * R, g->ortho = true, g->texel = 2 * R;
+    proj[0] = proj[5] = 1 / R;
+    proj[10] = -2 / (g->far_plane - g->near_plane);
+    proj[14] = -(g->far_plane + g->near_plane) / (g->far_plane - g->near_plane);
+    proj[15] = 1;
+    gl_mat4_mul(proj, view, g->matrix);
+}
+
+/* Returns false when the light stands inside the scene's bounding sphere (no single map covers). */
+static bool point(lucent_renderer *r, const lucent_light *l, gl_light *g)
+{
+    double R = r->bound_radius, dist = 0, view[16], proj[16];
+    for (int i = 0; i < 3; i++) dist += (r->bound_centre[i] - l->position[i]) * (r->bound_centre[i] - l->position[i]);
+    dist = sqrt(dist);
+    if (dist < 1.05 * R) return false;
+    lucent_camera cam = {.fov_y = 2 * asin(R / dist) * 180 / M_PI * 1.02};
+    g->near_plane = cam.near_plane = fmax(dist - R, dist * 1e-3);
+    g->far_plane = cam.far_plane = dist + R;
+    g->ortho = false;
+    g->texel = 2 * dist * tan(0.5 * cam.fov_y * M_PI / 180);
+    light_view(l->position, r->bound_centre, view);
+    lucent_camera_projection(&cam, 1, proj);
+    gl_mat4_mul(proj, view, g->matrix);
+    return true;
+}
+
+lucent_status gl_lights_setup(lucent_renderer *r)
+{
+    scene_sphere(r);
+    for (int i = 0; i < r->scene->light_count; i++) {
+        const lucent_light *l = &r->scene->lights[i];
+        if (l->type == LUCENT_LIGHT_ENVIRONMENT) {
+            for (int c = 0; c < 3; c++) r->ambient[c] += l->color[c] * l->intensity;
+            continue;
+        }
+        if (r->light_count == GLR_MAX_LIGHTS)
+            return lucent_error(LUCENT_ERR_UNSUPPORTED, "%s: lights[%d]: at most %d lights besides environment lights",
+                                r->scene->name, i, GLR_MAX_LIGHTS);
+        gl_light *g = &r->lights[r->light_count++];
+        memset(g, 0, sizeof *g);
+        g->scene_index = i, g->layer = -1;
+        if (!l->shadows) continue;
+        if (l->type == LUCENT_LIGHT_DIRECTIONAL) directional(r, l, g);
+        else if (!point(r, l, g)) {
+            lucent_log(LUCENT_LOG_WARN, "%s: lights[%d] stands inside the scene's bounds: drawn without shadows",
+                       r->scene->name, i);
+            continue;
+        }
+        g->layer = r->shadow_layers++;
+    }
+    return LUCENT_OK;
+}
+
+lucent_status gl_shadows_resize(lucent_renderer *r, int size)
+{
+    if (r->shadow_tex && r->shadow_size == size) return LUCENT_OK;
+    gl_shadows_free(r);
+    int layers = r->shadow_layers > 0 ? r->shadow_layers : 1, side = r->shadow_layers > 0 ? size : 1;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &r->shadow_tex);
+    glTextureStorage3D(r->shadow_tex, 1, GL_DEPTH_COMPONENT32F, side, side, layers);
+    glCreateFramebuffers(1, &r->shadow_fbo);
+    glNamedFramebufferDrawBuffer(r->shadow_fbo, GL_NONE);
+    glNamedFramebufferReadBuffer(r->shadow_fbo, GL_NONE);
+    glCreateSamplers(1, &r->sampler_compare);
+    glCreateSamplers(1, &r->sampler_raw);
+    GLuint samplers[2] = {r->sampler_compare, r->sampler_raw};
+    for (int i = 0; i < 2; i++) {
+        glSamplerParameteri(samplers[i], GL_TEXTURE_MIN_FILTER, i == 0 ? GL_LINEAR : GL_NEAREST);
+        glSamplerParameteri(samplers[i], GL_TEXTURE_MAG_FILTER, i == 0 ? GL_LINEAR : GL_NEAREST);
+        glSamplerParameteri(samplers[i], GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glSamplerParameteri(samplers[i], GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    glSamplerParameteri(r->sampler_compare, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glSamplerParameteri(r->sampler_compare, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    r->shadow_size = size;
+    return gl_check("creating the shadow maps");
+}
+
+void gl_shadows_draw(lucent_renderer *r)
+{
+    glUseProgram(r->shadow_program);
+    GLint loc = glGetUniformLocation(r->shadow_program, "u_light_mvp");
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r->shadow_fbo);
+    glViewport(0, 0, r->shadow_size, r->shadow_size);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.5f, 2.0f);
+    for (int i = 0; i < r->light_count; i++) {
+        const gl_light *g = &r->lights[i];
+        if (g->layer < 0) continue;
+        float m[16];
+        gl_mat4_to_float(g->matrix, m);
+        glUniformMatrix4fv(loc, 1, GL_FALSE, m);
+        glNamedFramebufferTextureLayer(r->shadow_fbo, GL_DEPTH_ATTACHMENT, r->shadow_tex, 0, g->layer);
+        glClearNamedFramebufferfv(r->shadow_fbo, GL_DEPTH, 0, (const float[1]){1});
+        for (int o = 0; o < r->scene->object_count; o++) {
+            if (!r->scene->objects[o].visible) continue;
+            glBindVertexArray(r->meshes[o].vao);
+            glDrawElements(GL_TRIANGLES, r->meshes[o].index_count, GL_UNSIGNED_INT, NULL);
+        }
+    }
+    glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+void gl_shadows_free(lucent_renderer *r)
+{
+    if (r->shadow_tex) glDeleteTextures(1, &r->shadow_tex);
+    if (r->shadow_fbo) glDeleteFramebuffers(1, &r->shadow_fbo);
+    if (r->sampler_compare) glDeleteSamplers(1, &r->sampler_compare);
+    if (r->sampler_raw) glDeleteSamplers(1, &r->sampler_raw);
+    r->shadow_tex = r->shadow_fbo = r->sampler_compare = r->sampler_raw = 0;
+}

@@ -1,0 +1,348 @@
+/* GL tests (label gl): the renderer on llvmpipe. The CDRF and Lambert passes against the CPU shading
+ * reference (src/gl/reference.c) at every covered pixel; symmetry of a sphere lit along the view
+ * axis; translucency through a thin disc lit from behind (brighter, and red for skin); timings,
+ * masks, rebuilds; context and shader errors that name their cause. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "gl/reference.h"
+#include "gl/renderer_internal.h"
+#include "lucent/render.h"
+#include "test.h"
+
+static lucent_gl_context *g_ctx;
+
+static lucent_gl_context *context(void)
+{
+    if (!g_ctx) CHECK_OK(lucent_gl_create(NULL, &g_ctx));
+    return g_ctx;
+}
+
+static lucent_scene *scene_from(const char *json)
+{
+    lucent_scene *sc = NULL;
+    CHECK_OK(lucent_scene_parse(json, "test.json", NULL, NULL, &sc));
+    return sc;
+}
+
+static lucent_renderer *renderer_of(const lucent_scene *sc)
+{
+    lucent_renderer *r = NULL;
+    if (sc && context()) CHECK_OK(lucent_renderer_create(g_ctx, sc, NULL, &r));
+    return r;
+}
+
+/* ---- the CDRF and Lambert passes against the CPU reference ---- */
+
+/* A torus (positive and near-zero mean curvature), skin with an explicit sigma0 large enough that
+ * sigma = sigma0 kappa spans [0, 3]; one directional light without shadows plus an environment. */
+static const char k_torus[] =
+    "{\"camera\": {\"position\": [0, 14, 22], \"target\": [0, 0, 0], \"fov_y\": 40},"
+    " \"lights\": [{\"type\": \"directional\", \"direction\": [0.8, -0.5, -0.3], \"intensity\": 3, \"shadows\": false},"
+    "              {\"type\": \"environment\", \"intensity\": 0.05}],"
+    " \"objects\": [{\"mesh\": {\"primitive\": \"torus\", \"major_radius\": 6, \"radius\": 2.5, \"u_count\": 96,"
+    "               \"v_count\": 48}, \"material\": \"skin1\", \"sigma0\": [9, 5, 2.5], \"roughness\": 0.35}],"
+    " \"render\": {\"width\": 96, \"height\": 96, \"method\": \"cdrf\", \"shadow_map_size\": 256}}";
+
+/* Max |GPU - CPU| over the covered pixels; the CPU gets the GPU's own normal, curvature, position. */
+static double shading_error(lucent_renderer *r, const lucent_scene *sc, const lucent_render_settings *s,
+                            const lucent_image *lut, double *max_sigma)
+{
+    lucent_render_result res;
+    lucent_image *nk = NULL, *pos = NULL;
+    double worst = -1;
+    CHECK_OK(lucent_render(r, s, &res));
+    CHECK_OK(gl_renderer_read_aov(r, 0, &nk));
+    CHECK_OK(gl_renderer_read_aov(r, 1, &pos));
+    const lucent_scene_object *o = &sc->objects[0];
+    gl_ref_material m = {.roughness = o->roughness, .f0 = o->specular_f0};
+    for (int c = 0; c < 3; c++) m.albedo[c] = o->albedo[c], m.sigma0[c] = o->sigma0[c];
+    for (size_t i = 0; res.image && nk && pos && i < (size_t)s->width * (size_t)s->height; i++) {
+        if (res.mask->data[i] < 0.5f) continue;
+        gl_ref_point p = {.curvature = nk->data[4 * i + 3]};
+        for (int c = 0; c < 3; c++) p.position[c] = pos->data[4 * i + c], p.normal[c] = nk->data[4 * i + c];
+        double d[3], sp[3];
+        gl_ref_shade(sc, s->method, s->cdrf_variant, s->cdrf_lut ? lut : NULL, 3.0, &m, &p, d, sp);
+        for (int c = 0; c < 3; c++) worst = fmax(worst, fabs(res.image->data[3 * i + c] - (d[c] + sp[c])));
+        *max_sigma = fmax(*max_sigma, m.sigma0[0] * p.curvature);
+    }
+    lucent_image_destroy(nk);
+    lucent_image_destroy(pos);
+    lucent_render_result_free(&res);
+    return worst;
+}
+
+/* Expected: the CPU reference gl_ref_shade (double precision, written apart from scene.frag.glsl)
+ * with the LUT read bilinearly from a table built on the CPU, or the exact function
+ * (lucent_cdrf_kubo, lucent_cdrf_collomb) for the closed form. */
+TEST(cdrf_and_lambert_equal_cpu_reference)
+{
+    lucent_scene *sc = scene_from(k_torus);
+    lucent_renderer *r = renderer_of(sc);
+    if (!r) return lucent_scene_destroy(sc);
+    gl_renderer_set_aov(r, true);
+    static const struct { lucent_render_method m; lucent_cdrf_variant v; bool lut; } cases[] = {
+        {LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, true},     {LUCENT_METHOD_CDRF, LUCENT_CDRF_COLLOMB, true},
+        {LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, false},    {LUCENT_METHOD_CDRF, LUCENT_CDRF_COLLOMB, false},
+        {LUCENT_METHOD_LAMBERT, LUCENT_CDRF_KUBO, false}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        lucent_render_settings s = sc->render;
+        s.method = cases[k].m, s.cdrf_variant = cases[k].v, s.cdrf_lut = cases[k].lut;
+        lucent_cdrf_lut_desc ld = lucent_cdrf_lut_defaults();
+        ld.variant = cases[k].v;
+        lucent_image *lut = NULL;
+        CHECK_OK(lucent_cdrf_lut_build(&ld, &lut));
+        double max_sigma = 0, err = shading_error(r, sc, &s, lut, &max_sigma);
+        CHECK_MSG(err >= 0 && err <= 1e-3, "%s %s %s: max |GPU - CPU| = %.3g", lucent_render_method_name(s.method),
+                  lucent_cdrf_variant_name(s.cdrf_variant), s.cdrf_lut ? "LUT" : "closed form", err);
+        printf("     %s %s %s: max |GPU - CPU| = %.3g (sigma up to %.2f)\n", lucent_render_method_name(s.method),
+               lucent_cdrf_variant_name(s.cdrf_variant), s.cdrf_lut ? "LUT" : "closed form", err, max_sigma);
+        if (k == 0) CHECK_MSG(max_sigma > 1.5, "the torus exercises sigma up to %.2f only", max_sigma);
+        lucent_image_destroy(lut);
+    }
+    lucent_renderer_destroy(r);
+    lucent_scene_destroy(sc);
+}
+
+/* ---- symmetry ---- */
+
+/* An icosphere (mirror-symmetric about the coordinate planes) seen and lit along the z axis. */
+static const char k_sphere[] =
+    "{\"camera\": {\"position\": [0, 0, 60], \"target\": [0, 0, 0], \"fov_y\": 30},"
+    " \"lights\": [{\"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 3},"
+    "              {\"type\": \"environment\", \"intensity\": 0.05}],"
+    " \"objects\": [{\"mesh\": {\"primitive\": \"icosphere\", \"radius\": 10, \"subdivisions\": 4},"
+    "               \"material\": \"skin1\", \"sigma0\": [3, 2, 1]}],"
+    " \"render\": {\"width\": 64, \"height\": 64, \"shadow_map_size\": 256, \"taps\": 17}}";
+
+/* Largest |I(x, y) - I(mirror)| over both mirrors, relative to the image's largest value. */
+static double asymmetry(const lucent_image *img)
+{
+    double worst = 0, peak = 1e-30;
+    for (int y = 0; y < img->height; y++)
+        for (int x = 0; x < img->width; x++)
+            for (int c = 0; c < 3; c++) {
+                double v = lucent_image_get(img, x, y, c);
+                peak = fmax(peak, v);
+                worst = fmax(worst, fabs(v - lucent_image_get(img, img->width - 1 - x, y, c)));
+                worst = fmax(worst, fabs(v - lucent_image_get(img, x, img->height - 1 - y, c)));
+            }
+    return worst / peak;
+}
+
+/* Expected: a scene symmetric about the x = 0 and y = 0 planes renders symmetric (analytic fact);
+ * the tolerance (1e-3 of the peak) allows float rounding in the rasteriser. */
+TEST(sphere_lit_along_view_axis_is_symmetric)
+{
+    lucent_scene *sc = scene_from(k_sphere);
+    lucent_renderer *r = renderer_of(sc);
+    for (int m = 0; r && m < LUCENT_METHOD_COUNT; m++) {
+        lucent_render_settings s = sc->render;
+        s.method = (lucent_render_method)m;
+        lucent_render_result res;
+        CHECK_OK(lucent_render(r, &s, &res));
+        double a = res.image ? asymmetry(res.image) : 1;
+        CHECK_MSG(a <= 1e-3, "%s: asymmetry %.3g of the peak", lucent_render_method_name(s.method), a);
+        printf("     %s: asymmetry %.2g of the peak\n", lucent_render_method_name(s.method), a);
+        CHECK(res.mask && lucent_image_get(res.mask, 0, 0, 0) == 0 && lucent_image_get(res.mask, 32, 32, 0) == 1);
+        lucent_render_result_free(&res);
+    }
+    lucent_renderer_destroy(r);
+    lucent_scene_destroy(sc);
+}
+
+/* ---- translucency ---- */
+
+/* A thin disc (an ellipsoid 50 x 50 x 4 mm) of skin, seen from the front, lit from straight behind. */
+static const char k_slab[] =
+    "{\"camera\": {\"position\": [0, 0, 80], \"target\": [0, 0, 0], \"fov_y\": 40},"
+    " \"lights\": [{\"type\": \"directional\", \"direction\": [0, 0, 1], \"intensity\": 3},"
+    "              {\"type\": \"environment\", \"intensity\": 0.02}],"
+    " \"objects\": [{\"mesh\": {\"primitive\": \"ellipsoid\", \"axes\": [25, 25, 2], \"u_count\": 64, \"v_count\": 32},"
+    "               \"material\": \"skin1\", \"sigma0\": [3.5, 2.3, 1.5]}],"
+    " \"render\": {\"width\": 64, \"height\": 64, \"shadow_map_size\": 512, \"taps\": 17}}";
+
+/* Mean radiance over the disc's central pixels (within 12 mm of the axis). */
+static void centre_mean(lucent_renderer *r, const lucent_render_settings *s, double dest[3])
+{
+    lucent_render_result res;
+    dest[0] = dest[1] = dest[2] = 0;
+    CHECK_OK(lucent_render(r, s, &res));
+    int n = 0;
+    for (int y = 20; res.image && y < 44; y++)
+        for (int x = 20; x < 44; x++, n++)
+            for (int c = 0; c < 3; c++) dest[c] += lucent_image_get(res.image, x, y, c);
+    for (int c = 0; c < 3 && n; c++) dest[c] /= n;
+    lucent_render_result_free(&res);
+}
+
+/* Expected: light through a thin part adds to what the visible side shows (physics: the disc is lit
+ * only from behind), and skin passes red far better than blue (Skin1's absorption rises from red to
+ * blue, so its profile's tail, which gives the transmittance, is longest in red). */
+TEST(translucency_brightens_a_backlit_disc_in_red)
+{
+    lucent_scene *sc = scene_from(k_slab);
+    lucent_renderer *r = renderer_of(sc);
+    if (r) {
+        lucent_render_settings s = sc->render;
+        double on[3], off[3], cdrf[3], cdrft[3];
+        s.method = LUCENT_METHOD_SSSS;
+        s.translucency = true;
+        centre_mean(r, &s, on);
+        s.translucency = false;
+        centre_mean(r, &s, off);
+        s.method = LUCENT_METHOD_CDRF;
+        centre_mean(r, &s, cdrf);
+        s.method = LUCENT_METHOD_CDRF_TRANSLUCENCY;
+        centre_mean(r, &s, cdrft);
+        double t[3] = {on[0] - off[0], on[1] - off[1], on[2] - off[2]};
+        printf("     ssss: translucency on %.4f %.4f %.4f, off %.4f %.4f %.4f; transmitted R/G/B %.4f %.4f %.4f\n",
+               on[0], on[1], on[2], off[0], off[1], off[2], t[0], t[1], t[2]);
+        printf("     cdrf %.4f %.4f %.4f, cdrf+translucency %.4f %.4f %.4f\n", cdrf[0], cdrf[1], cdrf[2], cdrft[0],
+               cdrft[1], cdrft[2]);
+        CHECK_MSG(on[0] + on[1] + on[2] > 1.5 * (off[0] + off[1] + off[2]), "translucency on is not brighter");
+        CHECK_MSG(t[0] > 3 * t[1] && t[1] > t[2] && t[2] >= 0, "transmitted light is not red: %g %g %g", t[0], t[1],
+                  t[2]);
+        CHECK_MSG(cdrft[0] > cdrf[0] + 0.5 * t[0], "cdrf+translucency adds no red through the disc");
+    }
+    lucent_renderer_destroy(r);
+    lucent_scene_destroy(sc);
+}
+
+/* ---- timings, rebuilds, settings ---- */
+
+TEST(timings_name_every_pass)
+{
+    lucent_scene *sc = scene_from(k_sphere);
+    lucent_renderer *r = renderer_of(sc);
+    if (r) {
+        lucent_render_settings s = sc->render;
+        s.kernel_model = LUCENT_KERNEL_SVD, s.kernel_rank = 2;
+        lucent_render_result res;
+        CHECK_OK(lucent_render(r, &s, &res));
+        static const char *const names[] = {"shadow", "geometry", "blur h1", "blur v1", "blur h2", "blur v2", "compose"};
+        CHECK(res.times.pass_count == 7);
+        double sum = 0;
+        for (int i = 0; i < res.times.pass_count && i < 7; i++) {
+            CHECK_MSG(!strcmp(res.times.pass_name[i], names[i]), "pass %d is \"%s\"", i, res.times.pass_name[i]);
+            CHECK(res.times.pass_ms[i] >= 0 && isfinite(res.times.pass_ms[i]));
+            sum += res.times.pass_ms[i];
+        }
+        CHECK_NEAR(sum, res.times.gpu_ms, 1e-6 * fmax(1, sum)); /* consecutive timestamps add up */
+        CHECK(res.times.blur_ms > 0 || res.times.gpu_ms == 0);
+        lucent_render_result_free(&res);
+    }
+    lucent_renderer_destroy(r);
+    lucent_scene_destroy(sc);
+}
+
+/* Settings change from call to call; only what they touch is rebuilt (the kernel's taps survive a
+ * Lambert frame), and the same settings give the same image again (a deterministic pipeline). */
+TEST(settings_change_between_frames)
+{
+    lucent_scene *sc = scene_from(k_sphere);
+    lucent_renderer *r = renderer_of(sc);
+    if (r) {
+        lucent_render_settings s = sc->render, lam = s, small = s;
+        lam.method = LUCENT_METHOD_LAMBERT;
+        small.width = 40, small.height = 24;
+        lucent_render_result a, b, c, d;
+        CHECK_OK(lucent_render(r, &s, &a));
+        const lucent_taps *taps = r->materials[0].taps;
+        CHECK_OK(lucent_render(r, &lam, &b));
+        CHECK_OK(lucent_render(r, &small, &d));
+        CHECK(d.image && d.image->width == 40 && d.image->height == 24);
+        CHECK_OK(lucent_render(r, &s, &c));
+        CHECK(r->materials[0].taps == taps);
+        CHECK(c.times.setup_ms >= 0);
+        CHECK(a.image && c.image && !memcmp(a.image->data, c.image->data, lucent_image_value_count(a.image) * 4));
+        CHECK(b.image && a.image && memcmp(a.image->data, b.image->data, lucent_image_value_count(a.image) * 4));
+        lucent_render_result_free(&a), lucent_render_result_free(&b), lucent_render_result_free(&c);
+        lucent_render_result_free(&d);
+        lucent_render_settings bad = s;
+        bad.taps = 16;
+        CHECK_ERR(lucent_render(r, &bad, &a), LUCENT_ERR_INVALID_ARGUMENT, "taps must be odd");
+        bad = s, bad.width = 0;
+        CHECK_ERR(lucent_render(r, &bad, &a), LUCENT_ERR_INVALID_ARGUMENT, "width and height");
+        s.sigma0_source = LUCENT_SIGMA0_DIFFUSE, s.method = LUCENT_METHOD_CDRF;
+        sc->objects[0].sigma0_set = false;
+        CHECK_OK(lucent_render(r, &s, &a));
+        lucent_render_object_info info;
+        CHECK_OK(lucent_renderer_object_info(r, 0, &info));
+        CHECK_NEAR(info.sigma0[0], info.albedo[0] * info.albedo[0], 1e-12); /* Kubo Eq. 6 */
+        CHECK(!strcmp(info.sigma0_from, "diffuse"));
+        lucent_render_result_free(&a);
+    }
+    lucent_renderer_destroy(r);
+    lucent_scene_destroy(sc);
+}
+
+/* ---- errors ---- */
+
+TEST(context_errors_name_their_cause)
+{
+    lucent_gl_context *c = NULL;
+    setenv("LUCENT_GL_PLATFORM", "teapot", 1);
+    CHECK_ERR(lucent_gl_create(NULL, &c), LUCENT_ERR_GL, "LUCENT_GL_PLATFORM", "unknown GL platform 'teapot'");
+    CHECK(c == NULL);
+    CHECK_OK(lucent_gl_create(&(lucent_gl_desc){.ignore_env = true}, &c));
+    lucent_gl_destroy(c), c = NULL;
+    unsetenv("LUCENT_GL_PLATFORM");
+    CHECK_ERR(lucent_gl_create(&(lucent_gl_desc){.platform = LUCENT_GL_DEVICE, .device = 99}, &c), LUCENT_ERR_GL,
+              "EGL device 99 not found");
+    setenv("LUCENT_GL_DEVICE", "0", 1);
+    CHECK_ERR(lucent_gl_create(NULL, &c), LUCENT_ERR_GL, "LUCENT_GL_DEVICE");
+    unsetenv("LUCENT_GL_DEVICE");
+    const char *display = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
+    if (!display && !wayland)
+        CHECK_ERR(lucent_gl_create(&(lucent_gl_desc){.platform = LUCENT_GL_WINDOW}, &c), LUCENT_ERR_GL,
+                  "no OpenGL window");
+    if (context()) { /* contexts share EGL's display: ending one must not end another */
+        CHECK_OK(lucent_gl_create(&(lucent_gl_desc){.platform = LUCENT_GL_SURFACELESS}, &c));
+        lucent_gl_destroy(c);
+        CHECK_OK(lucent_gl_make_current(g_ctx));
+        lucent_gl_info info;
+        lucent_gl_get_info(g_ctx, &info);
+        CHECK(info.renderer[0] && info.vendor[0] && strstr(info.version, "4.") && info.platform[0]);
+        printf("     GL: %s | %s | %s (%s)\n", info.renderer, info.vendor, info.version, info.platform);
+    }
+}
+
+static const char *broken_sources(const char *name, void *user)
+{
+    (void)user;
+    if (!strcmp(name, "main.frag.glsl"))
+        return "// line 1\n#include \"part.glsl\"\nout vec4 o;\nvoid main()\n{\n    o = vec4(undefined_thing);\n}\n";
+    if (!strcmp(name, "part.glsl")) return "// part, line 1\nfloat part_ok(float x) { return x; }\n";
+    if (!strcmp(name, "bad_part.frag.glsl")) return "#include \"bad.glsl\"\nout vec4 o;\nvoid main() { o = vec4(1); }\n";
+    if (!strcmp(name, "bad.glsl")) return "// bad, line 1\n// line 2\nfloat f() { return nonsense; }\n";
+    return gl_embedded_source(name, NULL);
+}
+
+/* Expected: the error's file and line as written in the (made-up) sources above. */
+TEST(shader_errors_name_file_and_line)
+{
+    if (!context()) return;
+    CHECK_OK(lucent_gl_make_current(g_ctx)); /* another test destroyed its own context */
+    GLuint p = 0;
+    CHECK_ERR(gl_program_build(broken_sources, NULL, "fullscreen.vert.glsl", "main.frag.glsl", "#define X 1\n", &p),
+              LUCENT_ERR_GL, "main.frag.glsl does not compile", "main.frag.glsl:6");
+    printf("     %s\n", lucent_last_error());
+    CHECK_ERR(gl_program_build(broken_sources, NULL, "fullscreen.vert.glsl", "bad_part.frag.glsl", NULL, &p),
+              LUCENT_ERR_GL, "bad.glsl:3");
+    CHECK_ERR(gl_program_build(broken_sources, NULL, "fullscreen.vert.glsl", "missing.frag.glsl", NULL, &p),
+              LUCENT_ERR_GL, "missing.frag.glsl", "no such file");
+    CHECK(p == 0);
+}
+
+int main(int argc, char **argv)
+{
+    static const test_case cases[] = {
+        TEST_ENTRY(cdrf_and_lambert_equal_cpu_reference), TEST_ENTRY(sphere_lit_along_view_axis_is_symmetric),
+        TEST_ENTRY(translucency_brightens_a_backlit_disc_in_red), TEST_ENTRY(timings_name_every_pass),
+        TEST_ENTRY(settings_change_between_frames), TEST_ENTRY(context_errors_name_their_cause),
+        TEST_ENTRY(shader_errors_name_file_and_line)};
+    int rc = test_run(cases, (int)(sizeof cases / sizeof cases[0]), argc, argv);
+    lucent_gl_destroy(g_ctx);
+    return rc;
+}
