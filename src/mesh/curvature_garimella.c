@@ -9,18 +9,18 @@
 
 void mesh_garimella_vertex(const mesh_vertex_job *j, uint32_t v)
 {
-    const double *P = j->mesh->positions, *n = j->normals + 3 * v;
+    const double *P = j->mesh->positions, n[3] = {j->normals[3 * v], j->normals[3 * v + 1], j->normals[3 * v + 2]};
     lucent_curvature *o = j->out;
     double sum = 0, wsum = 0, e1[3], e2[3], x[3], d[3];
     for (uint32_t a = j->adj->start[v]; a < j->adj->start[v + 1]; a++) {
-        const uint32_t *t = j->mesh->faces + 3 * j->adj->face[a];
-        int c = j->adj->corner[a];
-        v3_sub(P + 3 * t[(c + 1) % 3], P + 3 * v, e1), v3_sub(P + 3 * t[(c + 2) % 3], P + 3 * v, e2);
+        uint32_t other[2];
+        mesh_slot_others(j->mesh->faces, j->adj->corner[a], other, other + 1);
+        v3_sub(P + 3 * other[0], P + 3 * v, e1), v3_sub(P + 3 * other[1], P + 3 * v, e2);
         v3_cross(e1, e2, x);
         double area = 0.5 * v3_len(x);
         if (!(area > 0)) continue;
         for (int k = 1; k <= 2; k++) {
-            v3_sub(P + 3 * v, P + 3 * t[(c + k) % 3], d);
+            v3_sub(P + 3 * v, P + 3 * other[k - 1], d);
             sum += area * 2 * v3_dot(d, n) / v3_dot(d, d), wsum += area;
         }
     }

@@ -26,12 +26,12 @@ double mesh_angle_deficit_gauss(const lucent_mesh *mesh, const mesh_adjacency *a
     double sum = 0, ca[3], e1[3], e2[3], x[3];
     *area = 0;
     for (uint32_t a = adj->start[v]; a < adj->start[v + 1]; a++) {
-        const uint32_t *t = mesh->faces + 3 * adj->face[a];
-        int c = adj->corner[a];
-        mesh_corner_areas(mesh, adj->face[a], ca);
-        *area += ca[c];
-        v3_sub(P + 3 * t[(c + 1) % 3], P + 3 * v, e1);
-        v3_sub(P + 3 * t[(c + 2) % 3], P + 3 * v, e2);
+        uint32_t i = adj->corner[a], j, k;
+        mesh_slot_others(mesh->faces, i, &j, &k);
+        mesh_corner_areas(mesh, i / 3, ca);
+        *area += ca[i % 3];
+        v3_sub(P + 3 * j, P + 3 * v, e1);
+        v3_sub(P + 3 * k, P + 3 * v, e2);
         v3_cross(e1, e2, x);
         double sn = v3_len(x);
         if (sn > 0) sum += atan2(sn, v3_dot(e1, e2));
@@ -45,9 +45,9 @@ static void cot_laplacian(const mesh_vertex_job *j, uint32_t v, double *lap)
     const double *P = j->mesh->positions;
     lap[0] = lap[1] = lap[2] = 0;
     for (uint32_t a = j->adj->start[v]; a < j->adj->start[v + 1]; a++) {
-        const uint32_t *t = j->mesh->faces + 3 * j->adj->face[a];
-        int c = j->adj->corner[a];
-        const double *pi = P + 3 * v, *pj = P + 3 * t[(c + 1) % 3], *pk = P + 3 * t[(c + 2) % 3];
+        uint32_t vj, vk;
+        mesh_slot_others(j->mesh->faces, j->adj->corner[a], &vj, &vk);
+        const double *pi = P + 3 * v, *pj = P + 3 * vj, *pk = P + 3 * vk;
         double dij[3], dik[3], kj[3], kk[3], jk[3], cot_j, cot_k;
         v3_sub(pi, pj, dij), v3_sub(pi, pk, dik);
         v3_sub(pk, pj, jk), v3_sub(pi, pk, kk);
@@ -71,7 +71,8 @@ void mesh_meyer_vertex(const mesh_vertex_job *j, uint32_t v)
     cot_laplacian(j, v, lap);
     /* K(x) = lap / (2 A) = 2 H n: H = |lap| / (4 A), signed by the side of the normal. */
     double H = v3_len(lap) / (4 * area);
-    if (v3_dot(lap, j->normals + 3 * v) < 0) H = -H;
+    const float *n = j->normals + 3 * v;
+    if (lap[0] * n[0] + lap[1] * n[1] + lap[2] * n[2] < 0) H = -H;
     double disc = sqrt(fmax(0, H * H - K));
     o->mean[v] = H, o->gauss[v] = K, o->k1[v] = H + disc, o->k2[v] = H - disc;
 }
