@@ -223,6 +223,11 @@ TEST(units_smoothing_directions)
     CHECK(max_rel(&c, c.mean, 1.0) < 1e-4);
     CHECK(max_rel(&c, c.gauss, 1.0) < 2e-4);
     lucent_curvature_free(&c);
+    for (int method = 0; method < 3; method++) { /* unsmoothed: Rusinkiewicz scales in its last pass */
+        CHECK_OK(lucent_mesh_curvature(m, &(lucent_curvature_desc){.method = method, .mm_per_unit = 0.5}, &c));
+        CHECK(max_rel(&c, c.mean, 1.0) < 2e-3 && max_rel(&c, c.k1, 1.0) < 0.05 && max_rel(&c, c.gauss, 1.0) < 0.01);
+        lucent_curvature_free(&c);
+    }
     lucent_mesh_destroy(m);
     CHECK_OK(lucent_mesh_primitive(&(lucent_primitive_desc){.kind = LUCENT_PRIMITIVE_TORUS}, &m));
     c = curvature_of(m, LUCENT_CURVATURE_RUSINKIEWICZ);

@@ -69,10 +69,11 @@ static lucent_status finish_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
     return LUCENT_OK;
 }
 
-static lucent_status finish(lucent_curvature *c, double mm_per_unit, lucent_pool *pool)
+/* scaled: the estimator has already scaled and checked the values. */
+static lucent_status finish(lucent_curvature *c, double mm_per_unit, int scaled, lucent_pool *pool)
 {
     finish_job job = {c, 1 / mm_per_unit};
-    lucent_status s = lucent_parallel_for(pool, c->count, 16384, finish_chunk, &job);
+    lucent_status s = scaled ? LUCENT_OK : lucent_parallel_for(pool, c->count, 16384, finish_chunk, &job);
     c->invalid_count = 0;
     for (size_t v = 0; v < c->count; v++) c->invalid_count += (c->flags[v] & LUCENT_CURVATURE_INVALID) != 0;
     return s;
@@ -116,8 +117,9 @@ static lucent_status estimate(const lucent_mesh *mesh, const lucent_curvature_de
     if (!fan.normals || (two_pass && !fan.pair)) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "curvature: out of memory");
     if (s == LUCENT_OK) s = mesh_fan_compute(mesh, &adj, d->pool, &fan);
     if (s == LUCENT_OK) {
-        if (d->method == LUCENT_CURVATURE_RUSINKIEWICZ)
-            s = mesh_curvature_rusinkiewicz(mesh, &adj, &fan, d->pool, d->fast, dest);
+        if (d->method == LUCENT_CURVATURE_RUSINKIEWICZ) /* scaled here unless smoothed after */
+            s = mesh_curvature_rusinkiewicz(mesh, &adj, &fan, d->pool, d->fast,
+                                            d->smooth_rings > 0 ? 1 : 1 / d->mm_per_unit, dest);
         else s = mesh_curvature_per_vertex(mesh, &adj, &fan, d->pool,
                                            d->method == LUCENT_CURVATURE_MEYER ? mesh_meyer_vertex
                                                                                : mesh_garimella_vertex, dest);
@@ -138,7 +140,8 @@ lucent_status lucent_mesh_curvature(const lucent_mesh *mesh, const lucent_curvat
                             "finite mm_per_unit");
     lucent_status s = alloc_curvature(mesh->vertex_count, dest);
     if (s == LUCENT_OK) s = estimate(mesh, &d, dest);
-    if (s == LUCENT_OK) s = finish(dest, d.mm_per_unit, d.pool);
+    int scaled = d.method == LUCENT_CURVATURE_RUSINKIEWICZ && d.smooth_rings == 0;
+    if (s == LUCENT_OK) s = finish(dest, d.mm_per_unit, scaled, d.pool);
     if (s != LUCENT_OK) lucent_curvature_free(dest);
     return s;
 }

@@ -30,23 +30,19 @@ static inline float dotf(const float *a, float x, float y, float z) { return a[0
  * goes linearly from kn (v's normal curvature along the edge) to kb (u's) over the edge length s,
  * about -(2 kn + kb)/3 s^2/2, as h = -k s^2/(1 + sqrt(1 - k^2 s^2)), k = (2 kn + kb)/3 (exact for a
  * circle). First the offsets and k as a fraction num/den (one division for kn, kb and k), ... */
-static void lift_offsets(const refine_job *j, uint32_t v, const uint32_t *nb, int count, lifted *L)
+static inline void lift_offset(const refine_job *j, uint32_t v, uint32_t u, lifted *L, uint32_t i)
 {
-    const mesh_principal *p = j->principal + v;
-    const double *P = j->mesh->positions, *o = P + 3 * (size_t)v;
-    for (int i = 0; i < count; i++) {
-        const double *x = P + 3 * (size_t)nb[i];
-        const mesh_principal *q = j->principal + nb[i];
-        float ex = (float)(x[0] - o[0]), ey = (float)(x[1] - o[1]), ez = (float)(x[2] - o[2]);
-        float du = dotf(p->d1, ex, ey, ez), dv = dotf(p->d2, ex, ey, ez), r2 = du * du + dv * dv;
-        float kn2 = p->k1 * du * du + p->k2 * dv * dv; /* kn r2 */
-        float a = dotf(q->d1, ex, ey, ez), b = dotf(q->d2, ex, ey, ez), s = a * a + b * b;
-        float kb = q->k1 * a * a + q->k2 * b * b;      /* kb s */
-        int own = (j->fan->flags[nb[i]] & LUCENT_CURVATURE_INVALID) != 0; /* no kb: kb = kn */
-        L->num[i] = own ? kn2 : s > 0 ? 2 * kn2 * s + kb * r2 : 2 * kn2;
-        L->den[i] = own ? r2 : s > 0 ? 3 * r2 * s : 3 * r2;
-        L->u[i] = du, L->v[i] = dv, L->r2[i] = r2;
-    }
+    const mesh_principal *p = j->principal + v, *q = j->principal + u;
+    const double *x = j->mesh->positions + 3 * (size_t)u, *o = j->mesh->positions + 3 * (size_t)v;
+    float ex = (float)(x[0] - o[0]), ey = (float)(x[1] - o[1]), ez = (float)(x[2] - o[2]);
+    float du = dotf(p->d1, ex, ey, ez), dv = dotf(p->d2, ex, ey, ez), r2 = du * du + dv * dv;
+    float kn2 = p->k1 * du * du + p->k2 * dv * dv; /* kn r2 */
+    float a = dotf(q->d1, ex, ey, ez), b = dotf(q->d2, ex, ey, ez), s = a * a + b * b;
+    float kb = q->k1 * a * a + q->k2 * b * b;      /* kb s */
+    int own = (j->fan->flags[u] & LUCENT_CURVATURE_INVALID) != 0; /* no kb: kb = kn */
+    L->num[i] = own ? kn2 : s > 0 ? 2 * kn2 * s + kb * r2 : 2 * kn2;
+    L->den[i] = own ? r2 : s > 0 ? 3 * r2 * s : 3 * r2;
+    L->u[i] = du, L->v[i] = dv, L->r2[i] = r2;
 }
 
 /* ... then the heights: a separate loop, so that its divisions and roots overlap. */
@@ -74,25 +70,30 @@ static void lifted_max_normal(const refine_job *j, uint32_t v, float m[3])
 {
     const uint32_t *slot = j->adj->corner + j->adj->start[v];
     const uint8_t *pair = j->fan->pair + j->adj->start[v];
-    uint32_t count = j->adj->start[v + 1] - j->adj->start[v], nb[LIFT_MAX], prev, other[MESH_FAN_MAX];
-    int extra = 0;
+    uint32_t count = j->adj->start[v + 1] - j->adj->start[v], prev, other[MESH_FAN_MAX];
+    uint32_t extra = 0;
     lifted L;
     m[0] = m[1] = m[2] = 0;
     if (count == 0) return;
     if (count > MESH_FAN_MAX) { /* high valence (rare): each face on its own */
         for (uint32_t a = 0; a < count; a++) {
-            uint32_t two[2];
-            mesh_slot_others(j->mesh->faces, slot[a], two, two + 1);
-            lift_offsets(j, v, two, 2, &L), lift_heights(&L, 2), add_corner(&L, 0, 1, m);
+            uint32_t next;
+            mesh_slot_others(j->mesh->faces, slot[a], &next, &prev);
+            lift_offset(j, v, next, &L, 0), lift_offset(j, v, prev, &L, 1), lift_heights(&L, 2), add_corner(&L, 0, 1, m);
         }
         return;
     }
-    for (uint32_t a = 0; a < count; a++) {
-        mesh_slot_others(j->mesh->faces, slot[a], nb + a, &prev);
-        if (pair[a] == MESH_UNPAIRED) nb[count + extra] = prev, other[a] = count + extra++;
-        else other[a] = pair[a];
+    for (uint32_t a = 0; a < count; a++) { /* few loops: each exit costs a misprediction */
+        uint32_t next;
+        mesh_slot_others(j->mesh->faces, slot[a], &next, &prev);
+        lift_offset(j, v, next, &L, a);
+        if (pair[a] != MESH_UNPAIRED) {
+            other[a] = pair[a];
+        } else {
+            other[a] = count + extra++;
+            lift_offset(j, v, prev, &L, other[a]);
+        }
     }
-    lift_offsets(j, v, nb, (int)count + extra, &L);
     lift_heights(&L, (int)count + extra);
     for (uint32_t a = 0; a < count; a++) add_corner(&L, (int)a, (int)other[a], m);
 }

@@ -12,14 +12,14 @@
 /* One face: its unit tangent t (along edge 0) and normal n, b = n x t completing the frame;
  * the tensor [[e, f], [f, g]] in (t, b) kept as mean = (e + g)/2, diff = (e - g)/2 and off = f,
  * because turning the frame by an angle phi keeps the mean and turns (diff, off) by 2 phi;
- * the three corner areas; edges 0 and 1 in (t, b), (u0, 0) and (u1, w1) (edge 2 closes the
- * triangle), which is all the second fit needs of the geometry. Floats, one 64-byte line:
- * the per-vertex gather reads them at random. */
+ * the three corner areas; edges 0 and 1 in (t, b) in units of edge 0's length L, (1, 0) and
+ * (u1, w1) (edge 2 closes the triangle), and 1/L: all the second fit needs of the geometry.
+ * Floats, one 64-byte line: the per-vertex gather reads them at random. */
 typedef struct face_rec {
     float t[3], n[3];
     float mean, diff, off;
     float corner[3];
-    float u0, u1, w1, unused;
+    float u1, w1, inv_len, unused;
 } face_rec;
 
 /* Per adjacency slot, written by the first pass's gather: the corner weight w and the turn of
@@ -29,8 +29,6 @@ typedef struct face_rec {
 typedef struct slot_turn {
     float w, wc, ws;
 } slot_turn;
-
-enum { PREFETCH_AHEAD = 8 };
 
 typedef struct rus_job {
     const lucent_mesh *mesh;
@@ -42,57 +40,49 @@ typedef struct rus_job {
     mesh_principal *principal;  /* the first of two passes writes here, the last to out */
     lucent_curvature *out;
     const float *frame_normals; /* the second pass: the first pass's normals, for the frames */
+    double scale;               /* 1/mm_per_unit */
     int second;
 } rus_job;
 
-/* Solves the symmetric system [[a, b, 0], [b, a + c, b], [0, b, c]] x = m (eq. 4's normal
- * equations). det = (a + c)(a c - b^2) >= 0; returns 0 when the face is degenerate. */
-static int solve_fit(double a, double b, double c, const double *m, double *x)
-{
-    double det = (a + c) * (a * c - b * b), scale = (a + c) * (a + c) * (a + c);
-    if (!(det > 1e-12 * scale)) return 0;
-    double i00 = (a + c) * c - b * b, i01 = -b * c, i02 = b * b;
-    double i11 = a * c, i12 = -a * b, i22 = a * (a + c) - b * b;
-    double inv = 1 / det;
-    x[0] = (i00 * m[0] + i01 * m[1] + i02 * m[2]) * inv;
-    x[1] = (i01 * m[0] + i11 * m[1] + i12 * m[2]) * inv;
-    x[2] = (i02 * m[0] + i12 * m[1] + i22 * m[2]) * inv;
-    return 1;
-}
+static inline float dotf(const float *a, const float *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-/* Fits the face's tensor to the normal differences along its edges (eq. 4): edge k is
- * (u[k], w[k]) in (t, b), its normal difference (du[k], dw[k]); edge k is opposite corner k. */
-static int fit_tensor(double u0, double u1, double w1, const double *t, const double *b, const float *n0,
+/* Fits the face's second fundamental form to the normal differences along its edges (eq. 4):
+ * edge k (opposite corner k) is (uk, wk) in (t, b), in units of edge 0's length (so the
+ * arithmetic is scale-free), its normal difference (duk, dwk); m = sum over edges of
+ * (du u, du w + dw u, dw w). The normal equations
+ * [[a, b, 0], [b, a + c, b], [0, b, c]] x = m are solved exactly (Cramer); their determinant
+ * is (a + c)(a c - b^2), and a c - b^2 = 3 (u0 w1)^2 by Lagrange's identity (every pair of edges
+ * spans twice the area), so it is computed without cancellation. Returns 0 when degenerate. */
+static int fit_tensor(float u1, float w1, float inv_len, const float *t, const float *b, const float *n0,
                       const float *n1, const float *n2, float *dest)
 {
-    double u[3] = {u0, u1, -u0 - u1}, w[3] = {0, w1, -w1}, x[3];
-    double t0 = n0[0] * t[0] + n0[1] * t[1] + n0[2] * t[2], b0 = n0[0] * b[0] + n0[1] * b[1] + n0[2] * b[2];
-    double t1 = n1[0] * t[0] + n1[1] * t[1] + n1[2] * t[2], b1 = n1[0] * b[0] + n1[1] * b[1] + n1[2] * b[2];
-    double t2 = n2[0] * t[0] + n2[1] * t[1] + n2[2] * t[2], b2 = n2[0] * b[0] + n2[1] * b[1] + n2[2] * b[2];
-    double du[3] = {t2 - t1, t0 - t2, t1 - t0}, dw[3] = {b2 - b1, b0 - b2, b1 - b0};
-    double a = 0, ab = 0, c = 0, m[3] = {0, 0, 0};
-    for (int k = 0; k < 3; k++) {
-        a += u[k] * u[k], ab += u[k] * w[k], c += w[k] * w[k];
-        m[0] += du[k] * u[k], m[1] += du[k] * w[k] + dw[k] * u[k], m[2] += dw[k] * w[k];
-    }
-    if (!solve_fit(a, ab, c, m, x)) return 0;
-    dest[0] = (float)(0.5 * (x[0] + x[2])), dest[1] = (float)(0.5 * (x[0] - x[2])), dest[2] = (float)x[1];
+    float u2 = -1 - u1; /* edges (1, 0), (u1, w1), (u2, -w1) */
+    float t0 = dotf(n0, t), t1 = dotf(n1, t), t2 = dotf(n2, t), b0 = dotf(n0, b), b1 = dotf(n1, b), b2 = dotf(n2, b);
+    float du0 = t2 - t1, du1 = t0 - t2, du2 = t1 - t0, dw0 = b2 - b1, dw1 = b0 - b2, dw2 = b1 - b0;
+    float a = 1 + u1 * u1 + u2 * u2, ab = w1 * (u1 - u2), c = 2 * w1 * w1;
+    float m0 = du0 + du1 * u1 + du2 * u2, m1 = w1 * (du1 - du2) + dw0 + dw1 * u1 + dw2 * u2, m2 = w1 * (dw1 - dw2);
+    float q = 3 * w1 * w1, s = a + c; /* a c - b^2, with u0 = 1 */
+    if (!(q > 1e-12f * s * s) || !(q < 1e30f)) return 0;
+    float i00 = q + c * c, i01 = -ab * c, i02 = ab * ab, i11 = a * c, i12 = -a * ab, i22 = q + a * a;
+    float inv = inv_len / (s * q); /* back to the mesh's units: curvature scales as 1/L */
+    float x0 = (i00 * m0 + i01 * m1 + i02 * m2) * inv, x1 = (i01 * m0 + i11 * m1 + i12 * m2) * inv;
+    float x2 = (i02 * m0 + i12 * m1 + i22 * m2) * inv;
+    dest[0] = 0.5f * (x0 + x2), dest[1] = 0.5f * (x0 - x2), dest[2] = x1;
     return 1;
 }
 
 /* Mixed Voronoi corner areas (Meyer et al. 2003, Fig. 4) from the squared edge lengths l[k]
- * (edge k opposite corner k) and the area: an obtuse corner gets half, the others a quarter;
- * else each corner the two triangles its circumcentre cuts off. */
+ * (edge k opposite corner k) and the area: each corner gets the part of the triangle nearer to it
+ * than to the others, s (ew of the other two corners), with sum ew = 16 area^2 > 0; when a corner
+ * is obtuse (its ew <= 0), it gets half and the others a quarter. Without branches: which corner
+ * is obtuse is as random as the mesh. */
 static void corner_areas(const double *l, double area, double *dest)
 {
     double ew0 = l[0] * (l[1] + l[2] - l[0]), ew1 = l[1] * (l[2] + l[0] - l[1]), ew2 = l[2] * (l[0] + l[1] - l[2]);
-    if (ew0 <= 0) dest[0] = 0.5 * area, dest[1] = dest[2] = 0.25 * area;
-    else if (ew1 <= 0) dest[1] = 0.5 * area, dest[0] = dest[2] = 0.25 * area;
-    else if (ew2 <= 0) dest[2] = 0.5 * area, dest[0] = dest[1] = 0.25 * area;
-    else {
-        double s = 0.5 * area / (ew0 + ew1 + ew2);
-        dest[0] = s * (ew1 + ew2), dest[1] = s * (ew2 + ew0), dest[2] = s * (ew0 + ew1);
-    }
+    int o0 = ew0 <= 0, o1 = ew1 <= 0, o2 = ew2 <= 0, any = o0 | o1 | o2;
+    double q = 0.25 * area * any, s = (1 - any) * 0.5 * area / (ew0 + ew1 + ew2);
+    dest[0] = q * (1 + o0) + s * (ew1 + ew2), dest[1] = q * (1 + o1) + s * (ew2 + ew0);
+    dest[2] = q * (1 + o2) + s * (ew0 + ew1);
 }
 
 /* First pass: frame, corner areas and edge coordinates from the positions, then the fit. */
@@ -100,31 +90,31 @@ static int face_first(const rus_job *j, const uint32_t *v, face_rec *r)
 {
     const double *P = j->mesh->positions, *p0 = P + 3 * (size_t)v[0], *p1 = P + 3 * (size_t)v[1];
     const double *p2 = P + 3 * (size_t)v[2];
-    double e0[3], e1[3], e2[3], x[3], l[3], corner[3], t[3], n[3], b[3];
+    double e0[3], e1[3], e2[3], x[3], l[3], corner[3];
     for (int k = 0; k < 3; k++) e0[k] = p2[k] - p1[k], e1[k] = p0[k] - p2[k], e2[k] = p1[k] - p0[k];
     v3_cross(e0, e1, x);
     l[0] = v3_dot(e0, e0), l[1] = v3_dot(e1, e1), l[2] = v3_dot(e2, e2);
     double x2 = v3_dot(x, x);
     if (!(x2 > 0) || !(l[0] > 0) || !isfinite(x2)) return 0;
-    double xl = sqrt(x2), len0 = sqrt(l[0]), in = 1 / xl, it = 1 / len0;
-    double u1 = v3_dot(e0, e1) * it, w1 = xl * it; /* e1 . t and e1 . b = |e0 x e1|/|e0| */
+    double xl = sqrt(x2), in = 1 / xl, il = 1 / l[0], it = sqrt(il);
     corner_areas(l, 0.5 * xl, corner);
-    for (int k = 0; k < 3; k++) t[k] = e0[k] * it, n[k] = x[k] * in;
-    v3_cross(n, t, b);
-    for (int k = 0; k < 3; k++) r->t[k] = (float)t[k], r->n[k] = (float)n[k], r->corner[k] = (float)corner[k];
-    r->u0 = (float)len0, r->u1 = (float)u1, r->w1 = (float)w1, r->unused = 0;
+    float t[3], n[3], b[3];
+    for (int k = 0; k < 3; k++) t[k] = (float)(e0[k] * it), n[k] = (float)(x[k] * in);
+    for (int k = 0; k < 3; k++) r->t[k] = t[k], r->n[k] = n[k], r->corner[k] = (float)corner[k];
+    b[0] = n[1] * t[2] - n[2] * t[1], b[1] = n[2] * t[0] - n[0] * t[2], b[2] = n[0] * t[1] - n[1] * t[0];
+    r->u1 = (float)(v3_dot(e0, e1) * il), r->w1 = (float)(xl * il), r->inv_len = (float)it, r->unused = 0;
     const float *N = j->normals;
-    return fit_tensor(len0, u1, w1, t, b, N + 3 * (size_t)v[0], N + 3 * (size_t)v[1], N + 3 * (size_t)v[2], &r->mean);
+    return fit_tensor(r->u1, r->w1, r->inv_len, t, b, N + 3 * (size_t)v[0], N + 3 * (size_t)v[1],
+                      N + 3 * (size_t)v[2], &r->mean);
 }
 
 /* Second pass: the geometry from the record, the corrected normals. */
 static int face_second(const rus_job *j, const uint32_t *v, const face_rec *r, float *dest)
 {
-    double t[3] = {r->t[0], r->t[1], r->t[2]}, n[3] = {r->n[0], r->n[1], r->n[2]}, b[3];
-    const float *N = j->normals;
-    v3_cross(n, t, b);
-    return fit_tensor(r->u0, r->u1, r->w1, t, b, N + 3 * (size_t)v[0], N + 3 * (size_t)v[1], N + 3 * (size_t)v[2],
-                      dest);
+    const float *t = r->t, *n = r->n, *N = j->normals;
+    float b[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
+    return fit_tensor(r->u1, r->w1, r->inv_len, t, b, N + 3 * (size_t)v[0], N + 3 * (size_t)v[1],
+                      N + 3 * (size_t)v[2], dest);
 }
 
 static void face_fit(const rus_job *j, uint32_t f)
@@ -148,25 +138,19 @@ static lucent_status faces_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint
     return LUCENT_OK;
 }
 
-/* A tangent frame (pu, pv) at the unit normal n: pu across the coordinate axis least aligned
- * with n, pv = n x pu. 0 for a zero normal. */
+/* A tangent frame (pu, pv) at the unit normal n, pu x pv = n, without branches (Duff et al.
+ * 2017, "Building an orthonormal basis, revisited", JCGT 6(1), Listing 3). 0 for a zero normal. */
 static int tangent_frame(const float *nf, double *n, double *pu, double *pv)
 {
     double l2 = (double)nf[0] * nf[0] + (double)nf[1] * nf[1] + (double)nf[2] * nf[2];
     if (!(l2 > 0)) return 0;
     double s = 1 / sqrt(l2);
     for (int k = 0; k < 3; k++) n[k] = nf[k] * s;
-    double ax = fabs(n[0]), ay = fabs(n[1]), az = fabs(n[2]);
-    if (ax <= ay && ax <= az) pu[0] = 0, pu[1] = n[2], pu[2] = -n[1]; /* n x (1, 0, 0) */
-    else if (ay <= az) pu[0] = -n[2], pu[1] = 0, pu[2] = n[0];        /* n x (0, 1, 0) */
-    else pu[0] = n[1], pu[1] = -n[0], pu[2] = 0;                      /* n x (0, 0, 1) */
-    s = 1 / sqrt(v3_dot(pu, pu)); /* at least 2/3: the smallest component is below 1/sqrt 3 */
-    for (int k = 0; k < 3; k++) pu[k] *= s;
-    v3_cross(n, pu, pv);
+    double sign = copysign(1.0, n[2]), a = -1 / (sign + n[2]), b = n[0] * n[1] * a;
+    pu[0] = 1 + sign * n[0] * n[0] * a, pu[1] = sign * b, pu[2] = -sign * n[0];
+    pv[0] = b, pv[1] = sign + n[1] * n[1] * a, pv[2] = -n[1];
     return 1;
 }
-
-static inline float dotf(const float *a, const float *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 /* Sums v's face tensors, each turned into v's tangent plane by the rotation that takes the
  * face normal to v's normal (Sec. 4.1: exact, not a projection) and weighted by v's corner area
@@ -205,8 +189,8 @@ static void regather(const rus_job *j, uint32_t v, double acc[4])
 }
 
 /* Eigen-decomposition of the averaged tensor [[mean + x, y], [y, mean - x]] in (pu, pv):
- * k = mean +- r, r = |(x, y)|; k1's direction is the eigenvector (x + r, y), or the equivalent
- * (y, r - x) when x < 0 (no cancellation). Writes the result, or zeros (invalid). */
+ * k = mean +- r, r = |(x, y)| = r (cos 2 phi, sin 2 phi), k1 along (cos phi, sin phi). Writes the
+ * result, or zeros (invalid). */
 static void store_vertex(const rus_job *j, uint32_t v, const double *pu, const double *pv, const double *acc)
 {
     double mean = 0, r = 0, c = 1, s = 0, d1[3], d2[3];
@@ -214,21 +198,24 @@ static void store_vertex(const rus_job *j, uint32_t v, const double *pu, const d
     if (valid) {
         double inv = 1 / acc[0], x = acc[2] * inv, y = acc[3] * inv;
         mean = acc[1] * inv, r = sqrt(x * x + y * y);
-        double a = x >= 0 ? x + r : y, b = x >= 0 ? y : r - x, l2 = a * a + b * b;
-        if (l2 > 0) l2 = 1 / sqrt(l2), c = a * l2, s = b * l2;
+        double h = r > 0 ? x / r : 1; /* cos 2 phi; half angles without a branch on its sign */
+        c = sqrt(0.5 * (1 + h)), s = copysign(sqrt(0.5 * (1 - h)), y);
     }
-    for (int k = 0; k < 3; k++) d1[k] = valid ? c * pu[k] + s * pv[k] : 0, d2[k] = valid ? c * pv[k] - s * pu[k] : 0;
+    if (j->principal) { /* first of two passes: floats for the normal correction */
+        mesh_principal *p = j->principal + v;
+        for (int k = 0; k < 3; k++) p->d1[k] = (float)(c * pu[k] + s * pv[k]), p->d2[k] = (float)(c * pv[k] - s * pu[k]);
+        p->k1 = (float)(mean + r), p->k2 = (float)(mean - r);
+    } else { /* the result, in mm^-1; anything non-finite is invalid (lucent_mesh_curvature) */
+        double k1 = (mean + r) * j->scale, k2 = (mean - r) * j->scale, gauss = k1 * k2;
+        valid = valid && isfinite(k1) && isfinite(k2) && isfinite(gauss);
+        for (int k = 0; k < 3; k++) d1[k] = valid ? c * pu[k] + s * pv[k] : 0, d2[k] = valid ? c * pv[k] - s * pu[k] : 0;
+        lucent_curvature *o = j->out;
+        o->k1[v] = valid ? k1 : 0, o->k2[v] = valid ? k2 : 0;
+        o->mean[v] = valid ? mean * j->scale : 0, o->gauss[v] = valid ? gauss : 0;
+        memcpy(o->dir1 + 3 * (size_t)v, d1, sizeof d1), memcpy(o->dir2 + 3 * (size_t)v, d2, sizeof d2);
+    }
     uint8_t *flags = j->out->flags + v;
     *flags = (uint8_t)(valid ? *flags & ~LUCENT_CURVATURE_INVALID : *flags | LUCENT_CURVATURE_INVALID);
-    if (j->principal) {
-        mesh_principal *p = j->principal + v;
-        for (int k = 0; k < 3; k++) p->d1[k] = (float)d1[k], p->d2[k] = (float)d2[k];
-        p->k1 = (float)(mean + r), p->k2 = (float)(mean - r);
-        return;
-    }
-    lucent_curvature *o = j->out;
-    o->k1[v] = mean + r, o->k2[v] = mean - r, o->mean[v] = mean, o->gauss[v] = (mean + r) * (mean - r);
-    memcpy(o->dir1 + 3 * (size_t)v, d1, sizeof d1), memcpy(o->dir2 + 3 * (size_t)v, d2, sizeof d2);
 }
 
 static void vertex_curvature(const rus_job *j, uint32_t v)
@@ -252,13 +239,7 @@ static lucent_status vertices_chunk(void *ctx, uint64_t chunk, uint64_t begin, u
 {
     (void)chunk, (void)thread;
     const rus_job *j = ctx;
-    const mesh_adjacency *adj = j->adj;
-    for (uint64_t v = begin; v < end; v++) {
-        if (v + PREFETCH_AHEAD < end && !j->second) /* face records are far apart: fetch ahead */
-            for (uint32_t a = adj->start[v + PREFETCH_AHEAD]; a < adj->start[v + PREFETCH_AHEAD + 1]; a++)
-                __builtin_prefetch(j->faces + adj->corner[a] / 3);
-        vertex_curvature(j, (uint32_t)v);
-    }
+    for (uint64_t v = begin; v < end; v++) vertex_curvature(j, (uint32_t)v);
     return LUCENT_OK;
 }
 
@@ -269,8 +250,9 @@ static lucent_status pass(const rus_job *job, lucent_pool *pool)
     return s;
 }
 
-/* Scratch in one block: face records; for two passes also the first pass's principal frames,
- * the corrected normals, the slot turns and the second pass's face tensors. */
+/* Scratch in one block: face records; for two passes also the first pass's principal frames
+ * and, in the same place once the normals are corrected, the second pass's face tensors; the
+ * corrected normals and the slot turns. (Fresh pages cost more than the arithmetic here.) */
 typedef struct rus_scratch {
     face_rec *faces;
     mesh_principal *principal;
@@ -282,28 +264,29 @@ static size_t round64(size_t bytes) { return (bytes + 63) / 64 * 64; }
 
 static void *scratch(size_t nv, size_t nf, int fast, rus_scratch *d)
 {
-    size_t size[5] = {round64(nf * sizeof *d->faces), round64(nv * sizeof *d->principal),
-                      round64(3 * nv * sizeof *d->normals), round64(3 * nf * sizeof *d->tensors),
-                      round64(3 * nf * sizeof *d->turns)};
-    size_t total = size[0] + (fast ? 0 : size[1] + size[2] + size[3] + size[4]);
+    size_t shared = round64(nv * sizeof *d->principal), tensors = round64(3 * nf * sizeof *d->tensors);
+    size_t size[4] = {round64(nf * sizeof *d->faces), shared > tensors ? shared : tensors,
+                      round64(3 * nv * sizeof *d->normals + 16), round64(3 * nf * sizeof *d->turns)};
+    size_t total = size[0] + (fast ? 0 : size[1] + size[2] + size[3]);
     char *block = mesh_alloc_large(total + 64), *at = block;
     if (!block) return NULL;
     *d = (rus_scratch){0};
     d->faces = (face_rec *)at;
     if (fast) return block;
-    d->principal = (mesh_principal *)(at += size[0]), d->normals = (float *)(at += size[1]);
-    d->tensors = (float *)(at += size[2]), d->turns = (slot_turn *)(at + size[3]);
+    d->principal = (mesh_principal *)(at += size[0]), d->tensors = (float *)at;
+    d->normals = (float *)(at += size[1]), d->turns = (slot_turn *)(at + size[2]);
     return block;
 }
 
 lucent_status mesh_curvature_rusinkiewicz(const lucent_mesh *mesh, const mesh_adjacency *adj,
-                                          const mesh_fan *fan, lucent_pool *pool, int fast,
+                                          const mesh_fan *fan, lucent_pool *pool, int fast, double scale,
                                           lucent_curvature *dest)
 {
     rus_scratch sc;
     void *block = scratch(mesh->vertex_count, mesh->face_count, fast, &sc);
     if (!block) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "curvature: out of memory");
-    rus_job job = {mesh, adj, fan->normals, sc.faces, sc.turns, sc.tensors, sc.principal, dest, fan->normals, 0};
+    rus_job job = {mesh, adj, fan->normals, sc.faces, sc.turns, sc.tensors, fast ? NULL : sc.principal, dest,
+                   fan->normals, scale, 0};
     lucent_status s = pass(&job, pool);
     /* Second pass (Lucent's): Max's normals corrected for their tilt, then the same fit. */
     if (s == LUCENT_OK && !fast) s = mesh_refine_normals(mesh, adj, fan, sc.principal, pool, sc.normals);

@@ -29,38 +29,76 @@ static void largest_face_normal(const lucent_mesh *m, const uint32_t *slot, uint
     }
 }
 
-/* Max's weighted sum over the slots, each edge from v computed once: a paired slot's
- * previous vertex is its partner's next. Falls back to the largest face where it cancels.
- * (Edges in scalar arrays: written and read with the same width, so loads forward.) */
-static void max_normal(const lucent_mesh *m, const uint32_t *slot, uint32_t count, uint32_t v,
-                       const uint32_t *next, const uint32_t *prev, const uint8_t *pair, float *dest)
-{
-    const double *P = m->positions, px = P[3 * v], py = P[3 * v + 1], pz = P[3 * v + 2];
+/* One vertex's fan (at most MESH_FAN_MAX slots), walked twice. The first walk reads each slot's
+ * next and previous vertices, the edge to the next one (scalar arrays, written and read with the
+ * same width so that loads forward) and enters the next vertex in a small open-addressing table
+ * (slot + 1; 0 empty). The second pairs each slot's previous vertex with an unused slot's next
+ * vertex, one to one, through the table, and adds the slot's term of Max's sum, its second edge
+ * being its partner's. Few loops: each loop's exit costs a misprediction per vertex. */
+enum { TABLE_BITS = 6, TABLE_SIZE = 1 << TABLE_BITS }; /* at most half full */
+typedef struct fan_local {
+    uint32_t next[MESH_FAN_MAX], prev[MESH_FAN_MAX];
     double ex[MESH_FAN_MAX], ey[MESH_FAN_MAX], ez[MESH_FAN_MAX], el[MESH_FAN_MAX];
-    double nx = 0, ny = 0, nz = 0, mag = 0;
+    union {
+        uint8_t table[TABLE_SIZE];
+        uint64_t words[TABLE_SIZE / 8]; /* cleared word by word: memset would be a call */
+    } t;
+} fan_local;
+
+static inline uint32_t table_hash(uint32_t u) { return (u * 2654435761u) >> (32 - TABLE_BITS); }
+
+static void first_walk(const lucent_mesh *m, const uint32_t *slot, uint32_t count, uint32_t v, fan_local *F)
+{
+    const double *P = m->positions, *p = P + 3 * (size_t)v;
+    for (int i = 0; i < TABLE_SIZE / 8; i++) F->t.words[i] = 0;
     for (uint32_t a = 0; a < count; a++) {
-        const double *q = P + 3 * (size_t)next[a];
-        ex[a] = q[0] - px, ey[a] = q[1] - py, ez[a] = q[2] - pz;
-        el[a] = ex[a] * ex[a] + ey[a] * ey[a] + ez[a] * ez[a];
+        mesh_slot_others(m->faces, slot[a], F->next + a, F->prev + a);
+        const double *q = P + 3 * (size_t)F->next[a];
+        F->ex[a] = q[0] - p[0], F->ey[a] = q[1] - p[1], F->ez[a] = q[2] - p[2];
+        F->el[a] = F->ex[a] * F->ex[a] + F->ey[a] * F->ey[a] + F->ez[a] * F->ez[a];
+        uint32_t h = table_hash(F->next[a]);
+        while (F->t.table[h]) h = (h + 1) & (TABLE_SIZE - 1);
+        F->t.table[h] = (uint8_t)(a + 1);
     }
+}
+
+/* An unused slot whose next vertex is u (marked used), or MESH_UNPAIRED. */
+static uint32_t find_partner(const fan_local *F, uint32_t u, uint32_t *used)
+{
+    uint32_t h = table_hash(u), t;
+    while ((t = F->t.table[h]) && (F->next[t - 1] != u || (*used >> (t - 1) & 1))) h = (h + 1) & (TABLE_SIZE - 1);
+    if (!t) return MESH_UNPAIRED;
+    *used |= 1u << (t - 1);
+    return t - 1;
+}
+
+/* Pairs and Max's sum (Max 1999) into n; mag is the sum of the terms' squared lengths. Returns
+ * whether every slot paired: then every neighbour appears an even number of times, so none lies
+ * on a boundary. */
+static int second_walk(const double *P, uint32_t count, uint32_t v, const fan_local *F, uint8_t *pair, double n[4])
+{
+    const double *p = P + 3 * (size_t)v;
+    double nx = 0, ny = 0, nz = 0, mag = 0;
+    uint32_t used = 0;
+    int all = 1;
     for (uint32_t a = 0; a < count; a++) {
+        uint32_t b = find_partner(F, F->prev[a], &used);
         double bx, by, bz, bl;
-        if (pair[a] != MESH_UNPAIRED) {
-            bx = ex[pair[a]], by = ey[pair[a]], bz = ez[pair[a]], bl = el[pair[a]];
+        pair[a] = (uint8_t)b;
+        if (b != MESH_UNPAIRED) {
+            bx = F->ex[b], by = F->ey[b], bz = F->ez[b], bl = F->el[b];
         } else {
-            const double *q = P + 3 * (size_t)prev[a];
-            bx = q[0] - px, by = q[1] - py, bz = q[2] - pz, bl = bx * bx + by * by + bz * bz;
+            const double *q = P + 3 * (size_t)F->prev[a];
+            bx = q[0] - p[0], by = q[1] - p[1], bz = q[2] - p[2], bl = bx * bx + by * by + bz * bz, all = 0;
         }
-        double w = el[a] * bl;
+        double w = F->el[a] * bl;
         if (!(w > 0)) continue;
-        double x = ey[a] * bz - ez[a] * by, y = ez[a] * bx - ex[a] * bz, z = ex[a] * by - ey[a] * bx;
+        double x = F->ey[a] * bz - F->ez[a] * by, y = F->ez[a] * bx - F->ex[a] * bz, z = F->ex[a] * by - F->ey[a] * bx;
         double iw = 1 / w;
         nx += x * iw, ny += y * iw, nz += z * iw, mag += (x * x + y * y + z * z) * iw * iw;
     }
-    double n[3] = {nx, ny, nz};
-    if (!(v3_dot(n, n) > 1e-12 * mag)) largest_face_normal(m, slot, count, v, n);
-    v3_normalize(n);
-    for (int i = 0; i < 3; i++) dest[i] = (float)n[i];
+    n[0] = nx, n[1] = ny, n[2] = nz, n[3] = mag;
+    return all;
 }
 
 /* The same for a fan of any size, without pairs (high valence, rare). */
@@ -82,29 +120,6 @@ static void max_normal_any(const lucent_mesh *m, const uint32_t *slot, uint32_t 
     if (!(v3_dot(n, n) > 1e-12 * mag)) largest_face_normal(m, slot, count, v, n);
     v3_normalize(n);
     for (int i = 0; i < 3; i++) dest[i] = (float)n[i];
-}
-
-/* Pairs each slot's previous vertex with an unused slot's next vertex, one to one, through a
- * small open-addressing table of the next vertices (slot + 1; 0 empty). When every slot pairs,
- * every neighbour appears an even number of times, so none lies on a boundary. */
-static int pair_slots(const uint32_t *next, const uint32_t *prev, uint32_t count, uint8_t *pair)
-{
-    enum { BITS = 7, SIZE = 1 << BITS }; /* count <= 32: at most a quarter full */
-    uint8_t table[SIZE] = {0};
-    uint32_t used = 0;
-    int all = 1;
-    for (uint32_t b = 0; b < count; b++) {
-        uint32_t h = (next[b] * 2654435761u) >> (32 - BITS);
-        while (table[h]) h = (h + 1) & (SIZE - 1);
-        table[h] = (uint8_t)(b + 1);
-    }
-    for (uint32_t a = 0; a < count; a++) {
-        uint32_t h = (prev[a] * 2654435761u) >> (32 - BITS), t;
-        while ((t = table[h]) && (next[t - 1] != prev[a] || (used >> (t - 1) & 1))) h = (h + 1) & (SIZE - 1);
-        if (t) used |= 1u << (t - 1), pair[a] = (uint8_t)(t - 1);
-        else all = 0, pair[a] = MESH_UNPAIRED;
-    }
-    return all;
 }
 
 /* Exact test: some neighbour appears once among v's faces. */
@@ -135,25 +150,34 @@ static int any_single_slow(const uint32_t *faces, const uint32_t *slot, uint32_t
     return 0;
 }
 
+/* The unit normal from Max's sum, or from the largest face where the sum cancels. */
+static void store_normal(const lucent_mesh *m, const uint32_t *slot, uint32_t count, uint32_t v, double *n, float *dest)
+{
+    if (!(v3_dot(n, n) > 1e-12 * n[3])) largest_face_normal(m, slot, count, v, n);
+    v3_normalize(n);
+    for (int i = 0; i < 3; i++) dest[i] = (float)n[i];
+}
+
 /* Normal, boundary flag and (when wanted) slot pairs of vertex v. */
 static void fan_vertex(const fan_job *j, uint32_t v)
 {
     const mesh_adjacency *adj = j->adj;
     const uint32_t *slot = adj->corner + adj->start[v];
-    uint32_t count = adj->start[v + 1] - adj->start[v], next[MESH_FAN_MAX], prev[MESH_FAN_MAX];
-    uint8_t *out_pair = j->out->pair ? j->out->pair + adj->start[v] : NULL, pair[MESH_FAN_MAX];
+    uint32_t count = adj->start[v + 1] - adj->start[v];
+    uint8_t local[MESH_FAN_MAX], *pair = j->out->pair ? j->out->pair + adj->start[v] : local;
     float *normal = j->out->normals + 3 * (size_t)v;
     if (count > MESH_FAN_MAX) {
         max_normal_any(j->mesh, slot, count, v, normal);
         j->out->flags[v] = any_single_slow(j->mesh->faces, slot, count) ? LUCENT_CURVATURE_BOUNDARY : 0;
-        for (uint32_t a = 0; out_pair && a < count; a++) out_pair[a] = MESH_UNPAIRED;
+        for (uint32_t a = 0; j->out->pair && a < count; a++) pair[a] = MESH_UNPAIRED;
         return;
     }
-    for (uint32_t a = 0; a < count; a++) mesh_slot_others(j->mesh->faces, slot[a], next + a, prev + a);
-    int closed = pair_slots(next, prev, count, pair);
-    j->out->flags[v] = !closed && any_single(next, prev, count) ? LUCENT_CURVATURE_BOUNDARY : 0;
-    max_normal(j->mesh, slot, count, v, next, prev, pair, normal);
-    for (uint32_t a = 0; out_pair && a < count; a++) out_pair[a] = pair[a];
+    fan_local F;
+    double n[4];
+    first_walk(j->mesh, slot, count, v, &F);
+    int closed = second_walk(j->mesh->positions, count, v, &F, pair, n);
+    store_normal(j->mesh, slot, count, v, n, normal);
+    j->out->flags[v] = !closed && any_single(F.next, F.prev, count) ? LUCENT_CURVATURE_BOUNDARY : 0;
 }
 
 static lucent_status fan_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)

@@ -46,12 +46,14 @@ typedef struct mesh_adjacency {
 lucent_status mesh_adjacency_build(const lucent_mesh *mesh, lucent_pool *pool, mesh_adjacency *dest);
 void mesh_adjacency_free(mesh_adjacency *adj);
 
-/* The vertices after and before the one in face slot i (counter-clockwise). */
+/* The vertices after and before the one in face slot i (counter-clockwise). Offsets from a
+ * table: the corner is random, so a branch on it would be mispredicted a third of the time. */
 static inline void mesh_slot_others(const uint32_t *faces, uint32_t i, uint32_t *next, uint32_t *prev)
 {
-    uint32_t base = i - i % 3, k = i - base;
-    *next = faces[base + (k == 2 ? 0 : k + 1)];
-    *prev = faces[base + (k == 0 ? 2 : k - 1)];
+    static const int8_t step_next[3] = {1, 1, -2}, step_prev[3] = {2, -1, -1};
+    const uint32_t *at = faces + i;
+    *next = at[step_next[i % 3]];
+    *prev = at[step_prev[i % 3]];
 }
 
 /* A 2 MiB-aligned block advised as transparent huge pages when large (alloc.c); free(). */
@@ -80,9 +82,11 @@ typedef struct mesh_fan {
 lucent_status mesh_fan_compute(const lucent_mesh *mesh, const mesh_adjacency *adj, lucent_pool *pool,
                                const mesh_fan *dest);
 
-/* Per-method estimators: fill k1, k2, mean, gauss (and dir1/dir2 for Rusinkiewicz). */
+/* Per-method estimators: fill k1, k2, mean, gauss (and dir1/dir2 for Rusinkiewicz).
+ * Rusinkiewicz writes values already scaled (curvature times scale, K times scale^2) and
+ * flags non-finite ones invalid, as lucent_mesh_curvature's last pass would. */
 lucent_status mesh_curvature_rusinkiewicz(const lucent_mesh *mesh, const mesh_adjacency *adj,
-                                          const mesh_fan *fan, lucent_pool *pool, int fast,
+                                          const mesh_fan *fan, lucent_pool *pool, int fast, double scale,
                                           lucent_curvature *dest);
 
 /* The first Rusinkiewicz pass at one vertex: principal directions and curvatures (floats,
