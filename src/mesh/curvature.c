@@ -101,8 +101,13 @@ lucent_status mesh_curvature_per_vertex(const lucent_mesh *mesh, const mesh_adja
                                         const mesh_fan *fan, lucent_pool *pool, mesh_vertex_fn fn,
                                         lucent_curvature *dest)
 {
-    per_vertex_job j = {{mesh, adj, fan->normals, dest}, fn};
-    return lucent_parallel_for(pool, mesh->vertex_count, 4096, per_vertex_chunk, &j);
+    mesh_face_geometry *geometry = mesh_alloc_large((mesh->face_count + 1) * sizeof *geometry);
+    if (!geometry) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "curvature: out of memory");
+    per_vertex_job j = {{mesh, adj, fan->normals, geometry, dest}, fn};
+    lucent_status s = mesh_face_geometry_compute(mesh, pool, geometry);
+    if (s == LUCENT_OK) s = lucent_parallel_for(pool, mesh->vertex_count, 4096, per_vertex_chunk, &j);
+    free(geometry);
+    return s;
 }
 
 /* Adjacency and the fan walk (normals, boundary flags, slot pairs), then the estimator. */

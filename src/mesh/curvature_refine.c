@@ -9,6 +9,8 @@
  * (du, dv, h). */
 #include "mesh/internal.h"
 
+enum { PREFETCH_SLOTS = 16 }; /* about 3 vertices ahead */
+
 typedef struct refine_job {
     const lucent_mesh *mesh;
     const mesh_adjacency *adj;
@@ -21,16 +23,16 @@ typedef struct refine_job {
  * height h, inverse squared length il; num, den, r2 are intermediate. */
 enum { LIFT_MAX = 2 * MESH_FAN_MAX };
 typedef struct lifted {
-    float u[LIFT_MAX], v[LIFT_MAX], h[LIFT_MAX], il[LIFT_MAX], num[LIFT_MAX], den[LIFT_MAX], r2[LIFT_MAX];
+    float u[LIFT_MAX], v[LIFT_MAX], h[LIFT_MAX], il[LIFT_MAX];
 } lifted;
 
 static inline float dotf(const float *a, float x, float y, float z) { return a[0] * x + a[1] * y + a[2] * z; }
 
-/* Each neighbour u is lifted from v's tangent plane to the height of a curve whose curvature
- * goes linearly from kn (v's normal curvature along the edge) to kb (u's) over the edge length s,
- * about -(2 kn + kb)/3 s^2/2, as h = -k s^2/(1 + sqrt(1 - k^2 s^2)), k = (2 kn + kb)/3 (exact for a
- * circle). First the offsets and k as a fraction num/den (one division for kn, kb and k), ... */
-static inline void lift_offset(const refine_job *j, uint32_t v, uint32_t u, lifted *L, uint32_t i)
+/* Neighbour u of v lifted into L[i]: its offset (u, v) in v's tangent plane and the height of a
+ * curve whose curvature goes linearly from kn (v's normal curvature along the edge) to kb (u's)
+ * over the edge length s, about -(2 kn + kb)/3 s^2/2, as h = -k s^2/(1 + sqrt(1 - k^2 s^2)) with
+ * k = (2 kn + kb)/3 (exact for a circle); il = 1/|lifted|^2. One division gives kn, kb and k. */
+static inline void lift(const refine_job *j, uint32_t v, uint32_t u, lifted *L, uint32_t i)
 {
     const mesh_principal *p = j->principal + v, *q = j->principal + u;
     const double *x = j->mesh->positions + 3 * (size_t)u, *o = j->mesh->positions + 3 * (size_t)v;
@@ -40,19 +42,11 @@ static inline void lift_offset(const refine_job *j, uint32_t v, uint32_t u, lift
     float a = dotf(q->d1, ex, ey, ez), b = dotf(q->d2, ex, ey, ez), s = a * a + b * b;
     float kb = q->k1 * a * a + q->k2 * b * b;      /* kb s */
     int own = (j->fan->flags[u] & LUCENT_CURVATURE_INVALID) != 0; /* no kb: kb = kn */
-    L->num[i] = own ? kn2 : s > 0 ? 2 * kn2 * s + kb * r2 : 2 * kn2;
-    L->den[i] = own ? r2 : s > 0 ? 3 * r2 * s : 3 * r2;
-    L->u[i] = du, L->v[i] = dv, L->r2[i] = r2;
-}
-
-/* ... then the heights: a separate loop, so that its divisions and roots overlap. */
-static void lift_heights(lifted *L, int count)
-{
-    for (int i = 0; i < count; i++) {
-        float k = L->den[i] > 0 ? L->num[i] / L->den[i] : 0, ks2 = k * L->r2[i], c = 1 - k * ks2;
-        float h = -ks2 / (1 + sqrtf(c > 0 ? c : 0)), l2 = L->r2[i] + h * h;
-        L->h[i] = h, L->il[i] = l2 > 0 ? 1 / l2 : 0;
-    }
+    float num = own ? kn2 : s > 0 ? 2 * kn2 * s + kb * r2 : 2 * kn2;
+    float den = own ? r2 : s > 0 ? 3 * r2 * s : 3 * r2;
+    float k = den > 0 ? num / den : 0, ks2 = k * r2, c = 1 - k * ks2;
+    float h = -ks2 / (1 + sqrtf(c > 0 ? c : 0)), l2 = r2 + h * h;
+    L->u[i] = du, L->v[i] = dv, L->h[i] = h, L->il[i] = l2 > 0 ? 1 / l2 : 0;
 }
 
 /* Max's weight of the face (i0, i1), accumulated into m. */
@@ -79,22 +73,22 @@ static void lifted_max_normal(const refine_job *j, uint32_t v, float m[3])
         for (uint32_t a = 0; a < count; a++) {
             uint32_t next;
             mesh_slot_others(j->mesh->faces, slot[a], &next, &prev);
-            lift_offset(j, v, next, &L, 0), lift_offset(j, v, prev, &L, 1), lift_heights(&L, 2), add_corner(&L, 0, 1, m);
+            lift(j, v, next, &L, 0), lift(j, v, prev, &L, 1), add_corner(&L, 0, 1, m);
         }
         return;
     }
     for (uint32_t a = 0; a < count; a++) { /* few loops: each exit costs a misprediction */
-        uint32_t next;
+        uint32_t next = mesh_prefetch_slot(j->adj, j->mesh->faces, j->adj->start[v] + a, PREFETCH_SLOTS);
+        __builtin_prefetch(j->mesh->positions + 3 * (size_t)next), __builtin_prefetch(j->principal + next);
         mesh_slot_others(j->mesh->faces, slot[a], &next, &prev);
-        lift_offset(j, v, next, &L, a);
+        lift(j, v, next, &L, a);
         if (pair[a] != MESH_UNPAIRED) {
             other[a] = pair[a];
         } else {
             other[a] = count + extra++;
-            lift_offset(j, v, prev, &L, other[a]);
+            lift(j, v, prev, &L, other[a]);
         }
     }
-    lift_heights(&L, (int)count + extra);
     for (uint32_t a = 0; a < count; a++) add_corner(&L, (int)a, (int)other[a], m);
 }
 

@@ -30,6 +30,8 @@ typedef struct slot_turn {
     float w, wc, ws;
 } slot_turn;
 
+enum { PREFETCH_SLOTS = 48 }; /* about 8 vertices ahead; at most MESH_SLOT_PAD */
+
 typedef struct rus_job {
     const lucent_mesh *mesh;
     const mesh_adjacency *adj;
@@ -71,33 +73,21 @@ static int fit_tensor(float u1, float w1, float inv_len, const float *t, const f
     return 1;
 }
 
-/* Mixed Voronoi corner areas (Meyer et al. 2003, Fig. 4) from the squared edge lengths l[k]
- * (edge k opposite corner k) and the area: each corner gets the part of the triangle nearer to it
- * than to the others, s (ew of the other two corners), with sum ew = 16 area^2 > 0; when a corner
- * is obtuse (its ew <= 0), it gets half and the others a quarter. Without branches: which corner
- * is obtuse is as random as the mesh. */
-static void corner_areas(const double *l, double area, double *dest)
-{
-    double ew0 = l[0] * (l[1] + l[2] - l[0]), ew1 = l[1] * (l[2] + l[0] - l[1]), ew2 = l[2] * (l[0] + l[1] - l[2]);
-    int o0 = ew0 <= 0, o1 = ew1 <= 0, o2 = ew2 <= 0, any = o0 | o1 | o2;
-    double q = 0.25 * area * any, s = (1 - any) * 0.5 * area / (ew0 + ew1 + ew2);
-    dest[0] = q * (1 + o0) + s * (ew1 + ew2), dest[1] = q * (1 + o1) + s * (ew2 + ew0);
-    dest[2] = q * (1 + o2) + s * (ew0 + ew1);
-}
-
 /* First pass: frame, corner areas and edge coordinates from the positions, then the fit. */
 static int face_first(const rus_job *j, const uint32_t *v, face_rec *r)
 {
     const double *P = j->mesh->positions, *p0 = P + 3 * (size_t)v[0], *p1 = P + 3 * (size_t)v[1];
     const double *p2 = P + 3 * (size_t)v[2];
-    double e0[3], e1[3], e2[3], x[3], l[3], corner[3];
-    for (int k = 0; k < 3; k++) e0[k] = p2[k] - p1[k], e1[k] = p0[k] - p2[k], e2[k] = p1[k] - p0[k];
+    /* written out: a loop over k stored the edges and v3_cross reloaded them two at a time,
+     * which store forwarding cannot serve */
+    double e0[3] = {p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]}, e1[3] = {p0[0] - p2[0], p0[1] - p2[1], p0[2] - p2[2]};
+    double e2[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, x[3], l[3], corner[3];
     v3_cross(e0, e1, x);
     l[0] = v3_dot(e0, e0), l[1] = v3_dot(e1, e1), l[2] = v3_dot(e2, e2);
     double x2 = v3_dot(x, x);
     if (!(x2 > 0) || !(l[0] > 0) || !isfinite(x2)) return 0;
-    double xl = sqrt(x2), in = 1 / xl, il = 1 / l[0], it = sqrt(il);
-    corner_areas(l, 0.5 * xl, corner);
+    double xl = sqrt(x2), len = sqrt(l[0]), q = 1 / (xl * len), in = q * len, it = q * xl, il = it * it;
+    mesh_mixed_areas(l, xl, in, corner); /* Meyer et al. 2003, Fig. 4 */
     float t[3], n[3], b[3];
     for (int k = 0; k < 3; k++) t[k] = (float)(e0[k] * it), n[k] = (float)(x[k] * in);
     for (int k = 0; k < 3; k++) r->t[k] = t[k], r->n[k] = n[k], r->corner[k] = (float)corner[k];
@@ -163,6 +153,7 @@ static void gather(const rus_job *j, uint32_t v, const float *u, const float *w,
     for (uint32_t a = adj->start[v]; a < adj->start[v + 1]; a++) {
         uint32_t i = adj->corner[a];
         const face_rec *f = j->faces + i / 3;
+        __builtin_prefetch(j->faces + adj->corner[a + PREFETCH_SLOTS] / 3); /* records lie far apart */
         float area = f->corner[i % 3];
         float nd = dotf(n, f->n), su = dotf(u, f->n), sv = dotf(w, f->n);
         float tn = dotf(n, f->t), tu = dotf(u, f->t), tv = dotf(w, f->t);
@@ -183,6 +174,7 @@ static void regather(const rus_job *j, uint32_t v, double acc[4])
     for (uint32_t a = adj->start[v]; a < adj->start[v + 1]; a++) {
         const slot_turn *t = j->turns + a;
         const float *x = j->tensors + 3 * (size_t)(adj->corner[a] / 3);
+        __builtin_prefetch(j->tensors + 3 * (size_t)(adj->corner[a + PREFETCH_SLOTS] / 3));
         sa += t->w, sm += t->w * x[0], sx += t->wc * x[1] - t->ws * x[2], sy += t->ws * x[1] + t->wc * x[2];
     }
     acc[0] = sa, acc[1] = sm, acc[2] = sx, acc[3] = sy;

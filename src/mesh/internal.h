@@ -39,9 +39,12 @@ static inline double v3_normalize(double *a)
  * corner[start[v] .. start[v+1]), each the index 3 f + k into mesh->faces where v sits (face f,
  * corner k), in face order. Built with a counting sort. */
 typedef struct mesh_adjacency {
-    uint32_t *start; /* vertex_count + 1 */
-    uint32_t *corner;
+    uint32_t *start;  /* vertex_count + 1 */
+    uint32_t *corner; /* 3 face_count, then MESH_SLOT_PAD zeros (slot 0 of face 0) to read ahead */
 } mesh_adjacency;
+
+enum { MESH_SLOT_PAD = 64 };
+
 
 lucent_status mesh_adjacency_build(const lucent_mesh *mesh, lucent_pool *pool, mesh_adjacency *dest);
 void mesh_adjacency_free(mesh_adjacency *adj);
@@ -56,6 +59,18 @@ static inline void mesh_slot_others(const uint32_t *faces, uint32_t i, uint32_t 
     *prev = at[step_prev[i % 3]];
 }
 
+/* Per-vertex passes read faces and vertices at random within a window too wide for the L2
+ * cache (on the res1 dragon neighbours are thousands of indices apart): at slot a, a pass fetches
+ * the face of slot a + 2 d and returns the next vertex of slot a + d, whose face should have
+ * arrived by then, for the caller to fetch that vertex's data. d <= MESH_SLOT_PAD / 2. */
+static inline uint32_t mesh_prefetch_slot(const mesh_adjacency *adj, const uint32_t *faces, uint32_t a, uint32_t d)
+{
+    uint32_t next, prev;
+    __builtin_prefetch(faces + adj->corner[a + 2 * d]);
+    mesh_slot_others(faces, adj->corner[a + d], &next, &prev);
+    return next;
+}
+
 /* A 2 MiB-aligned block advised as transparent huge pages when large (alloc.c); free(). */
 void *mesh_alloc_large(size_t bytes);
 
@@ -64,6 +79,20 @@ void *mesh_alloc_large(size_t bytes);
 void mesh_corner_areas(const lucent_mesh *mesh, size_t f, double dest[3]);
 /* The same from the face's edges, e[j] opposite corner j (e[j] = p[j+2] - p[j+1]). */
 void mesh_corner_areas_edges(const double e[3][3], double dest[3]);
+/* The same from the squared edge lengths l[j], xl = |e0 x e1| > 0 (twice the area) and
+ * inv_x = 1/xl; without branches. */
+void mesh_mixed_areas(const double l[3], double xl, double inv_x, double dest[3]);
+
+/* Per face, for Meyer's and Garimella's estimators: corner areas and the cotangents of the
+ * corner angles (zero for a face of zero area, whose corner areas are zero). */
+typedef struct mesh_face_geometry {
+    float corner[3], cot[3];
+} mesh_face_geometry;
+
+lucent_status mesh_face_geometry_compute(const lucent_mesh *mesh, lucent_pool *pool, mesh_face_geometry *dest);
+
+/* Sum of v's corner angles, from the cotangents (faces of zero area count 0). */
+double mesh_angle_sum(const mesh_face_geometry *geometry, const uint32_t *slot, uint32_t count);
 
 /* One walk around every vertex's fan (fan.c) gives what all estimators need:
  * - normals: unit vertex normals with Max 1999 weights (sin angle / (|e1| |e2|), exact on a
@@ -105,6 +134,7 @@ typedef struct mesh_vertex_job {
     const lucent_mesh *mesh;
     const mesh_adjacency *adj;
     const float *normals; /* 3 per vertex */
+    const mesh_face_geometry *geometry;
     lucent_curvature *out;
 } mesh_vertex_job;
 
@@ -121,8 +151,7 @@ void mesh_garimella_vertex(const mesh_vertex_job *job, uint32_t v);
 
 /* Angle-deficit Gaussian curvature of vertex v over its mixed area (Meyer et al. 2003, eq. 9);
  * pi instead of 2 pi at a boundary vertex. *area receives the mixed area. */
-double mesh_angle_deficit_gauss(const lucent_mesh *mesh, const mesh_adjacency *adj, uint32_t v,
-                                int boundary, double *area);
+double mesh_angle_deficit_gauss(const mesh_vertex_job *job, uint32_t v, int boundary, double *area);
 
 /* Builds an icosphere (desc resolved: radius > 0, subdivisions >= 1). */
 lucent_status mesh_icosphere(const lucent_primitive_desc *d, lucent_mesh **dest);

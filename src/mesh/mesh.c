@@ -159,12 +159,13 @@ lucent_status mesh_adjacency_build(const lucent_mesh *mesh, lucent_pool *pool, m
 {
     size_t nv = mesh->vertex_count, nc = 3 * mesh->face_count;
     dest->start = mesh_alloc_large((nv + 2) * sizeof *dest->start);
-    dest->corner = mesh_alloc_large((nc + 1) * sizeof *dest->corner);
+    dest->corner = mesh_alloc_large((nc + MESH_SLOT_PAD) * sizeof *dest->corner);
     if (!dest->start || !dest->corner) {
         mesh_adjacency_free(dest);
         return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for mesh adjacency");
     }
     memset(dest->start, 0, (nv + 2) * sizeof *dest->start);
+    memset(dest->corner + nc, 0, MESH_SLOT_PAD * sizeof *dest->corner);
     adjacency_job job = {mesh->faces, nc, (size_t)lucent_pool_threads(pool), nv, dest->start, dest->corner, 0};
     lucent_status s = lucent_parallel_for(pool, job.parts, 1, adjacency_chunk, &job);
     for (size_t v = 0; v < nv; v++) dest->start[v + 2] += dest->start[v + 1];
@@ -182,22 +183,28 @@ void mesh_adjacency_free(mesh_adjacency *adj)
 
 /* ---- corner areas ---- */
 
+/* Each corner gets the part of the triangle nearer to it than to the other corners (Meyer et al.
+ * 2003, Fig. 4): s (ew of the other two corners), ew_j = l_j (l_j+1 + l_j+2 - l_j), where
+ * s = area / (2 sum ew) and sum ew = 16 area^2 = 4 xl^2 (Heron), so s = 1/(16 xl); when a corner
+ * is obtuse (its ew <= 0), it gets half and the others a quarter. Without branches: which corner
+ * is obtuse is as random as the mesh. */
+void mesh_mixed_areas(const double l[3], double xl, double inv_x, double dest[3])
+{
+    double ew0 = l[0] * (l[1] + l[2] - l[0]), ew1 = l[1] * (l[2] + l[0] - l[1]), ew2 = l[2] * (l[0] + l[1] - l[2]);
+    int o0 = ew0 <= 0, o1 = ew1 <= 0, o2 = ew2 <= 0, any = o0 | o1 | o2;
+    double q = 0.125 * xl * any, s = (1 - any) * inv_x * (1.0 / 16);
+    dest[0] = q * (1 + o0) + s * (ew1 + ew2), dest[1] = q * (1 + o1) + s * (ew2 + ew0);
+    dest[2] = q * (1 + o2) + s * (ew0 + ew1);
+}
+
 void mesh_corner_areas_edges(const double e[3][3], double dest[3])
 {
-    double c[3], l2[3], ew[3];
+    double c[3], l[3] = {v3_dot(e[0], e[0]), v3_dot(e[1], e[1]), v3_dot(e[2], e[2])};
     v3_cross(e[0], e[1], c);
-    double area = 0.5 * v3_len(c);
+    double xl = v3_len(c);
     dest[0] = dest[1] = dest[2] = 0;
-    if (!(area > 0) || !isfinite(area)) return;
-    for (int j = 0; j < 3; j++) l2[j] = v3_dot(e[j], e[j]);
-    for (int j = 0; j < 3; j++) ew[j] = l2[j] * (l2[(j + 1) % 3] + l2[(j + 2) % 3] - l2[j]);
-    for (int j = 0; j < 3; j++) {
-        if (ew[j] > 0) continue; /* obtuse at corner j: it gets half, the others a quarter */
-        dest[j] = 0.5 * area, dest[(j + 1) % 3] = dest[(j + 2) % 3] = 0.25 * area;
-        return;
-    }
-    double s = 0.5 * area / (ew[0] + ew[1] + ew[2]);
-    for (int j = 0; j < 3; j++) dest[j] = s * (ew[(j + 1) % 3] + ew[(j + 2) % 3]);
+    if (!(xl > 0) || !isfinite(xl)) return;
+    mesh_mixed_areas(l, xl, 1 / xl, dest);
 }
 
 void mesh_corner_areas(const lucent_mesh *mesh, size_t f, double dest[3])
