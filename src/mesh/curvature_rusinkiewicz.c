@@ -73,11 +73,11 @@ static int fit_tensor(float u1, float w1, float inv_len, const float *t, const f
     return 1;
 }
 
-/* First pass: frame, corner areas and edge coordinates from the positions, then the fit. */
-static int face_first(const rus_job *j, const uint32_t *v, face_rec *r)
+/* First pass: frame, corner areas and edge coordinates from the positions; 0 (and a record of
+ * zeros, no weight) for a degenerate face. */
+static int face_frame(const double *P, const uint32_t *v, face_rec *r)
 {
-    const double *P = j->mesh->positions, *p0 = P + 3 * (size_t)v[0], *p1 = P + 3 * (size_t)v[1];
-    const double *p2 = P + 3 * (size_t)v[2];
+    const double *p0 = P + 3 * (size_t)v[0], *p1 = P + 3 * (size_t)v[1], *p2 = P + 3 * (size_t)v[2];
     /* written out: a loop over k stored the edges and v3_cross reloaded them two at a time,
      * which store forwarding cannot serve */
     double e0[3] = {p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]}, e1[3] = {p0[0] - p2[0], p0[1] - p2[1], p0[2] - p2[2]};
@@ -85,46 +85,39 @@ static int face_first(const rus_job *j, const uint32_t *v, face_rec *r)
     v3_cross(e0, e1, x);
     l[0] = v3_dot(e0, e0), l[1] = v3_dot(e1, e1), l[2] = v3_dot(e2, e2);
     double x2 = v3_dot(x, x);
-    if (!(x2 > 0) || !(l[0] > 0) || !isfinite(x2)) return 0;
+    if (!(x2 > 0) || !(l[0] > 0) || !isfinite(x2)) {
+        memset(r, 0, sizeof *r);
+        return 0;
+    }
     double xl = sqrt(x2), len = sqrt(l[0]), q = 1 / (xl * len), in = q * len, it = q * xl, il = it * it;
     mesh_mixed_areas(l, xl, in, corner); /* Meyer et al. 2003, Fig. 4 */
-    float t[3], n[3], b[3];
-    for (int k = 0; k < 3; k++) t[k] = (float)(e0[k] * it), n[k] = (float)(x[k] * in);
-    for (int k = 0; k < 3; k++) r->t[k] = t[k], r->n[k] = n[k], r->corner[k] = (float)corner[k];
-    b[0] = n[1] * t[2] - n[2] * t[1], b[1] = n[2] * t[0] - n[0] * t[2], b[2] = n[0] * t[1] - n[1] * t[0];
+    for (int k = 0; k < 3; k++)
+        r->t[k] = (float)(e0[k] * it), r->n[k] = (float)(x[k] * in), r->corner[k] = (float)corner[k];
     r->u1 = (float)(v3_dot(e0, e1) * il), r->w1 = (float)(xl * il), r->inv_len = (float)it, r->unused = 0;
-    const float *N = j->normals;
-    return fit_tensor(r->u1, r->w1, r->inv_len, t, b, N + 3 * (size_t)v[0], N + 3 * (size_t)v[1],
-                      N + 3 * (size_t)v[2], &r->mean);
+    return 1;
 }
 
-/* Second pass: the geometry from the record, the corrected normals. */
-static int face_second(const rus_job *j, const uint32_t *v, const face_rec *r, float *dest)
-{
-    const float *t = r->t, *n = r->n, *N = j->normals;
-    float b[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
-    return fit_tensor(r->u1, r->w1, r->inv_len, t, b, N + 3 * (size_t)v[0], N + 3 * (size_t)v[1],
-                      N + 3 * (size_t)v[2], dest);
-}
-
-static void face_fit(const rus_job *j, uint32_t f)
+/* The face's tensor from its record and this pass's normals, into dest (zeros if degenerate). */
+static void face_tensor(const rus_job *j, uint32_t f, const face_rec *r, float *dest)
 {
     const uint32_t *v = j->mesh->faces + 3 * (size_t)f;
-    face_rec *r = j->faces + f;
-    if (!j->second) {
-        if (!face_first(j, v, r)) memset(r, 0, sizeof *r); /* degenerate: no weight */
-        return;
-    }
-    float *dest = j->tensors + 3 * (size_t)f;
-    if (r->corner[0] + r->corner[1] + r->corner[2] == 0 || !face_second(j, v, r, dest))
+    const float *t = r->t, *n = r->n, *N = j->normals;
+    float b[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
+    if (r->corner[0] + r->corner[1] + r->corner[2] == 0 ||
+        !fit_tensor(r->u1, r->w1, r->inv_len, t, b, N + 3 * (size_t)v[0], N + 3 * (size_t)v[1], N + 3 * (size_t)v[2],
+                    dest))
         dest[0] = dest[1] = dest[2] = 0;
 }
 
+/* Frames first, then tensors, in separate loops: each iteration of either is short enough for
+ * several faces to be in flight at once (together they were latency-bound). */
 static lucent_status faces_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
 {
     (void)chunk, (void)thread;
     const rus_job *j = ctx;
-    for (uint64_t f = begin; f < end; f++) face_fit(j, (uint32_t)f);
+    for (uint64_t f = begin; j->second == 0 && f < end; f++) face_frame(j->mesh->positions, j->mesh->faces + 3 * f, j->faces + f);
+    for (uint64_t f = begin; f < end; f++)
+        face_tensor(j, (uint32_t)f, j->faces + f, j->second ? j->tensors + 3 * f : &j->faces[f].mean);
     return LUCENT_OK;
 }
 
