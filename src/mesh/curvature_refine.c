@@ -180,9 +180,9 @@ static void refine_vertex(const refine_job *j, uint32_t v, float *dest)
     for (int i = 0; i < 3; i++) dest[i] = n[i];
     if (j->fan->flags[v] & LUCENT_CURVATURE_INVALID) return;
     lifted_max_normal(j, v, m);
-    double len = v3_len(m);
+    double len = v3_len(m), il = 1 / len;
     if (!(len > 0) || !isfinite(len)) return;
-    for (int i = 0; i < 3; i++) r[i] = n[i] - (m[0] * p->d1[i] + m[1] * p->d2[i]) / len;
+    for (int i = 0; i < 3; i++) r[i] = n[i] - (m[0] * p->d1[i] + m[1] * p->d2[i]) * il;
     if (v3_normalize(r) == 0) return;
     for (int i = 0; i < 3; i++) dest[i] = (float)r[i];
 }

@@ -160,5 +160,4 @@ lucent_status mesh_icosphere(const lucent_primitive_desc *d, lucent_mesh **dest)
 lucent_status mesh_smooth(const lucent_mesh *mesh, const mesh_adjacency *adj, int rings,
                           lucent_curvature *curv);
 
-
 #endif
