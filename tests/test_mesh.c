@@ -409,12 +409,14 @@ static void check_scan(const char *name, int raw, int expect_nonmanifold, int ex
 }
 
 /* The dragon at res2-res4 (closed, but 803-2,534 non-manifold edges; res3 and res4 have unused
- * vertices in the file) and the bunny, raw and welded: every method finite everywhere.
+ * vertices in the file), raw and welded, and the bunny: every method finite everywhere.
  * res1 (437,645 vertices, 4,270 boundary edges) runs in bench_curvature, raw and welded. */
 TEST(stanford_scans_finite)
 {
     check_scan("dragon_vrip_res2.ply.gz", 0, 2534, 0);
+    check_scan("dragon_vrip_res2.ply.gz", 1, 2534, -1);
     check_scan("dragon_vrip_res3.ply.gz", 1, 2094, 16);
+    check_scan("dragon_vrip_res3.ply.gz", 0, 2094, 0);
     check_scan("dragon_vrip_res4.ply.gz", 1, 803, 2);
     check_scan("dragon_vrip_res4.ply.gz", 0, 803, 0);
     check_scan("bunny.ply", 0, 0, 0);

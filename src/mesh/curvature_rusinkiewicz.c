@@ -174,8 +174,8 @@ static void regather(const rus_job *j, uint32_t v, double acc[4])
 }
 
 /* Eigen-decomposition of the averaged tensor [[mean + x, y], [y, mean - x]] in (pu, pv):
- * k = mean +- r, r = |(x, y)| = r (cos 2 phi, sin 2 phi), k1 along (cos phi, sin phi). Writes the
- * result, or zeros (invalid). */
+ * k = mean +- r, (x, y) = r (cos 2 phi, sin 2 phi), k1 along (cos phi, sin phi). Writes the
+ * result (last pass), or zeros (invalid). */
 static void store_vertex(const rus_job *j, uint32_t v, const double *pu, const double *pv, const double *acc)
 {
     double mean = 0, r = 0, c = 1, s = 0, d1[3], d2[3];
@@ -186,27 +186,52 @@ static void store_vertex(const rus_job *j, uint32_t v, const double *pu, const d
         double h = r > 0 ? x / r : 1; /* cos 2 phi; half angles without a branch on its sign */
         c = sqrt(0.5 * (1 + h)), s = copysign(sqrt(0.5 * (1 - h)), y);
     }
-    if (j->principal) { /* first of two passes: floats for the normal correction */
-        mesh_principal *p = j->principal + v;
-        for (int k = 0; k < 3; k++) p->d1[k] = (float)(c * pu[k] + s * pv[k]), p->d2[k] = (float)(c * pv[k] - s * pu[k]);
-        p->k1 = (float)(mean + r), p->k2 = (float)(mean - r);
-    } else { /* the result, in mm^-1; anything non-finite is invalid (lucent_mesh_curvature) */
-        double k1 = (mean + r) * j->scale, k2 = (mean - r) * j->scale, gauss = k1 * k2;
-        valid = valid && isfinite(k1) && isfinite(k2) && isfinite(gauss);
-        for (int k = 0; k < 3; k++) d1[k] = valid ? c * pu[k] + s * pv[k] : 0, d2[k] = valid ? c * pv[k] - s * pu[k] : 0;
-        lucent_curvature *o = j->out;
-        o->k1[v] = valid ? k1 : 0, o->k2[v] = valid ? k2 : 0;
-        o->mean[v] = valid ? mean * j->scale : 0, o->gauss[v] = valid ? gauss : 0;
-        memcpy(o->dir1 + 3 * (size_t)v, d1, sizeof d1), memcpy(o->dir2 + 3 * (size_t)v, d2, sizeof d2);
-    }
+    double k1 = (mean + r) * j->scale, k2 = (mean - r) * j->scale, gauss = k1 * k2; /* in mm^-1 */
+    valid = valid && isfinite(k1) && isfinite(k2) && isfinite(gauss); /* as lucent_mesh_curvature's */
+    for (int k = 0; k < 3; k++) d1[k] = valid ? c * pu[k] + s * pv[k] : 0, d2[k] = valid ? c * pv[k] - s * pu[k] : 0;
+    lucent_curvature *o = j->out;
+    o->k1[v] = valid ? k1 : 0, o->k2[v] = valid ? k2 : 0;
+    o->mean[v] = valid ? mean * j->scale : 0, o->gauss[v] = valid ? gauss : 0;
+    memcpy(o->dir1 + 3 * (size_t)v, d1, sizeof d1), memcpy(o->dir2 + 3 * (size_t)v, d2, sizeof d2);
     uint8_t *flags = j->out->flags + v;
     *flags = (uint8_t)(valid ? *flags & ~LUCENT_CURVATURE_INVALID : *flags | LUCENT_CURVATURE_INVALID);
+}
+
+/* The first of two passes at vertex v, in floats: its principal frame feeds only the normal
+ * correction. The same steps as tangent_frame and store_vertex. */
+static void vertex_first(const rus_job *j, uint32_t v)
+{
+    const float *m = j->normals + 3 * (size_t)v;
+    float l2 = dotf(m, m), n[3], u[3], w[3];
+    double acc[4] = {0, 0, 0, 0};
+    if (l2 > 0) {
+        float s = 1 / sqrtf(l2), sign, a, b;
+        for (int k = 0; k < 3; k++) n[k] = m[k] * s;
+        sign = copysignf(1.0f, n[2]), a = -1 / (sign + n[2]), b = n[0] * n[1] * a;
+        u[0] = 1 + sign * n[0] * n[0] * a, u[1] = sign * b, u[2] = -sign * n[0];
+        w[0] = b, w[1] = sign + n[1] * n[1] * a, w[2] = -n[1];
+        gather(j, v, u, w, n, acc);
+    }
+    mesh_principal *p = j->principal + v;
+    uint8_t *flags = j->out->flags + v;
+    if (!(acc[0] > 0)) {
+        memset(p, 0, sizeof *p), *flags |= LUCENT_CURVATURE_INVALID;
+        return;
+    }
+    float inv = (float)(1 / acc[0]), x = (float)acc[2] * inv, y = (float)acc[3] * inv, mean = (float)acc[1] * inv;
+    float r = sqrtf(x * x + y * y), h = r > 0 ? x / r : 1, c = sqrtf(0.5f * (1 + h)), sn = copysignf(sqrtf(0.5f * (1 - h)), y);
+    for (int k = 0; k < 3; k++) p->d1[k] = c * u[k] + sn * w[k], p->d2[k] = c * w[k] - sn * u[k];
+    p->k1 = mean + r, p->k2 = mean - r, *flags &= (uint8_t)~LUCENT_CURVATURE_INVALID;
 }
 
 static void vertex_curvature(const rus_job *j, uint32_t v)
 {
     double n[3], pu[3], pv[3], acc[4];
     float nf[3], uf[3], vf[3];
+    if (j->principal) {
+        vertex_first(j, v);
+        return;
+    }
     if (!tangent_frame((j->second ? j->frame_normals : j->normals) + 3 * (size_t)v, n, pu, pv)) {
         store_vertex(j, v, pu, pv, NULL);
         return;
