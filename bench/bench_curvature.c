@@ -79,8 +79,10 @@ static void bench_method(const lucent_mesh *m, int method, int fast, int repeats
                          const char *anchor)
 {
     int ok = 1;
-    timing t1 = time_curvature_desc(m, &(lucent_curvature_desc){.method = method, .fast = fast, .pool = one}, repeats, &ok);
-    timing t2 = time_curvature_desc(m, &(lucent_curvature_desc){.method = method, .fast = fast, .pool = two}, repeats, &ok);
+    lucent_curvature_desc d = {.method = method, .fast = fast, .pool = one};
+    timing t1 = time_curvature_desc(m, &d, repeats, &ok);
+    d.pool = two;
+    timing t2 = time_curvature_desc(m, &d, repeats, &ok);
     printf("    %-13s 1 thread %.3f s (median %.3f, cpu %.3f), 2 threads %.3f s (median %.3f, cpu %.3f)  %s%s\n",
            fast ? "rusink. fast" : lucent_curvature_method_name(method), t1.best, t1.median, t1.cpu, t2.best,
            t2.median, t2.cpu, ok ? "finite" : "NON-FINITE OR FAILED", anchor);
@@ -104,7 +106,8 @@ static void bench_mesh(const char *dir, const char *file, int raw, int repeats, 
            st.degenerate_faces);
     int res1 = strcmp(file, "dragon_vrip.ply.gz") == 0;
     for (int method = 0; method < 3; method++)
-        bench_method(m, method, 0, repeats, one, two, res1 && method == 0 ? "   [trimesh2 res1: 0.18-0.25 s / 0.11-0.15 s]" : "");
+        bench_method(m, method, 0, repeats, one, two,
+                     res1 && method == 0 ? "   [trimesh2 res1: 0.18-0.25 s / 0.11-0.15 s]" : "");
     bench_method(m, 0, 1, repeats, one, two, "");
     lucent_mesh_destroy(m);
 }

@@ -115,7 +115,8 @@ static lucent_status faces_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint
 {
     (void)chunk, (void)thread;
     const rus_job *j = ctx;
-    for (uint64_t f = begin; j->second == 0 && f < end; f++) face_frame(j->mesh->positions, j->mesh->faces + 3 * f, j->faces + f);
+    for (uint64_t f = begin; j->second == 0 && f < end; f++)
+        face_frame(j->mesh->positions, j->mesh->faces + 3 * f, j->faces + f);
     for (uint64_t f = begin; f < end; f++)
         face_tensor(j, (uint32_t)f, j->faces + f, j->second ? j->tensors + 3 * f : &j->faces[f].mean);
     return LUCENT_OK;
@@ -219,7 +220,8 @@ static void vertex_first(const rus_job *j, uint32_t v)
         return;
     }
     float inv = (float)(1 / acc[0]), x = (float)acc[2] * inv, y = (float)acc[3] * inv, mean = (float)acc[1] * inv;
-    float r = sqrtf(x * x + y * y), h = r > 0 ? x / r : 1, c = sqrtf(0.5f * (1 + h)), sn = copysignf(sqrtf(0.5f * (1 - h)), y);
+    float r = sqrtf(x * x + y * y), h = r > 0 ? x / r : 1;
+    float c = sqrtf(0.5f * (1 + h)), sn = copysignf(sqrtf(0.5f * (1 - h)), y);
     for (int k = 0; k < 3; k++) p->d1[k] = c * u[k] + sn * w[k], p->d2[k] = c * w[k] - sn * u[k];
     p->k1 = mean + r, p->k2 = mean - r, *flags &= (uint8_t)~LUCENT_CURVATURE_INVALID;
 }
@@ -233,6 +235,7 @@ static void vertex_curvature(const rus_job *j, uint32_t v)
         return;
     }
     if (!tangent_frame((j->second ? j->frame_normals : j->normals) + 3 * (size_t)v, n, pu, pv)) {
+        pu[0] = pu[1] = pu[2] = pv[0] = pv[1] = pv[2] = 0;
         store_vertex(j, v, pu, pv, NULL);
         return;
     }

@@ -142,7 +142,8 @@ static lucent_status adjacency_chunk(void *ctx, uint64_t part, uint64_t begin, u
 {
     (void)begin, (void)end, (void)thread;
     const adjacency_job *j = ctx;
-    uint32_t lo = (uint32_t)(j->vertices * part / j->parts), span = (uint32_t)(j->vertices * (part + 1) / j->parts) - lo;
+    uint32_t lo = (uint32_t)(j->vertices * part / j->parts);
+    uint32_t span = (uint32_t)(j->vertices * (part + 1) / j->parts) - lo;
     uint32_t *start = j->start, *corner = j->corner;
     const uint32_t *faces = j->faces;
     if (!j->place) {
