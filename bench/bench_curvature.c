@@ -2,7 +2,8 @@
  * one and two threads, beside the trimesh2 anchor measured on this kind of machine (its
  * curvature step on res1: 0.18-0.25 s on one thread, 0.11-0.15 s on two), and the accuracy on
  * the acceptance torus (R = 3, r = 1, 192 x 64; trimesh2 as shipped: 8.2% mean-curvature RMS).
- * Times are the best of `repeats` runs (normals included, loading excluded).
+ * Times are the best (and median) of `repeats` runs, normals included, loading excluded; the
+ * load average is printed before and after, since other work on the machine shows in them.
  * Usage: bench_curvature [repeats] [mesh_dir] */
 #include <math.h>
 #include <stdio.h>
@@ -26,6 +27,16 @@ static double cpu_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* ", load average 1.23 0.98 0.70" from /proc/loadavg where there is one, then a newline. */
+static void print_load(void)
+{
+    FILE *f = fopen("/proc/loadavg", "r");
+    double l[3];
+    if (f && fscanf(f, "%lf %lf %lf", l, l + 1, l + 2) == 3) printf(", load average %.2f %.2f %.2f", l[0], l[1], l[2]);
+    if (f) fclose(f);
+    printf("\n");
+}
+
 static int finite_all(const lucent_curvature *c)
 {
     for (size_t v = 0; v < c->count; v++)
@@ -33,27 +44,48 @@ static int finite_all(const lucent_curvature *c)
     return 1;
 }
 
-/* Best wall time of `repeats` runs (and the best process CPU time in *cpu); *ok is cleared on
+/* Times of `repeats` runs: best and median wall time, best process CPU time; *ok is cleared on
  * failure or non-finite output. CPU time shows what a loaded machine hides in wall time. */
-static double time_curvature_desc(const lucent_mesh *m, const lucent_curvature_desc *d, int repeats, int *ok,
-                                  double *cpu)
+typedef struct timing {
+    double best, median, cpu;
+} timing;
+
+static int cmp_double(const void *a, const void *b)
 {
-    double best = INFINITY;
-    *cpu = INFINITY;
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static timing time_curvature_desc(const lucent_mesh *m, const lucent_curvature_desc *d, int repeats, int *ok)
+{
+    double wall[64];
+    timing t = {INFINITY, INFINITY, INFINITY};
+    if (repeats > 64) repeats = 64;
     for (int r = 0; r < repeats; r++) {
         lucent_curvature c = {0};
         double t0 = now(), c0 = cpu_now();
         lucent_status s = lucent_mesh_curvature(m, d, &c);
-        best = fmin(best, now() - t0), *cpu = fmin(*cpu, cpu_now() - c0);
+        wall[r] = now() - t0, t.cpu = fmin(t.cpu, cpu_now() - c0);
         if (s != LUCENT_OK || !finite_all(&c) || c.invalid_count > m->vertex_count / 100) *ok = 0;
         lucent_curvature_free(&c);
     }
-    return best;
+    qsort(wall, (size_t)repeats, sizeof *wall, cmp_double);
+    t.best = wall[0], t.median = wall[repeats / 2];
+    return t;
 }
 
-static double time_curvature(const lucent_mesh *m, int method, lucent_pool *pool, int repeats, int *ok, double *cpu)
+/* One method (fast: Rusinkiewicz's first pass only) on one and two threads, one line. */
+static void bench_method(const lucent_mesh *m, int method, int fast, int repeats, lucent_pool *one, lucent_pool *two,
+                         const char *anchor)
 {
-    return time_curvature_desc(m, &(lucent_curvature_desc){.method = method, .pool = pool}, repeats, ok, cpu);
+    int ok = 1;
+    lucent_curvature_desc d = {.method = method, .fast = fast, .pool = one};
+    timing t1 = time_curvature_desc(m, &d, repeats, &ok);
+    d.pool = two;
+    timing t2 = time_curvature_desc(m, &d, repeats, &ok);
+    printf("    %-13s 1 thread %.3f s (median %.3f, cpu %.3f), 2 threads %.3f s (median %.3f, cpu %.3f)  %s%s\n",
+           fast ? "rusink. fast" : lucent_curvature_method_name(method), t1.best, t1.median, t1.cpu, t2.best,
+           t2.median, t2.cpu, ok ? "finite" : "NON-FINITE OR FAILED", anchor);
 }
 
 static void bench_mesh(const char *dir, const char *file, int raw, int repeats, lucent_pool *one, lucent_pool *two)
@@ -72,21 +104,11 @@ static void bench_mesh(const char *dir, const char *file, int raw, int repeats, 
     printf("  %-24s %-6s %7zu vertices, load %.2f s; %zu boundary / %zu non-manifold edges, %zu zero-area faces\n",
            file, raw ? "(raw)" : "(weld)", m->vertex_count, tl, st.boundary_edges, st.nonmanifold_edges,
            st.degenerate_faces);
-    for (int method = 0; method < 3; method++) {
-        int ok = 1;
-        double c1, c2, t1 = time_curvature(m, method, one, repeats, &ok, &c1);
-        double t2 = time_curvature(m, method, two, repeats, &ok, &c2);
-        printf("    %-13s 1 thread %.3f s (cpu %.3f), 2 threads %.3f s  %s%s\n", lucent_curvature_method_name(method),
-               t1, c1, t2, ok ? "finite" : "NON-FINITE OR FAILED",
-               strcmp(file, "dragon_vrip.ply.gz") == 0 && method == 0
-                   ? "   [trimesh2 res1: 0.18-0.25 s / 0.11-0.15 s]" : "");
-    }
-    int ok = 1;
-    double c1, c2;
-    double t1 = time_curvature_desc(m, &(lucent_curvature_desc){.pool = one, .fast = 1}, repeats, &ok, &c1);
-    double t2 = time_curvature_desc(m, &(lucent_curvature_desc){.pool = two, .fast = 1}, repeats, &ok, &c2);
-    printf("    %-13s 1 thread %.3f s (cpu %.3f), 2 threads %.3f s  %s\n", "rusink. fast", t1, c1, t2,
-           ok ? "finite" : "NON-FINITE OR FAILED");
+    int res1 = strcmp(file, "dragon_vrip.ply.gz") == 0;
+    for (int method = 0; method < 3; method++)
+        bench_method(m, method, 0, repeats, one, two,
+                     res1 && method == 0 ? "   [trimesh2 res1: 0.18-0.25 s / 0.11-0.15 s]" : "");
+    bench_method(m, 0, 1, repeats, one, two, "");
     lucent_mesh_destroy(m);
 }
 
@@ -141,7 +163,8 @@ int main(int argc, char **argv)
     const char *dir = argc > 2 ? argv[2] : default_mesh_dir();
     if (repeats < 1) repeats = 3;
     lucent_pool *one = lucent_pool_create(1), *two = lucent_pool_create(2);
-    printf("bench_curvature: best of %d, %d cores\n", repeats, lucent_cpu_count());
+    printf("bench_curvature: best of %d, %d cores", repeats, lucent_cpu_count());
+    print_load();
     printf("accuracy, mean curvature relative RMS error:\n");
     bench_torus(0, "trimesh2 as shipped: 8.2%; target <= 0.1% (rusinkiewicz)");
     bench_torus(0.25, "target <= 4% (rusinkiewicz)");
@@ -152,6 +175,8 @@ int main(int argc, char **argv)
            "  vertices, keep_duplicates, holes and zero-area faces as scanned)\n");
     bench_mesh(dir, files[0], 1, repeats, one, two);
     for (int i = 0; i < 4; i++) bench_mesh(dir, files[i], 0, repeats, one, two);
+    printf("done");
+    print_load();
     lucent_pool_destroy(one), lucent_pool_destroy(two);
     return 0;
 }

@@ -223,6 +223,11 @@ TEST(units_smoothing_directions)
     CHECK(max_rel(&c, c.mean, 1.0) < 1e-4);
     CHECK(max_rel(&c, c.gauss, 1.0) < 2e-4);
     lucent_curvature_free(&c);
+    for (int method = 0; method < 3; method++) { /* unsmoothed: Rusinkiewicz scales in its last pass */
+        CHECK_OK(lucent_mesh_curvature(m, &(lucent_curvature_desc){.method = method, .mm_per_unit = 0.5}, &c));
+        CHECK(max_rel(&c, c.mean, 1.0) < 2e-3 && max_rel(&c, c.k1, 1.0) < 0.05 && max_rel(&c, c.gauss, 1.0) < 0.01);
+        lucent_curvature_free(&c);
+    }
     lucent_mesh_destroy(m);
     CHECK_OK(lucent_mesh_primitive(&(lucent_primitive_desc){.kind = LUCENT_PRIMITIVE_TORUS}, &m));
     c = curvature_of(m, LUCENT_CURVATURE_RUSINKIEWICZ);
@@ -404,12 +409,14 @@ static void check_scan(const char *name, int raw, int expect_nonmanifold, int ex
 }
 
 /* The dragon at res2-res4 (closed, but 803-2,534 non-manifold edges; res3 and res4 have unused
- * vertices in the file) and the bunny, raw and welded: every method finite everywhere.
+ * vertices in the file), raw and welded, and the bunny: every method finite everywhere.
  * res1 (437,645 vertices, 4,270 boundary edges) runs in bench_curvature, raw and welded. */
 TEST(stanford_scans_finite)
 {
     check_scan("dragon_vrip_res2.ply.gz", 0, 2534, 0);
+    check_scan("dragon_vrip_res2.ply.gz", 1, 2534, -1);
     check_scan("dragon_vrip_res3.ply.gz", 1, 2094, 16);
+    check_scan("dragon_vrip_res3.ply.gz", 0, 2094, 0);
     check_scan("dragon_vrip_res4.ply.gz", 1, 803, 2);
     check_scan("dragon_vrip_res4.ply.gz", 0, 803, 0);
     check_scan("bunny.ply", 0, 0, 0);

@@ -130,7 +130,7 @@ typedef struct lucent_curvature_desc {
     double mm_per_unit; /* millimetres per mesh unit (default 1): curvatures come out in mm^-1 */
     lucent_pool *pool;  /* NULL: run on the caller */
     int fast;           /* Rusinkiewicz only, non-zero: skip the normal-correcting second pass
-                           (about 2x faster; the same on regular meshes, less accurate on irregular
+                           (about 1.7x faster; the same on regular meshes, less accurate on irregular
                            ones: 4.8% instead of 0.8% on the jittered acceptance torus) */
 } lucent_curvature_desc;
 

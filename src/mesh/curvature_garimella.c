@@ -9,25 +9,26 @@
 
 void mesh_garimella_vertex(const mesh_vertex_job *j, uint32_t v)
 {
-    const double *P = j->mesh->positions, *n = j->normals + 3 * v;
+    const double *P = j->mesh->positions, *p = P + 3 * (size_t)v;
+    const float *nf = j->normals + 3 * (size_t)v;
     lucent_curvature *o = j->out;
-    double sum = 0, wsum = 0, e1[3], e2[3], x[3], d[3];
+    double sum = 0, wsum = 0;
     for (uint32_t a = j->adj->start[v]; a < j->adj->start[v + 1]; a++) {
-        const uint32_t *t = j->mesh->faces + 3 * j->adj->face[a];
-        int c = j->adj->corner[a];
-        v3_sub(P + 3 * t[(c + 1) % 3], P + 3 * v, e1), v3_sub(P + 3 * t[(c + 2) % 3], P + 3 * v, e2);
-        v3_cross(e1, e2, x);
-        double area = 0.5 * v3_len(x);
-        if (!(area > 0)) continue;
-        for (int k = 1; k <= 2; k++) {
-            v3_sub(P + 3 * v, P + 3 * t[(c + k) % 3], d);
-            sum += area * 2 * v3_dot(d, n) / v3_dot(d, d), wsum += area;
+        uint32_t i = j->adj->corner[a], other[2];
+        const mesh_face_geometry *f = j->geometry + i / 3;
+        double area = (double)f->corner[0] + f->corner[1] + f->corner[2]; /* the face's */
+        mesh_slot_others(j->mesh->faces, i, other, other + 1);
+        for (int k = 0; k < 2; k++) {
+            const double *q = P + 3 * (size_t)other[k];
+            double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]}, dd = v3_dot(d, d);
+            if (!(area > 0) || !(dd > 0)) continue;
+            sum += area * 2 * (d[0] * nf[0] + d[1] * nf[1] + d[2] * nf[2]) / dd, wsum += area;
         }
     }
     int boundary = o->flags[v] & LUCENT_CURVATURE_BOUNDARY;
     double mixed;
-    double K = mesh_angle_deficit_gauss(j->mesh, j->adj, v, boundary, &mixed);
-    if (!(wsum > 0) || !(mixed > 0) || v3_dot(n, n) == 0) {
+    double K = mesh_angle_deficit_gauss(j, v, boundary, &mixed);
+    if (!(wsum > 0) || !(mixed > 0) || (nf[0] == 0 && nf[1] == 0 && nf[2] == 0)) {
         o->flags[v] |= LUCENT_CURVATURE_INVALID;
         return;
     }

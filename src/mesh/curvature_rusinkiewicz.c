@@ -1,7 +1,7 @@
 /* Rusinkiewicz 2004, "Estimating curvatures and their derivatives on triangle meshes":
  * a second fundamental form per face, fitted by least squares to the differences of vertex
  * normals along the three edges (Sec. 3, eq. 4); per vertex, the face tensors are rotated into
- * the vertex's tangent frame and averaged with mixed Voronoi corner weights (Sec. 4), then
+ * the vertex's tangent plane and averaged with mixed Voronoi corner weights (Sec. 4), then
  * diagonalised. The 3x3 normal equations are solved exactly (Cramer), not with trimesh2's
  * LDLT, which reads A[2][0] and A[2][1] before filling them. */
 #include <stdlib.h>
@@ -9,303 +9,302 @@
 
 #include "mesh/internal.h"
 
-/* One face: its frame (t, b, n), tensor (e, f, g) in that frame, corner areas. Floats (one
- * 64-byte cache line per face): the per-vertex gather reads faces in mesh order, which in a scan
- * is far from memory order, so this pass is bound by cache misses. */
-typedef struct face_tensor {
-    float t[3], b[3], n[3];
-    float e, f, g;
+/* One face: its unit tangent t (along edge 0) and normal n, b = n x t completing the frame;
+ * the tensor [[e, f], [f, g]] in (t, b) kept as mean = (e + g)/2, diff = (e - g)/2 and off = f,
+ * because turning the frame by an angle phi keeps the mean and turns (diff, off) by 2 phi;
+ * the three corner areas; edges 0 and 1 in (t, b) in units of edge 0's length L, (1, 0) and
+ * (u1, w1) (edge 2 closes the triangle), and 1/L: all the second fit needs of the geometry.
+ * Floats, one 64-byte line: the per-vertex gather reads them at random. */
+typedef struct face_rec {
+    float t[3], n[3];
+    float mean, diff, off;
     float corner[3];
-    float pad;
-} face_tensor;
+    float u1, w1, inv_len, unused;
+} face_rec;
 
-enum { PREFETCH_AHEAD = 4 };
+/* Per adjacency slot, written by the first pass's gather: the corner weight w and the turn of
+ * the face tensor into the vertex's frame, w cos 2 phi and w sin 2 phi. The second pass fits new
+ * face tensors but keeps frames and weights (using the corrected normal for the vertex frame
+ * changes nothing measurable), so its gather is a weighted sum of these. */
+typedef struct slot_turn {
+    float w, wc, ws;
+} slot_turn;
+
+enum { PREFETCH_SLOTS = 48 }; /* about 8 vertices ahead; at most MESH_SLOT_PAD */
 
 typedef struct rus_job {
     const lucent_mesh *mesh;
     const mesh_adjacency *adj;
-    const double *normals;
-    face_tensor *ft;
+    const float *normals;       /* this pass's vertex normals, 3 per vertex */
+    face_rec *faces;
+    slot_turn *turns;           /* two passes only */
+    float *tensors;             /* the second pass's face tensors (mean, diff, off) */
+    mesh_principal *principal;  /* the first of two passes writes here, the last to out */
     lucent_curvature *out;
-    int refit; /* second pass: frames and corner areas already in ft */
+    const float *frame_normals; /* the second pass: the first pass's normals, for the frames */
+    double scale;               /* 1/mm_per_unit */
+    int second;
 } rus_job;
 
-/* Solves the symmetric system [[a, b, 0], [b, a + c, b], [0, b, c]] x = m (eq. 4's normal
- * equations). det = (a + c)(a c - b^2) >= 0; returns 0 when the face is degenerate. */
-static int solve_fit(double a, double b, double c, const double *m, double *x)
+static inline float dotf(const float *a, const float *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* Fits the face's second fundamental form to the normal differences along its edges (eq. 4):
+ * edge k (opposite corner k) is (uk, wk) in (t, b), in units of edge 0's length (so the
+ * arithmetic is scale-free), its normal difference (duk, dwk); m = sum over edges of
+ * (du u, du w + dw u, dw w). The normal equations
+ * [[a, b, 0], [b, a + c, b], [0, b, c]] x = m are solved exactly (Cramer); their determinant
+ * is (a + c)(a c - b^2), and a c - b^2 = 3 (u0 w1)^2 by Lagrange's identity (every pair of edges
+ * spans twice the area), so it is computed without cancellation. Returns 0 when degenerate. */
+static int fit_tensor(float u1, float w1, float inv_len, const float *t, const float *b, const float *n0,
+                      const float *n1, const float *n2, float *dest)
 {
-    double det = (a + c) * (a * c - b * b), scale = (a + c) * (a + c) * (a + c);
-    if (!(det > 1e-12 * scale)) return 0;
-    double i00 = (a + c) * c - b * b, i01 = -b * c, i02 = b * b;
-    double i11 = a * c, i12 = -a * b, i22 = a * (a + c) - b * b;
-    double inv = 1 / det;
-    x[0] = (i00 * m[0] + i01 * m[1] + i02 * m[2]) * inv;
-    x[1] = (i01 * m[0] + i11 * m[1] + i12 * m[2]) * inv;
-    x[2] = (i02 * m[0] + i12 * m[1] + i22 * m[2]) * inv;
+    float u2 = -1 - u1; /* edges (1, 0), (u1, w1), (u2, -w1) */
+    float t0 = dotf(n0, t), t1 = dotf(n1, t), t2 = dotf(n2, t), b0 = dotf(n0, b), b1 = dotf(n1, b), b2 = dotf(n2, b);
+    float du0 = t2 - t1, du1 = t0 - t2, du2 = t1 - t0, dw0 = b2 - b1, dw1 = b0 - b2, dw2 = b1 - b0;
+    float a = 1 + u1 * u1 + u2 * u2, ab = w1 * (u1 - u2), c = 2 * w1 * w1;
+    float m0 = du0 + du1 * u1 + du2 * u2, m1 = w1 * (du1 - du2) + dw0 + dw1 * u1 + dw2 * u2, m2 = w1 * (dw1 - dw2);
+    float q = 3 * w1 * w1, s = a + c; /* a c - b^2, with u0 = 1 */
+    if (!(q > 1e-12f * s * s) || !(q < 1e30f)) return 0;
+    float i00 = q + c * c, i01 = -ab * c, i02 = ab * ab, i11 = a * c, i12 = -a * ab, i22 = q + a * a;
+    float inv = inv_len / (s * q); /* back to the mesh's units: curvature scales as 1/L */
+    float x0 = (i00 * m0 + i01 * m1 + i02 * m2) * inv, x1 = (i01 * m0 + i11 * m1 + i12 * m2) * inv;
+    float x2 = (i02 * m0 + i12 * m1 + i22 * m2) * inv;
+    dest[0] = 0.5f * (x0 + x2), dest[1] = 0.5f * (x0 - x2), dest[2] = x1;
     return 1;
 }
 
-static void store_face(const double *t, const double *b, const double *n, const double *x,
-                       const double *corner, face_tensor *ft)
+/* First pass: frame, corner areas and edge coordinates from the positions; 0 (and a record of
+ * zeros, no weight) for a degenerate face. */
+static int face_frame(const double *P, const uint32_t *v, face_rec *r)
 {
-    for (int k = 0; k < 3; k++) {
-        ft->t[k] = (float)t[k], ft->b[k] = (float)b[k], ft->n[k] = (float)n[k];
-        ft->corner[k] = (float)corner[k];
+    const double *p0 = P + 3 * (size_t)v[0], *p1 = P + 3 * (size_t)v[1], *p2 = P + 3 * (size_t)v[2];
+    /* written out: a loop over k stored the edges and v3_cross reloaded them two at a time,
+     * which store forwarding cannot serve */
+    double e0[3] = {p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]}, e1[3] = {p0[0] - p2[0], p0[1] - p2[1], p0[2] - p2[2]};
+    double e2[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, x[3], l[3], corner[3];
+    v3_cross(e0, e1, x);
+    l[0] = v3_dot(e0, e0), l[1] = v3_dot(e1, e1), l[2] = v3_dot(e2, e2);
+    double x2 = v3_dot(x, x);
+    if (!(x2 > 0) || !(l[0] > 0) || !isfinite(x2)) {
+        memset(r, 0, sizeof *r);
+        return 0;
     }
-    ft->e = (float)x[0], ft->f = (float)x[1], ft->g = (float)x[2], ft->pad = 0;
+    double xl = sqrt(x2), len = sqrt(l[0]), q = 1 / (xl * len), in = q * len, it = q * xl, il = it * it;
+    mesh_mixed_areas(l, xl, in, corner); /* Meyer et al. 2003, Fig. 4 */
+    for (int k = 0; k < 3; k++)
+        r->t[k] = (float)(e0[k] * it), r->n[k] = (float)(x[k] * in), r->corner[k] = (float)corner[k];
+    r->u1 = (float)(v3_dot(e0, e1) * il), r->w1 = (float)(xl * il), r->inv_len = (float)it, r->unused = 0;
+    return 1;
 }
 
-static void face_fit(const rus_job *j, size_t fi, face_tensor *ft)
+/* The face's tensor from its record and this pass's normals, into dest (zeros if degenerate). */
+static void face_tensor(const rus_job *j, uint32_t f, const face_rec *r, float *dest)
 {
-    const uint32_t *t = j->mesh->faces + 3 * fi;
-    const double *P = j->mesh->positions, *N = j->normals;
-    double e[3][3], n[3], tt[3], bb[3], corner[3];
-    for (int k = 0; k < 3; k++) v3_sub(P + 3 * t[(k + 2) % 3], P + 3 * t[(k + 1) % 3], e[k]);
-    if (j->refit) { /* positions unchanged since the first pass: keep frame and areas */
-        for (int k = 0; k < 3; k++)
-            tt[k] = ft->t[k], bb[k] = ft->b[k], n[k] = ft->n[k], corner[k] = ft->corner[k];
-    } else {
-        mesh_corner_areas(j->mesh, fi, corner);
-        memcpy(tt, e[0], sizeof tt);
-        v3_normalize(tt);
-        v3_cross(e[0], e[1], n);
-        v3_normalize(n);
-        v3_cross(n, tt, bb);
-        v3_normalize(bb);
-    }
-    double a = 0, b = 0, c = 0, m[3] = {0, 0, 0}, x[3], dn[3];
-    for (int k = 0; k < 3; k++) {
-        double u = v3_dot(e[k], tt), v = v3_dot(e[k], bb);
-        a += u * u, b += u * v, c += v * v;
-        v3_sub(N + 3 * t[(k + 2) % 3], N + 3 * t[(k + 1) % 3], dn);
-        double dnu = v3_dot(dn, tt), dnv = v3_dot(dn, bb);
-        m[0] += dnu * u, m[1] += dnu * v + dnv * u, m[2] += dnv * v;
-    }
-    if (!solve_fit(a, b, c, m, x)) {
-        corner[0] = corner[1] = corner[2] = 0; /* degenerate: no weight */
-        x[0] = x[1] = x[2] = 0;
-    }
-    store_face(tt, bb, n, x, corner, ft);
+    const uint32_t *v = j->mesh->faces + 3 * (size_t)f;
+    const float *t = r->t, *n = r->n, *N = j->normals;
+    float b[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
+    if (r->corner[0] + r->corner[1] + r->corner[2] == 0 ||
+        !fit_tensor(r->u1, r->w1, r->inv_len, t, b, N + 3 * (size_t)v[0], N + 3 * (size_t)v[1], N + 3 * (size_t)v[2],
+                    dest))
+        dest[0] = dest[1] = dest[2] = 0;
 }
 
+/* Frames first, then tensors, in separate loops: each iteration of either is short enough for
+ * several faces to be in flight at once (together they were latency-bound). */
 static lucent_status faces_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
 {
     (void)chunk, (void)thread;
-    rus_job *j = ctx;
-    for (uint64_t f = begin; f < end; f++) face_fit(j, f, j->ft + f);
+    const rus_job *j = ctx;
+    for (uint64_t f = begin; j->second == 0 && f < end; f++)
+        face_frame(j->mesh->positions, j->mesh->faces + 3 * f, j->faces + f);
+    for (uint64_t f = begin; f < end; f++)
+        face_tensor(j, (uint32_t)f, j->faces + f, j->second ? j->tensors + 3 * f : &j->faces[f].mean);
     return LUCENT_OK;
 }
 
-/* Rotates the frame (u, v), normal old_n = u x v, so that its normal becomes new_n (trimesh2's
- * rot_coord_sys). */
-static void rotate_frame(const double *u, const double *v, const double *old_n, const double *new_n,
-                         double *ru, double *rv)
+/* A tangent frame (pu, pv) at the unit normal n, pu x pv = n, without branches (Duff et al.
+ * 2017, "Building an orthonormal basis, revisited", JCGT 6(1), Listing 3). 0 for a zero normal. */
+static int tangent_frame(const float *nf, double *n, double *pu, double *pv)
 {
-    double perp[3], dperp[3];
-    double nd = v3_dot(old_n, new_n);
-    memcpy(ru, u, 3 * sizeof *ru), memcpy(rv, v, 3 * sizeof *rv);
-    if (nd <= -1) {
-        for (int k = 0; k < 3; k++) ru[k] = -ru[k], rv[k] = -rv[k];
+    double l2 = (double)nf[0] * nf[0] + (double)nf[1] * nf[1] + (double)nf[2] * nf[2];
+    if (!(l2 > 0)) return 0;
+    double s = 1 / sqrt(l2);
+    for (int k = 0; k < 3; k++) n[k] = nf[k] * s;
+    double sign = copysign(1.0, n[2]), a = -1 / (sign + n[2]), b = n[0] * n[1] * a;
+    pu[0] = 1 + sign * n[0] * n[0] * a, pu[1] = sign * b, pu[2] = -sign * n[0];
+    pv[0] = b, pv[1] = sign + n[1] * n[1] * a, pv[2] = -n[1];
+    return 1;
+}
+
+/* Sums v's face tensors, each turned into v's tangent plane by the rotation that takes the
+ * face normal to v's normal (Sec. 4.1: exact, not a projection) and weighted by v's corner area
+ * (Sec. 4.2). With f's tangent t at angle phi from pu after the rotation, (diff, off) turn by
+ * 2 phi. acc: total area, then area times mean, diff and off in (pu, pv). */
+static void gather(const rus_job *j, uint32_t v, const float *u, const float *w, const float *n, double acc[4])
+{
+    const mesh_adjacency *adj = j->adj;
+    float sa = 0, sm = 0, sx = 0, sy = 0;
+    for (uint32_t a = adj->start[v]; a < adj->start[v + 1]; a++) {
+        uint32_t i = adj->corner[a];
+        const face_rec *f = j->faces + i / 3;
+        __builtin_prefetch(j->faces + adj->corner[a + PREFETCH_SLOTS] / 3); /* records lie far apart */
+        float area = f->corner[i % 3];
+        float nd = dotf(n, f->n), su = dotf(u, f->n), sv = dotf(w, f->n);
+        float tn = dotf(n, f->t), tu = dotf(u, f->t), tv = dotf(w, f->t);
+        float den = 1 + nd, k = den > 1e-6f ? tn / den : 0; /* opposite normals: no turn */
+        float c = tu - su * k, s = tv - sv * k;              /* cos phi, sin phi */
+        float wc = area * (c * c - s * s), ws = area * 2 * c * s;
+        sa += area, sm += area * f->mean, sx += f->diff * wc - f->off * ws, sy += f->diff * ws + f->off * wc;
+        if (j->turns) j->turns[a] = (slot_turn){area, wc, ws};
+    }
+    acc[0] = sa, acc[1] = sm, acc[2] = sx, acc[3] = sy;
+}
+
+/* The second pass's gather: the first pass's weights and turns, the new tensors. */
+static void regather(const rus_job *j, uint32_t v, double acc[4])
+{
+    const mesh_adjacency *adj = j->adj;
+    float sa = 0, sm = 0, sx = 0, sy = 0;
+    for (uint32_t a = adj->start[v]; a < adj->start[v + 1]; a++) {
+        const slot_turn *t = j->turns + a;
+        const float *x = j->tensors + 3 * (size_t)(adj->corner[a] / 3);
+        __builtin_prefetch(j->tensors + 3 * (size_t)(adj->corner[a + PREFETCH_SLOTS] / 3));
+        sa += t->w, sm += t->w * x[0], sx += t->wc * x[1] - t->ws * x[2], sy += t->ws * x[1] + t->wc * x[2];
+    }
+    acc[0] = sa, acc[1] = sm, acc[2] = sx, acc[3] = sy;
+}
+
+/* Eigen-decomposition of the averaged tensor [[mean + x, y], [y, mean - x]] in (pu, pv):
+ * k = mean +- r, (x, y) = r (cos 2 phi, sin 2 phi), k1 along (cos phi, sin phi). Writes the
+ * result (last pass), or zeros (invalid). */
+static void store_vertex(const rus_job *j, uint32_t v, const double *pu, const double *pv, const double *acc)
+{
+    double mean = 0, r = 0, c = 1, s = 0, d1[3], d2[3];
+    int valid = acc && acc[0] > 0;
+    if (valid) {
+        double inv = 1 / acc[0], x = acc[2] * inv, y = acc[3] * inv;
+        mean = acc[1] * inv, r = sqrt(x * x + y * y);
+        double h = r > 0 ? x / r : 1; /* cos 2 phi; half angles without a branch on its sign */
+        c = sqrt(0.5 * (1 + h)), s = copysign(sqrt(0.5 * (1 - h)), y);
+    }
+    double k1 = (mean + r) * j->scale, k2 = (mean - r) * j->scale, gauss = k1 * k2; /* in mm^-1 */
+    valid = valid && isfinite(k1) && isfinite(k2) && isfinite(gauss); /* as lucent_mesh_curvature's */
+    for (int k = 0; k < 3; k++) d1[k] = valid ? c * pu[k] + s * pv[k] : 0, d2[k] = valid ? c * pv[k] - s * pu[k] : 0;
+    lucent_curvature *o = j->out;
+    o->k1[v] = valid ? k1 : 0, o->k2[v] = valid ? k2 : 0;
+    o->mean[v] = valid ? mean * j->scale : 0, o->gauss[v] = valid ? gauss : 0;
+    memcpy(o->dir1 + 3 * (size_t)v, d1, sizeof d1), memcpy(o->dir2 + 3 * (size_t)v, d2, sizeof d2);
+    uint8_t *flags = j->out->flags + v;
+    *flags = (uint8_t)(valid ? *flags & ~LUCENT_CURVATURE_INVALID : *flags | LUCENT_CURVATURE_INVALID);
+}
+
+/* The first of two passes at vertex v, in floats: its principal frame feeds only the normal
+ * correction. The same steps as tangent_frame and store_vertex. */
+static void vertex_first(const rus_job *j, uint32_t v)
+{
+    const float *m = j->normals + 3 * (size_t)v;
+    float l2 = dotf(m, m), n[3], u[3], w[3];
+    double acc[4] = {0, 0, 0, 0};
+    if (l2 > 0) {
+        float s = 1 / sqrtf(l2), sign, a, b;
+        for (int k = 0; k < 3; k++) n[k] = m[k] * s;
+        sign = copysignf(1.0f, n[2]), a = -1 / (sign + n[2]), b = n[0] * n[1] * a;
+        u[0] = 1 + sign * n[0] * n[0] * a, u[1] = sign * b, u[2] = -sign * n[0];
+        w[0] = b, w[1] = sign + n[1] * n[1] * a, w[2] = -n[1];
+        gather(j, v, u, w, n, acc);
+    }
+    mesh_principal *p = j->principal + v;
+    uint8_t *flags = j->out->flags + v;
+    if (!(acc[0] > 0)) {
+        memset(p, 0, sizeof *p), *flags |= LUCENT_CURVATURE_INVALID;
         return;
     }
-    double inv = 1 / (1 + nd);
-    for (int k = 0; k < 3; k++) perp[k] = new_n[k] - nd * old_n[k], dperp[k] = (old_n[k] + new_n[k]) * inv;
-    double su = v3_dot(ru, perp), sv = v3_dot(rv, perp);
-    for (int k = 0; k < 3; k++) ru[k] -= dperp[k] * su, rv[k] -= dperp[k] * sv;
-}
-
-/* Re-expresses the face tensor in the vertex frame (pu, pv), Sec. 4.1. */
-static void project_tensor(const face_tensor *ft, const double *pu, const double *pv, const double *pn,
-                           double *dest)
-{
-    double ru[3], rv[3], n[3] = {ft->n[0], ft->n[1], ft->n[2]};
-    double t[3] = {ft->t[0], ft->t[1], ft->t[2]}, b[3] = {ft->b[0], ft->b[1], ft->b[2]};
-    rotate_frame(pu, pv, pn, n, ru, rv);
-    double u1 = v3_dot(ru, t), v1 = v3_dot(ru, b), u2 = v3_dot(rv, t), v2 = v3_dot(rv, b);
-    dest[0] = ft->e * u1 * u1 + ft->f * 2 * u1 * v1 + ft->g * v1 * v1;
-    dest[1] = ft->e * u1 * u2 + ft->f * (u1 * v2 + u2 * v1) + ft->g * v1 * v2;
-    dest[2] = ft->e * u2 * u2 + ft->f * 2 * u2 * v2 + ft->g * v2 * v2;
-}
-
-/* Eigen-decomposition of the 2x2 tensor [[ku, kuv], [kuv, kv]] in frame (pu, pv) (a Jacobi
- * rotation); writes k1 >= k2 and their directions. */
-static void diagonalize(const double *pu, const double *pv, const double *k, lucent_curvature *o, size_t v)
-{
-    double c = 1, s = 0, tt = 0;
-    if (k[1] != 0) {
-        double h = 0.5 * (k[2] - k[0]) / k[1];
-        tt = h < 0 ? 1 / (h - sqrt(1 + h * h)) : 1 / (h + sqrt(1 + h * h));
-        c = 1 / sqrt(1 + tt * tt), s = tt * c;
-    }
-    double k1 = k[0] - tt * k[1], k2 = k[2] + tt * k[1], *d1 = o->dir1 + 3 * v, *d2 = o->dir2 + 3 * v;
-    for (int i = 0; i < 3; i++) d1[i] = c * pu[i] - s * pv[i], d2[i] = s * pu[i] + c * pv[i];
-    if (k1 < k2) {
-        double tmp[3];
-        memcpy(tmp, d1, sizeof tmp), memcpy(d1, d2, sizeof tmp), memcpy(d2, tmp, sizeof tmp);
-        double x = k1;
-        k1 = k2, k2 = x;
-    }
-    o->k1[v] = k1, o->k2[v] = k2, o->mean[v] = 0.5 * (k1 + k2), o->gauss[v] = k1 * k2;
-}
-
-/* A tangent frame at v: the first incident edge, made perpendicular to the normal. */
-static int vertex_frame(const rus_job *j, uint32_t v, double *pu, double *pv)
-{
-    const double *n = j->normals + 3 * v;
-    uint32_t a = j->adj->start[v];
-    const uint32_t *t = j->mesh->faces + 3 * j->adj->face[a];
-    double e[3];
-    v3_sub(j->mesh->positions + 3 * t[(j->adj->corner[a] + 1) % 3], j->mesh->positions + 3 * v, e);
-    v3_cross(e, n, pu);
-    if (v3_normalize(pu) == 0) return 0;
-    v3_cross(n, pu, pv);
-    return v3_normalize(pv) > 0;
+    float inv = (float)(1 / acc[0]), x = (float)acc[2] * inv, y = (float)acc[3] * inv, mean = (float)acc[1] * inv;
+    float r = sqrtf(x * x + y * y), h = r > 0 ? x / r : 1;
+    float c = sqrtf(0.5f * (1 + h)), sn = copysignf(sqrtf(0.5f * (1 - h)), y);
+    for (int k = 0; k < 3; k++) p->d1[k] = c * u[k] + sn * w[k], p->d2[k] = c * w[k] - sn * u[k];
+    p->k1 = mean + r, p->k2 = mean - r, *flags &= (uint8_t)~LUCENT_CURVATURE_INVALID;
 }
 
 static void vertex_curvature(const rus_job *j, uint32_t v)
 {
-    const mesh_adjacency *adj = j->adj;
-    double pu[3], pv[3], area = 0, k[3] = {0, 0, 0}, kf[3];
-    if (adj->start[v] == adj->start[v + 1] || !vertex_frame(j, v, pu, pv)) {
-        j->out->flags[v] |= LUCENT_CURVATURE_INVALID;
+    double n[3], pu[3], pv[3], acc[4];
+    float nf[3], uf[3], vf[3];
+    if (j->principal) {
+        vertex_first(j, v);
         return;
     }
-    for (uint32_t a = adj->start[v]; a < adj->start[v + 1]; a++) area += j->ft[adj->face[a]].corner[adj->corner[a]];
-    if (!(area > 0)) {
-        j->out->flags[v] |= LUCENT_CURVATURE_INVALID;
+    if (!tangent_frame((j->second ? j->frame_normals : j->normals) + 3 * (size_t)v, n, pu, pv)) {
+        pu[0] = pu[1] = pu[2] = pv[0] = pv[1] = pv[2] = 0;
+        store_vertex(j, v, pu, pv, NULL);
         return;
     }
-    for (uint32_t a = adj->start[v]; a < adj->start[v + 1]; a++) {
-        const face_tensor *ft = j->ft + adj->face[a];
-        double w = ft->corner[adj->corner[a]] / area;
-        if (w == 0) continue;
-        project_tensor(ft, pu, pv, j->normals + 3 * v, kf);
-        for (int i = 0; i < 3; i++) k[i] += w * kf[i];
+    if (j->second) {
+        regather(j, v, acc);
+    } else {
+        for (int k = 0; k < 3; k++) nf[k] = (float)n[k], uf[k] = (float)pu[k], vf[k] = (float)pv[k];
+        gather(j, v, uf, vf, nf, acc);
     }
-    diagonalize(pu, pv, k, j->out, v);
+    store_vertex(j, v, pu, pv, acc);
 }
 
 static lucent_status vertices_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
 {
     (void)chunk, (void)thread;
     const rus_job *j = ctx;
-    const mesh_adjacency *adj = j->adj;
-    for (uint64_t v = begin; v < end; v++) {
-        /* the face records are far apart in memory: fetch those of a later vertex now */
-        if (v + PREFETCH_AHEAD < end)
-            for (uint32_t a = adj->start[v + PREFETCH_AHEAD]; a < adj->start[v + PREFETCH_AHEAD + 1]; a++)
-                __builtin_prefetch(j->ft + adj->face[a]);
-        vertex_curvature(j, (uint32_t)v);
-    }
+    for (uint64_t v = begin; v < end; v++) vertex_curvature(j, (uint32_t)v);
     return LUCENT_OK;
 }
 
-/* Normal curvature of vertex v's tensor along direction e. */
-static double normal_curvature(const lucent_curvature *o, uint32_t v, const double *e)
+static lucent_status pass(const rus_job *job, lucent_pool *pool)
 {
-    double a = v3_dot(e, o->dir1 + 3 * v), b = v3_dot(e, o->dir2 + 3 * v), s = a * a + b * b;
-    return s > 0 ? (o->k1[v] * a * a + o->k2[v] * b * b) / s : 0;
-}
-
-/* The neighbour nb of v lifted onto the model curve (see refine_normal), in world space. */
-static void lift(const rus_job *j, uint32_t v, uint32_t nb, double *dest)
-{
-    const lucent_curvature *o = j->out;
-    const double *n = j->normals + 3 * v, *d1 = o->dir1 + 3 * v, *d2 = o->dir2 + 3 * v;
-    double e[3];
-    v3_sub(j->mesh->positions + 3 * nb, j->mesh->positions + 3 * v, e);
-    double du = v3_dot(e, d1), dv = v3_dot(e, d2);
-    double r2 = du * du + dv * dv, kn = r2 > 0 ? (o->k1[v] * du * du + o->k2[v] * dv * dv) / r2 : 0;
-    double kb = r2 > 0 && !(o->flags[nb] & LUCENT_CURVATURE_INVALID) ? normal_curvature(o, nb, e) : kn;
-    /* a curve whose curvature goes linearly from kn to kb: height -(2 kn + kb)/3 s^2/2 */
-    double kc = (2 * kn + kb) / 3;
-    double q = 1 - kc * kc * r2, h = -kc * r2 / (1 + sqrt(q > 0 ? q : 0)); /* fmax is a libm call here */
-    for (int i = 0; i < 3; i++) dest[i] = du * d1[i] + dv * d2[i] + h * n[i];
-}
-
-enum { LIFT_CACHE = 32 };
-
-/* Lifted neighbour nb, from a small per-vertex cache (each neighbour is in two faces). */
-static const double *lifted(const rus_job *j, uint32_t v, uint32_t nb, uint32_t *ids, double (*vec)[3], int *count,
-                            double *spare)
-{
-    for (int i = 0; i < *count; i++)
-        if (ids[i] == nb) return vec[i];
-    double *dest = *count < LIFT_CACHE ? vec[*count] : spare; /* full: not cached */
-    if (*count < LIFT_CACHE) ids[(*count)++] = nb;
-    lift(j, v, nb, dest);
-    return dest;
-}
-
-/* Removes the bias of Max's normal at v. Max's weights are exact when the neighbours lie on a
- * sphere; where curvature is anisotropic and the neighbourhood irregular they tilt. The tilt is
- * predicted by applying Max's formula to the same neighbourhood lifted onto the osculating
- * quadric z = -1/2 (k1 u^2 + k2 v^2) (curvature from the first pass, outward normals), whose
- * true normal is known, and subtracted. A symmetric neighbourhood predicts no tilt. */
-
-static void refine_normal(const rus_job *j, uint32_t v, double *dest)
-{
-    const double *n = j->normals + 3 * v;
-    double m[3] = {0, 0, 0}, x[3], vec[LIFT_CACHE][3], spare[2][3];
-    uint32_t ids[LIFT_CACHE];
-    int count = 0;
-    memcpy(dest, n, 3 * sizeof *dest);
-    if (j->out->flags[v] & LUCENT_CURVATURE_INVALID) return;
-    for (uint32_t a = j->adj->start[v]; a < j->adj->start[v + 1]; a++) {
-        const uint32_t *t = j->mesh->faces + 3 * j->adj->face[a];
-        int c = j->adj->corner[a];
-        const double *e0 = lifted(j, v, t[(c + 1) % 3], ids, vec, &count, spare[0]);
-        const double *e1 = lifted(j, v, t[(c + 2) % 3], ids, vec, &count, spare[1]);
-        double w = v3_dot(e0, e0) * v3_dot(e1, e1);
-        if (!(w > 0)) continue;
-        v3_cross(e0, e1, x);
-        double iw = 1 / w;
-        for (int i = 0; i < 3; i++) m[i] += x[i] * iw;
-    }
-    if (v3_normalize(m) == 0) return;
-    double mn = v3_dot(m, n);
-    for (int i = 0; i < 3; i++) dest[i] = n[i] - (m[i] - mn * n[i]);
-    if (v3_normalize(dest) == 0) memcpy(dest, n, 3 * sizeof *dest);
-}
-
-typedef struct refine_job {
-    const rus_job *rj;
-    double *dest;
-} refine_job;
-
-static lucent_status refine_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
-{
-    (void)chunk, (void)thread;
-    refine_job *r = ctx;
-    for (uint64_t v = begin; v < end; v++) refine_normal(r->rj, (uint32_t)v, r->dest + 3 * v);
-    return LUCENT_OK;
-}
-
-static lucent_status estimate(rus_job *job, lucent_pool *pool)
-{
-    size_t nv = job->mesh->vertex_count;
-    for (size_t v = 0; v < nv; v++) job->out->flags[v] &= (uint8_t)~LUCENT_CURVATURE_INVALID;
-    lucent_status s = lucent_parallel_for(pool, job->mesh->face_count, 8192, faces_chunk, job);
-    if (s == LUCENT_OK) s = lucent_parallel_for(pool, nv, 4096, vertices_chunk, job);
+    lucent_status s = lucent_parallel_for(pool, job->mesh->face_count, 8192, faces_chunk, (void *)job);
+    if (s == LUCENT_OK) s = lucent_parallel_for(pool, job->mesh->vertex_count, 4096, vertices_chunk, (void *)job);
     return s;
 }
 
-lucent_status mesh_curvature_rusinkiewicz(const lucent_mesh *mesh, const mesh_adjacency *adj,
-                                          lucent_pool *pool, int fast, lucent_curvature *dest)
+/* Scratch in one block: face records; for two passes also the first pass's principal frames
+ * and, in the same place once the normals are corrected, the second pass's face tensors; the
+ * corrected normals and the slot turns. (Fresh pages cost more than the arithmetic here.) */
+typedef struct rus_scratch {
+    face_rec *faces;
+    mesh_principal *principal;
+    float *normals, *tensors;
+    slot_turn *turns;
+} rus_scratch;
+
+static size_t round64(size_t bytes) { return (bytes + 63) / 64 * 64; }
+
+static void *scratch(size_t nv, size_t nf, int fast, rus_scratch *d)
 {
-    double *normals = malloc((3 * mesh->vertex_count + 1) * sizeof *normals);
-    face_tensor *ft = aligned_alloc(64, (mesh->face_count + 1) * sizeof *ft);
-    lucent_status s = normals && ft ? LUCENT_OK
-                                    : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "curvature: out of memory");
-    double *refined = s == LUCENT_OK && !fast ? malloc((3 * mesh->vertex_count + 1) * sizeof *refined) : NULL;
-    if (s == LUCENT_OK && !fast && !refined) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "curvature: out of memory");
-    rus_job job = {mesh, adj, normals, ft, dest, 0};
-    if (s == LUCENT_OK) s = mesh_max_normals(mesh, adj, pool, normals);
-    if (s == LUCENT_OK) s = estimate(&job, pool);
-    refine_job rj = {&job, refined};
-    if (s == LUCENT_OK && !fast) s = lucent_parallel_for(pool, mesh->vertex_count, 4096, refine_chunk, &rj);
-    job.normals = refined, job.refit = 1;
-    if (s == LUCENT_OK && !fast) s = estimate(&job, pool);
-    free(normals), free(ft), free(refined);
+    size_t shared = round64(nv * sizeof *d->principal), tensors = round64(3 * nf * sizeof *d->tensors);
+    size_t size[4] = {round64(nf * sizeof *d->faces), shared > tensors ? shared : tensors,
+                      round64(3 * nv * sizeof *d->normals + 16), round64(3 * nf * sizeof *d->turns)};
+    size_t total = size[0] + (fast ? 0 : size[1] + size[2] + size[3]);
+    char *block = mesh_alloc_large(total + 64), *at = block;
+    if (!block) return NULL;
+    *d = (rus_scratch){0};
+    d->faces = (face_rec *)at;
+    if (fast) return block;
+    d->principal = (mesh_principal *)(at += size[0]), d->tensors = (float *)at;
+    d->normals = (float *)(at += size[1]), d->turns = (slot_turn *)(at + size[2]);
+    return block;
+}
+
+lucent_status mesh_curvature_rusinkiewicz(const lucent_mesh *mesh, const mesh_adjacency *adj,
+                                          const mesh_fan *fan, lucent_pool *pool, int fast, double scale,
+                                          lucent_curvature *dest)
+{
+    rus_scratch sc;
+    void *block = scratch(mesh->vertex_count, mesh->face_count, fast, &sc);
+    if (!block) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "curvature: out of memory");
+    rus_job job = {mesh, adj, fan->normals, sc.faces, sc.turns, sc.tensors, fast ? NULL : sc.principal, dest,
+                   fan->normals, scale, 0};
+    lucent_status s = pass(&job, pool);
+    /* Second pass (Lucent's): Max's normals corrected for their tilt, then the same fit. */
+    if (s == LUCENT_OK && !fast) s = mesh_refine_normals(mesh, adj, fan, sc.principal, pool, sc.normals);
+    job.normals = sc.normals, job.principal = NULL, job.second = 1;
+    if (s == LUCENT_OK && !fast) s = pass(&job, pool);
+    free(block);
     return s;
 }

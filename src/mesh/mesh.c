@@ -128,103 +128,93 @@ lucent_status lucent_mesh_weld(lucent_mesh *mesh)
 
 /* ---- adjacency ---- */
 
-lucent_status mesh_adjacency_build(const lucent_mesh *mesh, mesh_adjacency *dest)
+/* The counting sort runs in `parts` vertex ranges, one per thread: each part scans every face
+ * slot but counts and places only its own vertices, so no two threads write the same counter
+ * and the result (slots of a vertex in face order) does not depend on the number of parts. */
+typedef struct adjacency_job {
+    const uint32_t *faces;
+    size_t slots, parts, vertices;
+    uint32_t *start, *corner;
+    int place; /* 0: count degrees into start[v + 2]; 1: place slots */
+} adjacency_job;
+
+static lucent_status adjacency_chunk(void *ctx, uint64_t part, uint64_t begin, uint64_t end, int thread)
+{
+    (void)begin, (void)end, (void)thread;
+    const adjacency_job *j = ctx;
+    uint32_t lo = (uint32_t)(j->vertices * part / j->parts);
+    uint32_t span = (uint32_t)(j->vertices * (part + 1) / j->parts) - lo;
+    uint32_t *start = j->start, *corner = j->corner;
+    const uint32_t *faces = j->faces;
+    if (!j->place) {
+        for (size_t i = 0; i < j->slots; i++)
+            if (faces[i] - lo < span) start[faces[i] + 2]++;
+        return LUCENT_OK;
+    }
+    for (size_t i = 0; i < j->slots; i++)
+        if (faces[i] - lo < span) corner[start[faces[i] + 1]++] = (uint32_t)i;
+    return LUCENT_OK;
+}
+
+lucent_status mesh_adjacency_build(const lucent_mesh *mesh, lucent_pool *pool, mesh_adjacency *dest)
 {
     size_t nv = mesh->vertex_count, nc = 3 * mesh->face_count;
-    dest->start = calloc(nv + 2, sizeof *dest->start);
-    dest->face = malloc((nc + 1) * sizeof *dest->face);
-    dest->corner = malloc(nc + 1);
-    if (!dest->start || !dest->face || !dest->corner) {
+    dest->start = mesh_alloc_large((nv + 2) * sizeof *dest->start);
+    dest->corner = mesh_alloc_large((nc + MESH_SLOT_PAD) * sizeof *dest->corner);
+    if (!dest->start || !dest->corner) {
         mesh_adjacency_free(dest);
         return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for mesh adjacency");
     }
-    for (size_t i = 0; i < nc; i++) dest->start[mesh->faces[i] + 2]++;
+    memset(dest->start, 0, (nv + 2) * sizeof *dest->start);
+    memset(dest->corner + nc, 0, MESH_SLOT_PAD * sizeof *dest->corner);
+    adjacency_job job = {mesh->faces, nc, (size_t)lucent_pool_threads(pool), nv, dest->start, dest->corner, 0};
+    lucent_status s = lucent_parallel_for(pool, job.parts, 1, adjacency_chunk, &job);
     for (size_t v = 0; v < nv; v++) dest->start[v + 2] += dest->start[v + 1];
-    for (size_t i = 0; i < nc; i++) {
-        uint32_t at = dest->start[mesh->faces[i] + 1]++;
-        dest->face[at] = (uint32_t)(i / 3), dest->corner[at] = (uint8_t)(i % 3);
-    }
-    return LUCENT_OK;
+    job.place = 1;
+    if (s == LUCENT_OK) s = lucent_parallel_for(pool, job.parts, 1, adjacency_chunk, &job);
+    if (s != LUCENT_OK) mesh_adjacency_free(dest);
+    return s;
 }
 
 void mesh_adjacency_free(mesh_adjacency *adj)
 {
-    free(adj->start), free(adj->face), free(adj->corner);
-    adj->start = adj->face = NULL, adj->corner = NULL;
-}
-
-/* Slow path for vertices of high valence: counts, for each neighbour, the faces holding it. */
-static int on_boundary_slow(const lucent_mesh *mesh, const mesh_adjacency *adj, uint32_t v)
-{
-    for (uint32_t a = adj->start[v]; a < adj->start[v + 1]; a++) {
-        const uint32_t *t = mesh->faces + 3 * adj->face[a];
-        for (int k = 1; k <= 2; k++) {
-            uint32_t other = t[(adj->corner[a] + k) % 3];
-            int count = 0;
-            for (uint32_t b = adj->start[v]; b < adj->start[v + 1] && count < 2; b++) {
-                const uint32_t *u = mesh->faces + 3 * adj->face[b];
-                count += u[0] == other || u[1] == other || u[2] == other;
-            }
-            if (count == 1) return 1;
-        }
-    }
-    return 0;
-}
-
-int mesh_vertex_on_boundary(const lucent_mesh *mesh, const mesh_adjacency *adj, uint32_t v)
-{
-    enum { LOCAL = 64 };
-    uint32_t nb[LOCAL];
-    int n = 0;
-    if (adj->start[v + 1] - adj->start[v] > LOCAL / 2) return on_boundary_slow(mesh, adj, v);
-    for (uint32_t a = adj->start[v]; a < adj->start[v + 1]; a++) {
-        const uint32_t *t = mesh->faces + 3 * adj->face[a];
-        nb[n++] = t[(adj->corner[a] + 1) % 3], nb[n++] = t[(adj->corner[a] + 2) % 3];
-    }
-    /* Fast path (closed, consistently oriented fans): when every face's next neighbour is
-     * some face's previous neighbour, matched one to one, each neighbour appears an even
-     * number of times, so none appears once. */
-    {
-        uint32_t used = 0; /* n / 2 <= 32 faces */
-        int all = 1;
-        for (int i = 0; i < n && all; i += 2) {
-            int k = 1;
-            while (k < n && (nb[k] != nb[i] || (used >> (k / 2) & 1))) k += 2;
-            if (k >= n) all = 0;
-            else used |= 1u << (k / 2);
-        }
-        if (all) return 0;
-    }
-    uint8_t seen[LOCAL] = {0}; /* an edge (v, u) with one face: u appears once */
-    for (int i = 0; i < n; i++)
-        for (int k = i + 1; k < n; k++)
-            if (nb[k] == nb[i]) seen[i] = seen[k] = 1;
-    for (int i = 0; i < n; i++)
-        if (!seen[i]) return 1;
-    return 0;
+    free(adj->start), free(adj->corner);
+    adj->start = adj->corner = NULL;
 }
 
 /* ---- corner areas ---- */
+
+/* Each corner gets the part of the triangle nearer to it than to the other corners (Meyer et al.
+ * 2003, Fig. 4): s (ew of the other two corners), ew_j = l_j (l_j+1 + l_j+2 - l_j), where
+ * s = area / (2 sum ew) and sum ew = 16 area^2 = 4 xl^2 (Heron), so s = 1/(16 xl); when a corner
+ * is obtuse (its ew <= 0), it gets half and the others a quarter. Without branches: which corner
+ * is obtuse is as random as the mesh. */
+void mesh_mixed_areas(const double l[3], double xl, double inv_x, double dest[3])
+{
+    double ew0 = l[0] * (l[1] + l[2] - l[0]), ew1 = l[1] * (l[2] + l[0] - l[1]), ew2 = l[2] * (l[0] + l[1] - l[2]);
+    int o0 = ew0 <= 0, o1 = ew1 <= 0, o2 = ew2 <= 0, any = o0 | o1 | o2;
+    double q = 0.125 * xl * any, s = (1 - any) * inv_x * (1.0 / 16);
+    dest[0] = q * (1 + o0) + s * (ew1 + ew2), dest[1] = q * (1 + o1) + s * (ew2 + ew0);
+    dest[2] = q * (1 + o2) + s * (ew0 + ew1);
+}
+
+void mesh_corner_areas_edges(const double e[3][3], double dest[3])
+{
+    double c[3], l[3] = {v3_dot(e[0], e[0]), v3_dot(e[1], e[1]), v3_dot(e[2], e[2])};
+    v3_cross(e[0], e[1], c);
+    double xl = v3_len(c);
+    dest[0] = dest[1] = dest[2] = 0;
+    if (!(xl > 0) || !isfinite(xl)) return;
+    mesh_mixed_areas(l, xl, 1 / xl, dest);
+}
 
 void mesh_corner_areas(const lucent_mesh *mesh, size_t f, double dest[3])
 {
     const uint32_t *t = mesh->faces + 3 * f;
     const double *p[3] = {mesh->positions + 3 * t[0], mesh->positions + 3 * t[1], mesh->positions + 3 * t[2]};
-    double e[3][3], c[3], l2[3], ew[3];
+    double e[3][3];
     for (int j = 0; j < 3; j++) v3_sub(p[(j + 2) % 3], p[(j + 1) % 3], e[j]); /* e[j] opposite j */
-    v3_cross(e[0], e[1], c);
-    double area = 0.5 * v3_len(c);
-    dest[0] = dest[1] = dest[2] = 0;
-    if (!(area > 0) || !isfinite(area)) return;
-    for (int j = 0; j < 3; j++) l2[j] = v3_dot(e[j], e[j]);
-    for (int j = 0; j < 3; j++) ew[j] = l2[j] * (l2[(j + 1) % 3] + l2[(j + 2) % 3] - l2[j]);
-    for (int j = 0; j < 3; j++) {
-        if (ew[j] > 0) continue; /* obtuse at corner j: it gets half, the others a quarter */
-        dest[j] = 0.5 * area, dest[(j + 1) % 3] = dest[(j + 2) % 3] = 0.25 * area;
-        return;
-    }
-    double s = 0.5 * area / (ew[0] + ew[1] + ew[2]);
-    for (int j = 0; j < 3; j++) dest[j] = s * (ew[(j + 1) % 3] + ew[(j + 2) % 3]);
+    mesh_corner_areas_edges(e, dest);
 }
 
 /* ---- statistics ---- */

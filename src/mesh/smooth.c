@@ -28,8 +28,8 @@ static void smooth_pass(const lucent_mesh *m, const mesh_adjacency *adj, const d
         }
         double s = area[v] * src[v], w = area[v];
         for (uint32_t a = adj->start[v]; a < adj->start[v + 1]; a++) {
-            const uint32_t *t = m->faces + 3 * adj->face[a];
-            uint32_t u = t[(adj->corner[a] + 1) % 3];
+            uint32_t u, unused;
+            mesh_slot_others(m->faces, adj->corner[a], &u, &unused);
             if (flags[u] & LUCENT_CURVATURE_INVALID) continue;
             s += area[u] * src[u], w += area[u];
         }
