@@ -19,6 +19,7 @@ static const cli_command k_commands[] = {
     {"cdrf-fit", "fit the CDRF's sigma0 to Monte Carlo spheres of a material", cmd_cdrf_fit},
     {"kernel", "separable subsurface-scattering kernels for a material, with taps and shader exports", cmd_kernel},
     {"kernel-eval", "evaluate every kernel model of a material against the exact 2-D convolution", cmd_kernel_eval},
+    {"trace", "path-traced reference of a scene (Embree): media, rough or smooth boundaries", cmd_trace},
 };
 enum { COMMAND_COUNT = sizeof k_commands / sizeof k_commands[0] };
 

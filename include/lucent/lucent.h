@@ -13,5 +13,6 @@
 #include "lucent/profile.h"
 #include "lucent/report.h"
 #include "lucent/scene.h"
+#include "lucent/trace.h"
 
 #endif
