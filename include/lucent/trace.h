@@ -39,6 +39,11 @@ typedef struct lucent_tracer_desc {
      * highlight), keeping the light that went through the medium: what the CDRF sphere simulation
      * (lucent_cdrf_sphere_run) and diffuse-only approximations produce. Default false. */
     bool subsurface_only;
+    /* For comparison only: next-event estimation only at the boundary vertices the walk meets (what
+     * Blender's Cycles does), not through the boundary from every scattering vertex. Unbiased, but
+     * under a delta light with a rough boundary it converges one to two orders of magnitude slower.
+     * Default false. */
+    bool boundary_nee_only;
 } lucent_tracer_desc;
 
 /* Creates a tracer for a loaded scene (which must outlive it): builds the ray-tracing scene from the
@@ -60,8 +65,9 @@ void lucent_tracer_reset(lucent_tracer *tracer);
 typedef struct lucent_trace_desc {
     int spp;             /* samples per pixel to add (0: the scene's render.spp); the call may stop
                             earlier at time_limit or target_error */
-    uint64_t seed;       /* 0: the scene's render.seed. An estimate keeps the seed it started with;
-                            a different non-zero seed for an estimate that has samples is refused */
+    uint64_t seed;       /* 0: the estimate's seed, or the scene's render.seed for a new estimate.
+                            An estimate keeps the seed it started with: another seed for an estimate
+                            that has samples is refused */
     lucent_pool *pool;   /* NULL: the calling thread only */
     double time_limit;   /* seconds for this call (0: the scene's render.time_limit, where 0 means
                             none; < 0: none); checked after every sample pass */

@@ -121,13 +121,13 @@ double tr_bsdf_eval(const tr_boundary *b, v3 n, v3 o, v3 i, double *pdf)
 static bool sample_smooth(v3 no, v3 o, double eta_o, double eta_t, double u0, tr_bsdf_sample *dest)
 {
     double co = v3_dot(o, no), F = tr_fresnel(co, eta_o, eta_t);
-    *dest = (tr_bsdf_sample){.weight = 1.0, .delta = true};
+    *dest = (tr_bsdf_sample){.weight = 1.0, .delta = true, .scale = 1.0};
     if (u0 < F || !tr_refract(v3_neg(o), no, eta_o / eta_t, &dest->i)) {
         dest->i = v3_madd(v3_neg(o), no, 2.0 * co);
         return true;
     }
     dest->transmit = true;
-    dest->weight = (eta_o / eta_t) * (eta_o / eta_t);
+    dest->weight = dest->scale = (eta_o / eta_t) * (eta_o / eta_t);
     return true;
 }
 
@@ -138,14 +138,14 @@ static bool sample_rough(const tr_boundary *b, v3 n, v3 no, v3 o, double eta_o, 
 {
     v3 m = tr_ggx_sample_visible(o, no, b->alpha, u1, u2);
     double om = v3_dot(o, m), F = tr_fresnel(om, eta_o, eta_t);
-    *dest = (tr_bsdf_sample){.weight = 1.0};
+    *dest = (tr_bsdf_sample){.weight = 1.0, .scale = 1.0};
     if (u0 < F || !tr_refract(v3_neg(o), m, eta_o / eta_t, &dest->i)) {
         dest->i = v3_madd(v3_neg(o), m, 2.0 * om);
         if (v3_dot(dest->i, no) <= 0) return false;
     } else {
         if (v3_dot(dest->i, no) >= 0) return false;
         dest->transmit = true;
-        dest->weight = (eta_o / eta_t) * (eta_o / eta_t);
+        dest->weight = dest->scale = (eta_o / eta_t) * (eta_o / eta_t);
     }
     dest->weight *= tr_ggx_g1(v3_dot(dest->i, no), b->alpha);
     tr_bsdf_eval(b, n, o, dest->i, &dest->pdf);
@@ -156,7 +156,7 @@ bool tr_bsdf_sample_dir(const tr_boundary *b, v3 n, v3 o, double u0, double u1, 
 {
     double co = v3_dot(o, n);
     if (b->kind == TR_BOUNDARY_MATCHED) {
-        *dest = (tr_bsdf_sample){.i = v3_neg(o), .weight = 1.0, .delta = true, .transmit = true};
+        *dest = (tr_bsdf_sample){.i = v3_neg(o), .weight = 1.0, .delta = true, .transmit = true, .scale = 1.0};
         return true;
     }
     if (co == 0) return false;

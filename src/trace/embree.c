@@ -16,6 +16,7 @@ struct tr_geometry {
     int count;
     int *object;      /* geomID -> tracer object index */
     double **planes;  /* geomID -> 4 doubles per face: outward unit normal n and n . v0 */
+    double far;       /* rays reaching further than this from the origin get their distance in double */
     char error[256];  /* the first error Embree reported */
 };
 
@@ -53,7 +54,10 @@ static lucent_status add_mesh(tr_geometry *g, const lucent_mesh *m, int object, 
         return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: %s: cannot build the ray-tracing geometry (%s)", name,
                             g->error[0] ? g->error : "out of memory");
     }
-    for (size_t i = 0; i < 3 * m->vertex_count; i++) vb[i] = (float)m->positions[i];
+    for (size_t i = 0; i < 3 * m->vertex_count; i++) {
+        vb[i] = (float)m->positions[i];
+        g->far = fmax(g->far, 8.0 * fabs(m->positions[i]));
+    }
     for (size_t i = 0; i < 3 * m->face_count; i++) ib[i] = m->faces[i];
     rtcCommitGeometry(geom);
     unsigned id = rtcAttachGeometry(g->scene, geom);
@@ -131,12 +135,27 @@ bool tr_intersect(const tr_geometry *g, v3 o, v3 d, double tnear, double tfar, t
                            .hit = {.geomID = RTC_INVALID_GEOMETRY_ID}};
     rtcIntersect1(g->scene, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    const double *p = g->planes[rh.hit.geomID] + 4 * (size_t)rh.hit.primID;
-    hit->n = v3_make(p[0], p[1], p[2]);
+    /* Embree's geometric normal of a counter-clockwise triangle points outward (as (v1 - v0) x (v2 - v0)). */
+    hit->n = v3_norm(v3_make(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
     hit->object = g->object[rh.hit.geomID];
-    /* Embree's distance is good to float precision of the ray's length; redo it in double on the
-     * triangle's plane, so that points far from the origin still land on the surface. */
-    double dn = v3_dot(d, hit->n), t = dn != 0 ? (p[3] - v3_dot(o, hit->n)) / dn : rh.ray.tfar;
-    hit->t = fabs(t - rh.ray.tfar) <= 1e-3 * (1.0 + rh.ray.tfar) ? t : rh.ray.tfar;
+    hit->t = rh.ray.tfar;
+    double reach = fmax(fabs(o.x), fmax(fabs(o.y), fabs(o.z))) + hit->t;
+    if (reach > g->far) { /* float precision of a long ray: redo the distance in double on the plane */
+        const double *p = g->planes[rh.hit.geomID] + 4 * (size_t)rh.hit.primID;
+        v3 n = v3_make(p[0], p[1], p[2]);
+        double dn = v3_dot(d, n), t = dn != 0 ? (p[3] - v3_dot(o, n)) / dn : hit->t;
+        if (fabs(t - hit->t) <= 1e-3 * (1.0 + hit->t)) hit->t = t, hit->n = n;
+    }
     return true;
+}
+
+bool tr_occluded(const tr_geometry *g, v3 o, v3 d, double tfar)
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    struct RTCRay ray = {.org_x = (float)o.x, .org_y = (float)o.y, .org_z = (float)o.z, .dir_x = (float)d.x,
+                         .dir_y = (float)d.y, .dir_z = (float)d.z, .tfar = tfar < FLT_MAX ? (float)tfar : INFINITY,
+                         .mask = 0xFFFFFFFFu};
+    rtcOccluded1(g->scene, &ctx, &ray);
+    return ray.tfar < 0; /* Embree sets tfar to -inf when something is hit */
 }

@@ -4,10 +4,14 @@
 
 #include "trace/internal.h"
 
-/* A volume vertex's guide: the vertex, the direction the walk arrived with, its object, and, once
- * prepared for a light, the direction toward it and the boundary normal n0 met that way. */
+/* The guide of a vertex inside a rough object's medium: a volume vertex (the direction the walk arrived
+ * with) or a boundary vertex whose walk may continue inside (its outward normal and viewer direction),
+ * its object, and, once prepared for a light, the direction toward it and the normal n0 of the boundary
+ * point met that way. */
 typedef struct tr_guide {
     v3 x, d_in;
+    bool surface;
+    v3 n, o;
     int object;
     const tr_light *light;
     bool prepared, has_n0;
@@ -22,5 +26,11 @@ bool tr_guide_sample(const lucent_tracer *tr, const tr_guide *g, double u0, doub
 
 /* q(w), solid angle. */
 double tr_guide_pdf(const lucent_tracer *tr, const tr_guide *g, v3 w);
+
+/* What leaving the vertex in direction w means: *f the vertex's scattering function (phase function,
+ * or BSDF times |cos|) for channel k, *pdf the walk's own density of that direction (BSDF or phase;
+ * for a volume vertex per channel, with the walk's transform tf). */
+void tr_guide_vertex(const lucent_tracer *tr, const tr_guide *g, const tr_transform *tf, v3 w, double f[3],
+                     double pdf[3]);
 
 #endif

@@ -23,7 +23,7 @@ static void rescale(tr_path *p)
 static void roulette(tr_path *p)
 {
     if (p->bounces + p->scatters < RR_START) return;
-    double s = tr_max3(p->beta) / tr_mean3(p->r);
+    double s = tr_max3(p->beta) * p->eta_scale / tr_mean3(p->r);
     if (!(s > 0)) {
         p->done = true;
         return;
@@ -91,7 +91,10 @@ static void surface(tr_path *p, const tr_hit *h)
         pass_through(p, h, y);
         return;
     }
+    tr_guide g = {.x = y, .surface = true, .n = n, .o = v3_neg(p->d), .object = h->object};
     if (b->kind == TR_BOUNDARY_ROUGH && !drop_reflection) tr_nee_surface(p, y, n, b, inside);
+    bool through = b->kind == TR_BOUNDARY_ROUGH && !tr->desc.boundary_nee_only;
+    if (through) tr_nee_through(p, &g);
     tr_bsdf_sample bs;
     double u0 = tr_u(p), u1 = tr_u(p), u2 = tr_u(p);
     if (!tr_bsdf_sample_dir(b, n, v3_neg(p->d), u0, u1, u2, &bs) || (drop_reflection && !bs.transmit)) {
@@ -101,8 +104,14 @@ static void surface(tr_path *p, const tr_hit *h)
     if (bs.delta) p->mis = (tr_mis){.kind = MIS_NONE};
     else record_surface(p, y, n, bs.pdf, inside);
     for (int c = 0; c < 3; c++) p->beta[c] *= bs.weight;
+    p->eta_scale /= bs.scale;
     if (bs.transmit) p->medium = inside ? -1 : h->object;
-    p->from_volume = false;
+    p->from_volume = through && v3_dot(bs.i, n) < 0;
+    if (p->from_volume) {
+        p->guide = g;
+        p->walk_h = bs.pdf;
+        for (int c = 0; c < 3; c++) p->rx[c] = p->r[c];
+    }
     p->o = v3_madd(y, n, v3_dot(bs.i, n) > 0 ? tr->eps : -tr->eps);
     p->d = bs.i;
     roulette(p);
@@ -125,34 +134,37 @@ static void step_outside(tr_path *p)
     }
 }
 
-/* Multiplies beta and r by a stretch of length s in medium ob: exp(-sigma_t,c s) over the hero's, and
- * for a scattering vertex sigma_s,c (beta) and sigma_t,k (r) over sigma_t,h. */
-static void attenuate(tr_path *p, const tr_object *ob, double s, bool scatter)
+/* Multiplies beta by the physics over the hero's sampling density, and r by channel k's density
+ * over the hero's, for a stretch of length s in medium ob started in direction p->d (toward-light
+ * direction u): exp(-sigma_t,c s) against the walk's exp(-sigma*_k s), and for a scattering vertex
+ * sigma_s,c against sigma*_k. */
+static void attenuate(tr_path *p, const tr_object *ob, double s, bool scatter, const tr_transform *tf)
 {
-    double st_h = ob->sigma_t[p->hero];
+    double sw[3];
+    for (int k = 0; k < 3; k++) sw[k] = tr_walk_sigma(ob, tf, k, p->d);
+    double sh = sw[p->hero];
     for (int c = 0; c < 3; c++) {
-        double ratio = exp(-(ob->sigma_t[c] - st_h) * s);
-        p->beta[c] *= ratio * (scatter ? ob->sigma_s[c] / st_h : 1.0);
-        p->r[c] *= ratio * (scatter ? ob->sigma_t[c] / st_h : 1.0);
-        if (p->mis.kind != MIS_NONE) p->mis.tc[c] *= exp(-ob->sigma_t[c] * s);
+        p->beta[c] *= exp(-(ob->sigma_t[c] - sh) * s) * (scatter ? ob->sigma_s[c] / sh : 1.0);
+        p->r[c] *= exp(-(sw[c] - sh) * s) * (scatter ? sw[c] / sh : 1.0);
+        if (p->mis.kind != MIS_NONE) p->mis.tc[c] *= exp(-sw[c] * s);
     }
-    if (p->from_volume) p->walk_h *= exp(-st_h * s);
+    if (p->from_volume) p->walk_h *= exp(-sh * s);
 }
 
-/* Draws the walk's next direction from the hero's phase function and records the vertex. */
-static void scatter_direction(tr_path *p, const tr_object *ob, v3 x)
+/* Draws the walk's next direction and records the vertex. */
+static void scatter_direction(tr_path *p, const tr_object *ob, v3 x, const tr_transform *tf)
 {
-    v3 w = tr_hg_sample(p->d, ob->g[p->hero], tr_u(p), tr_u(p));
-    double mu = v3_dot(p->d, w), ph[3];
-    for (int c = 0; c < 3; c++) ph[c] = tr_hg_eval(mu, ob->g[c]);
-    double ph_h = ph[p->hero];
+    v3 w = tr_walk_sample(ob, tf, p->hero, p->d, tr_u(p), tr_u(p), tr_u(p));
+    double mu = v3_dot(p->d, w), pw[3], ph;
+    for (int c = 0; c < 3; c++) pw[c] = tr_walk_pdf(ob, tf, c, p->d, w);
+    double p_h = pw[p->hero];
     for (int c = 0; c < 3; c++) p->rx[c] = p->r[c];
-    for (int c = 0; c < 3; c++) p->beta[c] *= ph[c] / ph_h, p->r[c] *= ph[c] / ph_h;
-    p->from_volume = ob->boundary.kind == TR_BOUNDARY_ROUGH;
-    p->walk_h = ph_h;
+    for (int c = 0; c < 3; c++) ph = tr_hg_eval(mu, ob->g[c]), p->beta[c] *= ph / p_h, p->r[c] *= pw[c] / p_h;
+    p->from_volume = ob->boundary.kind == TR_BOUNDARY_ROUGH && !p->tr->desc.boundary_nee_only;
+    p->walk_h = p_h;
     if (ob->boundary.kind == TR_BOUNDARY_MATCHED) {
         p->mis = (tr_mis){.kind = MIS_VOLUME, .p = x, .tc = {1, 1, 1}};
-        for (int c = 0; c < 3; c++) p->mis.a[c] = p->rx[c], p->mis.pb[c] = ph[c];
+        for (int c = 0; c < 3; c++) p->mis.a[c] = p->rx[c], p->mis.pb[c] = pw[c];
     } else {
         p->mis = (tr_mis){.kind = MIS_NONE};
     }
@@ -160,42 +172,47 @@ static void scatter_direction(tr_path *p, const tr_object *ob, v3 x)
     p->d = w;
 }
 
-static void scatter(tr_path *p, const tr_object *ob, double t)
+static void scatter(tr_path *p, const tr_object *ob, double t, const tr_transform *tf)
 {
     v3 x = v3_madd(p->o, p->d, t);
-    attenuate(p, ob, t, true);
+    attenuate(p, ob, t, true, tf);
     rescale(p);
     p->stats->scatters++;
-    if (ob->boundary.kind == TR_BOUNDARY_ROUGH) tr_nee_volume_rough(p, x);
+    p->guide = (tr_guide){.x = x, .d_in = p->d, .object = p->medium};
+    if (ob->boundary.kind == TR_BOUNDARY_ROUGH && !p->tr->desc.boundary_nee_only) tr_nee_through(p, &p->guide);
     else if (ob->boundary.kind == TR_BOUNDARY_MATCHED) tr_nee_volume_matched(p, x);
     if (++p->scatters >= p->tr->render.max_scatter) {
         p->stats->truncated++;
         p->done = true;
         return;
     }
-    scatter_direction(p, ob, x);
+    tr_transform here;
+    tr_field_lookup(p->tr, p->medium, x, &here);
+    scatter_direction(p, ob, x, &here);
     roulette(p);
 }
 
 static void step_inside(tr_path *p)
 {
     const tr_object *ob = &p->tr->objects[p->medium];
-    double t = -log(1.0 - tr_u(p)) / ob->sigma_t[p->hero];
+    tr_transform tf;
+    tr_field_lookup(p->tr, p->medium, p->o, &tf);
+    double t = -log(1.0 - tr_u(p)) / tr_walk_sigma(ob, &tf, p->hero, p->d);
     tr_hit h;
     if (!tr_intersect(p->tr->geometry, p->o, p->d, 0.0, INFINITY, &h)) {
         p->stats->escaped++; /* left the mesh through a hole */
         p->done = true;
     } else if (t < h.t) {
-        scatter(p, ob, t);
+        scatter(p, ob, t, &tf);
     } else {
-        attenuate(p, ob, h.t, false);
+        attenuate(p, ob, h.t, false, &tf);
         surface(p, &h);
     }
 }
 
 bool tr_trace_path(const lucent_tracer *tr, double px, double py, lucent_rng *rng, double dest[3], tr_stats *stats)
 {
-    tr_path p = {.tr = tr, .rng = rng, .stats = stats, .beta = {1, 1, 1}, .r = {1, 1, 1}, .medium = -1,
+    tr_path p = {.tr = tr, .rng = rng, .stats = stats, .beta = {1, 1, 1}, .r = {1, 1, 1}, .eta_scale = 1, .medium = -1,
                  .camera_ray = true};
     double o[3], d[3];
     lucent_camera_ray(&tr->scene->camera, tr->render.width, tr->render.height, px, py, o, d);

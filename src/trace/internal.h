@@ -60,6 +60,7 @@ typedef struct tr_bsdf_sample {
     v3 i;          /* the sampled direction (away from the surface) */
     double weight; /* f |cos i| / pdf */
     double pdf;    /* solid angle; 0 for delta events */
+    double scale;  /* the (eta_o / eta_i)^2 in weight: radiance squeezed into the denser medium */
     bool delta;
     bool transmit;
 } tr_bsdf_sample;
@@ -77,6 +78,20 @@ double tr_hg_eval(double mu, double g);
 /* Samples a new travel direction from d (HG, by inversion of its cumulative distribution). */
 v3 tr_hg_sample(v3 d, double g, double u1, double u2);
 
+typedef struct tr_object tr_object;
+
+/* The walk's transform at a point, per channel k: free flights with sigma*(w) = sigma_t (1 - b_k (w . u_k))
+ * and directions drawn from tr_walk_pdf (b_k = 0: the analog walk). See media.c and field.c. */
+#define TR_WALK_B_MAX 0.9
+typedef struct tr_transform {
+    v3 u[3];
+    double b[3];
+} tr_transform;
+
+double tr_walk_sigma(const tr_object *ob, const tr_transform *tf, int k, v3 w);
+double tr_walk_pdf(const tr_object *ob, const tr_transform *tf, int k, v3 d_in, v3 w);
+v3 tr_walk_sample(const tr_object *ob, const tr_transform *tf, int k, v3 d_in, double u0, double u1, double u2);
+
 /* ---- the ray-tracing scene (embree.c) ---- */
 typedef struct tr_geometry tr_geometry;
 
@@ -93,13 +108,24 @@ void tr_geometry_destroy(tr_geometry *g);
 /* The first surface along o + t d with tnear < t < tfar (tfar may be INFINITY). */
 bool tr_intersect(const tr_geometry *g, v3 o, v3 d, double tnear, double tfar, tr_hit *hit);
 
+/* Whether any surface lies along o + t d for 0 < t < tfar. */
+bool tr_occluded(const tr_geometry *g, v3 o, v3 d, double tfar);
+
 /* ---- the tracer ---- */
-typedef struct tr_object {
+struct tr_object {
     int scene_index; /* objects[i] in the scene file */
     tr_boundary boundary;
     double sigma_t[3], sigma_s[3], g[3];
     double g_mean; /* the guide's phase component (channel-independent) */
-} tr_object;
+};
+
+/* An object's importance field (field.c): a grid of grad ln(fluence) per channel. */
+typedef struct tr_field {
+    double lo[3], cell;
+    int n[3];
+    size_t offset; /* of its cells among all objects' during the build */
+    float *grad;   /* per cell, per channel, 3 components */
+} tr_field;
 
 typedef struct tr_light {
     lucent_light_type type;
@@ -126,6 +152,10 @@ struct lucent_tracer {
     int light_count;
     double select_cdf[64];
     double eps;        /* ray offset from surfaces, mm */
+    bool has_matched;  /* some object is index matched (shadow rays must pass through it) */
+    const tr_light *walk_target; /* the strongest light with a direction (NULL: none) */
+    tr_field *fields;            /* one per object once built (NULL: the analog walk) */
+    double walk_strength;        /* the share of the fluence gradient the walk follows */
     struct tr_film *film;
 };
 
@@ -161,8 +191,12 @@ int tr_sphere_light_hit(const lucent_tracer *tr, v3 o, v3 d, double tfar, double
 
 /* Transmittance from o along d over (0, tmax) starting in medium `medium` (-1: outside): passes
  * through index-matched surfaces, multiplying exp(-sigma_t s) per channel for the stretches inside
- * media; false when a refracting surface or a sphere light blocks the way. */
-bool tr_transmittance(const lucent_tracer *tr, v3 o, v3 d, double tmax, int medium, double T[3]);
+ * media; false when a refracting surface or a sphere light blocks the way. Tw (may be NULL) receives
+ * the probability that the walk's free flights pass the same stretches (exp(-sigma* s)). */
+bool tr_transmittance(const lucent_tracer *tr, v3 o, v3 d, double tmax, int medium, double T[3], double Tw[3]);
+
+/* The walk's transform at x in object `object` (zero without a field). */
+void tr_field_lookup(const lucent_tracer *tr, int object, v3 x, tr_transform *dest);
 
 /* ---- one camera path (integrator.c) ---- */
 typedef struct tr_stats {

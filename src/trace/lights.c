@@ -75,11 +75,12 @@ lucent_status tr_lights_build(lucent_tracer *tr)
         w[i] = power_proxy(&sc->lights[i], centre, radius);
         sum += w[i];
     }
-    double acc = 0;
+    double acc = 0, best = 0;
     for (int i = 0; i < n; i++) {
         tr->lights[i].select = sum > 0 ? 0.75 * w[i] / sum + 0.25 / n : 1.0 / n;
         acc += tr->lights[i].select;
         tr->select_cdf[i] = acc;
+        if (sc->lights[i].type != LUCENT_LIGHT_ENVIRONMENT && w[i] > best) best = w[i], tr->walk_target = &tr->lights[i];
     }
     return LUCENT_OK;
 }
@@ -199,10 +200,26 @@ int tr_sphere_light_hit(const lucent_tracer *tr, v3 o, v3 d, double tfar, double
     return best;
 }
 
-bool tr_transmittance(const lucent_tracer *tr, v3 o, v3 d, double tmax, int medium, double T[3])
+/* Multiplies T by exp(-sigma_t s) and Tw by the walk's exp(-sigma* s) for a stretch in medium m. */
+static void stretch(const lucent_tracer *tr, int m, v3 o, v3 d, double s, double T[3], double Tw[3])
 {
-    T[0] = T[1] = T[2] = 1.0;
+    const tr_object *ob = &tr->objects[m];
+    tr_transform tf;
+    tr_field_lookup(tr, m, o, &tf);
+    for (int c = 0; c < 3; c++) {
+        T[c] *= exp(-ob->sigma_t[c] * s);
+        Tw[c] *= exp(-tr_walk_sigma(ob, &tf, c, d) * s);
+    }
+}
+
+bool tr_transmittance(const lucent_tracer *tr, v3 o, v3 d, double tmax, int medium, double T[3], double Tw[3])
+{
+    double spare[3];
+    if (!Tw) Tw = spare;
+    T[0] = T[1] = T[2] = Tw[0] = Tw[1] = Tw[2] = 1.0;
     double ts;
+    if (medium < 0 && !tr->has_matched) /* nothing to pass through: any surface blocks */
+        return !tr_occluded(tr->geometry, o, d, tmax) && tr_sphere_light_hit(tr, o, d, tmax, &ts) < 0;
     for (int crossings = 0; crossings < 256; crossings++) {
         tr_hit h;
         bool hit = tr_intersect(tr->geometry, o, d, 0.0, tmax, &h);
@@ -210,7 +227,7 @@ bool tr_transmittance(const lucent_tracer *tr, v3 o, v3 d, double tmax, int medi
         if (tr_sphere_light_hit(tr, o, d, seg, &ts) >= 0) return false;
         if (medium >= 0) {
             if (!isfinite(seg)) return false; /* inside a medium with no way out: a hole */
-            for (int c = 0; c < 3; c++) T[c] *= exp(-tr->objects[medium].sigma_t[c] * seg);
+            stretch(tr, medium, o, d, seg, T, Tw);
         }
         if (!hit) return true;
         if (tr->objects[h.object].boundary.kind != TR_BOUNDARY_MATCHED) return false;

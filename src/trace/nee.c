@@ -36,7 +36,7 @@ static bool exit_point(const lucent_tracer *tr, v3 x, v3 w, int object, tr_hit *
  * density pb for the light's direction, and the visibility transmittance; false when nothing arrives. */
 typedef struct connection {
     tr_light_sample ls;
-    double f, pb, cos, T[3];
+    double f, pb, cos, T[3], Tw[3];
 } connection;
 
 static bool connect_boundary(tr_path *p, const tr_light *l, v3 y, v3 n, const tr_boundary *b, v3 o, connection *c)
@@ -47,30 +47,30 @@ static bool connect_boundary(tr_path *p, const tr_light *l, v3 y, v3 n, const tr
     if (!(c->f > 0)) return false;
     c->cos = fabs(v3_dot(c->ls.w, n));
     double tmax = isfinite(c->ls.dist) ? c->ls.dist * (1.0 - 1e-6) - tr->eps : INFINITY;
-    return tr_transmittance(tr, v3_madd(y, n, tr->eps), c->ls.w, tmax, -1, c->T);
+    return tr_transmittance(tr, v3_madd(y, n, tr->eps), c->ls.w, tmax, -1, c->T, c->Tw);
 }
 
-void tr_nee_volume_rough(tr_path *p, v3 x)
+void tr_nee_through(tr_path *p, tr_guide *g)
 {
     const lucent_tracer *tr = p->tr;
-    const tr_object *ob = &tr->objects[p->medium];
+    const tr_object *ob = &tr->objects[g->object];
     const tr_light *l = tr_light_pick(tr, tr_u(p));
-    p->guide = (tr_guide){.x = x, .d_in = p->d, .object = p->medium};
     if (!l) return;
-    tr_guide_prepare(tr, &p->guide, l);
-    v3 w;
+    tr_guide_prepare(tr, g, l);
+    v3 w, from = g->surface ? v3_madd(g->x, g->n, -tr->eps) : g->x;
     double u0 = tr_u(p), u1 = tr_u(p), u2 = tr_u(p);
     tr_hit h;
     connection c;
-    if (!tr_guide_sample(tr, &p->guide, u0, u1, u2, &w) || !exit_point(tr, x, w, p->medium, &h)) return;
-    v3 y = v3_madd(x, w, h.t);
-    if (!connect_boundary(p, l, y, h.n, &ob->boundary, v3_neg(w), &c)) return;
-    double q = tr_guide_pdf(tr, &p->guide, w), mu = v3_dot(p->d, w), den = 0, v[3];
-    double pb = c.ls.delta ? 0.0 : c.pb;
+    if (!tr_guide_sample(tr, g, u0, u1, u2, &w) || !exit_point(tr, from, w, g->object, &h)) return;
+    if (!connect_boundary(p, l, v3_madd(from, w, h.t), h.n, &ob->boundary, v3_neg(w), &c)) return;
+    tr_transform tf;
+    tr_field_lookup(tr, g->object, from, &tf);
+    double q = tr_guide_pdf(tr, g, w), pb = c.ls.delta ? 0.0 : c.pb, den = 0, v[3], f[3], pw[3];
+    tr_guide_vertex(tr, g, &tf, w, f, pw);
     for (int k = 0; k < 3; k++) {
-        double walk = tr_hg_eval(mu, ob->g[k]) * exp(-ob->sigma_t[k] * h.t);
-        den += p->r[k] * (q * c.ls.pdf + walk * (c.ls.pdf + pb * c.T[k]));
-        v[k] = p->beta[k] * walk * c.f * c.cos * c.ls.le[k] * c.T[k];
+        double walk = pw[k] * exp(-tr_walk_sigma(ob, &tf, k, w) * h.t);
+        den += p->r[k] * (q * c.ls.pdf + walk * (c.ls.pdf + pb * c.Tw[k]));
+        v[k] = p->beta[k] * f[k] * exp(-ob->sigma_t[k] * h.t) * c.f * c.cos * c.ls.le[k] * c.T[k];
     }
     den /= 3.0;
     if (!(den > 0)) return;
@@ -85,13 +85,15 @@ void tr_nee_volume_matched(tr_path *p, v3 x)
     const tr_light *l = tr_light_pick(tr, tr_u(p));
     tr_light_sample ls;
     if (!l || !tr_light_sample_from(l, x, v3_make(0, 0, 0), tr_u(p), tr_u(p), &ls)) return;
-    double T[3], tmax = isfinite(ls.dist) ? ls.dist * (1.0 - 1e-6) : INFINITY;
-    if (!tr_transmittance(tr, x, ls.w, tmax, p->medium, T)) return;
+    double T[3], Tw[3], tmax = isfinite(ls.dist) ? ls.dist * (1.0 - 1e-6) : INFINITY;
+    if (!tr_transmittance(tr, x, ls.w, tmax, p->medium, T, Tw)) return;
     double mu = v3_dot(p->d, ls.w), den = 0, v[3];
+    tr_transform tf;
+    tr_field_lookup(tr, p->medium, x, &tf);
     for (int k = 0; k < 3; k++) {
-        double ph = tr_hg_eval(mu, ob->g[k]);
-        den += p->r[k] * (ls.pdf + (ls.delta ? 0.0 : ph * T[k]));
-        v[k] = p->beta[k] * ph * ls.le[k] * T[k];
+        double walk = ls.delta ? 0.0 : tr_walk_pdf(ob, &tf, k, p->d, ls.w) * Tw[k];
+        den += p->r[k] * (ls.pdf + walk);
+        v[k] = p->beta[k] * tr_hg_eval(mu, ob->g[k]) * ls.le[k] * T[k];
     }
     den /= 3.0;
     if (!(den > 0)) return;
@@ -115,7 +117,7 @@ void tr_nee_surface(tr_path *p, v3 y, v3 n, const tr_boundary *b, bool inside)
     double g = inside && p->from_volume ? guide_term(p, &p->guide, p->d, p->walk_h, l) : 0.0;
     double pb = c.ls.delta ? 0.0 : c.pb, den = 0, v[3];
     for (int k = 0; k < 3; k++) {
-        den += p->r[k] * pb * c.T[k] + (p->r[k] + p->rx[k] * g) * c.ls.pdf;
+        den += p->r[k] * pb * c.Tw[k] + (p->r[k] + p->rx[k] * g) * c.ls.pdf;
         v[k] = p->beta[k] * c.f * c.cos * c.ls.le[k] * c.T[k];
     }
     den /= 3.0;

@@ -40,6 +40,7 @@ typedef struct tr_path {
     tr_stats *stats;
     int hero;
     double beta[3], r[3];
+    double eta_scale; /* undoes the radiance scaling of the boundaries crossed, for Russian roulette */
     double L[3];
     v3 o, d;
     int medium; /* the object whose medium the ray travels in, -1 outside */
@@ -47,7 +48,8 @@ typedef struct tr_path {
     bool camera_ray; /* no surface met yet */
     bool done;
     tr_mis mis;
-    /* the last volume vertex, while the walk travels from it in a rough object's medium */
+    /* the last vertex (volume, or boundary continuing inside), while the walk travels from it in a
+     * rough object's medium */
     bool from_volume;
     tr_guide guide;
     double rx[3];
@@ -59,8 +61,10 @@ static inline double tr_u(tr_path *p) { return lucent_rng_uniform(p->rng); }
 /* Adds value_c to the estimate when finite. */
 void tr_path_add(tr_path *p, const double value[3]);
 
-/* Next-event estimation (nee.c). */
-void tr_nee_volume_rough(tr_path *p, v3 x);
+/* Next-event estimation (nee.c): through a rough boundary from the vertex g describes (it is prepared
+ * for the light picked, and keeps that for the walk's weights), from a volume vertex in an
+ * index-matched medium, and at a boundary vertex. */
+void tr_nee_through(tr_path *p, tr_guide *g);
 void tr_nee_volume_matched(tr_path *p, v3 x);
 void tr_nee_surface(tr_path *p, v3 y, v3 n, const tr_boundary *b, bool inside);
 
