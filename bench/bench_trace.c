@@ -12,8 +12,10 @@
  *   luminance: RMS over pixels of the relative error of Y = 0.2126 R + 0.7152 G + 0.0722 B;
  *   RGB:       RMS over pixels and channels of each channel's relative error (every channel counts
  *              as much in the dark limb, where blue is 1e-9 of the lit side, as in the light).
- * Time: the wall clock of one run (the mean of A and B), 2 threads. Also run for comparison: the same
- * tracer with next-event estimation only at boundary vertices (Cycles' strategy), for CYCLES_SECONDS.
+ * Time: the wall clock of one run (the mean of A and B), 2 threads. The result uses adaptive sampling
+ * (lucent_tracer_desc.adaptive: samples where the relative variance is, still unbiased); for
+ * comparison also run: one sample per pixel and pass (UNIFORM_SECONDS), and next-event estimation only
+ * at boundary vertices, Cycles' strategy (CYCLES_SECONDS).
  * Usage: bench_trace [max_seconds_per_run (default 300)] [threads (default 2)] */
 #include <math.h>
 #include <stdio.h>
@@ -28,6 +30,7 @@
 
 enum { MAX_CHECKPOINTS = 40 };
 #define CYCLES_SECONDS 30.0
+#define UNIFORM_SECONDS 60.0
 
 typedef struct run {
     lucent_tracer *tracer;
@@ -108,21 +111,21 @@ typedef struct curve {
     int pixels;
 } curve;
 
-/* Two runs of the scene (with desc), checkpoints at doubling spp until the luminance error (against
- * the current mean) is below stop or a run has taken max_seconds. */
-static void measure_curve(const lucent_scene *sc, const lucent_tracer_desc *desc, double max_seconds, double stop,
-                          lucent_pool *pool, curve *cv)
+/* Two runs of the scene (with desc), checkpoints at doubling passes from first until the luminance
+ * error (against the current mean) is below stop or a run has taken max_seconds. */
+static void measure_curve(const lucent_scene *sc, const lucent_tracer_desc *desc, int first, double max_seconds,
+                          double stop, lucent_pool *pool, curve *cv)
 {
     run r[2] = {{0}};
     for (int k = 0; k < 2; k++)
         if (lucent_tracer_create(sc, desc, &r[k].tracer)) die("tracer");
     int n = 0;
-    for (int spp = 4; n < MAX_CHECKPOINTS; spp *= 2, n++) {
+    for (int spp = first; n < MAX_CHECKPOINTS; spp *= 2, n++) {
         for (int k = 0; k < 2; k++) advance(&r[k], 1 + k, spp, pool, n);
         cv->spp[n] = spp;
         cv->t[n] = 0.5 * (r[0].seconds[n] + r[1].seconds[n]);
         errors now = measure(r[0].snap[n], r[1].snap[n], r[0].snap[n], r[1].snap[n], r[0].last.coverage);
-        printf("    %6d spp  %7.1f s  (luminance error against the current mean %.3f)\n", spp, cv->t[n], now.lum);
+        printf("    %6d passes  %7.1f s  (luminance error against the current mean %.3f)\n", spp, cv->t[n], now.lum);
         fflush(stdout);
         if (now.lum < stop || 2.2 * cv->t[n] > max_seconds) {
             n++;
@@ -143,7 +146,7 @@ static void measure_curve(const lucent_scene *sc, const lucent_tracer_desc *desc
 
 static void print_curve(const char *name, const curve *cv)
 {
-    printf("  %s (%d sphere pixels):\n      spp   seconds   luminance   RGB\n", name, cv->pixels);
+    printf("  %s (%d sphere pixels):\n   passes   seconds   luminance   RGB\n", name, cv->pixels);
     for (int i = 0; i < cv->n; i++)
         printf("  %7d  %8.1f   %7.1f%%  %7.1f%%\n", cv->spp[i], cv->t[i], 100 * cv->lum[i], 100 * cv->rgb[i]);
 }
@@ -177,15 +180,18 @@ int main(int argc, char **argv)
     printf("bench_trace: Skin1 sphere R 10 mm, rough boundary (alpha 0.3, eta 1.3), delta sun from the side, "
            "128 x 128, %d threads; error of one run from two independent runs (seeds 1, 2)\n",
            lucent_pool_threads(pool));
-    curve main_curve = {0}, cycles = {0};
-    printf("  this tracer (next-event estimation through the boundary from every vertex):\n");
-    measure_curve(sc, NULL, max_seconds, 0.04, pool, &main_curve);
+    curve adaptive = {0}, uniform = {0}, cycles = {0};
+    printf("  this tracer, adaptive sampling (5 samples per pixel and pass, one of them the pilot's):\n");
+    measure_curve(sc, &(lucent_tracer_desc){.adaptive = true}, 1, max_seconds, 0.04, pool, &adaptive);
+    printf("  this tracer, one sample per pixel and pass:\n");
+    measure_curve(sc, NULL, 4, UNIFORM_SECONDS, 0.0, pool, &uniform);
     printf("  the same tracer with next-event estimation at boundary vertices only (Cycles' strategy):\n");
-    measure_curve(sc, &(lucent_tracer_desc){.boundary_nee_only = true}, CYCLES_SECONDS, 0.0, pool, &cycles);
+    measure_curve(sc, &(lucent_tracer_desc){.boundary_nee_only = true}, 4, CYCLES_SECONDS, 0.0, pool, &cycles);
     printf("\n");
-    print_curve("next-event estimation through the boundary", &main_curve);
-    print_curve("boundary vertices only (Cycles' strategy, same code)", &cycles);
-    report(&main_curve);
+    print_curve("adaptive (the result)", &adaptive);
+    print_curve("uniform", &uniform);
+    print_curve("boundary vertices only (Cycles' strategy, same code, uniform)", &cycles);
+    report(&adaptive);
     lucent_scene_destroy(sc);
     lucent_pool_destroy(pool);
     return 0;

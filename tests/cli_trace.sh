@@ -29,6 +29,9 @@ expect_ok -- "$LUCENT" trace "$SMALL" --time 0.2 --spp 1000000 --subsurface-only
 expect_true "--time stops early" -- \
   awk -F'[:,]' '/"spp":/ {gsub(/[ \t]/, "", $2); n = $2 + 0; exit !(n > 0 && n < 1000000)}' "$TMP/timed.json"
 expect_true "the sidecar says subsurface only" -- json_has "$TMP/timed.json" subsurface_only true
+expect_ok -- "$LUCENT" trace "$SMALL" --spp 6 --adaptive --out "$TMP/ad.png"
+expect_true "--adaptive says how many samples it took" -- grep -q "^trace: adaptive: .* samples per pixel on average" <<<"$OUT"
+expect_true "the sidecar says adaptive" -- json_has "$TMP/ad.json" adaptive true
 
 # Refusal, bad input, bad usage; nothing partial is left.
 expect_fail 1 "trace-smooth.json: lights[0] (a directional light with angular_radius 0, a delta light) can reach the inside of objects[0] \"glassy\" only through its smooth boundary" -- \

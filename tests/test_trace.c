@@ -79,18 +79,24 @@ static furnace_stats furnace_check(const lucent_trace_result *r, double L)
     return f;
 }
 
-static void furnace_case(const char *mat, const char *extra, furnace_stats *f)
+static void furnace_case_desc(const char *mat, const char *extra, const lucent_tracer_desc *td, int spp,
+                              furnace_stats *f)
 {
     lucent_scene *sc = sphere_scene(mat, "{\"type\": \"environment\", \"intensity\": 0.7}", 24, extra);
     lucent_pool *pool = lucent_pool_create(2);
     lucent_trace_result r = {0};
     CHECK(sc != NULL);
-    if (sc) CHECK_OK(render(sc, NULL, 256 / SLOW, 3, pool, &r));
+    if (sc) CHECK_OK(render(sc, td, spp, 3, pool, &r));
     if (r.image) *f = furnace_check(&r, 0.7);
     CHECK(r.nonfinite == 0);
     lucent_trace_result_free(&r);
     lucent_pool_destroy(pool);
     lucent_scene_destroy(sc);
+}
+
+static void furnace_case(const char *mat, const char *extra, furnace_stats *f)
+{
+    furnace_case_desc(mat, extra, NULL, 256 / SLOW, f);
 }
 
 /* Physics: no absorption, index matched, a uniform environment: radiance is L everywhere. The
@@ -102,6 +108,20 @@ TEST(furnace_index_matched_non_absorbing)
                  NULL, &f);
     printf("  index matched: %d pixels, mean z %.3f, chi2/dof %.3f, pooled z %.2f\n", f.pixels, f.mean_z, f.chi2_dof,
            f.pooled_z);
+    CHECK(f.pixels > 200);
+    CHECK_MSG(fabs(f.pooled_z) < 4, "pooled z %.2f: the mean over the object is not L", f.pooled_z);
+    CHECK_MSG(f.chi2_dof > 0.7 && f.chi2_dof < 1.5, "chi2/dof %.3f", f.chi2_dof);
+}
+
+/* Adaptive sampling keeps the estimate unbiased: pixels get samples by the relative variance a
+ * separate pilot measures, so the equilibrium L still holds, pixel by pixel. */
+TEST(furnace_adaptive)
+{
+    furnace_stats f = {0};
+    furnace_case_desc("{\"units\": \"mm^-1\", \"sigma_a\": 0, \"sigma_s\": [1, 3, 8], \"g\": [0, 0.4, 0.8], \"eta\": 1}",
+                      NULL, &(lucent_tracer_desc){.adaptive = true}, 64 / SLOW, &f);
+    printf("  adaptive, index matched: %d pixels, mean z %.3f, chi2/dof %.3f, pooled z %.2f\n", f.pixels, f.mean_z,
+           f.chi2_dof, f.pooled_z);
     CHECK(f.pixels > 200);
     CHECK_MSG(fabs(f.pooled_z) < 4, "pooled z %.2f: the mean over the object is not L", f.pooled_z);
     CHECK_MSG(f.chi2_dof > 0.7 && f.chi2_dof < 1.5, "chi2/dof %.3f", f.chi2_dof);
@@ -192,42 +212,63 @@ static lucent_scene *equator_scene(double R)
     return sc;
 }
 
+typedef struct agreement {
+    double chi2, zmax, pooled, pooled_se;
+    int n;
+} agreement;
+
+/* z-scores of the tracer's bands against the simulation's, 20 to 160 degrees. */
+static agreement compare_bands(const agree_bin *bins, const lucent_cdrf_sphere_result *m)
+{
+    agreement a = {0};
+    double num = 0, den = 0;
+    for (int b = 2; b < AGREE_BINS - 2; b++)
+        for (int c = 0; c < 3; c++) {
+            double se2 = bins[b].se[c] * bins[b].se[c] + m->radiance_se[c][b] * m->radiance_se[c][b];
+            double z = (bins[b].mean[c] - m->radiance[c][b]) / sqrt(se2);
+            a.chi2 += z * z, a.zmax = fmax(a.zmax, fabs(z)), a.n++;
+            /* pooled relative difference, weighted by inverse variance */
+            double rel = bins[b].mean[c] / m->radiance[c][b] - 1, rse2 = se2 / (m->radiance[c][b] * m->radiance[c][b]);
+            num += rel / rse2, den += 1 / rse2;
+        }
+    a.pooled = num / den, a.pooled_se = 1 / sqrt(den);
+    return a;
+}
+
+static void check_agreement(const char *what, const lucent_trace_result *r, double R, const lucent_cdrf_sphere_result *m)
+{
+    agree_bin bins[AGREE_BINS];
+    if (!r->image) return;
+    equator_bins(r, R, bins);
+    agreement a = compare_bands(bins, m);
+    printf("  %s: %d bands x channels, chi2 %.1f (p = 0.001 at 72.6 for 42), max |z| %.2f, pooled relative "
+           "difference %+.4f +- %.4f\n",
+           what, a.n, a.chi2, a.zmax, a.pooled, a.pooled_se);
+    CHECK(a.n == 42);
+    CHECK_MSG(a.chi2 < 72.6, "%s: chi2 %.1f over %d: the tracer and the simulation disagree", what, a.chi2, a.n);
+    CHECK_MSG(fabs(a.pooled) < 3.5 * a.pooled_se, "%s: a common scale error of %+.4f (+- %.4f)", what, a.pooled,
+              a.pooled_se);
+}
+
 TEST(agrees_with_the_light_traced_sphere)
 {
     const double R = 2;
     lucent_scene *sc = equator_scene(R);
     lucent_pool *pool = lucent_pool_create(2);
-    lucent_trace_result r = {0};
+    lucent_trace_result r = {0}, ra = {0};
     lucent_cdrf_sphere_result m;
     CHECK(sc != NULL);
     if (!sc) return;
     CHECK_OK(render(sc, &(lucent_tracer_desc){.subsurface_only = true}, 1200 / SLOW, 5, pool, &r));
+    CHECK_OK(render(sc, &(lucent_tracer_desc){.subsurface_only = true, .adaptive = true}, 240 / SLOW, 6, pool, &ra));
     CHECK_OK(lucent_cdrf_sphere_run(&(lucent_cdrf_sphere_desc){.material = &sc->objects[0].material, .radius = R,
                                                                 .roughness = 0.3, .photons = 1600000 / SLOW,
                                                                 .bins = AGREE_BINS, .cone = AGREE_CONE, .seed = 9,
                                                                 .pool = pool},
                                      &m));
-    agree_bin bins[AGREE_BINS];
-    if (r.image) equator_bins(&r, R, bins);
-    double chi2 = 0, zmax = 0, num = 0, den = 0;
-    int n = 0;
-    for (int b = 2; b < AGREE_BINS - 2 && r.image; b++) /* 20 to 160 degrees */
-        for (int c = 0; c < 3; c++) {
-            double se2 = bins[b].se[c] * bins[b].se[c] + m.radiance_se[c][b] * m.radiance_se[c][b];
-            double z = (bins[b].mean[c] - m.radiance[c][b]) / sqrt(se2);
-            chi2 += z * z, zmax = fmax(zmax, fabs(z)), n++;
-            /* pooled relative difference, weighted by inverse variance */
-            double rel = bins[b].mean[c] / m.radiance[c][b] - 1, rse2 = se2 / (m.radiance[c][b] * m.radiance[c][b]);
-            num += rel / rse2, den += 1 / rse2;
-        }
-    double pooled = num / den, pooled_se = 1 / sqrt(den);
-    printf("  %d bands x channels: chi2 %.1f (p = 0.001 at 72.6 for 42), max |z| %.2f, pooled relative difference "
-           "%+.4f +- %.4f\n",
-           n, chi2, zmax, pooled, pooled_se);
-    CHECK(n == 42);
-    CHECK_MSG(chi2 < 72.6, "chi2 %.1f over %d: the tracer and the simulation disagree", chi2, n);
-    CHECK_MSG(fabs(pooled) < 3.5 * pooled_se, "a common scale error of %+.4f (+- %.4f)", pooled, pooled_se);
-    lucent_trace_result_free(&r);
+    check_agreement("uniform", &r, R, &m);
+    check_agreement("adaptive", &ra, R, &m);
+    lucent_trace_result_free(&r), lucent_trace_result_free(&ra);
     lucent_pool_destroy(pool);
     lucent_scene_destroy(sc);
 }
@@ -269,6 +310,15 @@ TEST(same_seed_same_image_on_one_and_two_threads)
     CHECK(same_image(one.coverage, two.coverage));
     CHECK_MSG(split.spp == 8 && same_image(one.image, split.image), "5 + 3 samples differ from 8");
     CHECK_MSG(!same_image(one.image, other.image), "another seed gives the same image");
+    /* adaptive: the allocation is computed between passes from the pilot's sums, the same way */
+    lucent_trace_result_free(&one), lucent_trace_result_free(&two);
+    const lucent_tracer_desc adaptive = {.adaptive = true};
+    CHECK_OK(render(sc, &adaptive, 8, 21, NULL, &one));
+    CHECK_OK(render(sc, &adaptive, 8, 21, pool, &two));
+    CHECK_MSG(same_image(one.image, two.image) && same_image(one.variance, two.variance) && one.samples == two.samples,
+              "adaptive: 1 and 2 threads differ");
+    CHECK_MSG(one.samples > 8 * 20 * 20 && one.spp == 8, "adaptive: %llu samples in 8 passes",
+              (unsigned long long)one.samples);
     lucent_tracer_destroy(tr);
     lucent_trace_result_free(&one), lucent_trace_result_free(&two);
     lucent_trace_result_free(&split), lucent_trace_result_free(&other);
@@ -449,7 +499,8 @@ TEST(bad_input_is_named)
     lucent_scene_destroy(sc);
 }
 
-TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_smooth_dielectric_non_absorbing),
+TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_adaptive),
+          TEST_ENTRY(furnace_smooth_dielectric_non_absorbing),
           TEST_ENTRY(furnace_absorbing_or_rough_never_more), TEST_ENTRY(agrees_with_the_light_traced_sphere),
           TEST_ENTRY(same_seed_same_image_on_one_and_two_threads), TEST_ENTRY(error_falls_as_one_over_sqrt_spp),
           TEST_ENTRY(refuses_delta_lights_through_smooth_boundaries), TEST_ENTRY(meshes_with_holes_terminate),

@@ -29,6 +29,9 @@ static const char k_usage[] =
     "  --time S           stop after S seconds (default: render.time_limit; 0: none)\n"
     "  --target-error E   stop once the RMS over object pixels of se(Y)/Y is at most E (at >= 16 spp)\n"
     "  --subsurface-only  drop the light reflected where camera rays first meet a surface\n"
+    "  --adaptive         adaptive sampling: each pass gives pixels samples by their relative variance\n"
+    "                     (measured by a pilot that is not part of the image: still unbiased); --spp\n"
+    "                     then counts passes of about 4 samples per pixel (and one pilot sample)\n"
     "  --set KEY=VALUE    change the scene before it is read (repeatable): render.width=256,\n"
     "                     objects[0].roughness=0.2, 'lights[0].direction=[1,0,0]'\n"
     "  -h, --help         show this help\n"
@@ -43,7 +46,7 @@ typedef struct trace_options {
     const char *sets[MAX_SETS];
     int set_count;
     lucent_trace_desc desc;
-    bool subsurface_only;
+    bool subsurface_only, adaptive;
 } trace_options;
 
 static bool parse_seed(const char *v, uint64_t *dest)
@@ -75,8 +78,8 @@ static bool file_option(int argc, char **argv, int *i, trace_options *o, const c
 static int parse_option(int argc, char **argv, int *i, trace_options *o)
 {
     const char *v = NULL, *name = argv[*i];
-    if (strcmp(name, "--subsurface-only") == 0) {
-        o->subsurface_only = true;
+    if (strcmp(name, "--subsurface-only") == 0 || strcmp(name, "--adaptive") == 0) {
+        *(name[2] == 's' ? &o->subsurface_only : &o->adaptive) = true;
         return CLI_OK;
     }
     if (file_option(argc, argv, i, o, &v)) {
@@ -174,6 +177,8 @@ static lucent_status write_sidecar(const char *path, const trace_options *o, con
     cJSON_AddNumberToObject(root, "samples_per_second", r->samples_per_second);
     cJSON_AddNumberToObject(root, "threads", lucent_pool_threads(cli_pool()));
     cJSON_AddBoolToObject(root, "subsurface_only", o->subsurface_only);
+    cJSON_AddBoolToObject(root, "adaptive", o->adaptive);
+    cJSON_AddNumberToObject(root, "samples", (double)r->samples);
     cJSON_AddItemToObject(root, "relative_standard_error", error_json(&r->error));
     cJSON_AddNumberToObject(root, "truncated_paths", (double)r->truncated);
     cJSON_AddNumberToObject(root, "escaped_paths", (double)r->escaped);
@@ -205,6 +210,8 @@ static void summary(const lucent_trace_result *r)
              "p90 %.3g, rms %.3g (%llu pixels)",
              (unsigned long long)r->spp, r->seconds, r->samples_per_second, r->error.median, r->error.p90,
              r->error.rms, (unsigned long long)r->error.pixels);
+    if (r->samples != r->spp * (uint64_t)r->image->width * (uint64_t)r->image->height)
+        cli_info("trace: adaptive: %.1f samples per pixel on average", (double)r->samples / r->image->width / r->image->height);
     if (r->truncated || r->escaped || r->nonfinite)
         cli_info("trace: %llu paths truncated by max_bounces/max_scatter, %llu left a mesh through a hole, "
                  "%llu non-finite contributions dropped",
@@ -219,7 +226,8 @@ static lucent_status run(const trace_options *o)
     lucent_status s = lucent_scene_load(o->scene, &(lucent_scene_load_desc){.overrides = o->sets,
                                                                           .override_count = o->set_count}, &sc);
     if (s == LUCENT_OK)
-        s = lucent_tracer_create(sc, &(lucent_tracer_desc){.subsurface_only = o->subsurface_only}, &tr);
+        s = lucent_tracer_create(sc, &(lucent_tracer_desc){.subsurface_only = o->subsurface_only, .adaptive = o->adaptive},
+                                 &tr);
     lucent_trace_desc d = o->desc;
     d.pool = cli_pool();
     if (s == LUCENT_OK) s = lucent_tracer_render(tr, &d, &r);

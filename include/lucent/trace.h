@@ -44,6 +44,12 @@ typedef struct lucent_tracer_desc {
      * under a delta light with a rough boundary it converges one to two orders of magnitude slower.
      * Default false. */
     bool boundary_nee_only;
+    /* Adaptive sampling: each pass gives every pixel one sample plus a share of three more per pixel
+     * in proportion to the square root of its relative variance, measured by a separate pilot
+     * estimate (one more sample per pixel and pass, not part of the image), so the image stays
+     * unbiased. For the per-pixel relative error (dark regions of translucent objects). Default false:
+     * one sample per pixel and pass. */
+    bool adaptive;
 } lucent_tracer_desc;
 
 /* Creates a tracer for a loaded scene (which must outlive it): builds the ray-tracing scene from the
@@ -63,8 +69,8 @@ void lucent_tracer_reset(lucent_tracer *tracer);
 
 /* How much to add to the estimate; a zero field means the default. */
 typedef struct lucent_trace_desc {
-    int spp;             /* samples per pixel to add (0: the scene's render.spp); the call may stop
-                            earlier at time_limit or target_error */
+    int spp;             /* passes to add, one sample per pixel each unless adaptive (0: the scene's
+                            render.spp); the call may stop earlier at time_limit or target_error */
     uint64_t seed;       /* 0: the estimate's seed, or the scene's render.seed for a new estimate.
                             An estimate keeps the seed it started with: another seed for an estimate
                             that has samples is refused */
@@ -88,7 +94,8 @@ typedef struct lucent_trace_result {
     lucent_image *image;    /* mean linear HDR RGB radiance, top row first */
     lucent_image *variance; /* RGB variance of that mean (the standard error squared), from the samples */
     lucent_image *coverage; /* 1 channel: the fraction of camera rays that met a visible object */
-    uint64_t spp;           /* samples per pixel in the estimate (all calls) */
+    uint64_t spp;           /* passes in the estimate (all calls): samples per pixel, unless adaptive */
+    uint64_t samples;       /* camera samples in the image (all pixels; adaptive: the pilot's not counted) */
     uint64_t seed;
     double seconds;         /* rendering time of the estimate (all calls), wall clock */
     double samples_per_second; /* camera paths per second over the estimate */

@@ -97,7 +97,7 @@ static lucent_status build(lucent_tracer *tr)
     free(map);
     if (s == LUCENT_OK) s = tr_lights_build(tr);
     tr->walk_strength = WALK_STRENGTH;
-    if (s == LUCENT_OK) s = tr_film_create(tr->render.width, tr->render.height, &tr->film);
+    if (s == LUCENT_OK) s = tr_film_create(tr->render.width, tr->render.height, tr->desc.adaptive, &tr->film);
     tr->eps = scene_eps(sc);
     return s;
 }
@@ -149,14 +149,14 @@ static lucent_status resolve(const lucent_tracer *tr, const lucent_trace_desc *i
     if (!(d->target_error >= 0) || !isfinite(d->target_error))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "trace: target_error must be >= 0 (got %g)", d->target_error);
     if (!d->spp) d->spp = tr->render.spp;
-    if (!d->seed) d->seed = tr->film->spp ? tr->film->seed : tr->render.seed;
+    if (!d->seed) d->seed = tr->film->passes ? tr->film->seed : tr->render.seed;
     if (d->time_limit == 0) d->time_limit = tr->render.time_limit;
     if (!d->label) d->label = "trace";
-    if (tr->film->spp && d->seed != tr->film->seed)
+    if (tr->film->passes && d->seed != tr->film->seed)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "trace: the estimate has %llu samples of seed %llu; seed %llu cannot continue it "
+                            "trace: the estimate has %llu passes of seed %llu; seed %llu cannot continue it "
                             "(lucent_tracer_reset starts a new one)",
-                            (unsigned long long)tr->film->spp, (unsigned long long)tr->film->seed,
+                            (unsigned long long)tr->film->passes, (unsigned long long)tr->film->seed,
                             (unsigned long long)d->seed);
     return LUCENT_OK;
 }
@@ -164,7 +164,7 @@ static lucent_status resolve(const lucent_tracer *tr, const lucent_trace_desc *i
 static bool should_stop(const lucent_tracer *tr, const lucent_trace_desc *d, double start)
 {
     if (d->time_limit > 0 && now() - start >= d->time_limit) return true;
-    return d->target_error > 0 && tr->film->spp >= 16 && tr_film_error_rms(tr->film) <= d->target_error;
+    return d->target_error > 0 && tr->film->passes >= 16 && tr_film_error_rms(tr->film) <= d->target_error;
 }
 
 lucent_status lucent_tracer_render(lucent_tracer *tr, const lucent_trace_desc *desc, lucent_trace_result *dest)
@@ -174,11 +174,11 @@ lucent_status lucent_tracer_render(lucent_tracer *tr, const lucent_trace_desc *d
     lucent_trace_desc d;
     lucent_status s = resolve(tr, desc, &d);
     if (s != LUCENT_OK) return s;
+    double start = now(); /* the guiding field's pre-pass counts as rendering time */
     if (!tr->fields && tr->walk_strength > 0 && (s = tr_field_build(tr, d.pool)) != LUCENT_OK) return s;
     tr->film->seed = d.seed;
-    uint64_t pixels = (uint64_t)tr->render.width * (uint64_t)tr->render.height;
-    lucent_progress *progress = lucent_progress_begin(d.label, (uint64_t)d.spp * pixels);
-    double start = now();
+    uint64_t per_pass = (uint64_t)tr->render.width * (uint64_t)tr->render.height * (tr->desc.adaptive ? 5 : 1);
+    lucent_progress *progress = lucent_progress_begin(d.label, (uint64_t)d.spp * per_pass);
     for (int i = 0; i < d.spp && s == LUCENT_OK; i++) {
         s = tr_film_pass(tr, tr->film, d.pool, progress);
         if (should_stop(tr, &d, start)) break;
