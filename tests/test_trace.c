@@ -164,12 +164,15 @@ TEST(furnace_absorbing_or_rough_never_more)
  * Like quantities: the simulation averages over bands of theta and a cone of view directions within
  * CONE of +z, weighting each band by sin(theta) C(theta), C the cone's projected solid angle; the
  * tracer's pixels of a band are weighted by sin(theta) (their share of the band's projected area
- * is sin(theta) d theta already), which matches to first order in the cone (its second-order
- * effect was measured: halving the cone moves no bin beyond its standard error). Only bands between
- * 20 and 160 degrees are compared (at the limbs the pixels are few and the view grazing). The
- * simulation scores no light reflected at first entry, so the tracer runs subsurface_only. */
+ * is sin(theta) d theta already), which matches to first order in the cone. The second order is
+ * not negligible on the dark side: with a cone of 0.2 rad the simulation's green at 120-140 degrees
+ * is 2-3% above its value with 0.1 rad (25.6M and 102M photons), which the tracer matches within
+ * 0.3%; so the cone here is 0.1 rad (its effect about a quarter of that, below the standard errors).
+ * Only bands between 20 and 160 degrees are compared (at the limbs the pixels are few and the view
+ * grazing). The simulation scores no light reflected at first entry, so the tracer runs
+ * subsurface_only. */
 enum { AGREE_BINS = 18, AGREE_WIDTH = 201 };
-#define AGREE_CONE 0.2
+#define AGREE_CONE 0.1
 
 typedef struct agree_bin {
     double mean[3], se[3];
@@ -262,7 +265,7 @@ TEST(agrees_with_the_light_traced_sphere)
     CHECK_OK(render(sc, &(lucent_tracer_desc){.subsurface_only = true}, 1200 / SLOW, 5, pool, &r));
     CHECK_OK(render(sc, &(lucent_tracer_desc){.subsurface_only = true, .adaptive = true}, 240 / SLOW, 6, pool, &ra));
     CHECK_OK(lucent_cdrf_sphere_run(&(lucent_cdrf_sphere_desc){.material = &sc->objects[0].material, .radius = R,
-                                                                .roughness = 0.3, .photons = 1600000 / SLOW,
+                                                                .roughness = 0.3, .photons = 4000000 / SLOW,
                                                                 .bins = AGREE_BINS, .cone = AGREE_CONE, .seed = 9,
                                                                 .pool = pool},
                                      &m));
