@@ -12,7 +12,8 @@
  *   luminance: RMS over pixels of the relative error of Y = 0.2126 R + 0.7152 G + 0.0722 B;
  *   RGB:       RMS over pixels and channels of each channel's relative error (every channel counts
  *              as much in the dark limb, where blue is 1e-9 of the lit side, as in the light).
- * Time: the wall clock of one run (the mean of A and B), 2 threads. The result uses adaptive sampling
+ * Time: the wall clock of one run (the mean of A and B), 2 threads, and its CPU time over the threads
+ * (what the wall clock would be on an unloaded machine: the machine is shared). The result uses adaptive sampling
  * (lucent_tracer_desc.adaptive: samples where the relative variance is, still unbiased); for
  * comparison also run: one sample per pixel and pass (UNIFORM_SECONDS), and next-event estimation only
  * at boundary vertices, Cycles' strategy (CYCLES_SECONDS).
@@ -21,6 +22,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "lucent/lucent.h"
 
@@ -36,8 +38,17 @@ typedef struct run {
     lucent_tracer *tracer;
     lucent_trace_result last;
     lucent_image *snap[MAX_CHECKPOINTS];
-    double seconds[MAX_CHECKPOINTS];
+    double seconds[MAX_CHECKPOINTS], cpu[MAX_CHECKPOINTS];
 } run;
+
+/* CPU seconds of the process (all threads): unlike the wall clock, not inflated by other work on a
+ * shared machine. With every thread busy, an unloaded machine's wall clock is cpu / threads. */
+static double cpu_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 typedef struct errors {
     double lum, rgb;
@@ -57,8 +68,10 @@ static void advance(run *r, uint64_t seed, int spp, lucent_pool *pool, int cp)
 {
     int more = spp - (int)r->last.spp;
     lucent_trace_result_free(&r->last);
+    double c0 = cpu_seconds();
     if (lucent_tracer_render(r->tracer, &(lucent_trace_desc){.spp = more, .seed = seed, .pool = pool}, &r->last))
         die("render");
+    r->cpu[cp] = (cp ? r->cpu[cp - 1] : 0) + cpu_seconds() - c0;
     if (lucent_image_clone(r->last.image, &r->snap[cp])) die("clone");
     r->seconds[cp] = r->last.seconds;
 }
@@ -107,9 +120,11 @@ static void load(const char *path, lucent_scene **sc)
 
 typedef struct curve {
     int n, spp[MAX_CHECKPOINTS];
-    double t[MAX_CHECKPOINTS], lum[MAX_CHECKPOINTS], rgb[MAX_CHECKPOINTS];
+    double t[MAX_CHECKPOINTS], u[MAX_CHECKPOINTS], lum[MAX_CHECKPOINTS], rgb[MAX_CHECKPOINTS];
     int pixels;
 } curve;
+
+static int g_threads = 2;
 
 /* Two runs of the scene (with desc), checkpoints at doubling passes from first until the luminance
  * error (against the current mean) is below stop or a run has taken max_seconds. */
@@ -124,8 +139,10 @@ static void measure_curve(const lucent_scene *sc, const lucent_tracer_desc *desc
         for (int k = 0; k < 2; k++) advance(&r[k], 1 + k, spp, pool, n);
         cv->spp[n] = spp;
         cv->t[n] = 0.5 * (r[0].seconds[n] + r[1].seconds[n]);
+        cv->u[n] = 0.5 * (r[0].cpu[n] + r[1].cpu[n]) / g_threads;
         errors now = measure(r[0].snap[n], r[1].snap[n], r[0].snap[n], r[1].snap[n], r[0].last.coverage);
-        printf("    %6d passes  %7.1f s  (luminance error against the current mean %.3f)\n", spp, cv->t[n], now.lum);
+        printf("    %6d passes  %7.1f s  (cpu / %d: %7.1f s; luminance error against the current mean %.3f)\n", spp,
+               cv->t[n], g_threads, cv->u[n], now.lum);
         fflush(stdout);
         if (now.lum < stop || 2.2 * cv->t[n] > max_seconds) {
             n++;
@@ -146,27 +163,40 @@ static void measure_curve(const lucent_scene *sc, const lucent_tracer_desc *desc
 
 static void print_curve(const char *name, const curve *cv)
 {
-    printf("  %s (%d sphere pixels):\n   passes   seconds   luminance   RGB\n", name, cv->pixels);
+    printf("  %s (%d sphere pixels):\n   passes   wall s  cpu/%d s   luminance   RGB\n", name, cv->pixels, g_threads);
     for (int i = 0; i < cv->n; i++)
-        printf("  %7d  %8.1f   %7.1f%%  %7.1f%%\n", cv->spp[i], cv->t[i], 100 * cv->lum[i], 100 * cv->rgb[i]);
+        printf("  %7d  %7.1f  %8.1f   %7.1f%%  %7.1f%%\n", cv->spp[i], cv->t[i], cv->u[i], 100 * cv->lum[i],
+               100 * cv->rgb[i]);
+}
+
+/* The error at time t on curve (x, e), interpolated in log-log (0 when t is outside). */
+static double error_at(const double *x, const double *e, int n, double t)
+{
+    for (int i = 1; i < n; i++)
+        if (x[i] >= t && x[i - 1] < t) {
+            double f = log(t / x[i - 1]) / log(x[i] / x[i - 1]);
+            return exp(log(e[i - 1]) + f * log(e[i] / e[i - 1]));
+        }
+    return 0;
+}
+
+static void report_clock(const char *clock, const curve *cv, const double *x)
+{
+    bool xl, xr;
+    double tl = time_to(x, cv->lum, cv->n, 0.05, &xl), tr = time_to(x, cv->rgb, cv->n, 0.05, &xr);
+    double l22 = error_at(x, cv->lum, cv->n, 22), r22 = error_at(x, cv->rgb, cv->n, 22);
+    double l91 = error_at(x, cv->lum, cv->n, 91), r91 = error_at(x, cv->rgb, cv->n, 91);
+    printf("  %s: to 5%%: luminance %.0f s%s, RGB %.0f s%s; at 22 s %.1f%% / %.1f%%; at 91 s %.1f%% / %.1f%%; "
+           "Cycles / this: %.1fx (luminance), %.1fx (RGB)\n",
+           clock, tl, xl ? " (extrapolated)" : "", tr, xr ? " (extrapolated)" : "", 100 * l22, 100 * r22, 100 * l91,
+           100 * r91, 2700 / tl, 2700 / tr);
 }
 
 static void report(const curve *cv)
 {
-    bool xl, xr;
-    double tl = time_to(cv->t, cv->lum, cv->n, 0.05, &xl), tr = time_to(cv->t, cv->rgb, cv->n, 0.05, &xr);
-    double at22l = 0, at22r = 0;
-    for (int i = 0; i < cv->n; i++) /* the error at 22 s, interpolated in log-log */
-        if (i && cv->t[i] >= 22 && cv->t[i - 1] < 22) {
-            double f = log(22 / cv->t[i - 1]) / log(cv->t[i] / cv->t[i - 1]);
-            at22l = exp(log(cv->lum[i - 1]) + f * log(cv->lum[i] / cv->lum[i - 1]));
-            at22r = exp(log(cv->rgb[i - 1]) + f * log(cv->rgb[i] / cv->rgb[i - 1]));
-        }
-    printf("\n  time to 5%%:   luminance %.0f s%s, RGB %.0f s%s\n", tl, xl ? " (extrapolated)" : "", tr,
-           xr ? " (extrapolated)" : "");
-    printf("  Cycles 3.4 (anchor): 51%% at 22 s, 27%% at 91 s, ~2700 s to 5%%; target 10x: <= 270 s\n");
-    if (at22l > 0) printf("  this tracer at 22 s: luminance %.1f%%, RGB %.1f%% (Cycles 51%%)\n", 100 * at22l, 100 * at22r);
-    printf("  ratio to Cycles (2700 s / time to 5%%): luminance %.1fx, RGB %.1fx\n", 2700 / tl, 2700 / tr);
+    printf("\n  Cycles 3.4 (anchor): 51%% at 22 s, 27%% at 91 s, ~2700 s to 5%%; target 10x: 5%% within 270 s\n");
+    report_clock("wall clock      ", cv, cv->t);
+    report_clock("cpu / threads   ", cv, cv->u);
 }
 
 int main(int argc, char **argv)
@@ -175,6 +205,7 @@ int main(int argc, char **argv)
     int threads = argc > 2 ? atoi(argv[2]) : 2;
     if (!(max_seconds > 0)) max_seconds = 300;
     lucent_pool *pool = lucent_pool_create(threads > 0 ? threads : 2);
+    g_threads = lucent_pool_threads(pool);
     lucent_scene *sc;
     load(LUCENT_SOURCE_DIR "/bench/skin1-sphere.json", &sc);
     printf("bench_trace: Skin1 sphere R 10 mm, rough boundary (alpha 0.3, eta 1.3), delta sun from the side, "

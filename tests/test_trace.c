@@ -381,6 +381,29 @@ TEST(error_falls_as_one_over_sqrt_spp)
     lucent_scene_destroy(sc);
 }
 
+/* The frame is lucent_camera_ray's, the GL renderer's: a sphere of radius R at distance D on the view
+ * axis covers the pixels within (H / 2) tan(asin(R / D)) / tan(fov_y / 2) of the image centre (the
+ * cone tangent to the sphere through the pinhole). Off-centre cameras are the scene module's tests. */
+TEST(framing_matches_the_camera_projection)
+{
+    lucent_scene *sc = sphere_scene("\"skin1\"", "{\"type\": \"environment\"}", 48, NULL);
+    lucent_trace_result r = {0};
+    CHECK(sc != NULL);
+    if (!sc) return;
+    CHECK_OK(render(sc, NULL, 4, 1, NULL, &r));
+    double rpx = 24 * tan(asin(1.0 / 4.0)) / tan(0.5 * 35 * TR_PI / 180);
+    int wrong = 0;
+    for (int y = 0; y < 48 && r.coverage; y++)
+        for (int x = 0; x < 48; x++) {
+            double d = hypot(x + 0.5 - 24, y + 0.5 - 24), c = r.coverage->data[y * 48 + x];
+            if ((d < rpx - 0.75 && c < 1) || (d > rpx + 0.75 && c > 0)) wrong++;
+        }
+    printf("  silhouette radius %.2f pixels: %d pixels off it\n", rpx, wrong);
+    CHECK(wrong == 0);
+    lucent_trace_result_free(&r);
+    lucent_scene_destroy(sc);
+}
+
 /* ---- what the tracer refuses, and bounds ---- */
 
 TEST(refuses_delta_lights_through_smooth_boundaries)
@@ -506,5 +529,6 @@ TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_ad
           TEST_ENTRY(furnace_smooth_dielectric_non_absorbing),
           TEST_ENTRY(furnace_absorbing_or_rough_never_more), TEST_ENTRY(agrees_with_the_light_traced_sphere),
           TEST_ENTRY(same_seed_same_image_on_one_and_two_threads), TEST_ENTRY(error_falls_as_one_over_sqrt_spp),
+          TEST_ENTRY(framing_matches_the_camera_projection),
           TEST_ENTRY(refuses_delta_lights_through_smooth_boundaries), TEST_ENTRY(meshes_with_holes_terminate),
           TEST_ENTRY(bad_input_is_named))

@@ -298,7 +298,7 @@ void tr_field_lookup(const lucent_tracer *tr, int object, v3 x, tr_transform *de
 {
     const tr_object *ob = &tr->objects[object];
     memset(dest, 0, sizeof *dest);
-    if (!tr->fields || !tr->fields[object].grad) return;
+    if (!tr->fields || !tr->fields[object].grad || ob->boundary.kind == TR_BOUNDARY_MATCHED) return;
     const tr_field *f = &tr->fields[object];
     long cell = cell_of(f, x);
     if (cell < 0) return;

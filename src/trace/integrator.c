@@ -142,7 +142,8 @@ static void attenuate(tr_path *p, const tr_object *ob, double s, bool scatter, c
 {
     double sw[3];
     for (int k = 0; k < 3; k++) sw[k] = tr_walk_sigma(ob, tf, k, p->d);
-    double sh = sw[p->hero];
+    double sh = sw[p->hero], st = ob->sigma_t[p->hero];
+    p->tw *= exp(-(st - sh) * s) * (scatter ? st / sh : 1.0);
     for (int c = 0; c < 3; c++) {
         p->beta[c] *= exp(-(ob->sigma_t[c] - sh) * s) * (scatter ? ob->sigma_s[c] / sh : 1.0);
         p->r[c] *= exp(-(sw[c] - sh) * s) * (scatter ? sw[c] / sh : 1.0);
@@ -158,6 +159,7 @@ static void scatter_direction(tr_path *p, const tr_object *ob, v3 x, const tr_tr
     double mu = v3_dot(p->d, w), pw[3], ph;
     for (int c = 0; c < 3; c++) pw[c] = tr_walk_pdf(ob, tf, c, p->d, w);
     double p_h = pw[p->hero];
+    p->tw *= tr_hg_eval(mu, ob->g[p->hero]) / p_h;
     for (int c = 0; c < 3; c++) p->rx[c] = p->r[c];
     for (int c = 0; c < 3; c++) ph = tr_hg_eval(mu, ob->g[c]), p->beta[c] *= ph / p_h, p->r[c] *= pw[c] / p_h;
     p->from_volume = ob->boundary.kind == TR_BOUNDARY_ROUGH && !p->tr->desc.boundary_nee_only;
@@ -177,6 +179,7 @@ static void scatter(tr_path *p, const tr_object *ob, double t, const tr_transfor
     v3 x = v3_madd(p->o, p->d, t);
     attenuate(p, ob, t, true, tf);
     rescale(p);
+    p->analog |= p->tw > TR_TW_MAX;
     p->stats->scatters++;
     p->guide = (tr_guide){.x = x, .d_in = p->d, .object = p->medium};
     if (ob->boundary.kind == TR_BOUNDARY_ROUGH && !p->tr->desc.boundary_nee_only) tr_nee_through(p, &p->guide);
@@ -187,7 +190,7 @@ static void scatter(tr_path *p, const tr_object *ob, double t, const tr_transfor
         return;
     }
     tr_transform here;
-    tr_field_lookup(p->tr, p->medium, x, &here);
+    tr_path_transform(p, p->medium, x, &here);
     scatter_direction(p, ob, x, &here);
     roulette(p);
 }
@@ -196,7 +199,7 @@ static void step_inside(tr_path *p)
 {
     const tr_object *ob = &p->tr->objects[p->medium];
     tr_transform tf;
-    tr_field_lookup(p->tr, p->medium, p->o, &tf);
+    tr_path_transform(p, p->medium, p->o, &tf);
     double t = -log(1.0 - tr_u(p)) / tr_walk_sigma(ob, &tf, p->hero, p->d);
     tr_hit h;
     if (!tr_intersect(p->tr->geometry, p->o, p->d, 0.0, INFINITY, &h)) {
@@ -212,7 +215,7 @@ static void step_inside(tr_path *p)
 
 bool tr_trace_path(const lucent_tracer *tr, double px, double py, lucent_rng *rng, double dest[3], tr_stats *stats)
 {
-    tr_path p = {.tr = tr, .rng = rng, .stats = stats, .beta = {1, 1, 1}, .r = {1, 1, 1}, .eta_scale = 1, .medium = -1,
+    tr_path p = {.tr = tr, .rng = rng, .stats = stats, .beta = {1, 1, 1}, .r = {1, 1, 1}, .eta_scale = 1, .tw = 1, .medium = -1,
                  .camera_ray = true};
     double o[3], d[3];
     lucent_camera_ray(&tr->scene->camera, tr->render.width, tr->render.height, px, py, o, d);

@@ -64,7 +64,7 @@ void tr_nee_through(tr_path *p, tr_guide *g)
     if (!tr_guide_sample(tr, g, u0, u1, u2, &w) || !exit_point(tr, from, w, g->object, &h)) return;
     if (!connect_boundary(p, l, v3_madd(from, w, h.t), h.n, &ob->boundary, v3_neg(w), &c)) return;
     tr_transform tf;
-    tr_field_lookup(tr, g->object, from, &tf);
+    tr_path_transform(p, g->object, from, &tf);
     double q = tr_guide_pdf(tr, g, w), pb = c.ls.delta ? 0.0 : c.pb, den = 0, v[3], f[3], pw[3];
     tr_guide_vertex(tr, g, &tf, w, f, pw);
     for (int k = 0; k < 3; k++) {

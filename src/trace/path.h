@@ -41,6 +41,8 @@ typedef struct tr_path {
     int hero;
     double beta[3], r[3];
     double eta_scale; /* undoes the radiance scaling of the boundaries crossed, for Russian roulette */
+    double tw;        /* the hero's weight from the walk's transform so far (analog / transformed density) */
+    bool analog;      /* the transform is off for the rest of the path (tw passed TR_TW_MAX at a vertex) */
     double L[3];
     v3 o, d;
     int medium; /* the object whose medium the ray travels in, -1 outside */
@@ -57,6 +59,18 @@ typedef struct tr_path {
 } tr_path;
 
 static inline double tr_u(tr_path *p) { return lucent_rng_uniform(p->rng); }
+
+/* Where the transform's weights have grown past this, the walk goes on analog: in dense media, many
+ * short steps under a coarse field multiply small mismatches into fireflies. Decided at scattering
+ * vertices only, so that everything sampled from a vertex (and its MIS weights) uses one mode. */
+#define TR_TW_MAX 4.0
+
+/* The walk's transform at x in object `object` for this path (zero once it is analog). */
+static inline void tr_path_transform(const tr_path *p, int object, v3 x, tr_transform *dest)
+{
+    if (p->analog) *dest = (tr_transform){{{0, 0, 0}}, {0, 0, 0}};
+    else tr_field_lookup(p->tr, object, x, dest);
+}
 
 /* Adds value_c to the estimate when finite. */
 void tr_path_add(tr_path *p, const double value[3]);
