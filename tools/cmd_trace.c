@@ -29,6 +29,8 @@ static const char k_usage[] =
     "  --time S           stop after S seconds (default: render.time_limit; 0: none)\n"
     "  --target-error E   stop once the RMS over object pixels of se(Y)/Y is at most E (at >= 16 spp)\n"
     "  --subsurface-only  drop the light reflected where camera rays first meet a surface\n"
+    "  --boundary-nee-only  for comparison: next-event estimation only where the walk meets the\n"
+    "                     boundary (Cycles' strategy), not through it from every vertex\n"
     "  --adaptive         adaptive sampling: each pass gives pixels samples by their relative variance\n"
     "                     (measured by a pilot that is not part of the image: still unbiased); --spp\n"
     "                     then counts passes of about 4 samples per pixel (and one pilot sample)\n"
@@ -46,7 +48,7 @@ typedef struct trace_options {
     const char *sets[MAX_SETS];
     int set_count;
     lucent_trace_desc desc;
-    bool subsurface_only, adaptive;
+    bool subsurface_only, adaptive, boundary_nee_only;
 } trace_options;
 
 static bool parse_seed(const char *v, uint64_t *dest)
@@ -78,8 +80,12 @@ static bool file_option(int argc, char **argv, int *i, trace_options *o, const c
 static int parse_option(int argc, char **argv, int *i, trace_options *o)
 {
     const char *v = NULL, *name = argv[*i];
-    if (strcmp(name, "--subsurface-only") == 0 || strcmp(name, "--adaptive") == 0) {
-        *(name[2] == 's' ? &o->subsurface_only : &o->adaptive) = true;
+    bool *flag = strcmp(name, "--subsurface-only") == 0     ? &o->subsurface_only
+                 : strcmp(name, "--adaptive") == 0          ? &o->adaptive
+                 : strcmp(name, "--boundary-nee-only") == 0 ? &o->boundary_nee_only
+                                                            : NULL;
+    if (flag) {
+        *flag = true;
         return CLI_OK;
     }
     if (file_option(argc, argv, i, o, &v)) {
@@ -178,6 +184,7 @@ static lucent_status write_sidecar(const char *path, const trace_options *o, con
     cJSON_AddNumberToObject(root, "threads", lucent_pool_threads(cli_pool()));
     cJSON_AddBoolToObject(root, "subsurface_only", o->subsurface_only);
     cJSON_AddBoolToObject(root, "adaptive", o->adaptive);
+    cJSON_AddBoolToObject(root, "boundary_nee_only", o->boundary_nee_only);
     cJSON_AddNumberToObject(root, "samples", (double)r->samples);
     cJSON_AddItemToObject(root, "relative_standard_error", error_json(&r->error));
     cJSON_AddNumberToObject(root, "truncated_paths", (double)r->truncated);
@@ -226,7 +233,8 @@ static lucent_status run(const trace_options *o)
     lucent_status s = lucent_scene_load(o->scene, &(lucent_scene_load_desc){.overrides = o->sets,
                                                                           .override_count = o->set_count}, &sc);
     if (s == LUCENT_OK)
-        s = lucent_tracer_create(sc, &(lucent_tracer_desc){.subsurface_only = o->subsurface_only, .adaptive = o->adaptive},
+        s = lucent_tracer_create(sc, &(lucent_tracer_desc){.subsurface_only = o->subsurface_only, .adaptive = o->adaptive,
+                                                            .boundary_nee_only = o->boundary_nee_only},
                                  &tr);
     lucent_trace_desc d = o->desc;
     d.pool = cli_pool();
