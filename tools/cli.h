@@ -71,5 +71,6 @@ int cmd_cdrf_fit(int argc, char **argv);
 int cmd_kernel(int argc, char **argv);
 int cmd_kernel_eval(int argc, char **argv);
 int cmd_render(int argc, char **argv);
+int cmd_trace(int argc, char **argv);
 
 #endif

@@ -20,6 +20,7 @@ static const cli_command k_commands[] = {
     {"kernel", "separable subsurface-scattering kernels for a material, with taps and shader exports", cmd_kernel},
     {"kernel-eval", "evaluate every kernel model of a material against the exact 2-D convolution", cmd_kernel_eval},
     {"render", "render a scene with OpenGL: Lambert, CDRF, CDRF + translucency, screen-space SSS", cmd_render},
+    {"trace", "path-traced reference of a scene (Embree): media, rough or smooth boundaries", cmd_trace},
 };
 enum { COMMAND_COUNT = sizeof k_commands / sizeof k_commands[0] };
 

@@ -14,5 +14,6 @@
 #include "lucent/render.h"
 #include "lucent/report.h"
 #include "lucent/scene.h"
+#include "lucent/trace.h"
 
 #endif

@@ -1,0 +1,50 @@
+/* The accumulated estimate of a tracer (film.c: accumulation and passes; film_alloc.c: the adaptive
+ * allocation of samples; film_result.c: images and figures). */
+#ifndef LUCENT_TRACE_FILM_H
+#define LUCENT_TRACE_FILM_H
+
+#include "trace/internal.h"
+
+enum { TR_FILM_ACC = 7 }; /* doubles per pixel: sum RGB, sum of squares RGB, sum of squared luminance */
+
+/* Per pixel: the estimate's sums (acc, count samples, hits of them met an object). Adaptive films
+ * also keep a pilot estimate (one sample per pixel per pass, never part of the image) whose relative
+ * variance decides how many samples each pixel gets in the next pass (quota, with the fraction carried). */
+typedef struct tr_film {
+    int width, height;
+    bool adaptive;
+    uint64_t seed;
+    uint64_t passes;
+    double seconds;
+    double *acc;
+    uint32_t *count, *hits;
+    double *pilot; /* TR_FILM_ACC per pixel; adaptive only */
+    double *carry;
+    uint32_t *quota;
+    tr_stats stats;
+} tr_film;
+
+lucent_status tr_film_create(int width, int height, bool adaptive, tr_film **dest);
+void tr_film_destroy(tr_film *f);
+void tr_film_reset(tr_film *f);
+
+/* One pass: every pixel's quota of samples (one each unless adaptive), plus its pilot sample. */
+lucent_status tr_film_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *pool, lucent_progress *progress);
+
+/* The quota of the next pass (film_alloc.c): adaptive films give pixels samples in proportion to
+ * the square root of their relative variance as the pilot estimates it. */
+void tr_film_allocate(tr_film *f);
+
+/* Samples in the next pass, all pixels together. */
+uint64_t tr_film_pass_samples(const tr_film *f);
+
+/* Rec. 709 luminance weights. */
+extern const double tr_film_luminance[3];
+
+/* The RMS over object pixels of se(Y) / Y (INFINITY when there is none). */
+double tr_film_error_rms(const tr_film *f);
+
+/* Images and figures of the estimate. */
+lucent_status tr_film_result(const tr_film *f, lucent_trace_result *dest);
+
+#endif

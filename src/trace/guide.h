@@ -1,0 +1,36 @@
+/* The direction distribution of next-event estimation through a rough boundary (guide.c). */
+#ifndef LUCENT_TRACE_GUIDE_H
+#define LUCENT_TRACE_GUIDE_H
+
+#include "trace/internal.h"
+
+/* The guide of a vertex inside a rough object's medium: a volume vertex (the direction the walk arrived
+ * with) or a boundary vertex whose walk may continue inside (its outward normal and viewer direction),
+ * its object, and, once prepared for a light, the direction toward it and the normal n0 of the boundary
+ * point met that way. */
+typedef struct tr_guide {
+    v3 x, d_in;
+    bool surface;
+    v3 n, o;
+    int object;
+    const tr_light *light;
+    bool prepared, has_n0;
+    v3 toward, n0;
+} tr_guide;
+
+/* Readies g for light l (one ray from x toward the light, unless already done for l). */
+void tr_guide_prepare(const lucent_tracer *tr, tr_guide *g, const tr_light *l);
+
+/* Draws an inside direction w from q; false when the draw is lost (it counts as zero). */
+bool tr_guide_sample(const lucent_tracer *tr, const tr_guide *g, double u0, double u1, double u2, v3 *w);
+
+/* q(w), solid angle. */
+double tr_guide_pdf(const lucent_tracer *tr, const tr_guide *g, v3 w);
+
+/* What leaving the vertex in direction w means: *f the vertex's scattering function (phase function,
+ * or BSDF times |cos|) for channel k, *pdf the walk's own density of that direction (BSDF or phase;
+ * for a volume vertex per channel, with the walk's transform tf). */
+void tr_guide_vertex(const lucent_tracer *tr, const tr_guide *g, const tr_transform *tf, v3 w, double f[3],
+                     double pdf[3]);
+
+#endif

@@ -1,0 +1,235 @@
+/* One camera path: a volumetric random walk through dielectric boundaries with next-event estimation
+ * at every vertex (nee.c). Outside media the ray flies to the next surface; inside object o's medium a
+ * free-flight distance is drawn for the hero channel h (p(t) = sigma_t,h exp(-sigma_t,h t)); a
+ * scattering vertex multiplies channel c by sigma_s,c exp(-sigma_t,c t) over the hero's density and
+ * draws a Henyey-Greenstein direction; reaching the boundary first multiplies by
+ * exp(-sigma_t,c d) / exp(-sigma_t,h d). Bounds: render.max_bounces surface events and
+ * render.max_scatter scatterings end a path (counted as truncated), and a ray inside a medium that
+ * meets no surface at all has left a mesh through a hole and ends (counted as escaped), so open
+ * meshes cannot hang the tracer. Russian roulette ends paths of small throughput without bias. */
+#include <math.h>
+
+#include "trace/path.h"
+
+#define RR_START 3 /* vertices before Russian roulette */
+
+static void rescale(tr_path *p)
+{
+    double m = tr_max3(p->r);
+    if (!(m > 0) || (m > 1e-100 && m < 1e100)) return;
+    for (int c = 0; c < 3; c++) p->r[c] /= m, p->beta[c] /= m;
+}
+
+static void roulette(tr_path *p)
+{
+    if (p->bounces + p->scatters < RR_START) return;
+    double s = tr_max3(p->beta) * p->eta_scale / tr_mean3(p->r);
+    if (!(s > 0)) {
+        p->done = true;
+        return;
+    }
+    if (s >= 1.0) return;
+    if (tr_u(p) >= s) p->done = true;
+    for (int c = 0; c < 3; c++) p->beta[c] /= s;
+}
+
+/* Adds light l's radiance le seen along the walk, weighted against the other strategies. */
+static void add_found(void *ctx, const tr_light *l, const double le[3])
+{
+    tr_path *p = ctx;
+    double w = tr_mis_hit_weight(p, l, p->d) / tr_mean3(p->r), v[3];
+    for (int c = 0; c < 3; c++) v[c] = p->beta[c] * le[c] * w;
+    tr_path_add(p, v);
+}
+
+static void escaped(tr_path *p)
+{
+    if (p->camera_ray) {
+        const double *bg = p->tr->render.background;
+        tr_path_add(p, bg);
+    }
+    tr_lights_escaped(p->tr, p->d, add_found, p);
+    p->done = true;
+}
+
+/* The MIS record left by a rough boundary vertex y that the walk leaves in direction i (pdf pb). */
+static void record_surface(tr_path *p, v3 y, v3 n, double pb, bool inside)
+{
+    tr_mis *m = &p->mis;
+    *m = (tr_mis){.kind = MIS_SURFACE, .p = y, .n = n, .tc = {1, 1, 1}};
+    for (int c = 0; c < 3; c++) m->a[c] = p->r[c], m->pb[c] = pb;
+    if (inside && p->from_volume) {
+        m->has_guide = true;
+        m->guide = p->guide;
+        m->w = p->d;
+        m->walk_h = p->walk_h;
+        for (int c = 0; c < 3; c++) m->rx[c] = p->rx[c];
+    }
+}
+
+/* Crosses an index-matched surface: no vertex, the MIS record carries on. */
+static void pass_through(tr_path *p, const tr_hit *h, v3 y)
+{
+    bool entering = v3_dot(p->d, h->n) < 0;
+    p->medium = entering ? h->object : -1;
+    p->o = v3_madd(y, h->n, entering ? -p->tr->eps : p->tr->eps);
+}
+
+static void surface(tr_path *p, const tr_hit *h)
+{
+    const lucent_tracer *tr = p->tr;
+    v3 y = v3_madd(p->o, p->d, h->t), n = h->n;
+    const tr_boundary *b = &tr->objects[h->object].boundary;
+    bool first = p->camera_ray, inside = v3_dot(p->d, n) > 0, drop_reflection = first && tr->desc.subsurface_only;
+    p->camera_ray = false;
+    if (++p->bounces > tr->render.max_bounces || v3_dot(n, n) == 0) {
+        p->stats->truncated += p->bounces > tr->render.max_bounces;
+        p->done = true;
+        return;
+    }
+    if (b->kind == TR_BOUNDARY_MATCHED) {
+        pass_through(p, h, y);
+        return;
+    }
+    tr_guide g = {.x = y, .surface = true, .n = n, .o = v3_neg(p->d), .object = h->object};
+    if (b->kind == TR_BOUNDARY_ROUGH && !drop_reflection) tr_nee_surface(p, y, n, b, inside);
+    bool through = b->kind == TR_BOUNDARY_ROUGH && !tr->desc.boundary_nee_only;
+    if (through) tr_nee_through(p, &g);
+    tr_bsdf_sample bs;
+    double u0 = tr_u(p), u1 = tr_u(p), u2 = tr_u(p);
+    if (!tr_bsdf_sample_dir(b, n, v3_neg(p->d), u0, u1, u2, &bs) || (drop_reflection && !bs.transmit)) {
+        p->done = true;
+        return;
+    }
+    if (bs.delta) p->mis = (tr_mis){.kind = MIS_NONE};
+    else record_surface(p, y, n, bs.pdf, inside);
+    for (int c = 0; c < 3; c++) p->beta[c] *= bs.weight;
+    p->eta_scale /= bs.scale;
+    if (bs.transmit) p->medium = inside ? -1 : h->object;
+    p->from_volume = through && v3_dot(bs.i, n) < 0;
+    if (p->from_volume) {
+        p->guide = g;
+        p->walk_h = bs.pdf;
+        for (int c = 0; c < 3; c++) p->rx[c] = p->r[c];
+    }
+    p->o = v3_madd(y, n, v3_dot(bs.i, n) > 0 ? tr->eps : -tr->eps);
+    p->d = bs.i;
+    roulette(p);
+}
+
+static void step_outside(tr_path *p)
+{
+    tr_hit h;
+    bool hit = tr_intersect(p->tr->geometry, p->o, p->d, 0.0, INFINITY, &h);
+    double ts;
+    int sphere = tr_sphere_light_hit(p->tr, p->o, p->d, hit ? h.t : INFINITY, &ts);
+    if (sphere >= 0) {
+        const tr_light *l = &p->tr->lights[sphere];
+        add_found(p, l, l->radiance);
+        p->done = true;
+    } else if (!hit) {
+        escaped(p);
+    } else {
+        surface(p, &h);
+    }
+}
+
+/* Multiplies beta by the physics over the hero's sampling density, and r by channel k's density
+ * over the hero's, for a stretch of length s in medium ob started in direction p->d (toward-light
+ * direction u): exp(-sigma_t,c s) against the walk's exp(-sigma*_k s), and for a scattering vertex
+ * sigma_s,c against sigma*_k. */
+static void attenuate(tr_path *p, const tr_object *ob, double s, bool scatter, const tr_transform *tf)
+{
+    double sw[3];
+    for (int k = 0; k < 3; k++) sw[k] = tr_walk_sigma(ob, tf, k, p->d);
+    double sh = sw[p->hero], st = ob->sigma_t[p->hero];
+    p->tw *= exp(-(st - sh) * s) * (scatter ? st / sh : 1.0);
+    for (int c = 0; c < 3; c++) {
+        p->beta[c] *= exp(-(ob->sigma_t[c] - sh) * s) * (scatter ? ob->sigma_s[c] / sh : 1.0);
+        p->r[c] *= exp(-(sw[c] - sh) * s) * (scatter ? sw[c] / sh : 1.0);
+        if (p->mis.kind != MIS_NONE) p->mis.tc[c] *= exp(-sw[c] * s);
+    }
+    if (p->from_volume) p->walk_h *= exp(-sh * s);
+}
+
+/* Draws the walk's next direction and records the vertex. */
+static void scatter_direction(tr_path *p, const tr_object *ob, v3 x, const tr_transform *tf)
+{
+    v3 w = tr_walk_sample(ob, tf, p->hero, p->d, tr_u(p), tr_u(p), tr_u(p));
+    double mu = v3_dot(p->d, w), pw[3], ph;
+    for (int c = 0; c < 3; c++) pw[c] = tr_walk_pdf(ob, tf, c, p->d, w);
+    double p_h = pw[p->hero];
+    p->tw *= tr_hg_eval(mu, ob->g[p->hero]) / p_h;
+    for (int c = 0; c < 3; c++) p->rx[c] = p->r[c];
+    for (int c = 0; c < 3; c++) ph = tr_hg_eval(mu, ob->g[c]), p->beta[c] *= ph / p_h, p->r[c] *= pw[c] / p_h;
+    p->from_volume = ob->boundary.kind == TR_BOUNDARY_ROUGH && !p->tr->desc.boundary_nee_only;
+    p->walk_h = p_h;
+    if (ob->boundary.kind == TR_BOUNDARY_MATCHED) {
+        p->mis = (tr_mis){.kind = MIS_VOLUME, .p = x, .tc = {1, 1, 1}};
+        for (int c = 0; c < 3; c++) p->mis.a[c] = p->rx[c], p->mis.pb[c] = pw[c];
+    } else {
+        p->mis = (tr_mis){.kind = MIS_NONE};
+    }
+    p->o = x;
+    p->d = w;
+}
+
+static void scatter(tr_path *p, const tr_object *ob, double t, const tr_transform *tf)
+{
+    v3 x = v3_madd(p->o, p->d, t);
+    attenuate(p, ob, t, true, tf);
+    rescale(p);
+    p->analog |= p->tw > TR_TW_MAX;
+    p->stats->scatters++;
+    p->guide = (tr_guide){.x = x, .d_in = p->d, .object = p->medium};
+    if (ob->boundary.kind == TR_BOUNDARY_ROUGH && !p->tr->desc.boundary_nee_only) tr_nee_through(p, &p->guide);
+    else if (ob->boundary.kind == TR_BOUNDARY_MATCHED) tr_nee_volume_matched(p, x);
+    if (++p->scatters >= p->tr->render.max_scatter) {
+        p->stats->truncated++;
+        p->done = true;
+        return;
+    }
+    tr_transform here;
+    tr_path_transform(p, p->medium, x, &here);
+    scatter_direction(p, ob, x, &here);
+    roulette(p);
+}
+
+static void step_inside(tr_path *p)
+{
+    const tr_object *ob = &p->tr->objects[p->medium];
+    tr_transform tf;
+    tr_path_transform(p, p->medium, p->o, &tf);
+    double t = -log(1.0 - tr_u(p)) / tr_walk_sigma(ob, &tf, p->hero, p->d);
+    tr_hit h;
+    if (!tr_intersect(p->tr->geometry, p->o, p->d, 0.0, INFINITY, &h)) {
+        p->stats->escaped++; /* left the mesh through a hole */
+        p->done = true;
+    } else if (t < h.t) {
+        scatter(p, ob, t, &tf);
+    } else {
+        attenuate(p, ob, h.t, false, &tf);
+        surface(p, &h);
+    }
+}
+
+bool tr_trace_path(const lucent_tracer *tr, double px, double py, lucent_rng *rng, double dest[3], tr_stats *stats)
+{
+    tr_path p = {.tr = tr, .rng = rng, .stats = stats, .beta = {1, 1, 1}, .r = {1, 1, 1}, .eta_scale = 1, .tw = 1, .medium = -1,
+                 .camera_ray = true};
+    double o[3], d[3];
+    lucent_camera_ray(&tr->scene->camera, tr->render.width, tr->render.height, px, py, o, d);
+    p.o = v3_from(o), p.d = v3_from(d);
+    p.hero = (int)(tr_u(&p) * 3.0);
+    if (p.hero > 2) p.hero = 2;
+    bool covered = false;
+    stats->paths++;
+    while (!p.done) {
+        if (p.medium < 0) step_outside(&p);
+        else step_inside(&p);
+        if (!p.camera_ray) covered = true;
+    }
+    stats->bounces += (uint64_t)p.bounces;
+    for (int c = 0; c < 3; c++) dest[c] = p.L[c];
+    return covered;
+}

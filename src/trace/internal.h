@@ -1,0 +1,211 @@
+/* Internal interfaces of the path tracer (src/trace). Embree's types stay in embree.c.
+ *
+ * Files: embree.c (the ray-tracing scene), bsdf.c (dielectric boundaries), media.c (Henyey-Greenstein
+ * and the hero-channel free flights), lights.c (light sampling and emission), guide.c (the
+ * direction distribution of next-event estimation through a rough boundary), nee.c (next-event
+ * estimation from volume and surface vertices), integrator.c (one camera path), film.c (the
+ * accumulated estimate and its statistics), tracer.c (the public API). docs/trace.md explains the
+ * estimator. */
+#ifndef LUCENT_TRACE_INTERNAL_H
+#define LUCENT_TRACE_INTERNAL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "lucent/scene.h"
+#include "lucent/trace.h"
+#include "trace/vec.h"
+
+/* ---- dielectric boundaries (bsdf.c) ----
+ * Every surface separates the outside (index 1) from an object's medium (index eta). */
+typedef enum tr_boundary_kind {
+    TR_BOUNDARY_MATCHED = 0, /* eta == 1: light passes straight through, whatever the roughness */
+    TR_BOUNDARY_SMOOTH,      /* roughness 0: Fresnel reflection and refraction (delta) */
+    TR_BOUNDARY_ROUGH        /* GGX microfacets (Walter et al. 2007) */
+} tr_boundary_kind;
+
+typedef struct tr_boundary {
+    tr_boundary_kind kind;
+    double eta;   /* medium / outside */
+    double alpha; /* GGX alpha */
+} tr_boundary;
+
+/* Unpolarised Fresnel reflectance for incidence cosine ci (> 0) from index ni into nt; 1 under total
+ * internal reflection, exactly 0 when ni == nt. */
+double tr_fresnel(double ci, double ni, double nt);
+
+/* Refracts incident travel direction d through a surface with unit normal m facing against d
+ * (m . d < 0), ratio = ni / nt. Returns false under total internal reflection. */
+bool tr_refract(v3 d, v3 m, double ratio, v3 *dest);
+
+/* GGX normal distribution D(m) for cosine cm between m and the macro normal (Walter eq. 33). */
+double tr_ggx_d(double cm, double alpha);
+
+/* Smith masking G1 of GGX for a direction at cosine c to the macro normal (Walter eq. 34). */
+double tr_ggx_g1(double c, double alpha);
+
+/* Samples a microfacet normal visible from v (unit, v . n > 0) about unit normal n (Heitz 2018). */
+v3 tr_ggx_sample_visible(v3 v, v3 n, double alpha, double u1, double u2);
+
+/* Density of tr_ggx_sample_visible producing m: G1(v) max(0, v . m) D(m) / (v . n). */
+double tr_ggx_visible_pdf(v3 v, v3 n, v3 m, double alpha);
+
+/* The boundary's BSDF for outward normal n, toward-viewer direction o and toward-light direction i
+ * (both unit, pointing away from the surface): returns f (radiance convention, with the
+ * (eta_o / eta_i)^2 factor of Walter eq. 21) and sets *pdf to the density with which
+ * tr_bsdf_sample picks i given o (solid angle). Rough boundaries only (delta ones give 0). */
+double tr_bsdf_eval(const tr_boundary *b, v3 n, v3 o, v3 i, double *pdf);
+
+typedef struct tr_bsdf_sample {
+    v3 i;          /* the sampled direction (away from the surface) */
+    double weight; /* f |cos i| / pdf */
+    double pdf;    /* solid angle; 0 for delta events */
+    double scale;  /* the (eta_o / eta_i)^2 in weight: radiance squeezed into the denser medium */
+    bool delta;
+    bool transmit;
+} tr_bsdf_sample;
+
+/* Samples i given o. Returns false when the sample is lost (a microfacet sends it below the macro
+ * surface): the path ends there, which is what the single-scattering microfacet model means. */
+bool tr_bsdf_sample_dir(const tr_boundary *b, v3 n, v3 o, double u0, double u1, double u2,
+                        tr_bsdf_sample *dest);
+
+/* ---- media (media.c) ---- */
+
+/* Henyey-Greenstein phase function for the cosine mu between travel directions (HG 1941). */
+double tr_hg_eval(double mu, double g);
+
+/* Samples a new travel direction from d (HG, by inversion of its cumulative distribution). */
+v3 tr_hg_sample(v3 d, double g, double u1, double u2);
+
+typedef struct tr_object tr_object;
+
+/* The walk's transform at a point, per channel k: free flights with sigma*(w) = sigma_t (1 - b_k (w . u_k))
+ * and directions drawn from tr_walk_pdf (b_k = 0: the analog walk). See media.c and field.c. */
+#define TR_WALK_B_MAX 0.9
+typedef struct tr_transform {
+    v3 u[3];
+    double b[3];
+} tr_transform;
+
+double tr_walk_sigma(const tr_object *ob, const tr_transform *tf, int k, v3 w);
+double tr_walk_pdf(const tr_object *ob, const tr_transform *tf, int k, v3 d_in, v3 w);
+v3 tr_walk_sample(const tr_object *ob, const tr_transform *tf, int k, v3 d_in, double u0, double u1, double u2);
+
+/* ---- the ray-tracing scene (embree.c) ---- */
+typedef struct tr_geometry tr_geometry;
+
+typedef struct tr_hit {
+    double t;
+    int object; /* index into the tracer's objects */
+    v3 n;       /* outward unit geometric normal of the triangle hit */
+} tr_hit;
+
+lucent_status tr_geometry_create(const lucent_scene *scene, const int *object_of, int count,
+                                 tr_geometry **dest);
+void tr_geometry_destroy(tr_geometry *g);
+
+/* The first surface along o + t d with tnear < t < tfar (tfar may be INFINITY). */
+bool tr_intersect(const tr_geometry *g, v3 o, v3 d, double tnear, double tfar, tr_hit *hit);
+
+/* Whether any surface lies along o + t d for 0 < t < tfar. */
+bool tr_occluded(const tr_geometry *g, v3 o, v3 d, double tfar);
+
+/* ---- the tracer ---- */
+struct tr_object {
+    int scene_index; /* objects[i] in the scene file */
+    tr_boundary boundary;
+    double sigma_t[3], sigma_s[3], g[3];
+    double g_mean; /* the guide's phase component (channel-independent) */
+};
+
+/* An object's importance field (field.c): a grid of grad ln(fluence) per channel. */
+typedef struct tr_field {
+    double lo[3], cell;
+    int n[3];
+    size_t offset; /* of its cells among all objects' during the build */
+    float *grad;   /* per cell, per channel, 3 components */
+} tr_field;
+
+typedef struct tr_light {
+    lucent_light_type type;
+    int scene_index;
+    double radiance[3]; /* directional: irradiance (delta) or disc radiance; point/sphere: intensity
+                           (point) or surface radiance (sphere); environment: radiance */
+    v3 toward;          /* directional: unit direction toward the light */
+    v3 position;
+    double radius;      /* sphere */
+    double cos_cone;    /* directional disc: cos of the angular radius */
+    double solid_angle; /* directional disc */
+    bool delta;
+    double select;      /* probability that next-event estimation picks it */
+} tr_light;
+
+struct lucent_tracer {
+    const lucent_scene *scene;
+    lucent_render_settings render;
+    lucent_tracer_desc desc;
+    tr_geometry *geometry;
+    tr_object *objects;
+    int object_count;
+    tr_light *lights;
+    int light_count;
+    double select_cdf[64];
+    double eps;        /* ray offset from surfaces, mm */
+    bool has_matched;  /* some object is index matched (shadow rays must pass through it) */
+    const tr_light *walk_target; /* the strongest light with a direction (NULL: none) */
+    tr_field *fields;            /* one per object once built (NULL: the analog walk) */
+    double walk_strength;        /* the share of the fluence gradient the walk follows */
+    struct tr_film *film;
+};
+
+/* ---- lights (lights.c) ---- */
+lucent_status tr_lights_build(lucent_tracer *tr);
+
+/* Picks a light for next-event estimation; NULL when there is none. */
+const tr_light *tr_light_pick(const lucent_tracer *tr, double u);
+
+typedef struct tr_light_sample {
+    v3 w;          /* unit direction toward the light */
+    double dist;   /* distance to the emitter along w (INFINITY for distant lights) */
+    double le[3];  /* radiance, or for delta lights the irradiance at the point */
+    double pdf;    /* solid angle density (times the pick probability); for delta lights the pick probability */
+    bool delta;
+} tr_light_sample;
+
+/* Samples light l from point p; n is the outward normal of a surface point (directions on its outer
+ * side are sampled) or zero for a point in a medium. False when the light gives nothing there. */
+bool tr_light_sample_from(const tr_light *l, v3 p, v3 n, double u1, double u2, tr_light_sample *dest);
+
+/* Density (times the pick probability) with which tr_light_sample_from picks w from p (n as above);
+ * 0 for delta lights. */
+double tr_light_pdf(const tr_light *l, v3 p, v3 n, v3 w);
+
+/* Radiance seen along a ray that escapes to infinity in direction w: the environment and sun discs.
+ * Calls fn for each light that contributes, so the caller can weight them. */
+typedef void (*tr_light_fn)(void *ctx, const tr_light *l, const double le[3]);
+void tr_lights_escaped(const lucent_tracer *tr, v3 w, tr_light_fn fn, void *ctx);
+
+/* The nearest sphere light hit by o + t d for t < tfar: its index, or -1. */
+int tr_sphere_light_hit(const lucent_tracer *tr, v3 o, v3 d, double tfar, double *t);
+
+/* Transmittance from o along d over (0, tmax) starting in medium `medium` (-1: outside): passes
+ * through index-matched surfaces, multiplying exp(-sigma_t s) per channel for the stretches inside
+ * media; false when a refracting surface or a sphere light blocks the way. Tw (may be NULL) receives
+ * the probability that the walk's free flights pass the same stretches (exp(-sigma* s)). */
+bool tr_transmittance(const lucent_tracer *tr, v3 o, v3 d, double tmax, int medium, double T[3], double Tw[3]);
+
+/* The walk's transform at x in object `object` (zero without a field). */
+void tr_field_lookup(const lucent_tracer *tr, int object, v3 x, tr_transform *dest);
+
+/* ---- one camera path (integrator.c) ---- */
+typedef struct tr_stats {
+    uint64_t paths, scatters, bounces, escaped, truncated, nonfinite;
+} tr_stats;
+
+/* Estimates the radiance through image point (px, py); dest receives RGB. Returns whether the camera
+ * ray hit a visible object. */
+bool tr_trace_path(const lucent_tracer *tr, double px, double py, struct lucent_rng *rng, double dest[3],
+                   tr_stats *stats);
+
+#endif

@@ -1,0 +1,141 @@
+/* Next-event estimation and the multiple-importance-sampling weights (Veach 1997, ch. 9, the balance
+ * heuristic, combined with the hero channel's balance over channels; docs/trace.md gives the
+ * derivation). A light connection x -> y -> light (x a volume vertex, y the boundary point where the
+ * light refracts in) can be made three ways:
+ *   S1 at x: draw the inside direction w from the guide q, meet the boundary at y, sample the light
+ *      at y (density p_l);
+ *   S2 at y, reached by the walk from x (phase function and free flight past y: p_k(w) T_k(d) for
+ *      channel k's sampling), sampling the light at y (p_l);
+ *   S3: the same walk, then the BSDF at y draws the direction (p_b) and it reaches the light (only for
+ *      lights that can be hit: not delta lights).
+ * With prefix ratios r_k, every strategy divides the path's contribution by the same
+ *   Den = (1/3) sum_k r_k [q p_l + p_k T_k (p_l + p_b Tch_k)],
+ * (Tch_k the transmittance of the stretch beyond y, non-zero only through index-matched media), so
+ * the three weights sum to one for every path. */
+#include <math.h>
+
+#include "trace/path.h"
+
+void tr_path_add(tr_path *p, const double v[3])
+{
+    if (!isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2])) {
+        p->stats->nonfinite++;
+        return;
+    }
+    for (int c = 0; c < 3; c++) p->L[c] += v[c];
+}
+
+/* The point where an inside ray from x along w leaves object `object`, or false (a hole, another
+ * object, or a face seen from its outer side). */
+static bool exit_point(const lucent_tracer *tr, v3 x, v3 w, int object, tr_hit *h)
+{
+    return tr_intersect(tr->geometry, x, w, 0.0, INFINITY, h) && h->object == object && v3_dot(w, h->n) > 0;
+}
+
+/* Samples light l at boundary point y (outward normal n) for viewer direction o: BSDF value f, its
+ * density pb for the light's direction, and the visibility transmittance; false when nothing arrives. */
+typedef struct connection {
+    tr_light_sample ls;
+    double f, pb, cos, T[3], Tw[3];
+} connection;
+
+static bool connect_boundary(tr_path *p, const tr_light *l, v3 y, v3 n, const tr_boundary *b, v3 o, connection *c)
+{
+    const lucent_tracer *tr = p->tr;
+    if (!tr_light_sample_from(l, y, n, tr_u(p), tr_u(p), &c->ls)) return false;
+    c->f = tr_bsdf_eval(b, n, o, c->ls.w, &c->pb);
+    if (!(c->f > 0)) return false;
+    c->cos = fabs(v3_dot(c->ls.w, n));
+    double tmax = isfinite(c->ls.dist) ? c->ls.dist * (1.0 - 1e-6) - tr->eps : INFINITY;
+    return tr_transmittance(tr, v3_madd(y, n, tr->eps), c->ls.w, tmax, -1, c->T, c->Tw);
+}
+
+void tr_nee_through(tr_path *p, tr_guide *g)
+{
+    const lucent_tracer *tr = p->tr;
+    const tr_object *ob = &tr->objects[g->object];
+    const tr_light *l = tr_light_pick(tr, tr_u(p));
+    if (!l) return;
+    tr_guide_prepare(tr, g, l);
+    v3 w, from = g->surface ? v3_madd(g->x, g->n, -tr->eps) : g->x;
+    double u0 = tr_u(p), u1 = tr_u(p), u2 = tr_u(p);
+    tr_hit h;
+    connection c;
+    if (!tr_guide_sample(tr, g, u0, u1, u2, &w) || !exit_point(tr, from, w, g->object, &h)) return;
+    if (!connect_boundary(p, l, v3_madd(from, w, h.t), h.n, &ob->boundary, v3_neg(w), &c)) return;
+    tr_transform tf;
+    tr_path_transform(p, g->object, from, &tf);
+    double q = tr_guide_pdf(tr, g, w), pb = c.ls.delta ? 0.0 : c.pb, den = 0, v[3], f[3], pw[3];
+    tr_guide_vertex(tr, g, &tf, w, f, pw);
+    for (int k = 0; k < 3; k++) {
+        double walk = pw[k] * exp(-tr_walk_sigma(ob, &tf, k, w) * h.t);
+        den += p->r[k] * (q * c.ls.pdf + walk * (c.ls.pdf + pb * c.Tw[k]));
+        v[k] = p->beta[k] * f[k] * exp(-ob->sigma_t[k] * h.t) * c.f * c.cos * c.ls.le[k] * c.T[k];
+    }
+    den /= 3.0;
+    if (!(den > 0)) return;
+    for (int k = 0; k < 3; k++) v[k] /= den;
+    tr_path_add(p, v);
+}
+
+void tr_nee_volume_matched(tr_path *p, v3 x)
+{
+    const lucent_tracer *tr = p->tr;
+    const tr_object *ob = &tr->objects[p->medium];
+    const tr_light *l = tr_light_pick(tr, tr_u(p));
+    tr_light_sample ls;
+    if (!l || !tr_light_sample_from(l, x, v3_make(0, 0, 0), tr_u(p), tr_u(p), &ls)) return;
+    double T[3], Tw[3], tmax = isfinite(ls.dist) ? ls.dist * (1.0 - 1e-6) : INFINITY;
+    if (!tr_transmittance(tr, x, ls.w, tmax, p->medium, T, Tw)) return;
+    double mu = v3_dot(p->d, ls.w), den = 0, v[3];
+    tr_transform tf;
+    tr_field_lookup(tr, p->medium, x, &tf);
+    for (int k = 0; k < 3; k++) {
+        double walk = ls.delta ? 0.0 : tr_walk_pdf(ob, &tf, k, p->d, ls.w) * Tw[k];
+        den += p->r[k] * (ls.pdf + walk);
+        v[k] = p->beta[k] * tr_hg_eval(mu, ob->g[k]) * ls.le[k] * T[k];
+    }
+    den /= 3.0;
+    if (!(den > 0)) return;
+    for (int k = 0; k < 3; k++) v[k] /= den;
+    tr_path_add(p, v);
+}
+
+/* The S1 term c_k / r_k(x) of the header for light l: next-event estimation from the previous volume
+ * vertex, in the path's current normalisation: q(w) / (p_h(w) T_h). */
+static double guide_term(tr_path *p, tr_guide *g, v3 w, double walk_h, const tr_light *l)
+{
+    tr_guide_prepare(p->tr, g, l);
+    return tr_guide_pdf(p->tr, g, w) / walk_h;
+}
+
+void tr_nee_surface(tr_path *p, v3 y, v3 n, const tr_boundary *b, bool inside)
+{
+    const tr_light *l = tr_light_pick(p->tr, tr_u(p));
+    connection c;
+    if (!l || !connect_boundary(p, l, y, n, b, v3_neg(p->d), &c)) return;
+    double g = inside && p->from_volume ? guide_term(p, &p->guide, p->d, p->walk_h, l) : 0.0;
+    double pb = c.ls.delta ? 0.0 : c.pb, den = 0, v[3];
+    for (int k = 0; k < 3; k++) {
+        den += p->r[k] * pb * c.Tw[k] + (p->r[k] + p->rx[k] * g) * c.ls.pdf;
+        v[k] = p->beta[k] * c.f * c.cos * c.ls.le[k] * c.T[k];
+    }
+    den /= 3.0;
+    if (!(den > 0)) return;
+    for (int k = 0; k < 3; k++) v[k] /= den;
+    tr_path_add(p, v);
+}
+
+double tr_mis_hit_weight(tr_path *p, const tr_light *l, v3 w)
+{
+    tr_mis *m = &p->mis;
+    if (m->kind == MIS_NONE) return 1.0;
+    double pl = tr_light_pdf(l, m->p, m->n, w);
+    if (!(pl > 0)) return 1.0;
+    double g = m->has_guide ? guide_term(p, &m->guide, m->w, m->walk_h, l) : 0.0, walk = 0, other = 0;
+    for (int k = 0; k < 3; k++) {
+        walk += m->a[k] * m->pb[k] * m->tc[k];
+        other += (m->a[k] + m->rx[k] * g) * pl;
+    }
+    return walk > 0 ? walk / (walk + other) : 0.0;
+}
