@@ -21,6 +21,7 @@ static const cli_command k_commands[] = {
     {"kernel-eval", "evaluate every kernel model of a material against the exact 2-D convolution", cmd_kernel_eval},
     {"render", "render a scene with OpenGL: Lambert, CDRF, CDRF + translucency, screen-space SSS", cmd_render},
     {"trace", "path-traced reference of a scene (Embree): media, rough or smooth boundaries", cmd_trace},
+    {"compare", "every real-time method of a scene against the path-traced reference: HTML report", cmd_compare},
 };
 enum { COMMAND_COUNT = sizeof k_commands / sizeof k_commands[0] };
 
