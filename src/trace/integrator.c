@@ -1,9 +1,9 @@
 /* One camera path: a volumetric random walk through dielectric boundaries with next-event estimation
  * at every vertex (nee.c). Outside media the ray flies to the next surface; inside object o's medium a
- * free-flight distance is drawn for the hero channel h (p(t) = sigma_t,h exp(-sigma_t,h t)); a
- * scattering vertex multiplies channel c by sigma_s,c exp(-sigma_t,c t) over the hero's density and
- * draws a Henyey-Greenstein direction; reaching the boundary first multiplies by
- * exp(-sigma_t,c d) / exp(-sigma_t,h d). Bounds: render.max_bounces surface events and
+ * free-flight distance is drawn for the hero channel h (p(t) = sigma*_h exp(-sigma*_h t), sigma* the
+ * walk's transform of sigma_t, media.c); a scattering vertex multiplies channel c by
+ * sigma_s,c exp(-sigma_t,c t) over the hero's density and draws a direction (Henyey-Greenstein, or the
+ * transform's); reaching the boundary first multiplies by exp(-sigma_t,c d) / exp(-sigma*_h d). Bounds: render.max_bounces surface events and
  * render.max_scatter scatterings end a path (counted as truncated), and a ray inside a medium that
  * meets no surface at all has left a mesh through a hole and ends (counted as escaped), so open
  * meshes cannot hang the tracer. Russian roulette ends paths of small throughput without bias. */

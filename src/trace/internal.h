@@ -1,10 +1,11 @@
 /* Internal interfaces of the path tracer (src/trace). Embree's types stay in embree.c.
  *
  * Files: embree.c (the ray-tracing scene), bsdf.c (dielectric boundaries), media.c (Henyey-Greenstein
- * and the hero-channel free flights), lights.c (light sampling and emission), guide.c (the
- * direction distribution of next-event estimation through a rough boundary), nee.c (next-event
- * estimation from volume and surface vertices), integrator.c (one camera path), film.c (the
- * accumulated estimate and its statistics), tracer.c (the public API). docs/trace.md explains the
+ * and the walk's transform), field.c (the fluence field the walk follows), lights.c (light sampling
+ * and emission, shadow rays), guide.c (the direction distribution of next-event estimation through a
+ * rough boundary), nee.c (next-event estimation and the MIS weights), integrator.c (one camera
+ * path), film.c, film_alloc.c, film_result.c (the accumulated estimate: passes, adaptive
+ * allocation, images and statistics), tracer.c (the public API). docs/trace.md explains the
  * estimator. */
 #ifndef LUCENT_TRACE_INTERNAL_H
 #define LUCENT_TRACE_INTERNAL_H
