@@ -37,8 +37,12 @@ test-asan:
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j $(JOBS) -L unit
 
-demo: setup build
-	scripts/demo.sh $(BUILD)/lucent $(DEMO_OUT)
+# The demo's first screen is the demo: the build talks only when it fails.
+demo: setup
+	@mkdir -p $(BUILD)
+	@echo "Building Lucent (log: $(BUILD)/build.log) ..."
+	@$(MAKE) --no-print-directory build > $(BUILD)/build.log 2>&1 || { tail -n 40 $(BUILD)/build.log; exit 1; }
+	@scripts/demo.sh $(BUILD)/lucent $(DEMO_OUT)
 
 bench: build
 	scripts/bench.sh $(BUILD)/bench
