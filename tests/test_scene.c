@@ -147,6 +147,21 @@ TEST(mm_per_unit_and_transform_place_the_mesh_in_world_mm)
     lucent_scene_destroy(sc);
 }
 
+/* Each Loop level splits every triangle in four; every new vertex is a convex combination of old
+ * ones (Loop's masks have positive weights), so the subdivided icosphere stays inside its sphere. */
+TEST(subdivide_refines_the_mesh_after_loading)
+{
+    lucent_scene *sc = NULL;
+    CHECK_OK(parse_with(", \"subdivide\": 1", "", NULL, &sc));
+    if (!sc) return;
+    CHECK(sc->objects[0].mesh->face_count == 4 * 320); /* icosphere level 2: 20 * 4^2 faces */
+    double c[3], rmin, rmax;
+    mesh_sphere(sc->objects[0].mesh, c, &rmin, &rmax);
+    CHECK(rmax <= 1 + 1e-12 && rmin > 0.9);
+    lucent_scene_destroy(sc);
+    CHECK_ERR(parse_with(", \"subdivide\": 5", "", NULL, &sc), LUCENT_ERR_PARSE, "objects[0].subdivide");
+}
+
 TEST(rotation_follows_the_right_hand_rule)
 {
     /* Rotating by 90 degrees about z maps +x to +y; the matrix form must give the same mesh. */
@@ -321,6 +336,7 @@ int main(int argc, char **argv)
         TEST_ENTRY(projection_depth_range),
         TEST_ENTRY(minimal_scene_gets_the_documented_defaults),
         TEST_ENTRY(mm_per_unit_and_transform_place_the_mesh_in_world_mm),
+        TEST_ENTRY(subdivide_refines_the_mesh_after_loading),
         TEST_ENTRY(rotation_follows_the_right_hand_rule),
         TEST_ENTRY(mirroring_keeps_normals_outward),
         TEST_ENTRY(overrides_change_values_and_are_checked_like_the_file),

@@ -69,6 +69,12 @@ lucent_status lucent_mesh_write_ply(const char *path, const lucent_mesh *mesh,
  * vertices no face uses; keeps the order of first use. Recomputes normals. */
 lucent_status lucent_mesh_weld(lucent_mesh *mesh);
 
+/* Replaces mesh by `levels` rounds of Loop subdivision (Loop 1987; boundaries as cubic B-splines),
+ * 0 <= levels <= 6: each round turns every triangle into four and smooths the surface toward Loop's
+ * limit surface (which shrinks convex shapes slightly). Vertices on non-manifold edges or where
+ * boundaries meet stay in place. Normals are recomputed. On failure mesh is unchanged. */
+lucent_status lucent_mesh_subdivide(lucent_mesh *mesh, int levels);
+
 /* Recomputes area-weighted vertex normals (sum of face cross products, normalised). */
 void lucent_mesh_compute_normals(lucent_mesh *mesh);
 

@@ -11,7 +11,7 @@
 
 static const char *const k_object_keys[] = {
     "name",     "mesh",        "mm_per_unit", "transform", "material",     "albedo", "albedo_texture",
-    "roughness", "specular_f0", "sigma0",      "sss_strength", "visible", NULL};
+    "roughness", "specular_f0", "sigma0",      "sss_strength", "visible", "subdivide", NULL};
 
 /* ---- paths ---- */
 
@@ -76,6 +76,17 @@ static lucent_status load_mesh(const lucent_json_node *n, const char *base_dir, 
                                                                   : "");
     if ((s = lucent_mesh_load(o->mesh_source, NULL, &o->mesh)) != LUCENT_OK)
         s = lucent_json_fail(&m, NULL, s, "%s", lucent_last_error());
+    return s;
+}
+
+/* "subdivide": Loop subdivision levels, for coarse meshes whose facets would show (the path tracer
+ * sees the true facets; the GL renderer interpolates normals across them). */
+static lucent_status subdivide(const lucent_json_node *n, lucent_scene_object *o)
+{
+    int levels = 0;
+    lucent_status s = scene_read_int(n, "subdivide", 0, 0, 4, &levels);
+    if (s == LUCENT_OK && o->mesh && levels > 0 && (s = lucent_mesh_subdivide(o->mesh, levels)) != LUCENT_OK)
+        s = lucent_json_fail(n, "subdivide", s, "%s", lucent_last_error());
     return s;
 }
 
@@ -254,6 +265,7 @@ lucent_status scene_read_object(const lucent_json_node *n, const char *base_dir,
     if (s == LUCENT_OK) s = read_material(n, &o->material);
     if (s == LUCENT_OK) s = read_surface(n, o);
     if (s == LUCENT_OK) s = load_mesh(n, base_dir, skip_meshes, o);
+    if (s == LUCENT_OK) s = subdivide(n, o);
     if (s == LUCENT_OK) s = read_albedo(n, base_dir, skip_meshes, o);
     if (s == LUCENT_OK && o->mesh) transform_mesh(o->mesh, o->to_world);
     if (s == LUCENT_OK && !o->name[0]) snprintf(o->name, sizeof o->name, "%s", o->material.name);
