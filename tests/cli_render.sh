@@ -5,11 +5,7 @@ if [ -n "${LUCENT_GL_SKIP:-}" ]; then
   echo "skip lucent render cases: $LUCENT_GL_SKIP"
   return 0
 fi
-# Under the sanitizers CMake names Mesa's driver to preload (see tests/CMakeLists.txt).
-RENDER=("$LUCENT")
-if [ -n "${LUCENT_GL_PRELOAD:-}" ]; then
-  RENDER=(env "LD_PRELOAD=$LUCENT_GL_PRELOAD" "ASAN_OPTIONS=${ASAN_OPTIONS:-}:verify_asan_link_order=0" "$LUCENT")
-fi
+RENDER=("${GLRUN[@]}") # GLRUN: see cli_test.sh
 
 # A render writes the tonemapped PNG, the linear EXR, the mask and the sidecar.
 expect_ok -- "${RENDER[@]}" render "$SC/sphere.json" --out "$TMP/r.png" --exr "$TMP/r.exr" --mask "$TMP/r-mask.png" --no-cache

@@ -9,6 +9,12 @@ TESTS=$(cd "$(dirname "$0")" && pwd)
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/lucent-cli-XXXXXX")
 chmod 755 "$TMP"
 passed=0 failed=0
+# Commands that open a GL context. Under the sanitizers CMake names Mesa's driver to preload
+# (see tests/CMakeLists.txt) so LeakSanitizer does not report the blocks of a dlclosed driver.
+GLRUN=("$LUCENT")
+if [ -n "${LUCENT_GL_PRELOAD:-}" ]; then
+  GLRUN=(env "LD_PRELOAD=$LUCENT_GL_PRELOAD" "ASAN_OPTIONS=${ASAN_OPTIONS:-}:verify_asan_link_order=0" "$LUCENT")
+fi
 
 _report() { # OK? DESCRIPTION [DETAIL]
   if [ "$1" = 1 ]; then
