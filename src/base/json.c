@@ -203,7 +203,7 @@ lucent_status lucent_json_numbers(const lucent_json_node *n, const char *key, in
     lucent_status s = lucent_json_member(n, key, true, &m);
     if (s != LUCENT_OK) return s;
     if (allow_scalar && cJSON_IsNumber(m.json)) {
-        double v;
+        double v = 0; /* set by finite_number; initialised for GCC -O3 -Wmaybe-uninitialized */
         if ((s = finite_number(&m, &v)) != LUCENT_OK) return s;
         for (int i = 0; i < count; i++) dest[i] = v;
         return LUCENT_OK;

@@ -52,7 +52,7 @@ lucent_status lucent_profile_create(const lucent_profile_grid *grid, const char 
 {
     *dest = NULL;
     if (!grid) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "profile: grid is NULL");
-    lucent_profile_grid g;
+    lucent_profile_grid g = {0}; /* set by resolve; initialised for GCC -O3 */
     lucent_status st = lucent_profile_grid_resolve(grid, NULL, &g);
     if (st != LUCENT_OK) return st;
     lucent_profile *p = calloc(1, sizeof *p);

@@ -367,7 +367,7 @@ static lucent_status sog_fit_group(const lucent_profile *p, const lucent_sog_des
     double lv05 = log(r05 * r05 / (-2.0 * log(0.95))), lv95 = log(r95 * r95 / (-2.0 * log(0.05)));
     int starts = desc->starts ? desc->starts : SOG_DEFAULT_STARTS;
     int iters = desc->max_iterations ? desc->max_iterations : SOG_DEFAULT_ITERATIONS;
-    double theta[N_MAX], best[N_MAX], best_cost = INFINITY;
+    double theta[N_MAX], best[N_MAX] = {0}, best_cost = INFINITY;
     lucent_rng rng;
     lucent_rng_init(0x50c5eedu, (uint64_t)first, &rng);
     double total = pr.norm2[0] + pr.norm2[1] + pr.norm2[2];
@@ -377,11 +377,14 @@ static lucent_status sog_fit_group(const lucent_profile *p, const lucent_sog_des
         double cost = sog_minimise(&pr, theta, iters, backup);
         if (cost < best_cost) best_cost = cost, memcpy(best, theta, sizeof best);
     }
+    if (!isfinite(best_cost)) { /* every start diverged: nothing to store */
+        free(pr.sw);
+        return lucent_error(LUCENT_ERR_NUMERIC, "sog: the fit did not converge");
+    }
     sog_eval(&pr, best);
     sog_store(&pr, best, dest);
     free(pr.sw);
-    return isfinite(best_cost) ? LUCENT_OK
-                               : lucent_error(LUCENT_ERR_NUMERIC, "sog: the fit did not converge");
+    return LUCENT_OK;
 }
 
 lucent_status lucent_sog_fit(const lucent_profile *p, const lucent_sog_desc *desc, lucent_sog *dest)
