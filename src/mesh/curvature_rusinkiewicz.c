@@ -4,23 +4,12 @@
  * the vertex's tangent plane and averaged with mixed Voronoi corner weights (Sec. 4), then
  * diagonalised. The 3x3 normal equations are solved exactly (Cramer), not with trimesh2's
  * LDLT, which reads A[2][0] and A[2][1] before filling them. */
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "mesh/internal.h"
-
-/* One face: its unit tangent t (along edge 0) and normal n, b = n x t completing the frame;
- * the tensor [[e, f], [f, g]] in (t, b) kept as mean = (e + g)/2, diff = (e - g)/2 and off = f,
- * because turning the frame by an angle phi keeps the mean and turns (diff, off) by 2 phi;
- * the three corner areas; edges 0 and 1 in (t, b) in units of edge 0's length L, (1, 0) and
- * (u1, w1) (edge 2 closes the triangle), and 1/L: all the second fit needs of the geometry.
- * Floats, one 64-byte line: the per-vertex gather reads them at random. */
-typedef struct face_rec {
-    float t[3], n[3];
-    float mean, diff, off;
-    float corner[3];
-    float u1, w1, inv_len, unused;
-} face_rec;
+#include "mesh/rusinkiewicz.h"
 
 /* Per adjacency slot, written by the first pass's gather: the corner weight w and the turn of
  * the face tensor into the vertex's frame, w cos 2 phi and w sin 2 phi. The second pass fits new
@@ -48,31 +37,6 @@ typedef struct rus_job {
 
 static inline float dotf(const float *a, const float *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-/* Fits the face's second fundamental form to the normal differences along its edges (eq. 4):
- * edge k (opposite corner k) is (uk, wk) in (t, b), in units of edge 0's length (so the
- * arithmetic is scale-free), its normal difference (duk, dwk); m = sum over edges of
- * (du u, du w + dw u, dw w). The normal equations
- * [[a, b, 0], [b, a + c, b], [0, b, c]] x = m are solved exactly (Cramer); their determinant
- * is (a + c)(a c - b^2), and a c - b^2 = 3 (u0 w1)^2 by Lagrange's identity (every pair of edges
- * spans twice the area), so it is computed without cancellation. Returns 0 when degenerate. */
-static int fit_tensor(float u1, float w1, float inv_len, const float *t, const float *b, const float *n0,
-                      const float *n1, const float *n2, float *dest)
-{
-    float u2 = -1 - u1; /* edges (1, 0), (u1, w1), (u2, -w1) */
-    float t0 = dotf(n0, t), t1 = dotf(n1, t), t2 = dotf(n2, t), b0 = dotf(n0, b), b1 = dotf(n1, b), b2 = dotf(n2, b);
-    float du0 = t2 - t1, du1 = t0 - t2, du2 = t1 - t0, dw0 = b2 - b1, dw1 = b0 - b2, dw2 = b1 - b0;
-    float a = 1 + u1 * u1 + u2 * u2, ab = w1 * (u1 - u2), c = 2 * w1 * w1;
-    float m0 = du0 + du1 * u1 + du2 * u2, m1 = w1 * (du1 - du2) + dw0 + dw1 * u1 + dw2 * u2, m2 = w1 * (dw1 - dw2);
-    float q = 3 * w1 * w1, s = a + c; /* a c - b^2, with u0 = 1 */
-    if (!(q > 1e-12f * s * s) || !(q < 1e30f)) return 0;
-    float i00 = q + c * c, i01 = -ab * c, i02 = ab * ab, i11 = a * c, i12 = -a * ab, i22 = q + a * a;
-    float inv = inv_len / (s * q); /* back to the mesh's units: curvature scales as 1/L */
-    float x0 = (i00 * m0 + i01 * m1 + i02 * m2) * inv, x1 = (i01 * m0 + i11 * m1 + i12 * m2) * inv;
-    float x2 = (i02 * m0 + i12 * m1 + i22 * m2) * inv;
-    dest[0] = 0.5f * (x0 + x2), dest[1] = 0.5f * (x0 - x2), dest[2] = x1;
-    return 1;
-}
-
 /* First pass: frame, corner areas and edge coordinates from the positions; 0 (and a record of
  * zeros, no weight) for a degenerate face. */
 static int face_frame(const double *P, const uint32_t *v, face_rec *r)
@@ -97,18 +61,6 @@ static int face_frame(const double *P, const uint32_t *v, face_rec *r)
     return 1;
 }
 
-/* The face's tensor from its record and this pass's normals, into dest (zeros if degenerate). */
-static void face_tensor(const rus_job *j, uint32_t f, const face_rec *r, float *dest)
-{
-    const uint32_t *v = j->mesh->faces + 3 * (size_t)f;
-    const float *t = r->t, *n = r->n, *N = j->normals;
-    float b[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
-    if (r->corner[0] + r->corner[1] + r->corner[2] == 0 ||
-        !fit_tensor(r->u1, r->w1, r->inv_len, t, b, N + 3 * (size_t)v[0], N + 3 * (size_t)v[1], N + 3 * (size_t)v[2],
-                    dest))
-        dest[0] = dest[1] = dest[2] = 0;
-}
-
 /* Frames first, then tensors, in separate loops: each iteration of either is short enough for
  * several faces to be in flight at once (together they were latency-bound). */
 static lucent_status faces_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
@@ -117,8 +69,9 @@ static lucent_status faces_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint
     const rus_job *j = ctx;
     for (uint64_t f = begin; j->second == 0 && f < end; f++)
         face_frame(j->mesh->positions, j->mesh->faces + 3 * f, j->faces + f);
-    for (uint64_t f = begin; f < end; f++)
-        face_tensor(j, (uint32_t)f, j->faces + f, j->second ? j->tensors + 3 * f : &j->faces[f].mean);
+    if (j->second) mesh_rus_fit_faces(j->mesh->faces, j->normals, j->faces, begin, end, j->tensors, 3);
+    else mesh_rus_fit_faces(j->mesh->faces, j->normals, j->faces, begin, end,
+                            (float *)j->faces + offsetof(face_rec, mean) / sizeof(float), 16);
     return LUCENT_OK;
 }
 
