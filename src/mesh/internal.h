@@ -80,8 +80,19 @@ void mesh_corner_areas(const lucent_mesh *mesh, size_t f, double dest[3]);
 /* The same from the face's edges, e[j] opposite corner j (e[j] = p[j+2] - p[j+1]). */
 void mesh_corner_areas_edges(const double e[3][3], double dest[3]);
 /* The same from the squared edge lengths l[j], xl = |e0 x e1| > 0 (twice the area) and
- * inv_x = 1/xl; without branches. */
-void mesh_mixed_areas(const double l[3], double xl, double inv_x, double dest[3]);
+ * inv_x = 1/xl (inline: the per-face passes call it for every face). Each corner gets the part of the triangle nearer to it than to the other corners (Meyer et al.
+ * 2003, Fig. 4): s (ew of the other two corners), ew_j = l_j (l_j+1 + l_j+2 - l_j), where
+ * s = area / (2 sum ew) and sum ew = 16 area^2 = 4 xl^2 (Heron), so s = 1/(16 xl); when a corner
+ * is obtuse (its ew <= 0), it gets half and the others a quarter. Without branches: which corner
+ * is obtuse is as random as the mesh. */
+static inline void mesh_mixed_areas(const double l[3], double xl, double inv_x, double dest[3])
+{
+    double ew0 = l[0] * (l[1] + l[2] - l[0]), ew1 = l[1] * (l[2] + l[0] - l[1]), ew2 = l[2] * (l[0] + l[1] - l[2]);
+    int o0 = ew0 <= 0, o1 = ew1 <= 0, o2 = ew2 <= 0, any = o0 | o1 | o2;
+    double q = 0.125 * xl * any, s = (1 - any) * inv_x * (1.0 / 16);
+    dest[0] = q * (1 + o0) + s * (ew1 + ew2), dest[1] = q * (1 + o1) + s * (ew2 + ew0);
+    dest[2] = q * (1 + o2) + s * (ew0 + ew1);
+}
 
 /* Per face, for Meyer's and Garimella's estimators: corner areas and the cotangents of the
  * corner angles (zero for a face of zero area, whose corner areas are zero). */
