@@ -7,6 +7,7 @@
 
 #include "gl/reference.h"
 #include "gl/renderer_internal.h"
+#include "lucent/mc.h"
 #include "lucent/render.h"
 #include "test.h"
 
@@ -178,7 +179,7 @@ static void centre_mean(lucent_renderer *r, const lucent_render_settings *s, dou
 
 /* Expected: light through a thin part adds to what the visible side shows (physics: the disc is lit
  * only from behind), and skin passes red far better than blue (Skin1's absorption rises from red to
- * blue, so its profile's tail, which gives the transmittance, is longest in red). */
+ * blue, so its diffusion length 1 / sigma_tr is longest in red: 3.7, 1.4, 0.7 mm). */
 TEST(translucency_brightens_a_backlit_disc_in_red)
 {
     lucent_scene *sc = scene_from(k_slab);
@@ -204,6 +205,63 @@ TEST(translucency_brightens_a_backlit_disc_in_red)
         CHECK_MSG(t[0] > 3 * t[1] && t[1] > t[2] && t[2] >= 0, "transmitted light is not red: %g %g %g", t[0], t[1],
                   t[2]);
         CHECK_MSG(cdrft[0] > cdrf[0] + 0.5 * t[0], "cdrf+translucency adds no red through the disc");
+    }
+    lucent_renderer_destroy(r);
+    lucent_scene_destroy(sc);
+}
+
+/* The mean of the 2 x 2 pixels around the image centre (the disc's axis: thickness 4 mm to 0.1%). */
+static void centre_pixels(lucent_renderer *r, const lucent_render_settings *s, double dest[3])
+{
+    lucent_render_result res;
+    dest[0] = dest[1] = dest[2] = 0;
+    CHECK_OK(lucent_render(r, s, &res));
+    for (int y = 31; res.image && y < 33; y++)
+        for (int x = 31; x < 33; x++)
+            for (int c = 0; c < 3; c++) dest[c] += 0.25 * lucent_image_get(res.image, x, y, c);
+    lucent_render_result_free(&res);
+}
+
+/* Expected: with render.transmittance "slab", a point of a flat part lit from straight behind with
+ * irradiance E shows E T(s) / pi of transmitted radiance, T(s) the total transmittance of a slab of
+ * the material s mm thick (docs/render.md). T comes here from an independent Monte Carlo run
+ * (lucent_mc_run, 400000 photons per channel, another seed) at s = 4 mm, the disc's thickness on its
+ * axis. The renderer's table holds 20000 photons per channel and thickness, so the tolerance is
+ * 3 of its standard errors, sqrt(T (1 - T) / 20000), plus the shadow lookup's inward offset
+ * (1.5 texels of a 4096 map over the 50 mm disc and margin: under 0.025 mm, a factor
+ * exp(sigma_tr 0.025) on T), plus 1% for the table's interpolation. The transmitted light is the
+ * difference between cdrf+translucency (curvature modulation off) and cdrf. */
+TEST(slab_translucency_matches_monte_carlo_transmittance)
+{
+    lucent_scene *sc = scene_from(k_slab);
+    lucent_renderer *r = renderer_of(sc);
+    if (r) {
+        lucent_render_settings s = sc->render;
+        s.shadow_map_size = 4096;
+        s.translucency_curvature = 0;
+        s.transmittance = LUCENT_TRANSMIT_SLAB;
+        double with[3], without[3];
+        s.method = LUCENT_METHOD_CDRF_TRANSLUCENCY;
+        centre_pixels(r, &s, with);
+        s.method = LUCENT_METHOD_CDRF;
+        centre_pixels(r, &s, without);
+        const lucent_material *m = &sc->objects[0].material;
+        lucent_material_derived d;
+        lucent_material_derive(m, &d);
+        for (int c = 0; c < 3; c++) {
+            lucent_mc_layer layer = {.n = m->eta, .sigma_a = m->sigma_a[c], .sigma_s = m->sigma_s[c], .g = m->g[c],
+                                     .thickness = 4};
+            lucent_mc_desc md = {.layers = &layer, .layer_count = 1, .photons = 400000, .seed = 12345,
+                                 .grid = {.dr = 1, .nr = 1, .nz = 1, .na = 1}};
+            lucent_mc_result mc = {0};
+            CHECK_OK(lucent_mc_run(&md, &mc));
+            double t = mc.tt, expected = 3 * t / M_PI, got = with[c] - without[c];
+            double tol = 3 * sqrt(t * (1 - t) / 20000) / t + (exp(d.sigma_tr[c] * 0.025) - 1) + 0.01;
+            printf("     channel %d: transmitted %.5f, 3 T(4 mm) / pi %.5f (T %.4f +- %.4f), rel. diff %.2f%%, tol %.2f%%\n",
+                   c, got, expected, t, mc.tt_se, 100 * (got / expected - 1), 100 * tol);
+            CHECK_MSG(fabs(got / expected - 1) <= tol, "channel %d: %g vs %g", c, got, expected);
+            lucent_mc_result_free(&mc);
+        }
     }
     lucent_renderer_destroy(r);
     lucent_scene_destroy(sc);
@@ -339,7 +397,8 @@ int main(int argc, char **argv)
 {
     static const test_case cases[] = {
         TEST_ENTRY(cdrf_and_lambert_equal_cpu_reference), TEST_ENTRY(sphere_lit_along_view_axis_is_symmetric),
-        TEST_ENTRY(translucency_brightens_a_backlit_disc_in_red), TEST_ENTRY(timings_name_every_pass),
+        TEST_ENTRY(translucency_brightens_a_backlit_disc_in_red),
+        TEST_ENTRY(slab_translucency_matches_monte_carlo_transmittance), TEST_ENTRY(timings_name_every_pass),
         TEST_ENTRY(settings_change_between_frames), TEST_ENTRY(context_errors_name_their_cause),
         TEST_ENTRY(shader_errors_name_file_and_line)};
     int rc = test_run(cases, (int)(sizeof cases / sizeof cases[0]), argc, argv);

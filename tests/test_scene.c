@@ -96,6 +96,7 @@ TEST(minimal_scene_gets_the_documented_defaults)
     CHECK(sc->render.method == LUCENT_METHOD_SSSS && sc->render.kernel_model == LUCENT_KERNEL_PREINT);
     CHECK(sc->render.taps == d.taps && d.taps == 17);
     CHECK(sc->render.translucency_curvature == 1 && d.translucency_curvature == 1);
+    CHECK(sc->render.transmittance == LUCENT_TRANSMIT_SLAB && d.transmittance == LUCENT_TRANSMIT_SLAB);
     CHECK(sc->light_count == 1 && sc->lights[0].shadows && sc->lights[0].intensity == 1);
     CHECK_NEAR(sc->camera.up[1], 1, 0);
     CHECK(!strcmp(sc->name, "t"));
@@ -202,9 +203,10 @@ TEST(overrides_change_values_and_are_checked_like_the_file)
 {
     const char *ov[] = {"render.method=ssss:svd3", "render.taps=33", "objects[0].material=marble",
                         "camera.fov_y=20", "lights[0].intensity=2.5", "render.translucency=false",
-                        "objects[0].albedo=[0.5, 0.25, 0.125]", "render.translucency_curvature=0"};
+                        "objects[0].albedo=[0.5, 0.25, 0.125]", "render.translucency_curvature=0",
+                        "render.transmittance=profile"};
     lucent_scene *sc = NULL;
-    CHECK_OK(parse_with("", "", &(lucent_scene_load_desc){.overrides = ov, .override_count = 8}, &sc));
+    CHECK_OK(parse_with("", "", &(lucent_scene_load_desc){.overrides = ov, .override_count = 9}, &sc));
     if (!sc) return;
     CHECK(sc->render.method == LUCENT_METHOD_SSSS);
     CHECK(sc->render.kernel_model == LUCENT_KERNEL_SVD && sc->render.kernel_rank == 3);
@@ -214,6 +216,7 @@ TEST(overrides_change_values_and_are_checked_like_the_file)
     CHECK_NEAR(sc->lights[0].intensity, 2.5, 0);
     CHECK(!sc->render.translucency);
     CHECK(sc->render.translucency_curvature == 0);
+    CHECK(sc->render.transmittance == LUCENT_TRANSMIT_PROFILE);
     CHECK(sc->objects[0].albedo_source == LUCENT_ALBEDO_COLOR);
     CHECK_NEAR(sc->objects[0].albedo[2], 0.125, 0);
     CHECK(strstr(sc->json, "svd3") != NULL); /* the record of what made the image */
@@ -274,6 +277,8 @@ TEST(bad_fields_are_named)
               "render.method", "phong");
     CHECK_ERR(parse_with("", ", \"render\": {\"wdth\": 3}", NULL, &sc), LUCENT_ERR_PARSE, "render", "wdth");
     CHECK_ERR(parse_with("", ", \"render\": {\"width\": 0}", NULL, &sc), LUCENT_ERR_PARSE, "render.width");
+    CHECK_ERR(parse_with("", ", \"render\": {\"transmittance\": \"beer\"}", NULL, &sc), LUCENT_ERR_PARSE,
+              "render.transmittance", "beer");
     CHECK_ERR(parse_with("", ", \"render\": {\"profile\": \"tripole\"}", NULL, &sc), LUCENT_ERR_PARSE,
               "render.profile", "tripole");
     CHECK_ERR(parse_set("objects[0].mesh=nowhere/none.ply", &sc), LUCENT_ERR_NOT_FOUND,

@@ -303,10 +303,13 @@ static void describe(const lucent_render_settings *rs, method_run *mr)
         snprintf(mr->settings, sizeof mr->settings, "%s rank %d, %d taps, %s profile, %s depth filter%s",
                  lucent_kernel_model_name(rs->kernel_model), rs->kernel_rank, rs->taps, rs->profile,
                  rs->depth_filter == LUCENT_DEPTH_FOLLOW ? "follow" : rs->depth_filter == LUCENT_DEPTH_GAUSSIAN ? "gaussian" : "no",
-                 rs->translucency ? ", translucency" : "");
+                 !rs->translucency ? "" : rs->transmittance == LUCENT_TRANSMIT_SLAB ? ", slab translucency"
+                                                                                     : ", profile translucency");
     else if (rs->method != LUCENT_METHOD_LAMBERT)
-        snprintf(mr->settings, sizeof mr->settings, "%s, %s, sigma0 from %s", lucent_cdrf_variant_name(rs->cdrf_variant),
-                 rs->cdrf_lut ? "LUT" : "closed form", rs->sigma0_source == LUCENT_SIGMA0_FIT ? "the sphere fit" : "the diffuse colour");
+        snprintf(mr->settings, sizeof mr->settings, "%s, %s, sigma0 from %s%s", lucent_cdrf_variant_name(rs->cdrf_variant),
+                 rs->cdrf_lut ? "LUT" : "closed form", rs->sigma0_source == LUCENT_SIGMA0_FIT ? "the sphere fit" : "the diffuse colour",
+                 rs->method != LUCENT_METHOD_CDRF_TRANSLUCENCY ? ""
+                 : rs->transmittance == LUCENT_TRANSMIT_SLAB ? ", slab translucency" : ", profile translucency");
     else
         snprintf(mr->settings, sizeof mr->settings, "Lambert + specular lobe");
 }

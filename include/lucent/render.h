@@ -93,8 +93,11 @@ typedef struct lucent_renderer lucent_renderer;
 /* How to create a renderer; a zero field means the default. */
 typedef struct lucent_renderer_desc {
     lucent_pool *pool;          /* CPU preparation: curvature, kernels, sigma0 fits (NULL: serial) */
-    const char *cache_dir;      /* where sigma0 fits are kept between runs (NULL: in memory only) */
+    const char *cache_dir;      /* where sigma0 fits and slab transmittances are kept between runs
+                                   (NULL: in memory only) */
     uint64_t sigma0_photons;    /* sigma0 fit: photons per channel and sphere (0: 40000) */
+    uint64_t transmit_photons;  /* render.transmittance "slab": photons per channel and thickness
+                                   (0: 20000) */
     uint64_t profile_photons;   /* render.profile "mc": photons per channel (0: 200000) */
 } lucent_renderer_desc;
 

@@ -123,6 +123,11 @@ typedef enum lucent_depth_filter {
     LUCENT_DEPTH_NONE        /* no depth awareness */
 } lucent_depth_filter;
 
+typedef enum lucent_transmittance_model {
+    LUCENT_TRANSMIT_SLAB = 0, /* Monte Carlo slab transmittance of the material (cached per material) */
+    LUCENT_TRANSMIT_PROFILE   /* Jimenez 2010: the profile's power beyond the thickness, times the albedo */
+} lucent_transmittance_model;
+
 typedef enum lucent_sigma0_source {
     LUCENT_SIGMA0_FIT = 0, /* fitted to Monte Carlo spheres of the material (cached per material) */
     LUCENT_SIGMA0_DIFFUSE  /* sigma0 = d_c^2 from the diffuse colour (Kubo Eq. 6) */
@@ -141,6 +146,7 @@ typedef struct lucent_render_settings {
     double width_scale;               /* an artist's multiplier on the physical kernel width; default 1 */
     lucent_depth_filter depth_filter; /* default follow */
     bool translucency;                /* light through thin parts (shadow-map thickness); default true */
+    lucent_transmittance_model transmittance; /* how much passes a thickness; default slab */
     double translucency_curvature;    /* cdrf+translucency: the transmitted light times
                                          1 + this x sigma0 x curvature (the CDRF blog); default 1 */
     /* cdrf */

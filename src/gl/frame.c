@@ -53,6 +53,7 @@ static void scene_locations(GLuint p, gl_scene_uniforms *u)
     u->translucency = glGetUniformLocation(p, "u_translucency");
     u->transmit_range = glGetUniformLocation(p, "u_transmit_range");
     u->transmit_v = glGetUniformLocation(p, "u_transmit_v");
+    u->transmit_albedo = glGetUniformLocation(p, "u_transmit_albedo");
     u->curvature_gain = glGetUniformLocation(p, "u_curvature_gain");
     u->cdrf_reach = glGetUniformLocation(p, "u_cdrf_reach");
     u->shadow_offset = glGetUniformLocation(p, "u_shadow_offset");
@@ -142,6 +143,7 @@ static void object_uniforms(const lucent_renderer *r, const lucent_render_settin
     glUniform1i(u->translucency, s->translucency);
     glUniform1f(u->transmit_range, (float)fmax(m->transmit_range, 1e-6));
     glUniform1f(u->transmit_v, (float)((g->material + 0.5) / r->material_count));
+    glUniform1i(u->transmit_albedo, s->transmittance == LUCENT_TRANSMIT_PROFILE);
     glUniform1f(u->curvature_gain, (float)s->translucency_curvature);
     glUniform1f(u->cdrf_reach, (float)(2 * reach)); /* two standard deviations of the CDRF's spread, mm */
     glUniform1f(u->shadow_offset, 1.5f);

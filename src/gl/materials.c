@@ -40,7 +40,8 @@ static lucent_status build_profile(gl_material *g, const char *source, const luc
     if (g->profile && !strcmp(g->profile_source, source)) return LUCENT_OK;
     lucent_profile_destroy(g->profile);
     lucent_taps_destroy(g->taps);
-    g->profile = NULL, g->taps = NULL, g->taps_key[0] = '\0', g->transmit_range = 0;
+    g->profile = NULL, g->taps = NULL, g->taps_key[0] = '\0';
+    if (g->transmit_model == LUCENT_TRANSMIT_PROFILE) g->transmit_range = 0; /* the slab's needs no profile */
     lucent_profile_source_desc pd = {.source = source, .photons = d->profile_photons, .seed = 1, .pool = d->pool};
     lucent_status s = lucent_profile_from_source(&pd, &g->m, &g->profile);
     if (s != LUCENT_OK) return lucent_error_context(s, "material %s: profile %s", g->m.name, source);
@@ -73,7 +74,8 @@ static lucent_status build_taps(gl_material *g, const lucent_render_settings *s)
 }
 
 /* ---- transmittance through a thickness s (docs/render.md, "Translucency") ----
- * Light entering a uniformly lit back face of a slab of thickness s reaches the front point opposite
+ * render.transmittance "slab": transmit.c. "profile" (Jimenez 2010 with the material's profile):
+ * light entering a uniformly lit back face of a slab of thickness s reaches the front point opposite
  * from every entry point at distance rho = sqrt(r^2 + s^2); with the profile R(rho) that is
  * integral 2 pi r R(sqrt(r^2 + s^2)) dr = integral_s^inf 2 pi rho R(rho) drho: the profile's power
  * outside radius s. With R piecewise constant over the bins (lucent_profile), bin k holding
@@ -88,9 +90,12 @@ static double tail(const lucent_profile *p, int c, double s)
     return t + p->value[c][K] * M_PI * ((K + 1.0) * (K + 1.0) * dr * dr - s * s);
 }
 
-static void build_transmit(gl_material *g)
+static lucent_status build_transmit(gl_material *g, lucent_transmittance_model model, const lucent_renderer_desc *d)
 {
-    if (g->transmit_range > 0) return;
+    if (g->transmit_range > 0 && g->transmit_model == (int)model) return LUCENT_OK;
+    g->transmit_model = (int)model, g->transmit_range = 0;
+    if (model == LUCENT_TRANSMIT_SLAB)
+        return gl_transmit_slab(&g->m, d, GLR_TRANSMIT_SIZE, g->transmit, &g->transmit_range, &g->transmit_cached);
     const lucent_profile *p = g->profile;
     g->transmit_range = p->count * p->dr;
     for (int c = 0; c < 3; c++) {
@@ -100,6 +105,7 @@ static void build_transmit(gl_material *g)
             g->transmit[3 * j + c] = t0 > 0 ? (float)fmax(t / t0, 0) : 0;
         }
     }
+    return LUCENT_OK;
 }
 
 lucent_status gl_materials_prepare(lucent_renderer *r, const lucent_render_settings *s, bool taps, bool transmit)
@@ -109,7 +115,7 @@ lucent_status gl_materials_prepare(lucent_renderer *r, const lucent_render_setti
         gl_material *g = &r->materials[i];
         st = build_profile(g, s->profile, &r->desc);
         if (st == LUCENT_OK && taps) st = build_taps(g, s);
-        if (st == LUCENT_OK && transmit) build_transmit(g);
+        if (st == LUCENT_OK && transmit) st = build_transmit(g, s->transmittance, &r->desc);
     }
     return st;
 }

@@ -55,13 +55,15 @@ static lucent_status prepare_lut(lucent_renderer *r, const lucent_render_setting
 
 static lucent_status prepare_transmit(lucent_renderer *r, const lucent_render_settings *s)
 {
-    if (r->transmit_tex && !strcmp(r->transmit_key, s->profile)) return LUCENT_OK;
+    char key[sizeof r->transmit_key];
+    snprintf(key, sizeof key, "%s %d", s->profile, (int)s->transmittance);
+    if (r->transmit_tex && !strcmp(r->transmit_key, key)) return LUCENT_OK;
     float rows[GLR_MAX_MATERIALS][GLR_TRANSMIT_SIZE * 3];
     for (int m = 0; m < r->material_count; m++) memcpy(rows[m], r->materials[m].transmit, sizeof rows[m]);
     if (r->transmit_tex) glDeleteTextures(1, &r->transmit_tex);
     r->transmit_tex = gl_texture(GL_RGB32F, GLR_TRANSMIT_SIZE, r->material_count, GL_LINEAR);
     glTextureSubImage2D(r->transmit_tex, 0, 0, 0, GLR_TRANSMIT_SIZE, r->material_count, GL_RGB, GL_FLOAT, rows);
-    snprintf(r->transmit_key, sizeof r->transmit_key, "%s", s->profile);
+    snprintf(r->transmit_key, sizeof r->transmit_key, "%s", key);
     return gl_check("uploading the transmittance tables");
 }
 

@@ -49,8 +49,11 @@ typedef struct gl_material {
     lucent_profile *profile;
     char taps_key[96];           /* profile/model/rank/taps of `taps` */
     lucent_taps *taps;
-    float transmit[GLR_TRANSMIT_SIZE * 3]; /* T(s) / T(0) per channel at s = range j / (size - 1) */
+    float transmit[GLR_TRANSMIT_SIZE * 3]; /* T(s) per channel at s = range j / (size - 1): the slab
+                                              transmittance, or the profile's T(s) / T(0) */
     double transmit_range;       /* mm; 0: not built */
+    int transmit_model;          /* lucent_transmittance_model of the table */
+    bool transmit_cached;        /* the slab table came from the cache */
     int fit_variant;             /* variant of the sigma0 fit; -1: none */
     double fit_sigma0[3];
     bool fit_cached;
@@ -67,7 +70,7 @@ typedef struct gl_light {
 
 typedef struct gl_scene_uniforms {
     GLint albedo, sigma0, use_map, sigma0_from_map, roughness, f0, strength, material, object, translucency,
-        transmit_range, transmit_v, curvature_gain, cdrf_reach, shadow_offset, lut_sigma_max;
+        transmit_range, transmit_v, transmit_albedo, curvature_gain, cdrf_reach, shadow_offset, lut_sigma_max;
 } gl_scene_uniforms;
 
 typedef struct gl_program_entry {
@@ -99,7 +102,7 @@ struct lucent_renderer {
     GLuint lut_tex, transmit_tex, dummy_tex;
     int lut_variant;             /* -1: none */
     double lut_sigma_max;
-    char transmit_key[32];
+    char transmit_key[48];
     /* programs and passes */
     gl_program_entry programs[GLR_MAX_PROGRAMS];
     int program_count;
@@ -126,6 +129,15 @@ void gl_materials_free(lucent_renderer *r);
 /* ---- sigma0.c: the Monte Carlo fit of sigma0 and its cache ---- */
 lucent_status gl_sigma0_fit(const lucent_material *m, lucent_cdrf_variant variant, const lucent_renderer_desc *desc,
                             double dest[3], bool *cached);
+/* The cache file of key: DIR/PREFIX-<FNV-1a of key>.json (the key is stored inside and compared). */
+void gl_cache_path(const char *dir, const char *prefix, const char *key, char *dest, size_t size);
+/* mkdir -p; logs a warning and returns -1 when it cannot. */
+int gl_cache_make_dirs(const char *dir);
+
+/* ---- transmit.c: the Monte Carlo slab transmittance for translucency ---- */
+/* Fills table[size * 3] with T(s) per channel at s = *range j / (size - 1), the last entry 0. */
+lucent_status gl_transmit_slab(const lucent_material *m, const lucent_renderer_desc *desc, int size, float *table,
+                               double *range, bool *cached);
 
 /* ---- shadow.c: light projections and the shadow pass ---- */
 lucent_status gl_lights_setup(lucent_renderer *r);

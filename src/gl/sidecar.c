@@ -37,6 +37,7 @@ static void add_settings(cJSON *root, const lucent_render_settings *s)
     cJSON_AddNumberToObject(o, "width_scale", s->width_scale);
     cJSON_AddStringToObject(o, "depth_filter", k_filters[s->depth_filter]);
     cJSON_AddBoolToObject(o, "translucency", s->translucency);
+    cJSON_AddStringToObject(o, "transmittance", s->transmittance == LUCENT_TRANSMIT_SLAB ? "slab" : "profile");
     cJSON_AddNumberToObject(o, "translucency_curvature", s->translucency_curvature);
     cJSON_AddStringToObject(o, "cdrf_variant", lucent_cdrf_variant_name(s->cdrf_variant));
     cJSON_AddBoolToObject(o, "cdrf_lut", s->cdrf_lut);

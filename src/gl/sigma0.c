@@ -33,9 +33,9 @@ static uint64_t hash(const char *text)
     return h;
 }
 
-static void cache_path(const char *dir, const char *key, char *dest, size_t size)
+void gl_cache_path(const char *dir, const char *prefix, const char *key, char *dest, size_t size)
 {
-    snprintf(dest, size, "%s/sigma0-%016llx.json", dir, (unsigned long long)hash(key));
+    snprintf(dest, size, "%s/%s-%016llx.json", dir, prefix, (unsigned long long)hash(key));
 }
 
 static bool cache_read(const char *path, const char *key, double dest[3])
@@ -52,8 +52,7 @@ static bool cache_read(const char *path, const char *key, double dest[3])
     return ok;
 }
 
-/* mkdir -p. */
-static int make_dirs(const char *dir)
+static int mkdir_p(const char *dir)
 {
     char p[1024];
     snprintf(p, sizeof p, "%s", dir);
@@ -66,12 +65,16 @@ static int make_dirs(const char *dir)
     return mkdir(p, 0755) != 0 && errno != EEXIST ? -1 : 0;
 }
 
+int gl_cache_make_dirs(const char *dir)
+{
+    if (mkdir_p(dir) == 0) return 0;
+    lucent_log(LUCENT_LOG_WARN, "cache: cannot create %s: %s", dir, strerror(errno));
+    return -1;
+}
+
 static void cache_write(const char *dir, const char *path, const char *key, const lucent_cdrf_fit *fit)
 {
-    if (make_dirs(dir) != 0) {
-        lucent_log(LUCENT_LOG_WARN, "sigma0 cache: cannot create %s: %s", dir, strerror(errno));
-        return;
-    }
+    if (gl_cache_make_dirs(dir) != 0) return;
     cJSON *json = cJSON_CreateObject();
     if (!json) return;
     cJSON_AddStringToObject(json, "key", key);
@@ -110,7 +113,7 @@ lucent_status gl_sigma0_fit(const lucent_material *m, lucent_cdrf_variant varian
     fit_key(m, variant, photons, key, sizeof key);
     *cached = false;
     if (desc->cache_dir && desc->cache_dir[0]) {
-        cache_path(desc->cache_dir, key, path, sizeof path);
+        gl_cache_path(desc->cache_dir, "sigma0", key, path, sizeof path);
         if (cache_read(path, key, dest)) return *cached = true, LUCENT_OK;
     }
     double t0 = gl_now_ms();

@@ -175,11 +175,12 @@ lucent_status scene_read_lights(const lucent_json_node *root, lucent_light **des
 static const char *const k_method_names[] = {"lambert", "cdrf", "cdrf+translucency", "ssss", NULL};
 static const char *const k_depth_filters[] = {"follow", "gaussian", "none", NULL};
 static const char *const k_sigma0_sources[] = {"fit", "diffuse", NULL};
+static const char *const k_transmittances[] = {"slab", "profile", NULL};
 static const char *const k_cdrf_variants[] = {"kubo", "collomb", NULL};
 static const char *const k_tonemaps[] = {"none", "clamp", "reinhard", "filmic", NULL};
 static const char *const k_render_keys[] = {
     "width",       "height",      "method",         "kernel",   "rank",     "taps",       "profile",
-    "strength",    "width_scale", "depth_filter",   "translucency", "translucency_curvature", "cdrf_variant", "cdrf_lut", "sigma0",
+    "strength",    "width_scale", "depth_filter",   "translucency", "transmittance", "translucency_curvature", "cdrf_variant", "cdrf_lut", "sigma0",
     "curvature_smooth", "shadow_map_size", "background", "tonemap", "exposure", "spp", "seed",
     "max_bounces", "max_scatter", "time_limit", NULL};
 
@@ -290,13 +291,15 @@ static lucent_status read_profile(const lucent_json_node *n, lucent_render_setti
 
 static lucent_status read_choices(const lucent_json_node *n, lucent_render_settings *r)
 {
-    int v[4] = {r->depth_filter, r->sigma0_source, r->cdrf_variant, r->tonemap};
+    int v[5] = {r->depth_filter, r->sigma0_source, r->cdrf_variant, r->tonemap, r->transmittance};
     lucent_status s = read_choice(n, "depth_filter", k_depth_filters, v[0], &v[0]);
     if (s == LUCENT_OK) s = read_choice(n, "sigma0", k_sigma0_sources, v[1], &v[1]);
     if (s == LUCENT_OK) s = read_choice(n, "cdrf_variant", k_cdrf_variants, v[2], &v[2]);
     if (s == LUCENT_OK) s = read_choice(n, "tonemap", k_tonemaps, v[3], &v[3]);
+    if (s == LUCENT_OK) s = read_choice(n, "transmittance", k_transmittances, v[4], &v[4]);
     r->depth_filter = (lucent_depth_filter)v[0], r->sigma0_source = (lucent_sigma0_source)v[1];
     r->cdrf_variant = (lucent_cdrf_variant)v[2], r->tonemap = (lucent_tonemap_op)v[3];
+    r->transmittance = (lucent_transmittance_model)v[4];
     return s;
 }
 

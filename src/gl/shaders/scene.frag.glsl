@@ -12,7 +12,7 @@ in float v_curvature;
 in vec2 v_uv;
 
 layout(binding = 0) uniform sampler2D u_albedo_map;
-layout(binding = 4) uniform sampler2D u_transmit; // T(s) / T(0) per channel; a row per material
+layout(binding = 4) uniform sampler2D u_transmit; // T(s) per channel; a row per material
 
 uniform vec3 u_albedo;
 uniform vec3 u_sigma0;          // mm
@@ -26,6 +26,8 @@ uniform float u_object;
 uniform int u_translucency;     // ssss: light through thin parts
 uniform float u_transmit_range; // mm: thickness where the table ends
 uniform float u_transmit_v;     // the material's row, as a texture coordinate
+uniform int u_transmit_albedo;  // 1: T is the profile's T(s) / T(0), times the albedo (Jimenez);
+                                // 0: T is the slab's own transmittance
 uniform float u_curvature_gain; // cdrf+translucency: m = 1 + gain sigma0 kappa
 uniform float u_cdrf_reach;     // mm: CDRF visibility is tested this far toward the light
 uniform float u_shadow_offset;  // normal offset, in shadow-map texels
@@ -39,7 +41,7 @@ layout(location = 4) out vec4 o_aov_position; // xyz: position (mm); w: object i
 layout(location = 5) out vec4 o_aov_light;    // light 0: visibility, 0, thickness
 #endif
 
-// The transmittance through thickness s, normalised to 1 at s = 0 (table samples on the end points).
+// The transmittance through thickness s (table samples on the end points).
 vec3 transmittance(float s)
 {
     if (s < 0.0) return vec3(0.0);
@@ -48,9 +50,9 @@ vec3 transmittance(float s)
     return texture(u_transmit, vec2(u, u_transmit_v)).rgb;
 }
 
-// Light reaching the back of a thin part and leaving here: E max(-n.l, 0) T(s) (Jimenez 2010; T
-// from the material's own profile, docs/render.md), the curvature modulation of the CDRF blog for
-// cdrf+translucency.
+// Light reaching the back of a thin part and leaving here: E max(-n.l, 0) T(s) (Jimenez 2010; T the
+// Monte Carlo slab transmittance or the material's own profile, docs/render.md), the curvature
+// modulation of the CDRF blog for cdrf+translucency.
 vec3 transmitted(int i, vec3 n, vec3 e, float ndl, float offset, vec3 sigma0)
 {
 #if METHOD == 2
@@ -71,7 +73,7 @@ void main()
     vec3 v = normalize(u_eye.xyz - v_position);
     vec3 albedo = u_use_map != 0 ? texture(u_albedo_map, v_uv).rgb : u_albedo;
     vec3 sigma0 = u_sigma0_from_map != 0 ? albedo * albedo : u_sigma0;
-    vec3 irradiance = vec3(0.0), specular = vec3(0.0);
+    vec3 irradiance = vec3(0.0), transmitted_e = vec3(0.0), specular = vec3(0.0);
     float vis0 = 1.0;
     for (int i = 0; i < u_counts.x; i++) {
         vec3 l, e = light_incident(i, v_position, l);
@@ -86,11 +88,12 @@ void main()
         float vis = shadow_visibility(i, v_position + n * offset);
         irradiance += e * max(ndl, 0.0) * vis;
 #endif
-        irradiance += transmitted(i, n, e, ndl, offset, sigma0);
+        transmitted_e += transmitted(i, n, e, ndl, offset, sigma0);
         specular += e * specular_ksk(n, v, l, u_roughness, u_f0) * vis;
         if (i == 0) vis0 = vis;
     }
-    o_diffuse = vec4(albedo * (irradiance / PI + u_ambient.rgb), u_strength);
+    vec3 through = transmitted_e / PI * (u_transmit_albedo != 0 ? albedo : vec3(1.0));
+    o_diffuse = vec4(albedo * (irradiance / PI + u_ambient.rgb) + through, u_strength);
     o_specular = vec4(specular, 1.0);
     o_depth = vec2(dot(v_position - u_eye.xyz, u_forward.xyz), u_material);
 #if AOV
