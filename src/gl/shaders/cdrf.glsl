@@ -9,7 +9,7 @@ float cdrf_table(float cos_theta, float sigma)
 {
     vec2 size = vec2(textureSize(u_cdrf_lut, 0));
     vec2 f = vec2((clamp(cos_theta, -1.0, 1.0) + 1.0) * 0.5, clamp(sigma / u_lut_sigma_max, 0.0, 1.0));
-    return texture(u_cdrf_lut, (0.5 + f * (size - 1.0)) / size).r;
+    return textureLod(u_cdrf_lut, (0.5 + f * (size - 1.0)) / size, 0.0).r; // no mip chain: skip the LOD
 }
 
 // 16-point Gauss-Legendre on [-1, 1] (nodes +-x_i, weights w_i).
