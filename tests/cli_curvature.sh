@@ -15,6 +15,10 @@ for m in rusinkiewicz meyer garimella; do
 done
 expect_ok -- "$LUCENT" curvature "$TMP/tetra-meyer.ply" --out "$TMP/again.csv"
 expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --fast --out "$TMP/fast.csv"
+# A picture of the colour-mapped mesh (Kubo Fig. 10a), at the size asked for.
+expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --size 64x48 --view 30,-10 --out "$TMP/tetra.png"
+expect_ok -- "$LUCENT" image info "$TMP/tetra.png"
+expect_true "curvature --out .png paints a 64x48 picture" -- grep -q "64x48, 3 channels" <<<"$OUT"
 
 # A sample mesh when present (make setup fetches them): the bunny, all finite.
 BUNNY="$(dirname "$FIXTURES")/../data/meshes/bunny.ply"
@@ -36,5 +40,9 @@ expect_no_file "$TMP/nodir/c.csv"
 expect_fail 2 "--method must be rusinkiewicz, meyer or garimella" -- \
   "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --method taubin
 expect_fail 2 "--smooth needs a whole number" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --smooth -1
-expect_fail 2 "--out must end in .ply or .csv" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out x.png
+expect_fail 2 "--out must end in .ply, .csv or .png" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out x.jpg
+expect_fail 2 "--size needs WIDTHxHEIGHT" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --size 64 --out "$TMP/s.png"
+expect_fail 2 "--view needs AZIMUTH,ELEVATION" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --view 0,95 --out "$TMP/s.png"
+expect_fail 1 "$TMP/nodir/c.png" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/nodir/c.png"
+expect_no_file "$TMP/s.png" "$TMP/nodir/c.png"
 expect_fail 2 "expected a mesh file" -- "$LUCENT" curvature --method meyer

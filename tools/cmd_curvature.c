@@ -8,10 +8,11 @@
 #include <time.h>
 
 #include "cli.h"
+#include "lucent/image.h"
 #include "lucent/mesh.h"
 
 static const char k_usage[] =
-    "usage: lucent curvature MESH [--method M] [--smooth N] [--out FILE.ply|FILE.csv] [options]\n"
+    "usage: lucent curvature MESH [--method M] [--smooth N] [--out FILE.ply|.csv|.png] [options]\n"
     "\n"
     "Estimates the principal, mean and Gaussian curvature at every vertex of a triangle mesh\n"
     "(PLY ASCII or binary, .ply.gz, OBJ, glTF). Vertices at identical positions are welded.\n"
@@ -31,21 +32,27 @@ static const char k_usage[] =
     "  --mm-per-unit S    millimetres per mesh unit (default 1)\n"
     "  --out FILE         .csv: one row per vertex (x, y, z, k1, k2, mean, gauss, flags);\n"
     "                     .ply: binary PLY, mean curvature colour-mapped (blue < 0 < red) plus\n"
-    "                     the values as vertex properties (default: MESH-METHOD.ply here)\n"
+    "                     the values as vertex properties (default: MESH-METHOD.ply here);\n"
+    "                     .png: a picture of the colour-mapped mesh (Kubo et al. Fig. 10a)\n"
     "  --range R          |H| mapped to full colour (default: the 95th percentile of |H|)\n"
+    "  --size WxH         .png: its size in pixels (default 800x800)\n"
+    "  --view AZ,EL       .png: the eye's azimuth about +y and elevation, degrees (default 0,0:\n"
+    "                     looking along -z with +y up)\n"
     "  -h, --help         show this help\n"
     "\n"
     "flags in the CSV: 1 boundary vertex, 2 invalid (no face of non-zero area; values 0).\n"
     "\n"
     "examples:\n"
     "  lucent curvature data/meshes/bunny.ply --out out/bunny-curv.ply\n"
+    "  lucent curvature data/meshes/dragon_vrip_res2.ply.gz --smooth 1 --view 30,10 --out out/dragon-curv.png\n"
     "  lucent curvature data/meshes/dragon_vrip_res2.ply.gz --method meyer --smooth 2 --out out/d.csv\n";
 
 typedef struct options {
     const char *mesh, *out;
     lucent_curvature_method method;
     int smooth, fast;
-    double mm_per_unit, range;
+    double mm_per_unit, range, view[2];
+    int size[2];
     char default_out[1024];
 } options;
 
@@ -64,8 +71,18 @@ static int parse_value_option(int argc, char **argv, int *i, options *o)
     } else if (cli_option(argc, argv, i, "--range", &v)) {
         if (!cli_parse_double(v, &o->range) || !(o->range > 0))
             return cli_usage_error("curvature", "--range needs a curvature > 0");
+    } else if (cli_option(argc, argv, i, "--size", &v)) {
+        char tail;
+        if (!v || sscanf(v, "%dx%d%c", &o->size[0], &o->size[1], &tail) != 2 || o->size[0] < 1 || o->size[1] < 1 ||
+            o->size[0] > 16384 || o->size[1] > 16384)
+            return cli_usage_error("curvature", "--size needs WIDTHxHEIGHT, 1 to 16384 pixels each (e.g. 800x600)");
+    } else if (cli_option(argc, argv, i, "--view", &v)) {
+        char tail;
+        if (!v || sscanf(v, "%lf,%lf%c", &o->view[0], &o->view[1], &tail) != 2 || !isfinite(o->view[0]) ||
+            !(fabs(o->view[1]) <= 90))
+            return cli_usage_error("curvature", "--view needs AZIMUTH,ELEVATION in degrees, elevation in [-90, 90]");
     } else if (cli_option(argc, argv, i, "--out", &v)) {
-        if (!(o->out = v)) return cli_usage_error("curvature", "--out needs a file name (.ply or .csv)");
+        if (!(o->out = v)) return cli_usage_error("curvature", "--out needs a file name (.ply, .csv or .png)");
     } else {
         return -1;
     }
@@ -95,8 +112,9 @@ static int parse_args(int argc, char **argv, options *o)
         o->out = o->default_out;
     }
     size_t n = strlen(o->out);
-    if (n < 4 || (strcasecmp(o->out + n - 4, ".ply") != 0 && strcasecmp(o->out + n - 4, ".csv") != 0))
-        return cli_usage_error("curvature", "--out must end in .ply or .csv");
+    if (n < 4 || (strcasecmp(o->out + n - 4, ".ply") != 0 && strcasecmp(o->out + n - 4, ".csv") != 0 &&
+                  strcasecmp(o->out + n - 4, ".png") != 0))
+        return cli_usage_error("curvature", "--out must end in .ply, .csv or .png");
     return CLI_OK;
 }
 
@@ -155,15 +173,27 @@ static void colour(double h, double range, int invalid, uint8_t *rgb)
     rgb[2] = (uint8_t)lrint(255 * (0.2 + 0.8 * b));
 }
 
-static lucent_status write_ply(const char *path, const lucent_mesh *m, const lucent_curvature *c, double range)
+/* The colour-mapped mesh as a PLY (with the values as vertex properties) or as a picture. */
+static lucent_status write_colours(const char *path, const options *o, const lucent_mesh *m, const lucent_curvature *c,
+                                   double range)
 {
     uint8_t *rgb = malloc(3 * m->vertex_count + 1);
     if (!rgb) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
     for (size_t v = 0; v < m->vertex_count; v++)
         colour(c->mean[v], range, c->flags[v] & LUCENT_CURVATURE_INVALID, rgb + 3 * v);
-    const char *names[] = {"k1", "k2", "mean", "gauss"};
-    const double *values[] = {c->k1, c->k2, c->mean, c->gauss};
-    lucent_status s = lucent_mesh_write_ply(path, m, &(lucent_mesh_ply_extra){rgb, 4, names, values});
+    lucent_status s;
+    if (strcasecmp(path + strlen(path) - 4, ".png") == 0) {
+        lucent_image *img = NULL;
+        lucent_mesh_paint_desc d = {.width = o->size[0], .height = o->size[1], .azimuth = o->view[0],
+                                    .elevation = o->view[1], .colors = rgb, .background = {0.05f, 0.05f, 0.05f}};
+        s = lucent_mesh_paint(m, &d, &img);
+        if (s == LUCENT_OK) s = lucent_image_write(path, img, NULL);
+        lucent_image_destroy(img);
+    } else {
+        const char *names[] = {"k1", "k2", "mean", "gauss"};
+        const double *values[] = {c->k1, c->k2, c->mean, c->gauss};
+        s = lucent_mesh_write_ply(path, m, &(lucent_mesh_ply_extra){rgb, 4, names, values});
+    }
     free(rgb);
     return s;
 }
@@ -205,7 +235,7 @@ int cmd_curvature(int argc, char **argv)
         double range = o.range > 0 ? o.range : abs_quantile(&c, 0.95);
         if (!(range > 0)) range = 1;
         size_t n = strlen(o.out);
-        s = strcasecmp(o.out + n - 4, ".csv") == 0 ? write_csv(o.out, m, &c) : write_ply(o.out, m, &c, range);
+        s = strcasecmp(o.out + n - 4, ".csv") == 0 ? write_csv(o.out, m, &c) : write_colours(o.out, &o, m, &c, range);
         if (s == LUCENT_OK) report(&o, m, &c, t, range), cli_info("wrote %s", o.out);
     }
     lucent_curvature_free(&c);

@@ -63,6 +63,24 @@ typedef struct lucent_mesh_ply_extra {
 lucent_status lucent_mesh_write_ply(const char *path, const lucent_mesh *mesh,
                                     const lucent_mesh_ply_extra *extra);
 
+/* ---- A picture of a mesh (no GPU) ------------------------------------------ */
+
+typedef struct lucent_image lucent_image; /* lucent/image.h */
+
+/* How to paint a mesh; zero fields take the defaults. */
+typedef struct lucent_mesh_paint_desc {
+    int width, height;         /* pixels (default 800 x 800) */
+    double azimuth, elevation; /* degrees: 0, 0 looks along -z with +y up; azimuth turns the eye
+                                  about +y toward +x, elevation raises it toward +y */
+    const uint8_t *colors;     /* sRGB, 3 bytes per vertex (required) */
+    float background[3];       /* linear RGB (default black) */
+    int supersample;           /* samples per pixel and axis, 1..8 (default 3) */
+} lucent_mesh_paint_desc;
+
+/* Paints mesh with its vertex colours, seen orthographically with its bounding sphere filling 92% of
+ * the shorter side, z-buffered, shaded by a head light (0.35 + 0.65 |n.v|); a new linear RGB image. */
+lucent_status lucent_mesh_paint(const lucent_mesh *mesh, const lucent_mesh_paint_desc *desc, lucent_image **dest);
+
 /* ---- Clean-up and queries -------------------------------------------------- */
 
 /* Merges vertices at bitwise-identical positions, drops faces with a repeated index and
