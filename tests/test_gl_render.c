@@ -163,18 +163,24 @@ static const char k_slab[] =
     "               \"material\": \"skin1\", \"sigma0\": [3.5, 2.3, 1.5]}],"
     " \"render\": {\"width\": 64, \"height\": 64, \"shadow_map_size\": 512, \"taps\": 17}}";
 
-/* Mean radiance over the disc's central pixels (within 12 mm of the axis). */
-static void centre_mean(lucent_renderer *r, const lucent_render_settings *s, double dest[3])
+/* Mean radiance over the square [lo, hi) x [lo, hi) of pixels. */
+static void square_mean(lucent_renderer *r, const lucent_render_settings *s, int lo, int hi, double dest[3])
 {
     lucent_render_result res;
     dest[0] = dest[1] = dest[2] = 0;
     CHECK_OK(lucent_render(r, s, &res));
     int n = 0;
-    for (int y = 20; res.image && y < 44; y++)
-        for (int x = 20; x < 44; x++, n++)
+    for (int y = lo; res.image && y < hi; y++)
+        for (int x = lo; x < hi; x++, n++)
             for (int c = 0; c < 3; c++) dest[c] += lucent_image_get(res.image, x, y, c);
     for (int c = 0; c < 3 && n; c++) dest[c] /= n;
     lucent_render_result_free(&res);
+}
+
+/* The disc's central pixels (within 12 mm of the axis). */
+static void centre_mean(lucent_renderer *r, const lucent_render_settings *s, double dest[3])
+{
+    square_mean(r, s, 20, 44, dest);
 }
 
 /* Expected: light through a thin part adds to what the visible side shows (physics: the disc is lit
@@ -210,18 +216,6 @@ TEST(translucency_brightens_a_backlit_disc_in_red)
     lucent_scene_destroy(sc);
 }
 
-/* The mean of the 2 x 2 pixels around the image centre (the disc's axis: thickness 4 mm to 0.1%). */
-static void centre_pixels(lucent_renderer *r, const lucent_render_settings *s, double dest[3])
-{
-    lucent_render_result res;
-    dest[0] = dest[1] = dest[2] = 0;
-    CHECK_OK(lucent_render(r, s, &res));
-    for (int y = 31; res.image && y < 33; y++)
-        for (int x = 31; x < 33; x++)
-            for (int c = 0; c < 3; c++) dest[c] += 0.25 * lucent_image_get(res.image, x, y, c);
-    lucent_render_result_free(&res);
-}
-
 /* Expected: with render.transmittance "slab", a point of a flat part lit from straight behind with
  * irradiance E shows E T(s) / pi of transmitted radiance, T(s) the total transmittance of a slab of
  * the material s mm thick (docs/render.md). T comes here from an independent Monte Carlo run
@@ -242,9 +236,9 @@ TEST(slab_translucency_matches_monte_carlo_transmittance)
         s.transmittance = LUCENT_TRANSMIT_SLAB;
         double with[3], without[3];
         s.method = LUCENT_METHOD_CDRF_TRANSLUCENCY;
-        centre_pixels(r, &s, with);
+        square_mean(r, &s, 31, 33, with); /* the 2 x 2 pixels on the axis: 4 mm to 0.1% */
         s.method = LUCENT_METHOD_CDRF;
-        centre_pixels(r, &s, without);
+        square_mean(r, &s, 31, 33, without);
         const lucent_material *m = &sc->objects[0].material;
         lucent_material_derived d;
         lucent_material_derive(m, &d);
