@@ -129,10 +129,15 @@ void gl_materials_free(lucent_renderer *r);
 /* ---- sigma0.c: the Monte Carlo fit of sigma0 and its cache ---- */
 lucent_status gl_sigma0_fit(const lucent_material *m, lucent_cdrf_variant variant, const lucent_renderer_desc *desc,
                             double dest[3], bool *cached);
+
+/* ---- cache.c: the disk cache of Monte Carlo results ---- */
+struct cJSON;
 /* The cache file of key: DIR/PREFIX-<FNV-1a of key>.json (the key is stored inside and compared). */
 void gl_cache_path(const char *dir, const char *prefix, const char *key, char *dest, size_t size);
-/* mkdir -p; logs a warning and returns -1 when it cannot. */
-int gl_cache_make_dirs(const char *dir);
+/* Reads count numbers of field from path if it holds key; false (a miss) otherwise. */
+bool gl_cache_read(const char *path, const char *key, const char *field, int count, double *dest);
+/* Adds key to json, writes it to path atomically (creating dir), frees json; warns on failure. */
+void gl_cache_write(const char *dir, const char *path, const char *key, struct cJSON *json);
 
 /* ---- transmit.c: the Monte Carlo slab transmittance for translucency ---- */
 /* Fills table[size * 3] with T(s) per channel at s = *range j / (size - 1), the last entry 0. */

@@ -2,11 +2,9 @@
  * with a modest photon count, and kept on disk per material so that a scene pays for it once.
  * Cost (2 shared cores, 40000 photons per channel and sphere, radii 2, 5, 10, 20 mm): Skin1 1.2 s,
  * marble 8.4 s, jade 12.6 s (high albedos walk long); docs/render.md. */
-#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "base/json.h"
 #include "gl/renderer_internal.h"
@@ -25,68 +23,16 @@ static void fit_key(const lucent_material *m, lucent_cdrf_variant v, uint64_t ph
              m->g[1], m->g[2], m->eta, lucent_cdrf_variant_name(v), (unsigned long long)photons, FIT_BINS);
 }
 
-/* FNV-1a, 64 bits: the cache file's name. */
-static uint64_t hash(const char *text)
-{
-    uint64_t h = 1469598103934665603ull;
-    for (const unsigned char *p = (const unsigned char *)text; *p; p++) h = (h ^ *p) * 1099511628211ull;
-    return h;
-}
-
-void gl_cache_path(const char *dir, const char *prefix, const char *key, char *dest, size_t size)
-{
-    snprintf(dest, size, "%s/%s-%016llx.json", dir, prefix, (unsigned long long)hash(key));
-}
-
-static bool cache_read(const char *path, const char *key, double dest[3])
-{
-    cJSON *json = NULL;
-    lucent_status s = lucent_json_parse_file(path, &json);
-    if (s != LUCENT_OK) return lucent_clear_error(), false;
-    lucent_json_node root = lucent_json_root(json, path, "");
-    const char *stored = NULL;
-    bool ok = lucent_json_string(&root, "key", &stored) == LUCENT_OK && !strcmp(stored, key) &&
-              lucent_json_numbers(&root, "sigma0_mm", 3, false, dest) == LUCENT_OK;
-    cJSON_Delete(json);
-    lucent_clear_error();
-    return ok;
-}
-
-static int mkdir_p(const char *dir)
-{
-    char p[1024];
-    snprintf(p, sizeof p, "%s", dir);
-    for (char *s = p + 1; *s; s++)
-        if (*s == '/') {
-            *s = '\0';
-            if (mkdir(p, 0755) != 0 && errno != EEXIST) return -1;
-            *s = '/';
-        }
-    return mkdir(p, 0755) != 0 && errno != EEXIST ? -1 : 0;
-}
-
-int gl_cache_make_dirs(const char *dir)
-{
-    if (mkdir_p(dir) == 0) return 0;
-    lucent_log(LUCENT_LOG_WARN, "cache: cannot create %s: %s", dir, strerror(errno));
-    return -1;
-}
-
 static void cache_write(const char *dir, const char *path, const char *key, const lucent_cdrf_fit *fit)
 {
-    if (gl_cache_make_dirs(dir) != 0) return;
     cJSON *json = cJSON_CreateObject();
-    if (!json) return;
-    cJSON_AddStringToObject(json, "key", key);
-    lucent_json_add_numbers(json, "sigma0_mm", fit->sigma0, 3);
-    lucent_json_add_numbers(json, "kd", fit->kd, 3);
-    lucent_json_add_numbers(json, "rms", fit->rms, 3);
-    lucent_json_add_numbers(json, "lambert_rms", fit->lambert_rms, 3);
-    if (lucent_json_write_file(path, json) != LUCENT_OK) {
-        lucent_log(LUCENT_LOG_WARN, "sigma0 cache: %s", lucent_last_error());
-        lucent_clear_error();
+    if (json) {
+        lucent_json_add_numbers(json, "sigma0_mm", fit->sigma0, 3);
+        lucent_json_add_numbers(json, "kd", fit->kd, 3);
+        lucent_json_add_numbers(json, "rms", fit->rms, 3);
+        lucent_json_add_numbers(json, "lambert_rms", fit->lambert_rms, 3);
     }
-    cJSON_Delete(json);
+    gl_cache_write(dir, path, key, json);
 }
 
 static lucent_status run_fit(const lucent_material *m, lucent_cdrf_variant v, const lucent_renderer_desc *d,
@@ -114,7 +60,7 @@ lucent_status gl_sigma0_fit(const lucent_material *m, lucent_cdrf_variant varian
     *cached = false;
     if (desc->cache_dir && desc->cache_dir[0]) {
         gl_cache_path(desc->cache_dir, "sigma0", key, path, sizeof path);
-        if (cache_read(path, key, dest)) return *cached = true, LUCENT_OK;
+        if (gl_cache_read(path, key, "sigma0_mm", 3, dest)) return *cached = true, LUCENT_OK;
     }
     double t0 = gl_now_ms();
     lucent_cdrf_fit fit;

@@ -65,34 +65,16 @@ static lucent_status simulate(const lucent_material *m, double s_max, uint64_t p
     return LUCENT_OK;
 }
 
-static bool cache_read(const char *path, const char *key, double t[SAMPLES][3])
-{
-    cJSON *json = NULL;
-    if (lucent_json_parse_file(path, &json) != LUCENT_OK) return lucent_clear_error(), false;
-    lucent_json_node root = lucent_json_root(json, path, "");
-    const char *stored = NULL;
-    bool ok = lucent_json_string(&root, "key", &stored) == LUCENT_OK && !strcmp(stored, key) &&
-              lucent_json_numbers(&root, "transmittance", 3 * SAMPLES, false, &t[0][0]) == LUCENT_OK;
-    cJSON_Delete(json);
-    lucent_clear_error();
-    return ok;
-}
-
 static void cache_write(const char *dir, const char *path, const char *key, double s_max, double t[SAMPLES][3])
 {
-    if (gl_cache_make_dirs(dir) != 0) return;
     cJSON *json = cJSON_CreateObject();
-    if (!json) return;
     double s[SAMPLES];
     for (int k = 0; k < SAMPLES; k++) s[k] = sample_thickness(s_max, k);
-    cJSON_AddStringToObject(json, "key", key);
-    lucent_json_add_numbers(json, "thickness_mm", s, SAMPLES);
-    lucent_json_add_numbers(json, "transmittance", &t[0][0], 3 * SAMPLES); /* [k][channel] */
-    if (lucent_json_write_file(path, json) != LUCENT_OK) {
-        lucent_log(LUCENT_LOG_WARN, "transmittance cache: %s", lucent_last_error());
-        lucent_clear_error();
+    if (json) {
+        lucent_json_add_numbers(json, "thickness_mm", s, SAMPLES);
+        lucent_json_add_numbers(json, "transmittance", &t[0][0], 3 * SAMPLES); /* [k][channel] */
     }
-    cJSON_Delete(json);
+    gl_cache_write(dir, path, key, json);
 }
 
 /* T at thickness s of channel c from the samples (log-linear between them, diffusion's exponential
@@ -120,7 +102,7 @@ lucent_status gl_transmit_slab(const lucent_material *m, const lucent_renderer_d
     *cached = false;
     if (desc->cache_dir && desc->cache_dir[0]) {
         gl_cache_path(desc->cache_dir, "transmittance", key, path, sizeof path);
-        *cached = cache_read(path, key, t);
+        *cached = gl_cache_read(path, key, "transmittance", 3 * SAMPLES, &t[0][0]);
     }
     if (!*cached) {
         double t0 = gl_now_ms();
