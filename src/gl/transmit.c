@@ -6,7 +6,8 @@
  * E T(s) / pi.
  *
  * Sampled at SAMPLES thicknesses on a quadratic grid up to s_max = 5 / sigma_tr (the slowest
- * channel's diffusion length: T is e^-5 of its thin-slab value there); between samples T is
+ * channel's diffusion length: T is e^-5 of its thin-slab value there; at most 100 transport mean
+ * free paths); between samples T is
  * interpolated in log space, beyond s_max it decays as exp(-sigma_tr s), the asymptote of diffusion
  * theory. Kept on disk per material beside the sigma0 fits. */
 #include <math.h>
@@ -28,13 +29,16 @@ static double sample_thickness(double s_max, int k)
     return fmax(s_max * t * t, THINNEST);
 }
 
-static double slowest_sigma_tr(const lucent_material *m, double dest[3])
+/* s_max = 5 / sigma_tr of the slowest channel, but at most 100 transport mean free paths of the
+ * sparsest channel: without absorption sigma_tr is 0 and T falls only as 1 / s, and the walks through
+ * a slab grow as its optical thickness squared. Fills sigma_tr per channel. */
+static double thickest_sample(const lucent_material *m, double sigma_tr[3])
 {
     lucent_material_derived d;
     lucent_material_derive(m, &d);
-    double lo = INFINITY;
-    for (int c = 0; c < 3; c++) dest[c] = d.sigma_tr[c], lo = fmin(lo, d.sigma_tr[c]);
-    return lo;
+    double tr = INFINITY, tp = INFINITY;
+    for (int c = 0; c < 3; c++) sigma_tr[c] = d.sigma_tr[c], tr = fmin(tr, d.sigma_tr[c]), tp = fmin(tp, d.sigma_t_prime[c]);
+    return fmin(5 / fmax(tr, 1e-3), 100 / fmax(tp, 1e-3));
 }
 
 static void table_key(const lucent_material *m, uint64_t photons, char *dest, size_t size)
@@ -94,7 +98,7 @@ static double interpolate(double t[SAMPLES][3], double s_max, const double sigma
 lucent_status gl_transmit_slab(const lucent_material *m, const lucent_renderer_desc *desc, int size, float *table,
                                double *range, bool *cached)
 {
-    double sigma_tr[3], s_max = 5 / fmax(slowest_sigma_tr(m, sigma_tr), 1e-3);
+    double sigma_tr[3], s_max = thickest_sample(m, sigma_tr);
     uint64_t photons = desc->transmit_photons ? desc->transmit_photons : DEFAULT_PHOTONS;
     double t[SAMPLES][3];
     char key[640], path[1200];
