@@ -17,6 +17,10 @@ expect_true "the CSV has a row per method" -- test "$(grep -c '^"test-sphere",' 
 expect_true "the HTML shows every image" -- test "$(grep -o '<img src=' "$TMP/cmp/report.html" | wc -l)" = 6
 expect_true "the errors are finite percentages" -- \
   awk -F, 'NR > 1 {if (!($3 >= 0 && $3 < 10)) bad = 1} END {exit bad}' "$TMP/cmp/report.csv"
+expect_true "net of the reference's noise: sqrt(error^2 - noise^2), never above the error" -- \
+  awk -F, 'NR > 1 {want = $3 * $3 - $10 * $10; want = want > 0 ? sqrt(want) : 0
+                   if (NF != 11 || $11 > $3 || (want - $11) ^ 2 > 1e-8 * (want * want + 1e-12)) bad = 1} END {exit bad}' \
+  "$TMP/cmp/report.csv"
 
 # Failures: exit 1 (bad input) or 2 (bad usage), a message naming the cause, no report left behind.
 expect_fail 2 "--methods: unknown method 'phong'" -- "${GLRUN[@]}" compare "$SC/sphere.json" --methods lambert,phong --out "$TMP/c1"

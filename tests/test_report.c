@@ -116,7 +116,7 @@ TEST(compare_html_has_every_scene_method_and_image)
     CHECK(best && strncmp(best, want, strlen(want)) == 0);
     CHECK(strstr(html, "x&lt;y&amp;&quot;z&quot;") != NULL && strstr(html, "x<y") == NULL);
     CHECK(count_of(html, "<img src=") == 2 * (1 + 2 + 2)); /* reference, methods, error maps */
-    CHECK(strstr(html, "<td>5.00%</td><td>6.00%</td>") != NULL);
+    CHECK(strstr(html, "<td>5.00%</td><td>4.90%</td><td>6.00%</td>") != NULL); /* net: sqrt(5^2 - 1^2) */
     CHECK(strstr(html, "256 samples per pixel in 12.5 s") != NULL);
     free(html);
 }
@@ -132,7 +132,8 @@ TEST(compare_markdown_and_csv_tables)
     CHECK_OK(lucent_read_file(md, &text, &size));
     if (text) {
         CHECK(count_of(text, "\n## ") + (strncmp(text, "## ", 3) == 0) == 2);
-        CHECK(strstr(text, "| cdrf | 12.50% | 10.00% | 10.00% | 20.00% | 1.750 | 900 |") != NULL);
+        /* net of noise: sqrt(0.125^2 - 0.01^2) = 12.46% */
+        CHECK(strstr(text, "| cdrf | 12.50% | 12.46% | 10.00% | 10.00% | 20.00% | 1.750 | 900 |") != NULL);
         free(text);
     }
     const char *csv = test_path("report.csv");
@@ -140,9 +141,18 @@ TEST(compare_markdown_and_csv_tables)
     CHECK_OK(lucent_read_file(csv, &text, &size));
     if (!text) return;
     CHECK(count_of(text, "\n") == 1 + 4);
-    CHECK(strstr(text, "\"dragon\",\"lambert\",0.25,0.3,0.2,0.1,1.5,10,256,0.01\n") != NULL);
+    CHECK(strstr(text, "\"dragon\",\"lambert\",0.25,0.3,0.2,0.1,1.5,10,256,0.01,0.2498\n") != NULL);
     CHECK(strstr(text, "\"x<y&\"\"z\"\"\"") != NULL); /* quotes doubled */
     free(text);
+}
+
+/* The reference's noise adds in quadrature to a method's distance from the truth: a 3-4-5 triangle
+ * (error 5%, noise 3% -> 4%), no noise (unchanged), and an error within the noise (0, not NaN). */
+TEST(net_error_takes_the_noise_out_in_quadrature)
+{
+    CHECK_NEAR(lucent_compare_net_error(0.05, 0.03), 0.04, 1e-15);
+    CHECK_NEAR(lucent_compare_net_error(0.2, 0), 0.2, 0);
+    CHECK(lucent_compare_net_error(0.02, 0.03) == 0);
 }
 
 TEST(compare_chart_has_a_marker_per_method)
@@ -162,4 +172,5 @@ TEST(compare_chart_has_a_marker_per_method)
 
 TEST_MAIN(TEST_ENTRY(nice_ticks_are_1_2_5_steps), TEST_ENTRY(svg_has_a_curve_per_series_and_log_decades),
           TEST_ENTRY(svg_rejects_empty_figures), TEST_ENTRY(compare_html_has_every_scene_method_and_image),
-          TEST_ENTRY(compare_markdown_and_csv_tables), TEST_ENTRY(compare_chart_has_a_marker_per_method))
+          TEST_ENTRY(compare_markdown_and_csv_tables), TEST_ENTRY(net_error_takes_the_noise_out_in_quadrature),
+          TEST_ENTRY(compare_chart_has_a_marker_per_method))

@@ -364,9 +364,10 @@ static void print_scene(const scene_run *sr)
     const lucent_compare_scene *r = &sr->report;
     cli_info("%s: %d x %d; reference %d spp in %.1f s (its noise %.2f%%); %s", r->name, r->width, r->height,
              r->reference_spp, r->reference_seconds, 100 * r->reference_noise, r->device);
-    cli_info("  %-22s %14s %12s %12s", "method", "rel. RMS error", "frame ms", "setup ms");
+    cli_info("  %-22s %14s %13s %12s %12s", "method", "rel. RMS error", "net of noise", "frame ms", "setup ms");
     for (int i = 0; i < sr->method_count; i++)
-        cli_info("  %-22s %13.2f%% %12.3f %12.0f", sr->methods[i].name, 100 * sr->methods[i].row.rel_rms,
+        cli_info("  %-22s %13.2f%% %12.2f%% %12.3f %12.0f", sr->methods[i].name, 100 * sr->methods[i].row.rel_rms,
+                 100 * lucent_compare_net_error(sr->methods[i].row.rel_rms, r->reference_noise),
                  sr->methods[i].row.frame_ms, sr->methods[i].row.setup_ms);
 }
 
@@ -442,6 +443,7 @@ static lucent_status write_results_json(const char *path, scene_run *runs, int c
             cJSON_AddItemToArray(methods, j);
             cJSON_AddStringToObject(j, "method", m->name);
             cJSON_AddNumberToObject(j, "rel_rms", m->row.rel_rms);
+            cJSON_AddNumberToObject(j, "rel_rms_net", lucent_compare_net_error(m->row.rel_rms, r->reference_noise));
             lucent_json_add_numbers(j, "rel_rms_rgb", m->row.rel_rms_rgb, 3);
             cJSON_AddNumberToObject(j, "frame_ms", m->row.frame_ms);
             cJSON_AddNumberToObject(j, "setup_ms", m->row.setup_ms);

@@ -85,6 +85,12 @@ typedef struct lucent_compare_scene {
     int method_count;
 } lucent_compare_scene;
 
+/* A method's relative RMS error with the reference's own noise taken out: sqrt(max(e^2 - n^2, 0)).
+ * The reference is the truth plus noise independent of the method, so E[e^2] = d^2 + n^2 with d the
+ * method's distance from the truth and n the reference's relative standard error (both pooled over
+ * the same pixels and channels, relative to the same sum of squares). */
+double lucent_compare_net_error(double rel_rms, double reference_noise);
+
 /* Writes the HTML report of count scenes to path (atomically); title heads the page. */
 lucent_status lucent_compare_write_html(const char *path, const char *title, const lucent_compare_scene *scenes,
                                         int count);
@@ -93,7 +99,7 @@ lucent_status lucent_compare_write_html(const char *path, const char *title, con
 lucent_status lucent_compare_write_markdown(const char *path, const lucent_compare_scene *scenes, int count);
 
 /* Writes one CSV row per scene and method: scene,method,rel_rms,rel_rms_r,rel_rms_g,rel_rms_b,
- * frame_ms,setup_ms,reference_spp,reference_noise. */
+ * frame_ms,setup_ms,reference_spp,reference_noise,rel_rms_net (lucent_compare_net_error). */
 lucent_status lucent_compare_write_csv(const char *path, const lucent_compare_scene *scenes, int count);
 
 /* Draws error against frame time, one marker per method, and writes it as SVG to path. */

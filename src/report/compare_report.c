@@ -16,6 +16,11 @@ static const char *k_style =
     "figcaption{font-size:.85em}pre{background:#f7f7f7;padding:1em;overflow:auto;font-size:.8em}"
     ".note{color:#555;font-size:.9em}";
 
+double lucent_compare_net_error(double rel_rms, double reference_noise)
+{
+    return sqrt(fmax(rel_rms * rel_rms - reference_noise * reference_noise, 0.0));
+}
+
 /* The index of the method with the smallest error (-1 when none is finite). */
 static int best_method(const lucent_compare_scene *sc)
 {
@@ -41,16 +46,18 @@ static void html_figure(lucent_strbuf *b, const char *image, const char *caption
 static void html_table(lucent_strbuf *b, const lucent_compare_scene *sc)
 {
     int best = best_method(sc);
-    lucent_strbuf_printf(b, "<table><tr><th>method</th><th>relative RMS error</th><th>R</th><th>G</th>"
-                            "<th>B</th><th>frame (ms, GPU)</th><th>setup (ms, CPU)</th><th>settings</th></tr>\n");
+    lucent_strbuf_printf(b, "<table><tr><th>method</th><th>relative RMS error</th><th>net of the reference's "
+                            "noise</th><th>R</th><th>G</th><th>B</th><th>frame (ms, GPU)</th><th>setup (ms, CPU)"
+                            "</th><th>settings</th></tr>\n");
     for (int i = 0; i < sc->method_count; i++) {
         const lucent_compare_method *m = &sc->methods[i];
         lucent_strbuf_printf(b, "<tr%s><td>", i == best ? " class=\"best\"" : "");
         lucent_strbuf_xml(b, m->name);
-        lucent_strbuf_printf(b, "</td><td>%.2f%%</td><td>%.2f%%</td><td>%.2f%%</td><td>%.2f%%</td>"
+        lucent_strbuf_printf(b, "</td><td>%.2f%%</td><td>%.2f%%</td><td>%.2f%%</td><td>%.2f%%</td><td>%.2f%%</td>"
                                 "<td>%.3f</td><td>%.0f</td><td>",
-                             100 * m->rel_rms, 100 * m->rel_rms_rgb[0], 100 * m->rel_rms_rgb[1],
-                             100 * m->rel_rms_rgb[2], m->frame_ms, m->setup_ms);
+                             100 * m->rel_rms, 100 * lucent_compare_net_error(m->rel_rms, sc->reference_noise),
+                             100 * m->rel_rms_rgb[0], 100 * m->rel_rms_rgb[1], 100 * m->rel_rms_rgb[2], m->frame_ms,
+                             m->setup_ms);
         lucent_strbuf_xml(b, m->settings ? m->settings : "");
         lucent_strbuf_printf(b, "</td></tr>\n");
     }
@@ -88,7 +95,8 @@ static void html_scene(lucent_strbuf *b, const lucent_compare_scene *sc)
     lucent_strbuf_xml(b, sc->description ? sc->description : "");
     lucent_strbuf_printf(b, "</p>\n<p>%d x %d pixels. Reference: Lucent's path tracer, %d samples per pixel in "
                             "%.1f s; its own relative standard error over the object is %.2f%%, so smaller "
-                            "differences are noise. Real-time methods on: ",
+                            "differences are noise (the net column takes it out: sqrt(error^2 - noise^2)). "
+                         "Real-time methods on: ",
                          sc->width, sc->height, sc->reference_spp, sc->reference_seconds, 100 * sc->reference_noise);
     lucent_strbuf_xml(b, sc->device ? sc->device : "unknown");
     lucent_strbuf_printf(b, ".</p>\n");
@@ -139,15 +147,16 @@ lucent_status lucent_compare_write_markdown(const char *path, const lucent_compa
     for (int i = 0; i < count; i++) {
         const lucent_compare_scene *sc = &scenes[i];
         lucent_strbuf_printf(&b, "%s## %s\n\nReference: path tracer, %d spp, %.1f s (noise %.2f%%); %d x %d; GL: %s\n\n"
-                                 "| method | rel. RMS error | R | G | B | frame ms | setup ms |\n"
-                                 "|---|---|---|---|---|---|---|\n",
+                                 "| method | rel. RMS error | net of noise | R | G | B | frame ms | setup ms |\n"
+                                 "|---|---|---|---|---|---|---|---|\n",
                              i ? "\n" : "", sc->name, sc->reference_spp, sc->reference_seconds,
                              100 * sc->reference_noise, sc->width, sc->height, sc->device ? sc->device : "unknown");
         for (int k = 0; k < sc->method_count; k++) {
             const lucent_compare_method *m = &sc->methods[k];
-            lucent_strbuf_printf(&b, "| %s | %.2f%% | %.2f%% | %.2f%% | %.2f%% | %.3f | %.0f |\n", m->name,
-                                 100 * m->rel_rms, 100 * m->rel_rms_rgb[0], 100 * m->rel_rms_rgb[1],
-                                 100 * m->rel_rms_rgb[2], m->frame_ms, m->setup_ms);
+            lucent_strbuf_printf(&b, "| %s | %.2f%% | %.2f%% | %.2f%% | %.2f%% | %.2f%% | %.3f | %.0f |\n", m->name,
+                                 100 * m->rel_rms, 100 * lucent_compare_net_error(m->rel_rms, sc->reference_noise),
+                                 100 * m->rel_rms_rgb[0], 100 * m->rel_rms_rgb[1], 100 * m->rel_rms_rgb[2],
+                                 m->frame_ms, m->setup_ms);
         }
     }
     char *text;
@@ -169,16 +178,17 @@ lucent_status lucent_compare_write_csv(const char *path, const lucent_compare_sc
 {
     lucent_strbuf b = {0};
     lucent_strbuf_printf(&b, "scene,method,rel_rms,rel_rms_r,rel_rms_g,rel_rms_b,frame_ms,setup_ms,"
-                             "reference_spp,reference_noise\n");
+                             "reference_spp,reference_noise,rel_rms_net\n");
     for (int i = 0; i < count; i++)
         for (int k = 0; k < scenes[i].method_count; k++) {
             const lucent_compare_method *m = &scenes[i].methods[k];
             csv_field(&b, scenes[i].name);
             lucent_strbuf_printf(&b, ",");
             csv_field(&b, m->name);
-            lucent_strbuf_printf(&b, ",%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%.6g\n", m->rel_rms, m->rel_rms_rgb[0],
+            lucent_strbuf_printf(&b, ",%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n", m->rel_rms, m->rel_rms_rgb[0],
                                  m->rel_rms_rgb[1], m->rel_rms_rgb[2], m->frame_ms, m->setup_ms,
-                                 scenes[i].reference_spp, scenes[i].reference_noise);
+                                 scenes[i].reference_spp, scenes[i].reference_noise,
+                                 lucent_compare_net_error(m->rel_rms, scenes[i].reference_noise));
         }
     char *text;
     lucent_status s = lucent_strbuf_finish(&b, &text);
