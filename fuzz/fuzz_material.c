@@ -1,17 +1,11 @@
 /* libFuzzer target: material JSON (lucent_material_parse). */
-#include <stdlib.h>
-#include <string.h>
-
+#include "fuzz.h"
 #include "lucent/material.h"
-
-int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
 {
-    char *text = malloc(size + 1);
+    char *text = fuzz_text(data, size);
     if (!text) return 0;
-    memcpy(text, data, size);
-    text[size] = '\0';
     lucent_material *m = NULL;
     int n = 0;
     if (lucent_material_parse(text, "fuzz.json", &m, &n) == LUCENT_OK) {

@@ -1,18 +1,12 @@
-/* libFuzzer target: scene JSON (lucent_scene_parse, meshes not loaded), then --set style overrides
- * taken from the input's first line. */
-#include <stdlib.h>
-#include <string.h>
-
+/* libFuzzer target: scene JSON (lucent_scene_parse, meshes not loaded), then the same input as one
+ * --set override ("key=value") of a valid scene. */
+#include "fuzz.h"
 #include "lucent/scene.h"
-
-int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
 {
-    char *text = malloc(size + 1);
+    char *text = fuzz_text(data, size);
     if (!text) return 0;
-    memcpy(text, data, size);
-    text[size] = '\0';
     lucent_scene *sc = NULL;
     lucent_scene_load_desc d = {.skip_meshes = true};
     if (lucent_scene_parse(text, "fuzz.json", NULL, &d, &sc) == LUCENT_OK) lucent_scene_destroy(sc);

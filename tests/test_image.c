@@ -152,6 +152,9 @@ TEST(tonemap_operators)
     lucent_tonemap_op op;
     CHECK(lucent_tonemap_op_parse("filmic", &op) && op == LUCENT_TONEMAP_FILMIC);
     CHECK(!lucent_tonemap_op_parse("aces", &op));
+    for (int i = 0; i < 4; i++) /* the names the sidecar writes read back */
+        CHECK(lucent_tonemap_op_parse(lucent_tonemap_op_name((lucent_tonemap_op)i), &op) && op == (lucent_tonemap_op)i);
+    CHECK(!strcmp(lucent_tonemap_op_name((lucent_tonemap_op)7), "unknown"));
 
     lucent_image *img;
     CHECK_OK(lucent_image_create(1, 1, 4, &img));

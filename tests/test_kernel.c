@@ -1,7 +1,6 @@
 /* Tests of lucent/kernel.h: the ground-truth kernel, the separable models, taps and exports. */
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "lucent/kernel.h"
@@ -30,13 +29,6 @@ static lucent_kernel *build(const lucent_kernel2d *gt, const lucent_profile *p, 
     lucent_kernel *k = NULL;
     CHECK_OK(lucent_kernel_build(gt, p, name, &d, &k));
     return k;
-}
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
 /* The expected values are the 17-tap kernel table shipped in Jimenez's separable-sss shader
@@ -432,7 +424,7 @@ TEST(guided_meets_constraint_and_k_moves_tail)
     for (int m = 0; m < 3; m++) {
         lucent_kernel2d *gt = ground_truth(names[m], NULL);
         if (!gt) continue;
-        double tail[3][3], t0 = now(), rms_norm[3], rms_pre[3];
+        double tail[3][3], rms_norm[3], rms_pre[3];
         lucent_kernel *ref =
             build(gt, NULL, NULL, (lucent_kernel_desc){.model = LUCENT_KERNEL_SVD, .normalize = true});
         if (ref) lucent_kernel_rms(ref, gt, rms_norm);
@@ -464,9 +456,7 @@ TEST(guided_meets_constraint_and_k_moves_tail)
                    names[m], ki, k->constraint_error, tail[ki][0], tail[ki][1], tail[ki][2]);
             lucent_kernel_destroy(k);
         }
-        double dt = now() - t0;
-        printf("  %s: three guided kernels in %.2f s\n", names[m], dt);
-        CHECK_MSG(dt < 3, "%s: %.2f s for three guided kernels (target: under 1 s each)", names[m], dt);
+        /* Speed is measured in bench/bench_kernel, not asserted here. */
         for (int c = 0; c < 3; c++)
             CHECK_MSG(tail[0][c] < tail[1][c] && tail[1][c] < tail[2][c], "%s channel %d: tail %g %g %g",
                       names[m], c, tail[0][c], tail[1][c], tail[2][c]);

@@ -236,6 +236,24 @@ TEST(overrides_change_values_and_are_checked_like_the_file)
               LUCENT_ERR_PARSE, "camera", "wobble");
 }
 
+/* The names the sidecar and compare write are the ones a scene file takes back. */
+TEST(setting_names_read_back)
+{
+    char set[3][64];
+    snprintf(set[0], sizeof set[0], "render.depth_filter=%s", lucent_depth_filter_name(LUCENT_DEPTH_GAUSSIAN));
+    snprintf(set[1], sizeof set[1], "render.transmittance=%s", lucent_transmittance_name(LUCENT_TRANSMIT_PROFILE));
+    snprintf(set[2], sizeof set[2], "render.sigma0=%s", lucent_sigma0_source_name(LUCENT_SIGMA0_DIFFUSE));
+    const char *ov[] = {set[0], set[1], set[2]};
+    lucent_scene *sc = NULL;
+    CHECK_OK(parse_with("", "", &(lucent_scene_load_desc){.overrides = ov, .override_count = 3}, &sc));
+    if (!sc) return;
+    CHECK(sc->render.depth_filter == LUCENT_DEPTH_GAUSSIAN);
+    CHECK(sc->render.transmittance == LUCENT_TRANSMIT_PROFILE);
+    CHECK(sc->render.sigma0_source == LUCENT_SIGMA0_DIFFUSE);
+    CHECK(!strcmp(lucent_depth_filter_name((lucent_depth_filter)9), "unknown"));
+    lucent_scene_destroy(sc);
+}
+
 TEST(method_names)
 {
     lucent_render_method m;
@@ -346,6 +364,7 @@ int main(int argc, char **argv)
         TEST_ENTRY(mirroring_keeps_normals_outward),
         TEST_ENTRY(overrides_change_values_and_are_checked_like_the_file),
         TEST_ENTRY(method_names),
+        TEST_ENTRY(setting_names_read_back),
         TEST_ENTRY(bad_fields_are_named),
         TEST_ENTRY(default_scenes_are_valid),
     };

@@ -99,6 +99,17 @@ static void furnace_case(const char *mat, const char *extra, furnace_stats *f)
     furnace_case_desc(mat, extra, NULL, 256 / SLOW, f);
 }
 
+/* The equilibrium L holds: the pooled mean over the object within 4 standard errors of L, and the
+ * pixels' z-scores spread as a unit normal (chi2 per degree of freedom between 0.7 and 1.5). */
+static void check_equilibrium(const char *label, const furnace_stats *f)
+{
+    printf("  %s: %d pixels, mean z %.3f, chi2/dof %.3f, pooled z %.2f\n", label, f->pixels, f->mean_z, f->chi2_dof,
+           f->pooled_z);
+    CHECK(f->pixels > 200);
+    CHECK_MSG(fabs(f->pooled_z) < 4, "%s: pooled z %.2f: the mean over the object is not L", label, f->pooled_z);
+    CHECK_MSG(f->chi2_dof > 0.7 && f->chi2_dof < 1.5, "%s: chi2/dof %.3f", label, f->chi2_dof);
+}
+
 /* Physics: no absorption, index matched, a uniform environment: radiance is L everywhere. The
  * medium is chromatic in sigma_s and g, so the hero-channel weights are exercised. */
 TEST(furnace_index_matched_non_absorbing)
@@ -106,11 +117,7 @@ TEST(furnace_index_matched_non_absorbing)
     furnace_stats f = {0};
     furnace_case("{\"units\": \"mm^-1\", \"sigma_a\": 0, \"sigma_s\": [1, 3, 8], \"g\": [0, 0.4, 0.8], \"eta\": 1}",
                  NULL, &f);
-    printf("  index matched: %d pixels, mean z %.3f, chi2/dof %.3f, pooled z %.2f\n", f.pixels, f.mean_z, f.chi2_dof,
-           f.pooled_z);
-    CHECK(f.pixels > 200);
-    CHECK_MSG(fabs(f.pooled_z) < 4, "pooled z %.2f: the mean over the object is not L", f.pooled_z);
-    CHECK_MSG(f.chi2_dof > 0.7 && f.chi2_dof < 1.5, "chi2/dof %.3f", f.chi2_dof);
+    check_equilibrium("index matched", &f);
 }
 
 /* Adaptive sampling keeps the estimate unbiased: pixels get samples by the relative variance a
@@ -120,11 +127,7 @@ TEST(furnace_adaptive)
     furnace_stats f = {0};
     furnace_case_desc("{\"units\": \"mm^-1\", \"sigma_a\": 0, \"sigma_s\": [1, 3, 8], \"g\": [0, 0.4, 0.8], \"eta\": 1}",
                       NULL, &(lucent_tracer_desc){.adaptive = true}, 64 / SLOW, &f);
-    printf("  adaptive, index matched: %d pixels, mean z %.3f, chi2/dof %.3f, pooled z %.2f\n", f.pixels, f.mean_z,
-           f.chi2_dof, f.pooled_z);
-    CHECK(f.pixels > 200);
-    CHECK_MSG(fabs(f.pooled_z) < 4, "pooled z %.2f: the mean over the object is not L", f.pooled_z);
-    CHECK_MSG(f.chi2_dof > 0.7 && f.chi2_dof < 1.5, "chi2/dof %.3f", f.chi2_dof);
+    check_equilibrium("adaptive, index matched", &f);
 }
 
 /* Physics: a smooth dielectric (Fresnel, total internal reflection) conserves energy, so the same
@@ -134,11 +137,7 @@ TEST(furnace_smooth_dielectric_non_absorbing)
     furnace_stats f = {0};
     furnace_case("{\"units\": \"mm^-1\", \"sigma_a\": 0, \"sigma_s\": [1, 2, 4], \"g\": 0.3, \"eta\": 1.3}",
                  ", \"roughness\": 0", &f);
-    printf("  smooth eta 1.3: %d pixels, mean z %.3f, chi2/dof %.3f, pooled z %.2f\n", f.pixels, f.mean_z, f.chi2_dof,
-           f.pooled_z);
-    CHECK(f.pixels > 200);
-    CHECK_MSG(fabs(f.pooled_z) < 4, "pooled z %.2f: the mean over the object is not L", f.pooled_z);
-    CHECK_MSG(f.chi2_dof > 0.7 && f.chi2_dof < 1.5, "chi2/dof %.3f", f.chi2_dof);
+    check_equilibrium("smooth eta 1.3", &f);
 }
 
 /* Physics: absorption (or the energy a single-scattering microfacet boundary loses) only removes

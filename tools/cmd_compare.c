@@ -300,16 +300,16 @@ static lucent_status measure(scene_run *sr, const lucent_image *img, const char 
 static void describe(const lucent_render_settings *rs, method_run *mr)
 {
     if (rs->method == LUCENT_METHOD_SSSS)
-        snprintf(mr->settings, sizeof mr->settings, "%s rank %d, %d taps, %s profile, %s depth filter%s",
+        snprintf(mr->settings, sizeof mr->settings, "%s rank %d, %d taps, %s profile, depth filter %s%s%s%s",
                  lucent_kernel_model_name(rs->kernel_model), rs->kernel_rank, rs->taps, rs->profile,
-                 rs->depth_filter == LUCENT_DEPTH_FOLLOW ? "follow" : rs->depth_filter == LUCENT_DEPTH_GAUSSIAN ? "gaussian" : "no",
-                 !rs->translucency ? "" : rs->transmittance == LUCENT_TRANSMIT_SLAB ? ", slab translucency"
-                                                                                     : ", profile translucency");
+                 lucent_depth_filter_name(rs->depth_filter), rs->translucency ? ", " : "",
+                 rs->translucency ? lucent_transmittance_name(rs->transmittance) : "",
+                 rs->translucency ? " translucency" : "");
     else if (rs->method != LUCENT_METHOD_LAMBERT)
-        snprintf(mr->settings, sizeof mr->settings, "%s, %s, sigma0 from %s%s", lucent_cdrf_variant_name(rs->cdrf_variant),
+        snprintf(mr->settings, sizeof mr->settings, "%s, %s, sigma0 from %s%s%s", lucent_cdrf_variant_name(rs->cdrf_variant),
                  rs->cdrf_lut ? "LUT" : "closed form", rs->sigma0_source == LUCENT_SIGMA0_FIT ? "the sphere fit" : "the diffuse colour",
-                 rs->method != LUCENT_METHOD_CDRF_TRANSLUCENCY ? ""
-                 : rs->transmittance == LUCENT_TRANSMIT_SLAB ? ", slab translucency" : ", profile translucency");
+                 rs->method == LUCENT_METHOD_CDRF_TRANSLUCENCY ? ", translucency " : "",
+                 rs->method == LUCENT_METHOD_CDRF_TRANSLUCENCY ? lucent_transmittance_name(rs->transmittance) : "");
     else
         snprintf(mr->settings, sizeof mr->settings, "Lambert + specular lobe");
 }

@@ -160,6 +160,9 @@ typedef struct lucent_tonemap_desc {
 /* Parses "none", "clamp", "reinhard" or "filmic"; false for anything else. */
 bool lucent_tonemap_op_parse(const char *name, lucent_tonemap_op *dest);
 
+/* Returns the operator's name ("none", "clamp", "reinhard", "filmic"; "unknown" out of range). */
+const char *lucent_tonemap_op_name(lucent_tonemap_op op);
+
 /* Returns the operator applied to one linear value (already exposed); NaN gives 0 except for none. */
 float lucent_tonemap_value(lucent_tonemap_op op, float x);
 

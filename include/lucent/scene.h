@@ -173,6 +173,12 @@ lucent_render_settings lucent_render_settings_defaults(void);
 /* Returns the method's name: "lambert", "cdrf", "cdrf+translucency", "ssss". */
 const char *lucent_render_method_name(lucent_render_method method);
 
+/* The names the scene file uses: "follow", "gaussian", "none"; "slab", "profile"; "fit", "diffuse"
+ * ("unknown" out of range). */
+const char *lucent_depth_filter_name(lucent_depth_filter filter);
+const char *lucent_transmittance_name(lucent_transmittance_model model);
+const char *lucent_sigma0_source_name(lucent_sigma0_source source);
+
 /* Parses a method: one of the names above, or "ssss:<kernel model>" (e.g. "ssss:svd3" for rank 3,
  * "ssss:preint"), which also sets *model and *rank when they are not NULL. Fails with
  * LUCENT_ERR_INVALID_ARGUMENT listing the methods and models. */

@@ -48,13 +48,6 @@ static int mkdir_p(const char *dir)
     return mkdir(p, 0755) != 0 && errno != EEXIST ? -1 : 0;
 }
 
-int gl_cache_make_dirs(const char *dir)
-{
-    if (mkdir_p(dir) == 0) return 0;
-    lucent_log(LUCENT_LOG_WARN, "cache: cannot create %s: %s", dir, strerror(errno));
-    return -1;
-}
-
 void gl_cache_write(const char *dir, const char *path, const char *key, cJSON *json)
 {
     if (!json) return;

@@ -95,7 +95,7 @@ static lucent_status build_transmit(gl_material *g, lucent_transmittance_model m
     if (g->transmit_range > 0 && g->transmit_model == (int)model) return LUCENT_OK;
     g->transmit_model = (int)model, g->transmit_range = 0;
     if (model == LUCENT_TRANSMIT_SLAB)
-        return gl_transmit_slab(&g->m, d, GLR_TRANSMIT_SIZE, g->transmit, &g->transmit_range, &g->transmit_cached);
+        return gl_transmit_slab(&g->m, d, GLR_TRANSMIT_SIZE, g->transmit, &g->transmit_range);
     const lucent_profile *p = g->profile;
     g->transmit_range = p->count * p->dr;
     for (int c = 0; c < 3; c++) {

@@ -53,7 +53,6 @@ typedef struct gl_material {
                                               transmittance, or the profile's T(s) / T(0) */
     double transmit_range;       /* mm; 0: not built */
     int transmit_model;          /* lucent_transmittance_model of the table */
-    bool transmit_cached;        /* the slab table came from the cache */
     int fit_variant;             /* variant of the sigma0 fit; -1: none */
     double fit_sigma0[3];
     bool fit_cached;
@@ -142,7 +141,7 @@ void gl_cache_write(const char *dir, const char *path, const char *key, struct c
 /* ---- transmit.c: the Monte Carlo slab transmittance for translucency ---- */
 /* Fills table[size * 3] with T(s) per channel at s = *range j / (size - 1), the last entry 0. */
 lucent_status gl_transmit_slab(const lucent_material *m, const lucent_renderer_desc *desc, int size, float *table,
-                               double *range, bool *cached);
+                               double *range);
 
 /* ---- shadow.c: light projections and the shadow pass ---- */
 lucent_status gl_lights_setup(lucent_renderer *r);

@@ -6,8 +6,6 @@
 #include "base/json.h"
 #include "gl/renderer_internal.h"
 
-static const char *const k_filters[] = {"follow", "gaussian", "none"};
-static const char *const k_tonemaps[] = {"none", "clamp", "reinhard", "filmic"};
 
 static void add_gl(cJSON *root, const lucent_gl_context *ctx)
 {
@@ -35,17 +33,17 @@ static void add_settings(cJSON *root, const lucent_render_settings *s)
     cJSON_AddStringToObject(o, "profile", s->profile);
     cJSON_AddNumberToObject(o, "strength", s->strength);
     cJSON_AddNumberToObject(o, "width_scale", s->width_scale);
-    cJSON_AddStringToObject(o, "depth_filter", k_filters[s->depth_filter]);
+    cJSON_AddStringToObject(o, "depth_filter", lucent_depth_filter_name(s->depth_filter));
     cJSON_AddBoolToObject(o, "translucency", s->translucency);
-    cJSON_AddStringToObject(o, "transmittance", s->transmittance == LUCENT_TRANSMIT_SLAB ? "slab" : "profile");
+    cJSON_AddStringToObject(o, "transmittance", lucent_transmittance_name(s->transmittance));
     cJSON_AddNumberToObject(o, "translucency_curvature", s->translucency_curvature);
     cJSON_AddStringToObject(o, "cdrf_variant", lucent_cdrf_variant_name(s->cdrf_variant));
     cJSON_AddBoolToObject(o, "cdrf_lut", s->cdrf_lut);
-    cJSON_AddStringToObject(o, "sigma0", s->sigma0_source == LUCENT_SIGMA0_DIFFUSE ? "diffuse" : "fit");
+    cJSON_AddStringToObject(o, "sigma0", lucent_sigma0_source_name(s->sigma0_source));
     cJSON_AddNumberToObject(o, "curvature_smooth", s->curvature_smooth);
     cJSON_AddNumberToObject(o, "shadow_map_size", s->shadow_map_size);
     lucent_json_add_numbers(o, "background", s->background, 3);
-    cJSON_AddStringToObject(o, "tonemap", k_tonemaps[s->tonemap]);
+    cJSON_AddStringToObject(o, "tonemap", lucent_tonemap_op_name(s->tonemap));
     cJSON_AddNumberToObject(o, "exposure", s->exposure);
 }
 

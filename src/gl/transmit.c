@@ -96,19 +96,19 @@ static double interpolate(double t[SAMPLES][3], double s_max, const double sigma
 }
 
 lucent_status gl_transmit_slab(const lucent_material *m, const lucent_renderer_desc *desc, int size, float *table,
-                               double *range, bool *cached)
+                               double *range)
 {
     double sigma_tr[3], s_max = thickest_sample(m, sigma_tr);
     uint64_t photons = desc->transmit_photons ? desc->transmit_photons : DEFAULT_PHOTONS;
     double t[SAMPLES][3];
     char key[640], path[1200];
     table_key(m, photons, key, sizeof key);
-    *cached = false;
+    bool cached = false;
     if (desc->cache_dir && desc->cache_dir[0]) {
         gl_cache_path(desc->cache_dir, "transmittance", key, path, sizeof path);
-        *cached = gl_cache_read(path, key, "transmittance", 3 * SAMPLES, &t[0][0]);
+        cached = gl_cache_read(path, key, "transmittance", 3 * SAMPLES, &t[0][0]);
     }
-    if (!*cached) {
+    if (!cached) {
         double t0 = gl_now_ms();
         lucent_status s = simulate(m, s_max, photons, desc->pool, t);
         if (s != LUCENT_OK) return s;

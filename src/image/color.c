@@ -20,11 +20,17 @@ float lucent_srgb_decode(float encoded)
     return (float)pow((encoded + 0.055) / 1.055, 2.4);
 }
 
+static const char *const k_tonemap_names[] = {"none", "clamp", "reinhard", "filmic"};
+
+const char *lucent_tonemap_op_name(lucent_tonemap_op op)
+{
+    return op >= 0 && op < 4 ? k_tonemap_names[op] : "unknown";
+}
+
 bool lucent_tonemap_op_parse(const char *name, lucent_tonemap_op *dest)
 {
-    static const char *const names[] = {"none", "clamp", "reinhard", "filmic"};
     for (int i = 0; i < 4; i++) {
-        if (name && strcmp(name, names[i]) == 0) {
+        if (name && strcmp(name, k_tonemap_names[i]) == 0) {
             *dest = (lucent_tonemap_op)i;
             return true;
         }

@@ -75,13 +75,13 @@ static void project(const lucent_mesh *m, const lucent_mesh_paint_desc *d, paint
     view_basis(d->azimuth, d->elevation, v);
     double scale = 0.46 * fmin(j->w, j->h) / fmax(r, 1e-300); /* the bounding sphere fills 92% */
     for (size_t i = 0; i < m->vertex_count; i++) {
-        double q[3], n[3], shade = 0;
+        double q[3], n[3];
         for (int k = 0; k < 3; k++) {
             q[k] = v[k][0] * (m->positions[3 * i] - centre[0]) + v[k][1] * (m->positions[3 * i + 1] - centre[1]) +
                    v[k][2] * (m->positions[3 * i + 2] - centre[2]);
             n[k] = v[k][0] * m->normals[3 * i] + v[k][1] * m->normals[3 * i + 1] + v[k][2] * m->normals[3 * i + 2];
         }
-        shade = 0.35 + 0.65 * fmin(fabs(n[2]), 1);
+        double shade = 0.35 + 0.65 * fmin(fabs(n[2]), 1);
         j->p[i][0] = 0.5 * j->w + scale * q[0], j->p[i][1] = 0.5 * j->h - scale * q[1], j->p[i][2] = q[2];
         for (int k = 0; k < 3; k++) j->c[i][k] = (float)(shade * srgb_to_linear(d->colors[3 * i + k]));
     }

@@ -215,6 +215,21 @@ const char *lucent_render_method_name(lucent_render_method method)
     return method >= 0 && method < LUCENT_METHOD_COUNT ? k_method_names[method] : "unknown";
 }
 
+const char *lucent_depth_filter_name(lucent_depth_filter filter)
+{
+    return filter >= 0 && filter <= LUCENT_DEPTH_NONE ? k_depth_filters[filter] : "unknown";
+}
+
+const char *lucent_transmittance_name(lucent_transmittance_model model)
+{
+    return model >= 0 && model <= LUCENT_TRANSMIT_PROFILE ? k_transmittances[model] : "unknown";
+}
+
+const char *lucent_sigma0_source_name(lucent_sigma0_source source)
+{
+    return source >= 0 && source <= LUCENT_SIGMA0_DIFFUSE ? k_sigma0_sources[source] : "unknown";
+}
+
 /* "svd3" -> model svd, rank 3; "preint" -> rank 1. Only svd and sog take a rank. */
 static lucent_status parse_model_rank(const char *text, lucent_kernel_model *model, int *rank)
 {
