@@ -518,7 +518,7 @@ TEST(bad_input_is_named)
     lucent_trace_result_free(&r);
     /* a time limit stops early, a target error too */
     CHECK_OK(lucent_tracer_render(tr, &(lucent_trace_desc){.spp = 1000000, .time_limit = 0.05}, &r));
-    CHECK(r.spp > 2 && r.spp < 1000000);
+    CHECK(r.spp >= 1 && r.spp < 1000000); /* how many passes fit in 0.05 s depends on the machine */
     lucent_trace_result_free(&r);
     lucent_tracer_destroy(tr);
     lucent_scene_destroy(sc);
