@@ -113,11 +113,11 @@ static lucent_scene *load(const char *path, const char *mesh)
 static void settings_for(const lucent_scene *sc, const method_case *m, int w, int h, lucent_render_settings *dest)
 {
     *dest = sc->render;
-    if (lucent_render_method_parse(m->method, &dest->method, &dest->kernel_model, &dest->kernel_rank) != LUCENT_OK)
+    if (lucent_render_method_parse(m->method, &dest->view.method, dest) != LUCENT_OK)
         fail(m->method);
-    dest->cdrf_lut = m->lut;
-    dest->taps = 17;
-    dest->width = w, dest->height = h;
+    dest->cdrf.lut = m->lut;
+    dest->ssss.taps = 17;
+    dest->view.width = w, dest->view.height = h;
 }
 
 static void print_ratios(const measured *res, const char *size)
@@ -158,7 +158,7 @@ int main(int argc, char **argv)
     printf("renderer: %s on %s | %s | %s (%s)\n", sc->name, info.renderer, info.vendor, info.version, info.platform);
     printf("mesh: %s, %zu triangles; shadow map %d^2; best of >= 3 rounds (>= %.1f s per method) after one warm-up; methods interleaved\n",
            res1 ? "dragon res1" : "dragon res2 (res1 missing)", sc->objects[0].mesh->face_count,
-           sc->render.shadow_map_size, min_seconds);
+           sc->render.view.shadow_map_size, min_seconds);
     static const int sizes[2][2] = {{512, 512}, {1920, 1080}};
     for (int k = 0; k < 2; k++) {
         measured res[CASES];

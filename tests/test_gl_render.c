@@ -5,8 +5,8 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "gl/reference.h"
-#include "gl/renderer_internal.h"
+#include "gl/reference/reference.h"
+#include "gl/renderer.h"
 #include "lucent/mc.h"
 #include "lucent/render.h"
 #include "test.h"
@@ -63,12 +63,12 @@ static double shading_error(lucent_renderer *r, const lucent_scene *sc, const lu
     const lucent_scene_object *o = &sc->objects[0];
     gl_ref_material m = {.roughness = o->roughness, .f0 = o->specular_f0};
     for (int c = 0; c < 3; c++) m.albedo[c] = o->albedo[c], m.sigma0[c] = o->sigma0[c];
-    for (size_t i = 0; res.image && nk && pos && i < (size_t)s->width * (size_t)s->height; i++) {
+    for (size_t i = 0; res.image && nk && pos && i < (size_t)s->view.width * (size_t)s->view.height; i++) {
         if (res.mask->data[i] < 0.5f) continue;
         gl_ref_point p = {.curvature = nk->data[4 * i + 3]};
         for (int c = 0; c < 3; c++) p.position[c] = pos->data[4 * i + c], p.normal[c] = nk->data[4 * i + c];
         double d[3], sp[3];
-        gl_ref_shade(sc, s->method, s->cdrf_variant, s->cdrf_lut ? lut : NULL, 3.0, &m, &p, d, sp);
+        gl_ref_shade(sc, s->view.method, s->cdrf.variant, s->cdrf.lut ? lut : NULL, 3.0, &m, &p, d, sp);
         for (int c = 0; c < 3; c++) worst = fmax(worst, fabs(res.image->data[3 * i + c] - (d[c] + sp[c])));
         *max_sigma = fmax(*max_sigma, m.sigma0[0] * p.curvature);
     }
@@ -93,16 +93,16 @@ TEST(cdrf_and_lambert_equal_cpu_reference)
         {LUCENT_METHOD_LAMBERT, LUCENT_CDRF_KUBO, false}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         lucent_render_settings s = sc->render;
-        s.method = cases[k].m, s.cdrf_variant = cases[k].v, s.cdrf_lut = cases[k].lut;
+        s.view.method = cases[k].m, s.cdrf.variant = cases[k].v, s.cdrf.lut = cases[k].lut;
         lucent_cdrf_lut_desc ld = lucent_cdrf_lut_defaults();
         ld.variant = cases[k].v;
         lucent_image *lut = NULL;
         CHECK_OK(lucent_cdrf_lut_build(&ld, &lut));
         double max_sigma = 0, err = shading_error(r, sc, &s, lut, &max_sigma);
-        CHECK_MSG(err >= 0 && err <= 1e-3, "%s %s %s: max |GPU - CPU| = %.3g", lucent_render_method_name(s.method),
-                  lucent_cdrf_variant_name(s.cdrf_variant), s.cdrf_lut ? "LUT" : "closed form", err);
-        printf("     %s %s %s: max |GPU - CPU| = %.3g (sigma up to %.2f)\n", lucent_render_method_name(s.method),
-               lucent_cdrf_variant_name(s.cdrf_variant), s.cdrf_lut ? "LUT" : "closed form", err, max_sigma);
+        CHECK_MSG(err >= 0 && err <= 1e-3, "%s %s %s: max |GPU - CPU| = %.3g", lucent_render_method_name(s.view.method),
+                  lucent_cdrf_variant_name(s.cdrf.variant), s.cdrf.lut ? "LUT" : "closed form", err);
+        printf("     %s %s %s: max |GPU - CPU| = %.3g (sigma up to %.2f)\n", lucent_render_method_name(s.view.method),
+               lucent_cdrf_variant_name(s.cdrf.variant), s.cdrf.lut ? "LUT" : "closed form", err, max_sigma);
         if (k == 0) CHECK_MSG(max_sigma > 1.5, "the torus exercises sigma up to %.2f only", max_sigma);
         lucent_image_destroy(lut);
     }
@@ -144,12 +144,12 @@ TEST(sphere_lit_along_view_axis_is_symmetric)
     lucent_renderer *r = renderer_of(sc);
     for (int m = 0; r && m < LUCENT_METHOD_COUNT; m++) {
         lucent_render_settings s = sc->render;
-        s.method = (lucent_render_method)m;
+        s.view.method = (lucent_render_method)m;
         lucent_render_result res;
         CHECK_OK(lucent_render(r, &s, &res));
         double a = res.image ? asymmetry(res.image) : 1;
-        CHECK_MSG(a <= 1e-3, "%s: asymmetry %.3g of the peak", lucent_render_method_name(s.method), a);
-        printf("     %s: asymmetry %.2g of the peak\n", lucent_render_method_name(s.method), a);
+        CHECK_MSG(a <= 1e-3, "%s: asymmetry %.3g of the peak", lucent_render_method_name(s.view.method), a);
+        printf("     %s: asymmetry %.2g of the peak\n", lucent_render_method_name(s.view.method), a);
         CHECK(res.mask && lucent_image_get(res.mask, 0, 0, 0) == 0 && lucent_image_get(res.mask, 32, 32, 0) == 1);
         lucent_render_result_free(&res);
     }
@@ -198,14 +198,14 @@ TEST(translucency_brightens_a_backlit_disc_in_red)
     if (r) {
         lucent_render_settings s = sc->render;
         double on[3], off[3], cdrf[3], cdrft[3];
-        s.method = LUCENT_METHOD_SSSS;
-        s.translucency = true;
+        s.view.method = LUCENT_METHOD_SSSS;
+        s.translucency.enabled = true;
         centre_mean(r, &s, on);
-        s.translucency = false;
+        s.translucency.enabled = false;
         centre_mean(r, &s, off);
-        s.method = LUCENT_METHOD_CDRF;
+        s.view.method = LUCENT_METHOD_CDRF;
         centre_mean(r, &s, cdrf);
-        s.method = LUCENT_METHOD_CDRF_TRANSLUCENCY;
+        s.view.method = LUCENT_METHOD_CDRF_TRANSLUCENCY;
         centre_mean(r, &s, cdrft);
         double t[3] = {on[0] - off[0], on[1] - off[1], on[2] - off[2]};
         printf("     ssss: translucency on %.4f %.4f %.4f, off %.4f %.4f %.4f; transmitted R/G/B %.4f %.4f %.4f\n",
@@ -240,13 +240,13 @@ TEST(slab_translucency_matches_monte_carlo_transmittance)
     lucent_renderer *r = renderer_with(sc, &(lucent_renderer_desc){.transmit_photons = TABLE_PHOTONS});
     if (r) {
         lucent_render_settings s = sc->render;
-        s.shadow_map_size = 4096;
-        s.translucency_curvature = 0;
-        s.transmittance = LUCENT_TRANSMIT_SLAB;
+        s.view.shadow_map_size = 4096;
+        s.translucency.curvature = 0;
+        s.translucency.transmittance = LUCENT_TRANSMIT_SLAB;
         double with[3], without[3];
-        s.method = LUCENT_METHOD_CDRF_TRANSLUCENCY;
+        s.view.method = LUCENT_METHOD_CDRF_TRANSLUCENCY;
         square_mean(r, &s, 31, 33, with); /* the 2 x 2 pixels on the axis: 4 mm to 0.1% */
-        s.method = LUCENT_METHOD_CDRF;
+        s.view.method = LUCENT_METHOD_CDRF;
         square_mean(r, &s, 31, 33, without);
         const lucent_material *m = &sc->objects[0].material;
         lucent_material_derived d;
@@ -278,7 +278,7 @@ TEST(timings_name_every_pass)
     lucent_renderer *r = renderer_of(sc);
     if (r) {
         lucent_render_settings s = sc->render;
-        s.kernel_model = LUCENT_KERNEL_SVD, s.kernel_rank = 2;
+        s.ssss.kernel = LUCENT_KERNEL_SVD, s.ssss.rank = 2;
         lucent_render_result res;
         CHECK_OK(lucent_render(r, &s, &res));
         static const char *const names[] = {"shadow", "geometry", "blur h1", "blur v1", "blur h2", "blur v2", "compose"};
@@ -305,27 +305,27 @@ TEST(settings_change_between_frames)
     lucent_renderer *r = renderer_of(sc);
     if (r) {
         lucent_render_settings s = sc->render, lam = s, small = s;
-        lam.method = LUCENT_METHOD_LAMBERT;
-        small.width = 40, small.height = 24;
+        lam.view.method = LUCENT_METHOD_LAMBERT;
+        small.view.width = 40, small.view.height = 24;
         lucent_render_result a, b, c, d;
         CHECK_OK(lucent_render(r, &s, &a));
-        const lucent_taps *taps = r->materials[0].taps;
+        const lucent_taps *taps = r->tables.baked[0].taps;
         CHECK_OK(lucent_render(r, &lam, &b));
         CHECK_OK(lucent_render(r, &small, &d));
         CHECK(d.image && d.image->width == 40 && d.image->height == 24);
         CHECK_OK(lucent_render(r, &s, &c));
-        CHECK(r->materials[0].taps == taps);
+        CHECK(r->tables.baked[0].taps == taps);
         CHECK(c.times.setup_ms >= 0);
         CHECK(a.image && c.image && !memcmp(a.image->data, c.image->data, lucent_image_value_count(a.image) * 4));
         CHECK(b.image && a.image && memcmp(a.image->data, b.image->data, lucent_image_value_count(a.image) * 4));
         lucent_render_result_free(&a), lucent_render_result_free(&b), lucent_render_result_free(&c);
         lucent_render_result_free(&d);
         lucent_render_settings bad = s;
-        bad.taps = 16;
+        bad.ssss.taps = 16;
         CHECK_ERR(lucent_render(r, &bad, &a), LUCENT_ERR_INVALID_ARGUMENT, "taps must be odd");
-        bad = s, bad.width = 0;
-        CHECK_ERR(lucent_render(r, &bad, &a), LUCENT_ERR_INVALID_ARGUMENT, "width and height");
-        s.sigma0_source = LUCENT_SIGMA0_DIFFUSE, s.method = LUCENT_METHOD_CDRF;
+        bad = s, bad.view.width = 0;
+        CHECK_ERR(lucent_render(r, &bad, &a), LUCENT_ERR_INVALID_ARGUMENT, "width must be in [1, 16384]");
+        s.cdrf.sigma0 = LUCENT_SIGMA0_DIFFUSE, s.view.method = LUCENT_METHOD_CDRF;
         sc->objects[0].sigma0_set = false;
         CHECK_OK(lucent_render(r, &s, &a));
         lucent_render_object_info info;

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lucent/kernel.h"
 #include "lucent/scene.h"
 #include "test.h"
 
@@ -92,11 +93,11 @@ TEST(minimal_scene_gets_the_documented_defaults)
     CHECK_OK(parse_with("", "", NULL, &sc));
     if (!sc) return;
     lucent_render_settings d = lucent_render_settings_defaults();
-    CHECK(sc->render.width == 512 && sc->render.height == 512);
-    CHECK(sc->render.method == LUCENT_METHOD_SSSS && sc->render.kernel_model == LUCENT_KERNEL_PREINT);
-    CHECK(sc->render.taps == d.taps && d.taps == 17);
-    CHECK(sc->render.translucency_curvature == 1 && d.translucency_curvature == 1);
-    CHECK(sc->render.transmittance == LUCENT_TRANSMIT_SLAB && d.transmittance == LUCENT_TRANSMIT_SLAB);
+    CHECK(sc->render.view.width == 512 && sc->render.view.height == 512);
+    CHECK(sc->render.view.method == LUCENT_METHOD_SSSS && sc->render.ssss.kernel == LUCENT_KERNEL_PREINT);
+    CHECK(sc->render.ssss.taps == d.ssss.taps && d.ssss.taps == 17);
+    CHECK(sc->render.translucency.curvature == 1 && d.translucency.curvature == 1);
+    CHECK(sc->render.translucency.transmittance == LUCENT_TRANSMIT_SLAB && d.translucency.transmittance == LUCENT_TRANSMIT_SLAB);
     CHECK(sc->light_count == 1 && sc->lights[0].shadows && sc->lights[0].intensity == 1);
     CHECK_NEAR(sc->camera.up[1], 1, 0);
     CHECK(!strcmp(sc->name, "t"));
@@ -208,15 +209,15 @@ TEST(overrides_change_values_and_are_checked_like_the_file)
     lucent_scene *sc = NULL;
     CHECK_OK(parse_with("", "", &(lucent_scene_load_desc){.overrides = ov, .override_count = 9}, &sc));
     if (!sc) return;
-    CHECK(sc->render.method == LUCENT_METHOD_SSSS);
-    CHECK(sc->render.kernel_model == LUCENT_KERNEL_SVD && sc->render.kernel_rank == 3);
-    CHECK(sc->render.taps == 33);
+    CHECK(sc->render.view.method == LUCENT_METHOD_SSSS);
+    CHECK(sc->render.ssss.kernel == LUCENT_KERNEL_SVD && sc->render.ssss.rank == 3);
+    CHECK(sc->render.ssss.taps == 33);
     CHECK(!strcmp(sc->objects[0].material.name, "Marble"));
     CHECK_NEAR(sc->camera.fov_y, 20, 0);
     CHECK_NEAR(sc->lights[0].intensity, 2.5, 0);
-    CHECK(!sc->render.translucency);
-    CHECK(sc->render.translucency_curvature == 0);
-    CHECK(sc->render.transmittance == LUCENT_TRANSMIT_PROFILE);
+    CHECK(!sc->render.translucency.enabled);
+    CHECK(sc->render.translucency.curvature == 0);
+    CHECK(sc->render.translucency.transmittance == LUCENT_TRANSMIT_PROFILE);
     CHECK(sc->objects[0].albedo_source == LUCENT_ALBEDO_COLOR);
     CHECK_NEAR(sc->objects[0].albedo[2], 0.125, 0);
     CHECK(strstr(sc->json, "svd3") != NULL); /* the record of what made the image */
@@ -247,9 +248,9 @@ TEST(setting_names_read_back)
     lucent_scene *sc = NULL;
     CHECK_OK(parse_with("", "", &(lucent_scene_load_desc){.overrides = ov, .override_count = 3}, &sc));
     if (!sc) return;
-    CHECK(sc->render.depth_filter == LUCENT_DEPTH_GAUSSIAN);
-    CHECK(sc->render.transmittance == LUCENT_TRANSMIT_PROFILE);
-    CHECK(sc->render.sigma0_source == LUCENT_SIGMA0_DIFFUSE);
+    CHECK(sc->render.ssss.depth_filter == LUCENT_DEPTH_GAUSSIAN);
+    CHECK(sc->render.translucency.transmittance == LUCENT_TRANSMIT_PROFILE);
+    CHECK(sc->render.cdrf.sigma0 == LUCENT_SIGMA0_DIFFUSE);
     CHECK(!strcmp(lucent_depth_filter_name((lucent_depth_filter)9), "unknown"));
     lucent_scene_destroy(sc);
 }
@@ -257,19 +258,19 @@ TEST(setting_names_read_back)
 TEST(method_names)
 {
     lucent_render_method m;
-    lucent_kernel_model k = LUCENT_KERNEL_PREINT;
-    int r = 0;
-    CHECK_OK(lucent_render_method_parse("cdrf+translucency", &m, &k, &r));
-    CHECK(m == LUCENT_METHOD_CDRF_TRANSLUCENCY && r == 0);
-    CHECK_OK(lucent_render_method_parse("ssss:jimenez", &m, &k, &r));
-    CHECK(m == LUCENT_METHOD_SSSS && k == LUCENT_KERNEL_JIMENEZ && r == 1);
-    CHECK_OK(lucent_render_method_parse("ssss:sog4", &m, &k, &r));
-    CHECK(k == LUCENT_KERNEL_SOG && r == 4);
-    CHECK_ERR(lucent_render_method_parse("ssss:preint2", &m, &k, &r), LUCENT_ERR_INVALID_ARGUMENT, "rank 1");
-    CHECK_ERR(lucent_render_method_parse("cdrf:svd", &m, &k, &r), LUCENT_ERR_INVALID_ARGUMENT, "only ssss");
-    CHECK_ERR(lucent_render_method_parse("phong", &m, &k, &r), LUCENT_ERR_INVALID_ARGUMENT, "lambert");
+    lucent_render_settings s = lucent_render_settings_defaults();
+    s.ssss.rank = 0;
+    CHECK_OK(lucent_render_method_parse("cdrf+translucency", &m, &s));
+    CHECK(m == LUCENT_METHOD_CDRF_TRANSLUCENCY && s.ssss.rank == 0);
+    CHECK_OK(lucent_render_method_parse("ssss:jimenez", &m, &s));
+    CHECK(m == LUCENT_METHOD_SSSS && s.ssss.kernel == LUCENT_KERNEL_JIMENEZ && s.ssss.rank == 1);
+    CHECK_OK(lucent_render_method_parse("ssss:sog4", &m, &s));
+    CHECK(s.ssss.kernel == LUCENT_KERNEL_SOG && s.ssss.rank == 4);
+    CHECK_ERR(lucent_render_method_parse("ssss:preint2", &m, &s), LUCENT_ERR_INVALID_ARGUMENT, "rank 1");
+    CHECK_ERR(lucent_render_method_parse("cdrf:svd", &m, &s), LUCENT_ERR_INVALID_ARGUMENT, "only ssss");
+    CHECK_ERR(lucent_render_method_parse("phong", &m, &s), LUCENT_ERR_INVALID_ARGUMENT, "lambert");
     for (int i = 0; i < LUCENT_METHOD_COUNT; i++) {
-        CHECK_OK(lucent_render_method_parse(lucent_render_method_name((lucent_render_method)i), &m, NULL, NULL));
+        CHECK_OK(lucent_render_method_parse(lucent_render_method_name((lucent_render_method)i), &m, NULL));
         CHECK(m == (lucent_render_method)i);
     }
 }

@@ -64,7 +64,7 @@ static int split_methods(options *o)
     for (char *save = NULL, *t = strtok_r(o->methods_text, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
         lucent_render_method m;
         if (o->method_count == MAX_METHODS) return cli_usage_error("compare", "at most %d methods", MAX_METHODS);
-        if (lucent_render_method_parse(t, &m, NULL, NULL) != LUCENT_OK)
+        if (lucent_render_method_parse(t, &m, NULL) != LUCENT_OK)
             return cli_usage_error("compare", "--methods: %s", lucent_last_error());
         o->methods[o->method_count++] = t;
     }
@@ -191,7 +191,7 @@ static lucent_status write_pair(const char *dir, const char *rel, const lucent_i
     if (s == LUCENT_OK) s = lucent_image_write(path, img, NULL);
     if (s == LUCENT_OK) s = lucent_image_clone(img, &t);
     if (s != LUCENT_OK) return s;
-    lucent_image_tonemap(t, &(lucent_tonemap_desc){.op = rs->tonemap, .exposure = (float)rs->exposure});
+    lucent_image_tonemap(t, &(lucent_tonemap_desc){.op = rs->view.tonemap, .exposure = (float)rs->view.exposure});
     s = path_printf(path, sizeof path, "%s/%s.png", dir, rel);
     if (s == LUCENT_OK) s = lucent_image_write(path, t, NULL);
     lucent_image_destroy(t);
@@ -296,22 +296,10 @@ static lucent_status measure(scene_run *sr, const lucent_image *img, const char 
     return s;
 }
 
-/* What distinguishes this run, for the table. */
+/* What distinguishes this run, for the table: the settings its method reads. */
 static void describe(const lucent_render_settings *rs, method_run *mr)
 {
-    if (rs->method == LUCENT_METHOD_SSSS)
-        snprintf(mr->settings, sizeof mr->settings, "%s rank %d, %d taps, %s profile, depth filter %s%s%s%s",
-                 lucent_kernel_model_name(rs->kernel_model), rs->kernel_rank, rs->taps, rs->profile,
-                 lucent_depth_filter_name(rs->depth_filter), rs->translucency ? ", " : "",
-                 rs->translucency ? lucent_transmittance_name(rs->transmittance) : "",
-                 rs->translucency ? " translucency" : "");
-    else if (rs->method != LUCENT_METHOD_LAMBERT)
-        snprintf(mr->settings, sizeof mr->settings, "%s, %s, sigma0 from %s%s%s", lucent_cdrf_variant_name(rs->cdrf_variant),
-                 rs->cdrf_lut ? "LUT" : "closed form", rs->sigma0_source == LUCENT_SIGMA0_FIT ? "the sphere fit" : "the diffuse colour",
-                 rs->method == LUCENT_METHOD_CDRF_TRANSLUCENCY ? ", translucency " : "",
-                 rs->method == LUCENT_METHOD_CDRF_TRANSLUCENCY ? lucent_transmittance_name(rs->transmittance) : "");
-    else
-        snprintf(mr->settings, sizeof mr->settings, "Lambert + specular lobe");
+    lucent_render_method_describe(rs, mr->settings, sizeof mr->settings);
 }
 
 static lucent_status run_method(scene_run *sr, lucent_renderer *r, const char *method, const options *o,
@@ -319,7 +307,7 @@ static lucent_status run_method(scene_run *sr, lucent_renderer *r, const char *m
 {
     lucent_render_settings rs = sr->scene->render;
     lucent_render_result res = {0};
-    lucent_status s = lucent_render_method_parse(method, &rs.method, &rs.kernel_model, &rs.kernel_rank);
+    lucent_status s = lucent_render_method_parse(method, &rs.view.method, &rs);
     snprintf(mr->name, sizeof mr->name, "%s", method);
     if (s == LUCENT_OK) s = lucent_render(r, &rs, &res);
     char stem[NAME_SIZE];
@@ -346,8 +334,8 @@ static void fill_report(scene_run *sr, const lucent_gl_info *info)
     }
     sr->report = (lucent_compare_scene){.name = sr->stem,
                                         .description = sr->scene->description,
-                                        .width = sr->scene->render.width,
-                                        .height = sr->scene->render.height,
+                                        .width = sr->scene->render.view.width,
+                                        .height = sr->scene->render.view.height,
                                         .reference_image = sr->reference,
                                         .reference_spp = (int)sr->ref.spp,
                                         .reference_seconds = sr->ref.seconds,
@@ -385,8 +373,8 @@ static lucent_status load_scene(const options *o, const char *path, lucent_scene
                                                                             .skip_meshes = true},
                                             &probe);
         if (s != LUCENT_OK) return s;
-        snprintf(size[0], sizeof size[0], "render.width=%ld", lround(fmax(1, probe->render.width * o->scale)));
-        snprintf(size[1], sizeof size[1], "render.height=%ld", lround(fmax(1, probe->render.height * o->scale)));
+        snprintf(size[0], sizeof size[0], "render.width=%ld", lround(fmax(1, probe->render.view.width * o->scale)));
+        snprintf(size[1], sizeof size[1], "render.height=%ld", lround(fmax(1, probe->render.view.height * o->scale)));
         lucent_scene_destroy(probe);
         sets[n++] = size[0], sets[n++] = size[1];
     }

@@ -156,7 +156,7 @@ static lucent_status write_image(const char *path, const lucent_image *img, cons
     lucent_image *tm = NULL;
     st = lucent_image_clone(img, &tm);
     if (st == LUCENT_OK) {
-        lucent_image_tonemap(tm, &(lucent_tonemap_desc){.op = s->tonemap, .exposure = (float)s->exposure});
+        lucent_image_tonemap(tm, &(lucent_tonemap_desc){.op = s->view.tonemap, .exposure = (float)s->view.exposure});
         st = lucent_image_write(path, tm, NULL);
     }
     lucent_image_destroy(tm);
@@ -225,7 +225,7 @@ static lucent_status show_window(lucent_gl_context *ctx, lucent_renderer *r, con
         if (st == LUCENT_OK) st = lucent_render_present(r);
         char title[160];
         snprintf(title, sizeof title, "Lucent: %s, %s: %.2f ms GPU (blur %.2f ms)", scene->name,
-                 lucent_render_method_name(s->method), t.gpu_ms, t.blur_ms);
+                 lucent_render_method_name(s->view.method), t.gpu_ms, t.blur_ms);
         if (n % 10 == 0) lucent_gl_window_set_title(ctx, title);
     }
     return st;
@@ -240,7 +240,7 @@ static void summary(const lucent_gl_context *ctx, const lucent_render_settings *
         snprintf(passes + strlen(passes), sizeof passes - strlen(passes), "%s%s %.3f", i ? ", " : "",
                  res->times.pass_name[i], res->times.pass_ms[i]);
     cli_info("render: %s %dx%d on %s (%s): GPU %.3f ms (%s), frame %.3f ms, setup %.0f ms",
-             lucent_render_method_name(s->method), s->width, s->height, info.renderer, info.platform, res->times.gpu_ms,
+             lucent_render_method_name(s->view.method), s->view.width, s->view.height, info.renderer, info.platform, res->times.gpu_ms,
              passes, res->times.cpu_ms, res->times.setup_ms);
 }
 
@@ -266,7 +266,7 @@ static lucent_status run(const options *o, lucent_scene *scene)
     rd.pool = cli_pool();
     rd.cache_dir = cache_dir(o, cache, sizeof cache);
     lucent_gl_desc gd = o->gl;
-    gd.width = scene->render.width, gd.height = scene->render.height, gd.title = "Lucent";
+    gd.width = scene->render.view.width, gd.height = scene->render.view.height, gd.title = "Lucent";
     lucent_status st = lucent_gl_create(&gd, &ctx);
     if (st == LUCENT_OK) st = lucent_renderer_create(ctx, scene, &rd, &r);
     if (st == LUCENT_OK && o->window) st = show_window(ctx, r, scene);

@@ -136,7 +136,7 @@ static lucent_status write_png(const char *path, const lucent_image *img, const 
     lucent_image *t;
     lucent_status s = lucent_image_clone(img, &t);
     if (s != LUCENT_OK) return s;
-    lucent_image_tonemap(t, &(lucent_tonemap_desc){.op = r->tonemap, .exposure = (float)r->exposure});
+    lucent_image_tonemap(t, &(lucent_tonemap_desc){.op = r->view.tonemap, .exposure = (float)r->view.exposure});
     s = lucent_image_write(path, t, NULL);
     lucent_image_destroy(t);
     return s;

@@ -200,6 +200,32 @@ lucent_status lucent_write_file(const char *path, const void *data, size_t size)
 /* Reads a whole file; *dest is NUL-terminated (not counted in *size) and freed with free(). */
 lucent_status lucent_read_file(const char *path, char **dest, size_t *size);
 
+/* ---- The disk cache of computed results ---------------------------------------------
+ * Monte Carlo results that take seconds (sigma0 fits, slab transmittances) kept between runs: one
+ * JSON file per result, DIR/PREFIX-<FNV-1a of the key>.json, holding the full key, so that a changed
+ * material, setting or photon count misses. Entries are written atomically; a file that cannot be
+ * read, or holds another key, is a miss; failures to write are logged warnings, never errors. */
+typedef struct lucent_cache lucent_cache;
+
+/* A cache in dir (created when the first entry is written). */
+lucent_status lucent_cache_create(const char *dir, lucent_cache **dest);
+void lucent_cache_destroy(lucent_cache *cache);
+
+/* Reads count numbers of field from the entry of (prefix, key) into dest; false on a miss. */
+bool lucent_cache_get(const lucent_cache *cache, const char *prefix, const char *key, const char *field, int count,
+                      double *dest);
+
+/* A named array of numbers of an entry. */
+typedef struct lucent_cache_field {
+    const char *name;
+    const double *values;
+    int count;
+} lucent_cache_field;
+
+/* Writes the entry of (prefix, key) with its fields (a warning is logged when it cannot be written). */
+void lucent_cache_put(lucent_cache *cache, const char *prefix, const char *key, const lucent_cache_field *fields,
+                      int count);
+
 #ifdef __cplusplus
 }
 #endif

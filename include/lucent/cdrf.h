@@ -144,6 +144,31 @@ lucent_status lucent_cdrf_fit_spheres(const lucent_cdrf_sphere_result *spheres, 
                                       lucent_cdrf_variant variant, double sigma0_max,
                                       lucent_cdrf_fit *dest);
 
+/* ---- sigma0 of a material: Monte Carlo spheres and the fit together ----
+ * Simulates spheres of the material of the given radii and fits them (lucent_cdrf_sphere_run, then
+ * lucent_cdrf_fit_spheres): what `lucent cdrf-fit` and the renderer's sigma0 do. */
+#define LUCENT_CDRF_FIT_RADII {2.0, 5.0, 10.0, 20.0} /* mm: the default radii, Kubo Fig. 6 style */
+enum { LUCENT_CDRF_FIT_RADIUS_COUNT = 4, LUCENT_CDRF_FIT_MAX_RADII = 16 };
+
+typedef struct lucent_cdrf_material_fit_desc {
+    const lucent_material *material;
+    lucent_cdrf_variant variant;
+    const double *radii;     /* mm (NULL: LUCENT_CDRF_FIT_RADII) */
+    int radius_count;        /* with radii: 1..LUCENT_CDRF_FIT_MAX_RADII */
+    uint64_t photons;        /* per channel and sphere (0: the sphere's default) */
+    int bins;                /* theta bins (0: the sphere's default) */
+    double roughness, cone;  /* as lucent_cdrf_sphere_desc */
+    uint64_t seed;
+    double sigma0_max;       /* mm (0: 20) */
+    lucent_pool *pool;
+    const char *label;       /* progress label (NULL: "CDRF sigma0 fit") */
+} lucent_cdrf_material_fit_desc;
+
+/* Runs the spheres and the fit. spheres (may be NULL) receives the sphere results, radius_count of
+ * them (free with free()). */
+lucent_status lucent_cdrf_fit_material(const lucent_cdrf_material_fit_desc *desc, lucent_cdrf_fit *dest,
+                                       lucent_cdrf_sphere_result **spheres);
+
 #ifdef __cplusplus
 }
 #endif

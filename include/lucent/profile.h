@@ -236,6 +236,41 @@ bool lucent_profile_source_known(const char *name);
 lucent_status lucent_profile_from_source(const lucent_profile_source_desc *desc, const lucent_material *m,
                                          lucent_profile **dest);
 
+/* The name of profile source i (0: "dipole"); NULL past the last. */
+const char *lucent_profile_source_name(int index);
+
+/* ---- Transmittance through a thickness (translucency) ----------------------------------
+ * Light E reaching the back face of a locally flat part of thickness s leaves the front with exitance
+ * E T(s) (docs/render.md, "Translucency"). Two models:
+ *   slab: the total transmittance of a slab of the material lit at normal incidence on one face, from
+ *     Lucent's Monte Carlo (lucent/mc.h: MCML's physics, Fresnel boundaries of the material's eta in
+ *     air), sampled at LUCENT_SLAB_SAMPLES thicknesses on a quadratic grid up to s_max = 5 / sigma_tr
+ *     of the slowest channel (at most 100 transport mean free paths of the sparsest), log-linear
+ *     between samples and diffusion's exp(-sigma_tr s) beyond s_max;
+ *   profile: Jimenez 2010, the profile's power outside radius s (lucent_profile_tail). */
+enum { LUCENT_SLAB_SAMPLES = 20 };
+
+typedef struct lucent_slab_transmittance {
+    double s_max;                                /* mm: the thickest sample */
+    double thickness[LUCENT_SLAB_SAMPLES];       /* mm */
+    double value[LUCENT_SLAB_SAMPLES][3];        /* T per sample and channel */
+    double sigma_tr[3];                          /* mm^-1: the tail's decay */
+} lucent_slab_transmittance;
+
+/* The thicknesses of m's slab samples (dest->s_max, thickness, sigma_tr; values untouched). */
+void lucent_slab_transmittance_grid(const lucent_material *m, lucent_slab_transmittance *dest);
+
+/* Runs the Monte Carlo of every sample (photons per channel and thickness; seed 1 + sample). */
+lucent_status lucent_slab_transmittance_run(const lucent_material *m, uint64_t photons, lucent_pool *pool,
+                                            lucent_slab_transmittance *dest);
+
+/* T of channel c at thickness s (mm). */
+double lucent_slab_transmittance_eval(const lucent_slab_transmittance *t, int c, double s);
+
+/* The profile's power outside radius s, integral_s^inf 2 pi rho R(rho) drho, exact for the
+ * piecewise-constant bins of p (lucent_profile_tail(p, c, 0) is lucent_profile_total). */
+double lucent_profile_tail(const lucent_profile *p, int c, double s);
+
 #ifdef __cplusplus
 }
 #endif

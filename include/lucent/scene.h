@@ -15,11 +15,10 @@
 #include <stdint.h>
 
 #include "lucent/base.h"
-#include "lucent/cdrf.h"
 #include "lucent/image.h"
-#include "lucent/kernel.h"
 #include "lucent/material.h"
 #include "lucent/mesh.h"
+#include "lucent/settings.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -107,84 +106,6 @@ typedef struct lucent_scene_object {
     bool visible;           /* default true */
 } lucent_scene_object;
 
-/* ---- Render settings -------------------------------------------------------------------------- */
-
-typedef enum lucent_render_method {
-    LUCENT_METHOD_LAMBERT = 0,       /* Lambert diffuse + a specular lobe */
-    LUCENT_METHOD_CDRF,              /* Kubo's curvature-dependent reflectance */
-    LUCENT_METHOD_CDRF_TRANSLUCENCY, /* the CDRF with depth-based transmission (the blog) */
-    LUCENT_METHOD_SSSS,              /* screen-space separable subsurface scattering */
-    LUCENT_METHOD_COUNT
-} lucent_render_method;
-
-typedef enum lucent_depth_filter {
-    LUCENT_DEPTH_FOLLOW = 0, /* Jimenez's follow-surface lerp toward the centre sample */
-    LUCENT_DEPTH_GAUSSIAN,   /* a Gaussian weight on the depth difference (as Blender's EEVEE) */
-    LUCENT_DEPTH_NONE        /* no depth awareness */
-} lucent_depth_filter;
-
-typedef enum lucent_transmittance_model {
-    LUCENT_TRANSMIT_SLAB = 0, /* Monte Carlo slab transmittance of the material (cached per material) */
-    LUCENT_TRANSMIT_PROFILE   /* Jimenez 2010: the profile's power beyond the thickness, times the albedo */
-} lucent_transmittance_model;
-
-typedef enum lucent_sigma0_source {
-    LUCENT_SIGMA0_FIT = 0, /* fitted to Monte Carlo spheres of the material (cached per material) */
-    LUCENT_SIGMA0_DIFFUSE  /* sigma0 = d_c^2 from the diffuse colour (Kubo Eq. 6) */
-} lucent_sigma0_source;
-
-typedef struct lucent_render_settings {
-    int width, height;                /* pixels; default 512 x 512 */
-    lucent_render_method method;      /* default ssss */
-    /* ssss */
-    lucent_kernel_model kernel_model; /* default preint */
-    int kernel_rank;                  /* default 1 */
-    int taps;                         /* per 1-D pass, odd; default 17 */
-    char profile[32];                 /* the profile kernels are built from, default "dipole" */
-    double strength;                  /* blend of blurred and unblurred diffuse, [0, 1], times each
-                                         object's sss_strength; default 1 */
-    double width_scale;               /* an artist's multiplier on the physical kernel width; default 1 */
-    lucent_depth_filter depth_filter; /* default follow */
-    bool translucency;                /* light through thin parts (shadow-map thickness); default true */
-    lucent_transmittance_model transmittance; /* how much passes a thickness; default slab */
-    double translucency_curvature;    /* cdrf+translucency: the transmitted light times
-                                         1 + this x sigma0 x curvature (the CDRF blog); default 1 */
-    /* cdrf */
-    lucent_cdrf_variant cdrf_variant; /* default kubo */
-    bool cdrf_lut;                    /* true (default): the LUT texture; false: the closed form */
-    lucent_sigma0_source sigma0_source;
-    int curvature_smooth;             /* n-ring smoothing of the per-vertex curvature; default 1 */
-    /* shared */
-    int shadow_map_size;              /* default 2048 */
-    double background[3];             /* linear RGB, default black (an environment light shows through) */
-    lucent_tonemap_op tonemap;        /* for PNG output; default filmic */
-    double exposure;                  /* stops; default 0 */
-    /* path tracer */
-    int spp;                          /* samples per pixel; default 64 */
-    uint64_t seed;                    /* default 1 */
-    int max_bounces;                  /* surface events per path; default 64 */
-    int max_scatter;                  /* volume scattering events per path; default 100000 */
-    double time_limit;                /* seconds, 0: none (stops at spp) */
-} lucent_render_settings;
-
-/* Returns the defaults stated above. */
-lucent_render_settings lucent_render_settings_defaults(void);
-
-/* Returns the method's name: "lambert", "cdrf", "cdrf+translucency", "ssss". */
-const char *lucent_render_method_name(lucent_render_method method);
-
-/* The names the scene file uses: "follow", "gaussian", "none"; "slab", "profile"; "fit", "diffuse"
- * ("unknown" out of range). */
-const char *lucent_depth_filter_name(lucent_depth_filter filter);
-const char *lucent_transmittance_name(lucent_transmittance_model model);
-const char *lucent_sigma0_source_name(lucent_sigma0_source source);
-
-/* Parses a method: one of the names above, or "ssss:<kernel model>" (e.g. "ssss:svd3" for rank 3,
- * "ssss:preint"), which also sets *model and *rank when they are not NULL. Fails with
- * LUCENT_ERR_INVALID_ARGUMENT listing the methods and models. */
-lucent_status lucent_render_method_parse(const char *text, lucent_render_method *method,
-                                         lucent_kernel_model *model, int *rank);
-
 /* ---- The scene --------------------------------------------------------------------------------- */
 
 typedef struct lucent_scene {
@@ -196,7 +117,7 @@ typedef struct lucent_scene {
     lucent_light *lights;
     int object_count;
     lucent_scene_object *objects;
-    lucent_render_settings render;
+    lucent_render_settings render; /* the "render" object (lucent/settings.h) */
     char *json; /* the scene after overrides, as JSON text: what made an image */
 } lucent_scene;
 

@@ -2,7 +2,8 @@
  * of the blur test, and a tool for anyone who wants the blur alone). */
 #include <stdlib.h>
 
-#include "gl/gpu.h"
+#include "gl/blur.h"
+#include "gl/reference/reference.h"
 
 /* RG32F texture: x depth (mm), y material index; image row 0 at texture row 0. */
 static lucent_status depth_texture(const lucent_image *depth, const uint8_t *material, GLuint *dest)

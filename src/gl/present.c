@@ -2,7 +2,7 @@
  * and sRGB-encoded into the window's framebuffer. */
 #include <math.h>
 
-#include "gl/renderer_internal.h"
+#include "gl/renderer.h"
 
 lucent_status lucent_render_present(lucent_renderer *r)
 {
@@ -18,11 +18,11 @@ lucent_status lucent_render_present(lucent_renderer *r)
     glViewport(0, 0, w, h);
     glUseProgram(r->present_program);
     glBindVertexArray(r->empty_vao);
-    glBindTextureUnit(0, r->tex_final);
-    glUniform1i(glGetUniformLocation(r->present_program, "u_tonemap"), (int)r->last.tonemap);
-    glUniform1f(glGetUniformLocation(r->present_program, "u_exposure"), (float)exp2(r->last.exposure));
-    glUniform2f(glGetUniformLocation(r->present_program, "u_scale"), (float)r->width / (float)(w > 0 ? w : 1),
-                (float)r->height / (float)(h > 0 ? h : 1));
+    glBindTextureUnit(0, r->targets.final);
+    glUniform1i(glGetUniformLocation(r->present_program, "u_tonemap"), (int)r->last.view.tonemap);
+    glUniform1f(glGetUniformLocation(r->present_program, "u_exposure"), (float)exp2(r->last.view.exposure));
+    glUniform2f(glGetUniformLocation(r->present_program, "u_scale"), (float)r->targets.width / (float)(w > 0 ? w : 1),
+                (float)r->targets.height / (float)(h > 0 ? h : 1));
     glDrawArrays(GL_TRIANGLES, 0, 3);
     gl_window_swap(r->ctx);
     return gl_check("presenting the frame");

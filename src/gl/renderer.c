@@ -1,39 +1,66 @@
 /* lucent_renderer: a scene on a GL context, rendered with any method and settings, frame after
- * frame, preparing only what changed. */
+ * frame, preparing only what changed. The core: creates the parts, runs frames (frame.c), reads
+ * them back. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl/renderer_internal.h"
+#include "gl/methods/method.h"
 
 lucent_renderer_desc lucent_renderer_defaults(void)
 {
-    return (lucent_renderer_desc){.sigma0_photons = 40000, .profile_photons = 200000};
+    return (lucent_renderer_desc){.sigma0_photons = LUCENT_BAKE_SIGMA0_PHOTONS,
+                                  .transmit_photons = LUCENT_BAKE_TRANSMIT_PHOTONS,
+                                  .profile_photons = LUCENT_BAKE_PROFILE_PHOTONS};
 }
 
-static lucent_status create_programs(lucent_renderer *r)
+lucent_bake_desc gl_renderer_bake_desc(const lucent_renderer *r, const lucent_render_settings *s, unsigned what)
 {
-    lucent_status s = gl_program_build(gl_embedded_source, NULL, "shadow.vert.glsl", "shadow.frag.glsl", NULL,
-                                       &r->shadow_program);
-    if (s == LUCENT_OK)
-        s = gl_program_build(gl_embedded_source, NULL, "fullscreen.vert.glsl", "compose.frag.glsl", NULL,
-                             &r->compose_program);
-    if (s == LUCENT_OK) s = gl_blur_init(&r->blur);
+    return (lucent_bake_desc){.what = what,
+                              .settings = s,
+                              .profile_photons = r->desc.profile_photons,
+                              .transmit_photons = r->desc.transmit_photons,
+                              .sigma0_photons = r->desc.sigma0_photons,
+                              .pool = r->desc.pool};
+}
+
+void gl_renderer_draw_objects(const lucent_renderer *r)
+{
+    for (int i = 0; i < r->scene->object_count; i++)
+        if (r->scene->objects[i].visible) gl_meshes_draw(&r->meshes, i);
+}
+
+static lucent_status create_objects(lucent_renderer *r)
+{
     glCreateVertexArrays(1, &r->empty_vao);
     glCreateBuffers(1, &r->frame_ubo);
     glNamedBufferData(r->frame_ubo, sizeof(gl_frame_block), NULL, GL_DYNAMIC_DRAW);
     r->dummy_tex = gl_texture(GL_RGBA32F, 1, 1, GL_NEAREST);
     glClearTexImage(r->dummy_tex, 0, GL_RGBA, GL_FLOAT, (const float[4]){0, 0, 0, 0});
+    lucent_status s = gl_program_build(gl_embedded_source, NULL, "fullscreen.vert.glsl", "compose.frag.glsl", NULL,
+                                       &r->compose_program);
     return s == LUCENT_OK ? gl_check("creating the renderer") : s;
 }
 
 static lucent_status create(lucent_renderer *r)
 {
-    lucent_status s = gl_meshes_upload(r);
-    if (s == LUCENT_OK) s = gl_materials_collect(r);
-    if (s == LUCENT_OK) s = gl_lights_setup(r);
-    if (s == LUCENT_OK) s = create_programs(r);
+    lucent_status s = r->desc.cache_dir && r->desc.cache_dir[0] ? lucent_cache_create(r->desc.cache_dir, &r->cache)
+                                                                  : LUCENT_OK;
+    if (s == LUCENT_OK) s = gl_meshes_upload(&r->meshes, r->scene);
+    if (s == LUCENT_OK) s = gl_tables_collect(&r->tables, r->scene);
+    if (s == LUCENT_OK) s = gl_shadows_setup(&r->shadows, r->scene);
+    if (s == LUCENT_OK) s = create_objects(r);
     return s;
+}
+
+/* The desc with its zeros resolved. */
+static lucent_renderer_desc resolve(const lucent_renderer_desc *d)
+{
+    lucent_renderer_desc r = d ? *d : (lucent_renderer_desc){0}, def = lucent_renderer_defaults();
+    if (!r.sigma0_photons) r.sigma0_photons = def.sigma0_photons;
+    if (!r.transmit_photons) r.transmit_photons = def.transmit_photons;
+    if (!r.profile_photons) r.profile_photons = def.profile_photons;
+    return r;
 }
 
 lucent_status lucent_renderer_create(lucent_gl_context *ctx, const lucent_scene *scene, const lucent_renderer_desc *desc,
@@ -44,9 +71,7 @@ lucent_status lucent_renderer_create(lucent_gl_context *ctx, const lucent_scene 
     if (s != LUCENT_OK) return s;
     lucent_renderer *r = calloc(1, sizeof *r);
     if (!r) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
-    r->ctx = ctx, r->scene = scene, r->lut_variant = -1;
-    r->lut_sigma_max = lucent_cdrf_lut_defaults().sigma_max;
-    r->desc = desc ? *desc : lucent_renderer_defaults();
+    r->ctx = ctx, r->scene = scene, r->desc = resolve(desc);
     s = create(r);
     if (s != LUCENT_OK) {
         lucent_error_context(s, "%s", scene->path[0] ? scene->path : scene->name);
@@ -57,36 +82,41 @@ lucent_status lucent_renderer_create(lucent_gl_context *ctx, const lucent_scene 
     return LUCENT_OK;
 }
 
+static void release_methods(lucent_renderer *r)
+{
+    for (int m = 0; m < LUCENT_METHOD_COUNT; m++) {
+        if (r->state[m] && gl_methods[m]->release) gl_methods[m]->release(r->state[m]);
+        free(r->state[m]);
+        r->state[m] = NULL;
+    }
+}
+
 void lucent_renderer_destroy(lucent_renderer *r)
 {
     if (!r) return;
     lucent_gl_make_current(r->ctx);
-    gl_frame_free(r);
-    gl_shadows_free(r);
-    gl_blur_free(&r->blur);
+    release_methods(r);
+    gl_programs_free(&r->programs);
+    gl_targets_free(&r->targets);
+    gl_shadows_free(&r->shadows);
     gl_timer_free(&r->timer);
-    gl_meshes_free(r);
-    gl_materials_free(r);
-    GLuint tex[3] = {r->lut_tex, r->transmit_tex, r->dummy_tex};
-    glDeleteTextures(3, tex);
-    GLuint programs[3] = {r->compose_program, r->present_program, r->shadow_program};
-    for (int i = 0; i < 3; i++)
-        if (programs[i]) glDeleteProgram(programs[i]);
+    gl_meshes_free(&r->meshes);
+    gl_tables_free(&r->tables);
+    if (r->dummy_tex) glDeleteTextures(1, &r->dummy_tex);
+    if (r->compose_program) glDeleteProgram(r->compose_program);
+    if (r->present_program) glDeleteProgram(r->present_program);
     if (r->empty_vao) glDeleteVertexArrays(1, &r->empty_vao);
     if (r->frame_ubo) glDeleteBuffers(1, &r->frame_ubo);
+    lucent_cache_destroy(r->cache);
     free(r);
 }
 
 static lucent_status frame(lucent_renderer *r, const lucent_render_settings *settings, lucent_frame_times *times)
 {
     const lucent_render_settings *s = settings ? settings : &r->scene->render;
-    lucent_status st = gl_settings_check(s);
+    lucent_status st = lucent_render_settings_check(s);
     if (st == LUCENT_OK) st = lucent_gl_make_current(r->ctx);
-    double t0 = gl_now_ms();
-    if (st == LUCENT_OK) st = gl_prepare(r, s);
-    double setup = gl_now_ms() - t0;
-    if (st == LUCENT_OK) st = gl_frame_draw(r, s, times);
-    times->setup_ms = setup;
+    if (st == LUCENT_OK) st = gl_frame(r, s, times);
     if (st != LUCENT_OK) return lucent_error_context(st, "%s", r->scene->path[0] ? r->scene->path : r->scene->name);
     r->last = *s;
     r->last_times = *times;
@@ -103,11 +133,12 @@ lucent_status lucent_render_frame(lucent_renderer *r, const lucent_render_settin
 /* The final target's rgb as the image, its alpha (coverage) as the mask. */
 static lucent_status read_back(lucent_renderer *r, lucent_render_result *res)
 {
+    const gl_targets *t = &r->targets;
     lucent_image *rgba = NULL;
-    lucent_status s = gl_read_image(r->fbo_final, 0, r->width, r->height, 4, true, &rgba);
+    lucent_status s = gl_read_image(t->fbo_final, 0, t->width, t->height, 4, true, &rgba);
     if (s == LUCENT_OK) s = lucent_image_convert_channels(rgba, 3, &res->image);
-    if (s == LUCENT_OK) s = lucent_image_create(r->width, r->height, 1, &res->mask);
-    size_t n = (size_t)r->width * (size_t)r->height;
+    if (s == LUCENT_OK) s = lucent_image_create(t->width, t->height, 1, &res->mask);
+    size_t n = (size_t)t->width * (size_t)t->height;
     for (size_t i = 0; s == LUCENT_OK && i < n; i++) res->mask->data[i] = rgba->data[4 * i + 3] > 0.5f ? 1.0f : 0.0f;
     lucent_image_destroy(rgba);
     return s;
@@ -136,15 +167,13 @@ lucent_status lucent_renderer_object_info(const lucent_renderer *r, int index, l
 {
     if (index < 0 || index >= r->scene->object_count)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "object %d of %d", index, r->scene->object_count);
-    const gl_mesh *g = &r->meshes[index];
-    const gl_material *m = &r->materials[g->material];
     memset(dest, 0, sizeof *dest);
     memcpy(dest->albedo, r->scene->objects[index].albedo, sizeof dest->albedo);
-    memcpy(dest->sigma0, g->sigma0, sizeof dest->sigma0);
-    dest->sigma0_from = g->sigma0_from;
-    memcpy(dest->curvature_range, g->curvature_range, sizeof dest->curvature_range);
-    dest->kernel_range = m->taps ? gl_taps_radius(m->taps, 1) : 0;
-    dest->transmit_range = m->transmit_range;
+    dest->sigma0_from = "";
+    memcpy(dest->curvature_range, r->meshes.mesh[index].curvature_range, sizeof dest->curvature_range);
+    dest->transmit_range = gl_tables_of(&r->tables, index)->transmit_range;
+    for (int m = 0; m < LUCENT_METHOD_COUNT; m++)
+        if (r->state[m] && gl_methods[m]->object_info) gl_methods[m]->object_info(r, r->state[m], index, dest);
     return LUCENT_OK;
 }
 
@@ -154,14 +183,14 @@ void gl_renderer_set_aov(lucent_renderer *r, bool on)
 {
     if (r->aov == on) return;
     lucent_gl_make_current(r->ctx);
-    for (int i = 0; i < r->program_count; i++) glDeleteProgram(r->programs[i].program);
-    r->program_count = 0; /* rebuilt with (or without) the auxiliary outputs */
+    gl_programs_free(&r->programs); /* rebuilt with (or without) the auxiliary outputs */
     r->aov = on;
 }
 
 lucent_status gl_renderer_read_aov(lucent_renderer *r, int which, lucent_image **dest)
 {
-    if (!r->aov || which < 0 || which > 2 || !r->have_frame)
+    const gl_targets *t = &r->targets;
+    if (!r->aov || which < 0 || which > 2 || !r->have_frame || !t->aov)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "no auxiliary output %d", which);
-    return gl_read_image(r->fbo_scene, 3 + which, r->width, r->height, 4, true, dest);
+    return gl_read_image(t->fbo_scene, 3 + which, t->width, t->height, 4, true, dest);
 }

@@ -2,9 +2,8 @@
  * GL device), what it cost (per-pass GPU times, CPU setup) and the values it used (albedo, sigma0,
  * curvature ranges, every kernel's taps). Format: docs/render.md. */
 #include <string.h>
-
-#include "base/json.h"
-#include "gl/renderer_internal.h"
+#include "base/settings_table.h"
+#include "gl/methods/method.h"
 
 
 static void add_gl(cJSON *root, const lucent_gl_context *ctx)
@@ -23,28 +22,7 @@ static void add_gl(cJSON *root, const lucent_gl_context *ctx)
 static void add_settings(cJSON *root, const lucent_render_settings *s)
 {
     cJSON *o = cJSON_AddObjectToObject(root, "settings");
-    if (!o) return;
-    cJSON_AddNumberToObject(o, "width", s->width);
-    cJSON_AddNumberToObject(o, "height", s->height);
-    cJSON_AddStringToObject(o, "method", lucent_render_method_name(s->method));
-    cJSON_AddStringToObject(o, "kernel", lucent_kernel_model_name(s->kernel_model));
-    cJSON_AddNumberToObject(o, "rank", s->kernel_rank);
-    cJSON_AddNumberToObject(o, "taps", s->taps);
-    cJSON_AddStringToObject(o, "profile", s->profile);
-    cJSON_AddNumberToObject(o, "strength", s->strength);
-    cJSON_AddNumberToObject(o, "width_scale", s->width_scale);
-    cJSON_AddStringToObject(o, "depth_filter", lucent_depth_filter_name(s->depth_filter));
-    cJSON_AddBoolToObject(o, "translucency", s->translucency);
-    cJSON_AddStringToObject(o, "transmittance", lucent_transmittance_name(s->transmittance));
-    cJSON_AddNumberToObject(o, "translucency_curvature", s->translucency_curvature);
-    cJSON_AddStringToObject(o, "cdrf_variant", lucent_cdrf_variant_name(s->cdrf_variant));
-    cJSON_AddBoolToObject(o, "cdrf_lut", s->cdrf_lut);
-    cJSON_AddStringToObject(o, "sigma0", lucent_sigma0_source_name(s->sigma0_source));
-    cJSON_AddNumberToObject(o, "curvature_smooth", s->curvature_smooth);
-    cJSON_AddNumberToObject(o, "shadow_map_size", s->shadow_map_size);
-    lucent_json_add_numbers(o, "background", s->background, 3);
-    cJSON_AddStringToObject(o, "tonemap", lucent_tonemap_op_name(s->tonemap));
-    cJSON_AddNumberToObject(o, "exposure", s->exposure);
+    if (o) lucent_settings_write_json(s, o);
 }
 
 static void add_timings(cJSON *root, const lucent_render_result *res)
@@ -85,35 +63,6 @@ static void add_objects(cJSON *root, const lucent_renderer *r)
     }
 }
 
-static cJSON *taps_json(const gl_material *m)
-{
-    const lucent_taps *t = m->taps;
-    cJSON *k = cJSON_CreateObject();
-    if (!k) return NULL;
-    cJSON_AddStringToObject(k, "material", m->m.name);
-    cJSON_AddStringToObject(k, "key", m->taps_key);
-    cJSON_AddNumberToObject(k, "taps", t->count);
-    cJSON_AddNumberToObject(k, "rank", t->rank);
-    lucent_json_add_numbers(k, "offsets_mm", t->offset, t->count);
-    static const char *const names[3] = {"weights_r", "weights_g", "weights_b"};
-    static const char *const signs[3] = {"sign_r", "sign_g", "sign_b"};
-    for (int c = 0; c < 3; c++) {
-        lucent_json_add_numbers(k, names[c], t->weight[c], t->rank * t->count);
-        lucent_json_add_numbers(k, signs[c], t->sign[c], t->rank);
-    }
-    return k;
-}
-
-static void add_kernels(cJSON *root, const lucent_renderer *r, const lucent_render_settings *s)
-{
-    if (s->method != LUCENT_METHOD_SSSS) return;
-    cJSON *list = cJSON_AddArrayToObject(root, "kernels");
-    for (int i = 0; list && i < r->material_count; i++) {
-        cJSON *k = r->materials[i].taps ? taps_json(&r->materials[i]) : NULL;
-        if (k) cJSON_AddItemToArray(list, k);
-    }
-}
-
 lucent_status lucent_render_sidecar(const lucent_renderer *r, const lucent_render_settings *settings,
                                     const lucent_render_result *res, char **dest)
 {
@@ -126,7 +75,9 @@ lucent_status lucent_render_sidecar(const lucent_renderer *r, const lucent_rende
     add_settings(root, s);
     add_timings(root, res);
     add_objects(root, r);
-    add_kernels(root, r, s);
+    const gl_method *m = gl_methods[s->view.method];
+    void *state = r->state[s->view.method];
+    if (m->sidecar && state) m->sidecar(r, state, s, root);
     if (scene) cJSON_AddItemToObject(root, "scene", scene);
     char *text = cJSON_Print(root);
     cJSON_Delete(root);

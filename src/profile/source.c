@@ -7,6 +7,11 @@
 
 static const char *const k_sources[] = {"dipole", "better-dipole", "burley", "mc", NULL};
 
+const char *lucent_profile_source_name(int index)
+{
+    return index >= 0 && index < (int)(sizeof k_sources / sizeof k_sources[0]) ? k_sources[index] : NULL;
+}
+
 bool lucent_profile_source_known(const char *name)
 {
     for (int i = 0; name && k_sources[i]; i++)

@@ -4,6 +4,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "base/settings_table.h"
 #include "scene/internal.h"
 
 /* ---- small readers ---- */
@@ -170,176 +171,56 @@ lucent_status scene_read_lights(const lucent_json_node *root, lucent_light **des
     return LUCENT_OK;
 }
 
-/* ---- render settings ---- */
+/* ---- render settings (lucent/settings.h) ----
+ * The view group is read here; the other groups are declared beside the code that reads them. */
 
-static const char *const k_method_names[] = {"lambert", "cdrf", "cdrf+translucency", "ssss", NULL};
-static const char *const k_depth_filters[] = {"follow", "gaussian", "none", NULL};
-static const char *const k_sigma0_sources[] = {"fit", "diffuse", NULL};
-static const char *const k_transmittances[] = {"slab", "profile", NULL};
-static const char *const k_cdrf_variants[] = {"kubo", "collomb", NULL};
-static const char *const k_tonemaps[] = {"none", "clamp", "reinhard", "filmic", NULL};
-static const char *const k_render_keys[] = {
-    "width",       "height",      "method",         "kernel",   "rank",     "taps",       "profile",
-    "strength",    "width_scale", "depth_filter",   "translucency", "transmittance", "translucency_curvature", "cdrf_variant", "cdrf_lut", "sigma0",
-    "curvature_smooth", "shadow_map_size", "background", "tonemap", "exposure", "spp", "seed",
-    "max_bounces", "max_scatter", "time_limit", NULL};
-
-lucent_render_settings lucent_render_settings_defaults(void)
+static const char *tonemap_name(int i)
 {
-    return (lucent_render_settings){.width = 512,
-                                    .height = 512,
-                                    .method = LUCENT_METHOD_SSSS,
-                                    .kernel_model = LUCENT_KERNEL_PREINT,
-                                    .kernel_rank = 1,
-                                    .taps = 17,
-                                    .profile = "dipole",
-                                    .strength = 1,
-                                    .width_scale = 1,
-                                    .depth_filter = LUCENT_DEPTH_FOLLOW,
-                                    .translucency = true,
-                                    .translucency_curvature = 1,
-                                    .cdrf_variant = LUCENT_CDRF_KUBO,
-                                    .cdrf_lut = true,
-                                    .sigma0_source = LUCENT_SIGMA0_FIT,
-                                    .curvature_smooth = 1,
-                                    .shadow_map_size = 2048,
-                                    .tonemap = LUCENT_TONEMAP_FILMIC,
-                                    .spp = 64,
-                                    .seed = 1,
-                                    .max_bounces = 64,
-                                    .max_scatter = 100000};
+    return i >= 0 && i <= LUCENT_TONEMAP_FILMIC ? lucent_tonemap_op_name((lucent_tonemap_op)i) : NULL;
 }
 
-const char *lucent_render_method_name(lucent_render_method method)
+static const char *method_name(int i)
 {
-    return method >= 0 && method < LUCENT_METHOD_COUNT ? k_method_names[method] : "unknown";
+    return i >= 0 && i < LUCENT_METHOD_COUNT ? lucent_render_method_name((lucent_render_method)i) : NULL;
 }
 
-const char *lucent_depth_filter_name(lucent_depth_filter filter)
+/* "ssss:svd3" also sets the method's own settings (the kernel and its rank). */
+static lucent_status parse_method(const char *text, lucent_render_settings *dest)
 {
-    return filter >= 0 && filter <= LUCENT_DEPTH_NONE ? k_depth_filters[filter] : "unknown";
+    return lucent_render_method_parse(text, &dest->view.method, dest);
 }
 
-const char *lucent_transmittance_name(lucent_transmittance_model model)
+static const lucent_setting k_view[] = {
+    SETTING_INT("width", view.width, 512, 1, 16384, 0, "image width, pixels"),
+    SETTING_INT("height", view.height, 512, 1, 16384, 0, "image height, pixels"),
+    {.key = "method", .type = LUCENT_SETTING_CHOICE, SETTING_AT_(view.method, sizeof(lucent_render_method) == sizeof(int)),
+     .def_text = "ssss", .choice = method_name, .parse = parse_method,
+     .doc = "the GL renderer's method; ssss:<kernel>[rank] chooses the kernel too (ssss:svd3)"},
+    SETTING_INT("shadow_map_size", view.shadow_map_size, 2048, 16, 16384, 0, "texels per side of each shadow map"),
+    SETTING_COLOR("background", view.background, 0, 0, INFINITY,
+                  "linear RGB behind the objects (an environment light shows through)"),
+    SETTING_CHOICE("tonemap", view.tonemap, "filmic", tonemap_name, "tone mapping of PNG outputs"),
+    SETTING_REAL("exposure", view.exposure, 0, -64, 64, "exposure of PNG outputs, stops"),
+};
+
+static const lucent_settings_group k_view_group = SETTINGS_GROUP("view", "the image and how it is shown", k_view);
+
+/* Declared beside the code that reads them: src/gl/methods/ssss.c, translucency.c, cdrf.c,
+ * src/trace/settings.c. */
+extern const lucent_settings_group gl_ssss_settings, gl_translucency_settings, gl_cdrf_settings, tr_trace_settings;
+
+/* In reading order: the method ("ssss:svd3") before the kernel and rank that may refine it. */
+static const lucent_settings_group *const k_groups[] = {&k_view_group, &gl_ssss_settings, &gl_translucency_settings,
+                                                        &gl_cdrf_settings, &tr_trace_settings};
+
+int lucent_settings_group_count(void)
 {
-    return model >= 0 && model <= LUCENT_TRANSMIT_PROFILE ? k_transmittances[model] : "unknown";
+    return (int)(sizeof k_groups / sizeof k_groups[0]);
 }
 
-const char *lucent_sigma0_source_name(lucent_sigma0_source source)
+const lucent_settings_group *lucent_settings_group_get(int index)
 {
-    return source >= 0 && source <= LUCENT_SIGMA0_DIFFUSE ? k_sigma0_sources[source] : "unknown";
-}
-
-/* "svd3" -> model svd, rank 3; "preint" -> rank 1. Only svd and sog take a rank. */
-static lucent_status parse_model_rank(const char *text, lucent_kernel_model *model, int *rank)
-{
-    char name[32];
-    size_t len = strcspn(text, "0123456789");
-    if (len == 0 || len >= sizeof name) return lucent_kernel_model_find(text, model);
-    memcpy(name, text, len);
-    name[len] = '\0';
-    int r = 1;
-    if (text[len]) {
-        char *end;
-        long v = strtol(text + len, &end, 10);
-        if (*end || v < 1 || v > LUCENT_KERNEL_MAX_RANK) return lucent_kernel_model_find(text, model);
-        r = (int)v;
-    }
-    lucent_status s = lucent_kernel_model_find(name, model);
-    if (s == LUCENT_OK && r > 1 && *model != LUCENT_KERNEL_SVD && *model != LUCENT_KERNEL_SOG)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel model '%s' has rank 1 only (svd and sog take a rank)",
-                            name);
-    if (s == LUCENT_OK) *rank = r;
-    return s;
-}
-
-lucent_status lucent_render_method_parse(const char *text, lucent_render_method *method,
-                                         lucent_kernel_model *model, int *rank)
-{
-    const char *colon = strchr(text, ':');
-    size_t len = colon ? (size_t)(colon - text) : strlen(text);
-    for (int m = 0; m < LUCENT_METHOD_COUNT; m++) {
-        if (strlen(k_method_names[m]) != len || strncasecmp(text, k_method_names[m], len)) continue;
-        if (colon && m != LUCENT_METHOD_SSSS)
-            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "method '%s': only ssss takes a kernel model", text);
-        lucent_kernel_model km = LUCENT_KERNEL_PREINT;
-        int r = 1;
-        if (colon && parse_model_rank(colon + 1, &km, &r) != LUCENT_OK)
-            return lucent_error_context(LUCENT_ERR_INVALID_ARGUMENT, "method '%s'", text);
-        *method = (lucent_render_method)m;
-        if (colon && model) *model = km;
-        if (colon && rank) *rank = r;
-        return LUCENT_OK;
-    }
-    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                        "unknown method '%s' (lambert, cdrf, cdrf+translucency, ssss, ssss:<model>[rank] "
-                        "with model svd, preint, guided, manual, sog, jimenez)",
-                        text);
-}
-
-static lucent_status read_method(const lucent_json_node *n, lucent_render_settings *r)
-{
-    const char *text;
-    lucent_status s = lucent_json_string_or(n, "method", "ssss", &text);
-    if (s == LUCENT_OK && lucent_render_method_parse(text, &r->method, &r->kernel_model, &r->kernel_rank))
-        s = lucent_json_fail(n, "method", LUCENT_ERR_PARSE, "%s", lucent_last_error());
-    if (s == LUCENT_OK && lucent_json_has(n, "kernel")) {
-        s = lucent_json_string(n, "kernel", &text);
-        if (s == LUCENT_OK && parse_model_rank(text, &r->kernel_model, &r->kernel_rank))
-            s = lucent_json_fail(n, "kernel", LUCENT_ERR_PARSE, "%s", lucent_last_error());
-    }
-    if (s == LUCENT_OK && lucent_json_has(n, "rank"))
-        s = scene_read_int(n, "rank", 1, 1, LUCENT_KERNEL_MAX_RANK, &r->kernel_rank);
-    return s;
-}
-
-static lucent_status read_profile(const lucent_json_node *n, lucent_render_settings *r)
-{
-    const char *text;
-    lucent_status s = lucent_json_string_or(n, "profile", "dipole", &text);
-    if (s == LUCENT_OK && (!lucent_profile_source_known(text) || strlen(text) >= sizeof r->profile))
-        s = lucent_json_fail(n, "profile", LUCENT_ERR_PARSE,
-                             "unknown profile \"%s\" (dipole, better-dipole, burley, mc)", text);
-    if (s == LUCENT_OK) snprintf(r->profile, sizeof r->profile, "%s", text);
-    return s;
-}
-
-static lucent_status read_choices(const lucent_json_node *n, lucent_render_settings *r)
-{
-    int v[5] = {r->depth_filter, r->sigma0_source, r->cdrf_variant, r->tonemap, r->transmittance};
-    lucent_status s = read_choice(n, "depth_filter", k_depth_filters, v[0], &v[0]);
-    if (s == LUCENT_OK) s = read_choice(n, "sigma0", k_sigma0_sources, v[1], &v[1]);
-    if (s == LUCENT_OK) s = read_choice(n, "cdrf_variant", k_cdrf_variants, v[2], &v[2]);
-    if (s == LUCENT_OK) s = read_choice(n, "tonemap", k_tonemaps, v[3], &v[3]);
-    if (s == LUCENT_OK) s = read_choice(n, "transmittance", k_transmittances, v[4], &v[4]);
-    r->depth_filter = (lucent_depth_filter)v[0], r->sigma0_source = (lucent_sigma0_source)v[1];
-    r->cdrf_variant = (lucent_cdrf_variant)v[2], r->tonemap = (lucent_tonemap_op)v[3];
-    r->transmittance = (lucent_transmittance_model)v[4];
-    return s;
-}
-
-static lucent_status read_numbers(const lucent_json_node *n, lucent_render_settings *r)
-{
-    double seed = 1;
-    lucent_status s = scene_read_int(n, "width", r->width, 1, 16384, &r->width);
-    if (s == LUCENT_OK) s = scene_read_int(n, "height", r->height, 1, 16384, &r->height);
-    if (s == LUCENT_OK) s = scene_read_int(n, "taps", r->taps, 1, 255, &r->taps);
-    if (s == LUCENT_OK && r->taps % 2 == 0)
-        s = lucent_json_fail(n, "taps", LUCENT_ERR_PARSE, "must be odd (a centre tap and pairs), got %d", r->taps);
-    if (s == LUCENT_OK) s = scene_read_range(n, "strength", 1, 0, 1, &r->strength);
-    if (s == LUCENT_OK) s = scene_read_range(n, "width_scale", 1, 1e-6, 1e6, &r->width_scale);
-    if (s == LUCENT_OK) s = scene_read_range(n, "translucency_curvature", 1, -100, 100, &r->translucency_curvature);
-    if (s == LUCENT_OK) s = scene_read_int(n, "curvature_smooth", 1, 0, 16, &r->curvature_smooth);
-    if (s == LUCENT_OK) s = scene_read_int(n, "shadow_map_size", 2048, 16, 16384, &r->shadow_map_size);
-    if (s == LUCENT_OK) s = read_color(n, "background", 0, r->background);
-    if (s == LUCENT_OK) s = scene_read_range(n, "exposure", 0, -64, 64, &r->exposure);
-    if (s == LUCENT_OK) s = scene_read_int(n, "spp", r->spp, 1, 1 << 24, &r->spp);
-    if (s == LUCENT_OK) s = scene_read_range(n, "seed", 1, 0, 9007199254740992.0, &seed);
-    r->seed = (uint64_t)seed;
-    if (s == LUCENT_OK) s = scene_read_int(n, "max_bounces", r->max_bounces, 1, 100000, &r->max_bounces);
-    if (s == LUCENT_OK) s = scene_read_int(n, "max_scatter", r->max_scatter, 1, 1 << 30, &r->max_scatter);
-    if (s == LUCENT_OK) s = scene_read_range(n, "time_limit", 0, 0, 1e9, &r->time_limit);
-    return s;
+    return index >= 0 && index < lucent_settings_group_count() ? k_groups[index] : NULL;
 }
 
 lucent_status scene_read_render(const lucent_json_node *root, lucent_render_settings *dest)
@@ -347,13 +228,5 @@ lucent_status scene_read_render(const lucent_json_node *root, lucent_render_sett
     lucent_json_node n;
     *dest = lucent_render_settings_defaults();
     lucent_status s = lucent_json_object(root, "render", false, &n);
-    if (s != LUCENT_OK || !n.json) return s;
-    s = lucent_json_check_keys(&n, k_render_keys);
-    if (s == LUCENT_OK) s = read_method(&n, dest);
-    if (s == LUCENT_OK) s = read_profile(&n, dest);
-    if (s == LUCENT_OK) s = read_choices(&n, dest);
-    if (s == LUCENT_OK) s = read_numbers(&n, dest);
-    if (s == LUCENT_OK) s = lucent_json_bool_or(&n, "translucency", true, &dest->translucency);
-    if (s == LUCENT_OK) s = lucent_json_bool_or(&n, "cdrf_lut", true, &dest->cdrf_lut);
-    return s;
+    return s == LUCENT_OK ? lucent_settings_read_json(&n, dest) : s;
 }

@@ -276,7 +276,7 @@ lucent_status tr_field_build(lucent_tracer *tr, lucent_pool *pool)
     job.tally = calloc(CHUNKS * job.per_chunk, sizeof *job.tally);
     if (!job.tally) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory for the guiding field");
     /* 64 photons per pixel, within [2^16, 2^20]: a function of the scene alone */
-    uint64_t pixels = (uint64_t)tr->render.width * (uint64_t)tr->render.height;
+    uint64_t pixels = (uint64_t)tr->render.view.width * (uint64_t)tr->render.view.height;
     uint64_t photons = pixels * 64 < MIN_PHOTONS ? MIN_PHOTONS : pixels * 64 > MAX_PHOTONS ? MAX_PHOTONS : pixels * 64;
     photons = (photons + CHUNKS - 1) / CHUNKS * CHUNKS;
     lucent_status s = lucent_parallel_for(pool, photons, photons / CHUNKS, photon_chunk, &job);

@@ -45,7 +45,7 @@ static void add_found(void *ctx, const tr_light *l, const double le[3])
 static void escaped(tr_path *p)
 {
     if (p->camera_ray) {
-        const double *bg = p->tr->render.background;
+        const double *bg = p->tr->render.view.background;
         tr_path_add(p, bg);
     }
     tr_lights_escaped(p->tr, p->d, add_found, p);
@@ -82,8 +82,8 @@ static void surface(tr_path *p, const tr_hit *h)
     const tr_boundary *b = &tr->objects[h->object].boundary;
     bool first = p->camera_ray, inside = v3_dot(p->d, n) > 0, drop_reflection = first && tr->desc.subsurface_only;
     p->camera_ray = false;
-    if (++p->bounces > tr->render.max_bounces || v3_dot(n, n) == 0) {
-        p->stats->truncated += p->bounces > tr->render.max_bounces;
+    if (++p->bounces > tr->render.trace.max_bounces || v3_dot(n, n) == 0) {
+        p->stats->truncated += p->bounces > tr->render.trace.max_bounces;
         p->done = true;
         return;
     }
@@ -184,7 +184,7 @@ static void scatter(tr_path *p, const tr_object *ob, double t, const tr_transfor
     p->guide = (tr_guide){.x = x, .d_in = p->d, .object = p->medium};
     if (ob->boundary.kind == TR_BOUNDARY_ROUGH && !p->tr->desc.boundary_nee_only) tr_nee_through(p, &p->guide);
     else if (ob->boundary.kind == TR_BOUNDARY_MATCHED) tr_nee_volume_matched(p, x);
-    if (++p->scatters >= p->tr->render.max_scatter) {
+    if (++p->scatters >= p->tr->render.trace.max_scatter) {
         p->stats->truncated++;
         p->done = true;
         return;
@@ -218,7 +218,7 @@ bool tr_trace_path(const lucent_tracer *tr, double px, double py, lucent_rng *rn
     tr_path p = {.tr = tr, .rng = rng, .stats = stats, .beta = {1, 1, 1}, .r = {1, 1, 1}, .eta_scale = 1, .tw = 1, .medium = -1,
                  .camera_ray = true};
     double o[3], d[3];
-    lucent_camera_ray(&tr->scene->camera, tr->render.width, tr->render.height, px, py, o, d);
+    lucent_camera_ray(&tr->scene->camera, tr->render.view.width, tr->render.view.height, px, py, o, d);
     p.o = v3_from(o), p.d = v3_from(d);
     p.hero = (int)(tr_u(&p) * 3.0);
     if (p.hero > 2) p.hero = 2;

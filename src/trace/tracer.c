@@ -97,7 +97,7 @@ static lucent_status build(lucent_tracer *tr)
     free(map);
     if (s == LUCENT_OK) s = tr_lights_build(tr);
     tr->walk_strength = WALK_STRENGTH;
-    if (s == LUCENT_OK) s = tr_film_create(tr->render.width, tr->render.height, tr->desc.adaptive, &tr->film);
+    if (s == LUCENT_OK) s = tr_film_create(tr->render.view.width, tr->render.view.height, tr->desc.adaptive, &tr->film);
     tr->eps = scene_eps(sc);
     return s;
 }
@@ -148,9 +148,9 @@ static lucent_status resolve(const lucent_tracer *tr, const lucent_trace_desc *i
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "trace: time_limit must be a finite number of seconds");
     if (!(d->target_error >= 0) || !isfinite(d->target_error))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "trace: target_error must be >= 0 (got %g)", d->target_error);
-    if (!d->spp) d->spp = tr->render.spp;
-    if (!d->seed) d->seed = tr->film->passes ? tr->film->seed : tr->render.seed;
-    if (d->time_limit == 0) d->time_limit = tr->render.time_limit;
+    if (!d->spp) d->spp = tr->render.trace.spp;
+    if (!d->seed) d->seed = tr->film->passes ? tr->film->seed : tr->render.trace.seed;
+    if (d->time_limit == 0) d->time_limit = tr->render.trace.time_limit;
     if (!d->label) d->label = "trace";
     if (tr->film->passes && d->seed != tr->film->seed)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
@@ -177,7 +177,7 @@ lucent_status lucent_tracer_render(lucent_tracer *tr, const lucent_trace_desc *d
     double start = now(); /* the guiding field's pre-pass counts as rendering time */
     if (!tr->fields && tr->walk_strength > 0 && (s = tr_field_build(tr, d.pool)) != LUCENT_OK) return s;
     tr->film->seed = d.seed;
-    uint64_t per_pass = (uint64_t)tr->render.width * (uint64_t)tr->render.height * (tr->desc.adaptive ? 5 : 1);
+    uint64_t per_pass = (uint64_t)tr->render.view.width * (uint64_t)tr->render.view.height * (tr->desc.adaptive ? 5 : 1);
     lucent_progress *progress = lucent_progress_begin(d.label, (uint64_t)d.spp * per_pass);
     for (int i = 0; i < d.spp && s == LUCENT_OK; i++) {
         s = tr_film_pass(tr, tr->film, d.pool, progress);

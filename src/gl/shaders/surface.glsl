@@ -1,10 +1,9 @@
-// The scene pass: diffuse (pre-blur), specular and linear depth in separate targets (Freude 4.2,
-// pass 1). METHOD chooses the diffuse term: 0 Lambert, 1 CDRF, 2 CDRF + translucency, 3 ssss
-// (Lambert irradiance plus transmission, blurred afterwards). Radiance units: a light's irradiance E
-// on a surface of albedo a gives a E cos / pi.
+// The surface pass shared by the mesh methods (lambert, cdrf, ssss): diffuse (pre-blur), specular
+// and linear depth in separate targets (Freude 4.2, pass 1). A method's fragment shader includes this
+// file and defines the three functions declared below; everything else is common. Radiance units: a
+// light's irradiance E on a surface of albedo a gives a E cos / pi.
 #include "common.glsl"
 #include "lights.glsl"
-#include "cdrf.glsl"
 
 in vec3 v_position;
 in vec3 v_normal;
@@ -15,7 +14,7 @@ layout(binding = 0) uniform sampler2D u_albedo_map;
 layout(binding = 4) uniform sampler2D u_transmit; // T(s) per channel; a row per material
 
 uniform vec3 u_albedo;
-uniform vec3 u_sigma0;          // mm
+uniform vec3 u_sigma0;          // mm (cdrf)
 uniform int u_use_map;          // albedo from u_albedo_map (linear RGB)
 uniform int u_sigma0_from_map;  // sigma0 = d_c^2 (Kubo Eq. 6) from the diffuse map
 uniform float u_roughness;
@@ -23,13 +22,10 @@ uniform float u_f0;
 uniform float u_strength;       // ssss: the blur's share here (object's sss_strength x settings)
 uniform float u_material;       // material index (kernel and transmittance row)
 uniform float u_object;
-uniform int u_translucency;     // ssss: light through thin parts
 uniform float u_transmit_range; // mm: thickness where the table ends
 uniform float u_transmit_v;     // the material's row, as a texture coordinate
 uniform int u_transmit_albedo;  // 1: T is the profile's T(s) / T(0), times the albedo (Jimenez);
                                 // 0: T is the slab's own transmittance
-uniform float u_curvature_gain; // cdrf+translucency: m = 1 + gain sigma0 kappa
-uniform float u_cdrf_reach;     // mm: CDRF visibility is tested this far toward the light
 uniform float u_shadow_offset;  // normal offset, in shadow-map texels
 
 layout(location = 0) out vec4 o_diffuse;  // rgb: diffuse radiance; a: blur strength
@@ -41,6 +37,13 @@ layout(location = 4) out vec4 o_aov_position; // xyz: position (mm); w: object i
 layout(location = 5) out vec4 o_aov_light;    // light 0: visibility, 0, thickness
 #endif
 
+// The method's part: light i's shadow visibility at the surface (n the shading normal, l toward the
+// light, offset the normal offset in mm), the irradiance it gives (E the light's irradiance), and the
+// factor of the light transmitted through thin parts (0: none).
+float method_visibility(int i, vec3 n, vec3 l, float ndl, float offset);
+vec3 method_irradiance(vec3 e, float ndl, vec3 sigma0);
+vec3 method_transmission(vec3 sigma0);
+
 // The transmittance through thickness s (table samples on the end points).
 vec3 transmittance(float s)
 {
@@ -51,17 +54,11 @@ vec3 transmittance(float s)
 }
 
 // Light reaching the back of a thin part and leaving here: E max(-n.l, 0) T(s) (Jimenez 2010; T the
-// Monte Carlo slab transmittance or the material's own profile, docs/render.md), the curvature
-// modulation of the CDRF blog for cdrf+translucency.
+// Monte Carlo slab transmittance or the material's own profile, docs/render.md), times the method's
+// factor (the curvature modulation of the CDRF blog for cdrf+translucency).
 vec3 transmitted(int i, vec3 n, vec3 e, float ndl, float offset, vec3 sigma0)
 {
-#if METHOD == 2
-    vec3 m = clamp(1.0 + u_curvature_gain * sigma0 * v_curvature, 0.0, 2.0);
-#elif METHOD == 3
-    vec3 m = vec3(u_translucency != 0 ? 1.0 : 0.0);
-#else
-    vec3 m = vec3(0.0);
-#endif
+    vec3 m = method_transmission(sigma0);
     if (ndl >= 0.0 || all(equal(m, vec3(0.0)))) return vec3(0.0);
     return e * -ndl * transmittance(shadow_thickness(i, v_position - n * offset)) * m;
 }
@@ -78,16 +75,8 @@ void main()
     for (int i = 0; i < u_counts.x; i++) {
         vec3 l, e = light_incident(i, v_position, l);
         float ndl = dot(n, l), offset = u_light_texel[i].x * u_shadow_offset;
-#if METHOD == 1 || METHOD == 2
-        // The CDRF spreads light over an arc of sigma0 mm: visibility is tested where light enters,
-        // up to u_cdrf_reach mm toward the light past the terminator (none where the light faces the
-        // surface), one lookup serving diffuse and specular as Lambert's one does.
-        float vis = shadow_visibility(i, v_position + n * offset + l * u_cdrf_reach * (1.0 - max(ndl, 0.0)));
-        irradiance += e * cdrf3(ndl, sigma0 * v_curvature) * vis; // Kubo Eq. 5
-#else
-        float vis = shadow_visibility(i, v_position + n * offset);
-        irradiance += e * max(ndl, 0.0) * vis;
-#endif
+        float vis = method_visibility(i, n, l, ndl, offset);
+        irradiance += method_irradiance(e, ndl, sigma0) * vis;
         transmitted_e += transmitted(i, n, e, ndl, offset, sigma0);
         specular += e * specular_ksk(n, v, l, u_roughness, u_f0) * vis;
         if (i == 0) vis0 = vis;

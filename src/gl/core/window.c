@@ -1,5 +1,5 @@
 /* A GLFW window with an OpenGL 4.5 core context: the interactive side of the same renderer. */
-#include "gl/context_internal.h" /* epoxy before GLFW */
+#include "gl/core/context_internal.h" /* epoxy before GLFW */
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <string.h>

@@ -4,11 +4,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl/renderer_internal.h"
+#include "gl/meshes.h"
 #include "lucent/mesh.h"
 
-/* Attribute locations (scene.vert.glsl) and vertex-buffer bindings. */
-enum { ATTR_POSITION = 0, ATTR_NORMAL = 1, ATTR_CURVATURE = 2, ATTR_UV = 3 };
+/* Vertex-buffer bindings. */
 enum { BIND_VERTICES = 0, BIND_CURVATURE = 1, BIND_UV = 2 };
 
 static GLuint buffer(const void *data, size_t size)
@@ -40,8 +39,8 @@ static lucent_status upload_vertices(const lucent_mesh *m, gl_mesh *g)
     glCreateVertexArrays(1, &g->vao);
     glVertexArrayVertexBuffer(g->vao, BIND_VERTICES, g->vertices, 0, 6 * sizeof(float));
     glVertexArrayElementBuffer(g->vao, g->indices);
-    attribute(g->vao, ATTR_POSITION, BIND_VERTICES, 3, 0);
-    attribute(g->vao, ATTR_NORMAL, BIND_VERTICES, 3, 3 * sizeof(float));
+    attribute(g->vao, GL_ATTR_POSITION, BIND_VERTICES, 3, 0);
+    attribute(g->vao, GL_ATTR_NORMAL, BIND_VERTICES, 3, 3 * sizeof(float));
     return LUCENT_OK;
 }
 
@@ -54,7 +53,7 @@ static lucent_status upload_texture(const lucent_scene_object *o, gl_mesh *g)
     g->uvs = buffer(uv, n * 2 * sizeof *uv);
     free(uv);
     glVertexArrayVertexBuffer(g->vao, BIND_UV, g->uvs, 0, 2 * sizeof(float));
-    attribute(g->vao, ATTR_UV, BIND_UV, 2, 0);
+    attribute(g->vao, GL_ATTR_UV, BIND_UV, 2, 0);
     lucent_status s = gl_texture_from_image(o->albedo_texture, GL_LINEAR, &g->albedo_map);
     if (s == LUCENT_OK) {
         glTextureParameteri(g->albedo_map, GL_TEXTURE_WRAP_S, GL_REPEAT);
@@ -63,17 +62,16 @@ static lucent_status upload_texture(const lucent_scene_object *o, gl_mesh *g)
     return s == LUCENT_OK ? LUCENT_OK : lucent_error_context(s, "object \"%s\": albedo_texture", o->name);
 }
 
-lucent_status gl_meshes_upload(lucent_renderer *r)
+lucent_status gl_meshes_upload(gl_meshes *m, const lucent_scene *sc)
 {
-    const lucent_scene *sc = r->scene;
-    r->meshes = calloc((size_t)sc->object_count, sizeof *r->meshes);
-    if (!r->meshes) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    m->mesh = calloc((size_t)sc->object_count, sizeof *m->mesh);
+    if (!m->mesh) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    m->count = sc->object_count;
     lucent_status s = LUCENT_OK;
     for (int i = 0; i < sc->object_count && s == LUCENT_OK; i++) {
         const lucent_scene_object *o = &sc->objects[i];
-        gl_mesh *g = &r->meshes[i];
+        gl_mesh *g = &m->mesh[i];
         g->curvature_smooth = -1;
-        g->sigma0_from = "";
         if (!o->mesh) {
             s = lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "object \"%s\" has no mesh (scene loaded with skip_meshes?)",
                              o->name);
@@ -103,12 +101,10 @@ static void percentiles(const double *v, size_t n, double dest[2])
 }
 
 /* Rusinkiewicz's estimator on the mesh in world mm, so the mean curvature is in mm^-1. */
-static lucent_status one_curvature(lucent_renderer *r, int index, int rings)
+static lucent_status one_curvature(const lucent_scene_object *o, gl_mesh *g, int rings, lucent_pool *pool)
 {
-    const lucent_scene_object *o = &r->scene->objects[index];
-    gl_mesh *g = &r->meshes[index];
     lucent_curvature c;
-    lucent_curvature_desc d = {.method = LUCENT_CURVATURE_RUSINKIEWICZ, .smooth_rings = rings, .pool = r->desc.pool};
+    lucent_curvature_desc d = {.method = LUCENT_CURVATURE_RUSINKIEWICZ, .smooth_rings = rings, .pool = pool};
     lucent_status s = lucent_mesh_curvature(o->mesh, &d, &c);
     if (s != LUCENT_OK) return lucent_error_context(s, "object \"%s\": curvature", o->name);
     float *k = malloc(c.count * sizeof *k);
@@ -118,7 +114,7 @@ static lucent_status one_curvature(lucent_renderer *r, int index, int rings)
         if (!g->curvature) glCreateBuffers(1, &g->curvature);
         glNamedBufferData(g->curvature, (GLsizeiptr)(c.count * sizeof *k), k, GL_STATIC_DRAW);
         glVertexArrayVertexBuffer(g->vao, BIND_CURVATURE, g->curvature, 0, sizeof(float));
-        attribute(g->vao, ATTR_CURVATURE, BIND_CURVATURE, 1, 0);
+        attribute(g->vao, GL_ATTR_CURVATURE, BIND_CURVATURE, 1, 0);
         percentiles(c.mean, c.count, g->curvature_range);
         g->curvature_smooth = rings;
     }
@@ -127,24 +123,30 @@ static lucent_status one_curvature(lucent_renderer *r, int index, int rings)
     return s;
 }
 
-lucent_status gl_meshes_curvature(lucent_renderer *r, int smooth_rings)
+lucent_status gl_meshes_curvature(gl_meshes *m, const lucent_scene *scene, int smooth_rings, lucent_pool *pool)
 {
     lucent_status s = LUCENT_OK;
-    for (int i = 0; i < r->scene->object_count && s == LUCENT_OK; i++)
-        if (r->meshes[i].curvature_smooth != smooth_rings && r->scene->objects[i].visible)
-            s = one_curvature(r, i, smooth_rings);
+    for (int i = 0; i < m->count && s == LUCENT_OK; i++)
+        if (m->mesh[i].curvature_smooth != smooth_rings && scene->objects[i].visible)
+            s = one_curvature(&scene->objects[i], &m->mesh[i], smooth_rings, pool);
     return s == LUCENT_OK ? gl_check("uploading curvature") : s;
 }
 
-void gl_meshes_free(lucent_renderer *r)
+void gl_meshes_draw(const gl_meshes *m, int i)
 {
-    for (int i = 0; r->meshes && i < r->scene->object_count; i++) {
-        gl_mesh *g = &r->meshes[i];
+    glBindVertexArray(m->mesh[i].vao);
+    glDrawElements(GL_TRIANGLES, m->mesh[i].index_count, GL_UNSIGNED_INT, NULL);
+}
+
+void gl_meshes_free(gl_meshes *m)
+{
+    for (int i = 0; m->mesh && i < m->count; i++) {
+        gl_mesh *g = &m->mesh[i];
         GLuint buffers[4] = {g->vertices, g->indices, g->curvature, g->uvs};
         glDeleteBuffers(4, buffers);
         if (g->vao) glDeleteVertexArrays(1, &g->vao);
         if (g->albedo_map) glDeleteTextures(1, &g->albedo_map);
     }
-    free(r->meshes);
-    r->meshes = NULL;
+    free(m->mesh);
+    m->mesh = NULL, m->count = 0;
 }

@@ -1,12 +1,12 @@
-/* Small GL helpers shared by the renderer and the standalone blur: textures, framebuffers, timer
- * queries, and the separable blur passes. Internal: GL types stay inside src/gl. */
-#ifndef LUCENT_SRC_GL_GPU_H
-#define LUCENT_SRC_GL_GPU_H
+/* The renderer core's GL helpers: textures, framebuffers, read-back, GPU timer queries, a clock.
+ * Internal: GL types stay inside src/gl. */
+#ifndef LUCENT_SRC_GL_CORE_GPU_H
+#define LUCENT_SRC_GL_CORE_GPU_H
 
 #include <epoxy/gl.h>
 
-#include "gl/context_internal.h"
-#include "gl/shader.h"
+#include "gl/core/context_internal.h"
+#include "gl/core/shader.h"
 #include "lucent/render.h"
 
 /* ---- textures and framebuffers ---- */
@@ -50,38 +50,8 @@ void gl_timer_free(gl_timer *t);
 /* Monotonic wall clock in milliseconds. */
 double gl_now_ms(void);
 
-/* ---- the separable blur (blur.frag.glsl) ---- */
-
-typedef struct gl_blur {
-    GLuint program, vao;
-    GLint loc_axis, loc_pass, loc_rank, loc_count, loc_vertical, loc_scale, loc_filter;
-    GLuint taps_tex;
-    int count, rank;
-    GLuint tmp_tex, tmp_fbo, sum_tex, sum_fbo; /* sum_tex: the result */
-    int width, height;
-} gl_blur;
-
-/* Compiles the blur program (embedded sources). */
-lucent_status gl_blur_init(gl_blur *b);
-
-/* Uploads the tap sets of `count` materials (same count and rank) with each one's depth-filter
- * radius R = width_scale x max |offset|. */
-lucent_status gl_blur_set_taps(gl_blur *b, const lucent_taps *const *taps, int count, double width_scale);
-
-/* (Re)creates the RGBA32F intermediate and result targets for width x height. */
-lucent_status gl_blur_resize(gl_blur *b, int width, int height);
-
-/* Runs every kernel pass (horizontal then vertical) on source (rgb) with depth (x: mm, y: material);
- * the result is in b->sum_tex. scale: pixels per mm at 1 mm times width_scale. timer may be NULL. */
-void gl_blur_run(gl_blur *b, GLuint source, GLuint depth, double scale, lucent_depth_filter filter, gl_timer *timer);
-
-void gl_blur_free(gl_blur *b);
-
-/* Checks the arguments of lucent_ssss_blur_cpu / _gl; messages name what is wrong. */
-lucent_status gl_blur_check_args(const lucent_image *irradiance, const lucent_image *depth, const uint8_t *material,
-                                 const lucent_ssss_blur_desc *desc, const lucent_image *dest);
-
-/* The depth-filter radius R (mm) of a tap set: width_scale x its largest |offset|. */
-double gl_taps_radius(const lucent_taps *t, double width_scale);
+/* ---- small double-precision 4x4 helpers (column-major) ---- */
+void gl_mat4_mul(const double a[16], const double b[16], double dest[16]);
+void gl_mat4_to_float(const double m[16], float dest[16]);
 
 #endif

@@ -1,7 +1,7 @@
 /* CPU reference of the Lambert and CDRF shading with the specular lobe (see reference.h). */
 #include <math.h>
 
-#include "gl/reference.h"
+#include "gl/reference/reference.h"
 
 static double dot3(const double *a, const double *b)
 {

@@ -1,10 +1,13 @@
-/* CPU reference of the scene pass's shading (scene.frag.glsl), written separately in double
- * precision: what one surface point gives for Lambert and the CDRF (LUT or function), with the
- * Kelemen/Szirmay-Kalos specular. The tests feed it the GPU's own normal, curvature and position
- * (auxiliary outputs) and compare pixel by pixel. */
-#ifndef LUCENT_SRC_GL_REFERENCE_H
-#define LUCENT_SRC_GL_REFERENCE_H
+/* The CPU references of the renderer's passes, written separately in double precision and free of
+ * GL: the scene pass's shading (shading.c: what one surface point gives for Lambert and the CDRF,
+ * LUT or function, with the Kelemen/Szirmay-Kalos specular; the tests feed it the GPU's own normal,
+ * curvature and position and compare pixel by pixel) and the separable blur (blur_cpu.c:
+ * lucent_ssss_blur_cpu of lucent/render.h). */
+#ifndef LUCENT_SRC_GL_REFERENCE_REFERENCE_H
+#define LUCENT_SRC_GL_REFERENCE_REFERENCE_H
 
+#include "lucent/cdrf.h"
+#include "lucent/render.h"
 #include "lucent/scene.h"
 
 /* A shaded point: where it is, its shading normal (unit, facing the viewer's side), its mean
@@ -31,5 +34,9 @@ double gl_ref_lut(const lucent_image *lut, double sigma_max, double cos_theta, d
 void gl_ref_shade(const lucent_scene *scene, lucent_render_method method, lucent_cdrf_variant variant,
                   const lucent_image *lut, double sigma_max, const gl_ref_material *m, const gl_ref_point *p,
                   double diffuse[3], double specular[3]);
+
+/* Checks the arguments of lucent_ssss_blur_cpu / _gl; messages name what is wrong. */
+lucent_status gl_blur_check_args(const lucent_image *irradiance, const lucent_image *depth, const uint8_t *material,
+                                 const lucent_ssss_blur_desc *desc, const lucent_image *dest);
 
 #endif

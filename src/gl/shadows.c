@@ -1,33 +1,15 @@
-/* Lights and shadow maps: one layer of a depth-texture array per shadow-casting light, an
- * orthographic projection around the scene's bounding sphere for directional lights and a
- * perspective one toward it for point and sphere lights (a sphere light shadows as a point). The
- * same maps give the thickness the translucency reads (Jimenez 2010). */
+/* Lights and shadow maps (shadows.h). */
 #include <math.h>
 #include <string.h>
 
-#include "gl/renderer_internal.h"
+#include "gl/shadows.h"
 
-void gl_mat4_mul(const double a[16], const double b[16], double dest[16])
-{
-    double t[16];
-    for (int c = 0; c < 4; c++)
-        for (int r = 0; r < 4; r++) {
-            double s = 0;
-            for (int k = 0; k < 4; k++) s += a[4 * k + r] * b[4 * c + k];
-            t[4 * c + r] = s;
-        }
-    memcpy(dest, t, sizeof t);
-}
+static void free_maps(gl_shadows *r);
 
-void gl_mat4_to_float(const double m[16], float dest[16])
-{
-    for (int i = 0; i < 16; i++) dest[i] = (float)m[i];
-}
-
-static void scene_sphere(lucent_renderer *r)
+static void scene_sphere(gl_shadows *r, const lucent_scene *scene)
 {
     double lo[3], hi[3], rr = 0;
-    lucent_scene_bounds(r->scene, lo, hi);
+    lucent_scene_bounds(scene, lo, hi);
     for (int i = 0; i < 3; i++) {
         r->bound_centre[i] = lo[i] <= hi[i] ? 0.5 * (lo[i] + hi[i]) : 0;
         rr += lo[i] <= hi[i] ? 0.25 * (hi[i] - lo[i]) * (hi[i] - lo[i]) : 0;
@@ -47,7 +29,7 @@ static void light_view(const double eye[3], const double centre[3], double dest[
     lucent_camera_view(&cam, dest);
 }
 
-static void directional(lucent_renderer *r, const lucent_light *l, gl_light *g)
+static void directional(const gl_shadows *r, const lucent_light *l, gl_light *g)
 {
     double R = r->bound_radius, eye[3], proj[16] = {0}, view[16];
     for (int i = 0; i < 3; i++) eye[i] = r->bound_centre[i] - l->direction[i] * 2 * R;
@@ -61,7 +43,7 @@ static void directional(lucent_renderer *r, const lucent_light *l, gl_light *g)
 }
 
 /* Returns false when the light stands inside the scene's bounding sphere (no single map covers). */
-static bool point(lucent_renderer *r, const lucent_light *l, gl_light *g)
+static bool point(const gl_shadows *r, const lucent_light *l, gl_light *g)
 {
     double R = r->bound_radius, dist = 0, view[16], proj[16];
     for (int i = 0; i < 3; i++) dist += (r->bound_centre[i] - l->position[i]) * (r->bound_centre[i] - l->position[i]);
@@ -78,18 +60,20 @@ static bool point(lucent_renderer *r, const lucent_light *l, gl_light *g)
     return true;
 }
 
-lucent_status gl_lights_setup(lucent_renderer *r)
+lucent_status gl_shadows_setup(gl_shadows *r, const lucent_scene *scene)
 {
-    scene_sphere(r);
-    for (int i = 0; i < r->scene->light_count; i++) {
-        const lucent_light *l = &r->scene->lights[i];
+    scene_sphere(r, scene);
+    lucent_status s = gl_program_build(gl_embedded_source, NULL, "shadow.vert.glsl", "shadow.frag.glsl", NULL,
+                                       &r->program);
+    for (int i = 0; i < scene->light_count && s == LUCENT_OK; i++) {
+        const lucent_light *l = &scene->lights[i];
         if (l->type == LUCENT_LIGHT_ENVIRONMENT) {
             for (int c = 0; c < 3; c++) r->ambient[c] += l->color[c] * l->intensity;
             continue;
         }
         if (r->light_count == GLR_MAX_LIGHTS)
             return lucent_error(LUCENT_ERR_UNSUPPORTED, "%s: lights[%d]: at most %d lights besides environment lights",
-                                r->scene->name, i, GLR_MAX_LIGHTS);
+                                scene->name, i, GLR_MAX_LIGHTS);
         gl_light *g = &r->lights[r->light_count++];
         memset(g, 0, sizeof *g);
         g->scene_index = i, g->layer = -1;
@@ -97,24 +81,24 @@ lucent_status gl_lights_setup(lucent_renderer *r)
         if (l->type == LUCENT_LIGHT_DIRECTIONAL) directional(r, l, g);
         else if (!point(r, l, g)) {
             lucent_log(LUCENT_LOG_WARN, "%s: lights[%d] stands inside the scene's bounds: drawn without shadows",
-                       r->scene->name, i);
+                       scene->name, i);
             continue;
         }
-        g->layer = r->shadow_layers++;
+        g->layer = r->layers++;
     }
-    return LUCENT_OK;
+    return s;
 }
 
-lucent_status gl_shadows_resize(lucent_renderer *r, int size)
+lucent_status gl_shadows_resize(gl_shadows *r, int size)
 {
-    if (r->shadow_tex && r->shadow_size == size) return LUCENT_OK;
-    gl_shadows_free(r);
-    int layers = r->shadow_layers > 0 ? r->shadow_layers : 1, side = r->shadow_layers > 0 ? size : 1;
-    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &r->shadow_tex);
-    glTextureStorage3D(r->shadow_tex, 1, GL_DEPTH_COMPONENT32F, side, side, layers);
-    glCreateFramebuffers(1, &r->shadow_fbo);
-    glNamedFramebufferDrawBuffer(r->shadow_fbo, GL_NONE);
-    glNamedFramebufferReadBuffer(r->shadow_fbo, GL_NONE);
+    if (r->tex && r->size == size) return LUCENT_OK;
+    free_maps(r);
+    int layers = r->layers > 0 ? r->layers : 1, side = r->layers > 0 ? size : 1;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &r->tex);
+    glTextureStorage3D(r->tex, 1, GL_DEPTH_COMPONENT32F, side, side, layers);
+    glCreateFramebuffers(1, &r->fbo);
+    glNamedFramebufferDrawBuffer(r->fbo, GL_NONE);
+    glNamedFramebufferReadBuffer(r->fbo, GL_NONE);
     glCreateSamplers(1, &r->sampler_compare);
     glCreateSamplers(1, &r->sampler_raw);
     GLuint samplers[2] = {r->sampler_compare, r->sampler_raw};
@@ -126,42 +110,60 @@ lucent_status gl_shadows_resize(lucent_renderer *r, int size)
     }
     glSamplerParameteri(r->sampler_compare, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glSamplerParameteri(r->sampler_compare, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    r->shadow_size = size;
+    r->size = size;
     return gl_check("creating the shadow maps");
 }
 
-void gl_shadows_draw(lucent_renderer *r)
+bool gl_shadows_begin(gl_shadows *r, int i)
 {
-    glUseProgram(r->shadow_program);
-    GLint loc = glGetUniformLocation(r->shadow_program, "u_light_mvp");
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r->shadow_fbo);
-    glViewport(0, 0, r->shadow_size, r->shadow_size);
+    const gl_light *g = &r->lights[i];
+    if (g->layer < 0) return false;
+    glUseProgram(r->program);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r->fbo);
+    glViewport(0, 0, r->size, r->size);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.5f, 2.0f);
-    for (int i = 0; i < r->light_count; i++) {
-        const gl_light *g = &r->lights[i];
-        if (g->layer < 0) continue;
-        float m[16];
-        gl_mat4_to_float(g->matrix, m);
-        glUniformMatrix4fv(loc, 1, GL_FALSE, m);
-        glNamedFramebufferTextureLayer(r->shadow_fbo, GL_DEPTH_ATTACHMENT, r->shadow_tex, 0, g->layer);
-        glClearNamedFramebufferfv(r->shadow_fbo, GL_DEPTH, 0, (const float[1]){1});
-        for (int o = 0; o < r->scene->object_count; o++) {
-            if (!r->scene->objects[o].visible) continue;
-            glBindVertexArray(r->meshes[o].vao);
-            glDrawElements(GL_TRIANGLES, r->meshes[o].index_count, GL_UNSIGNED_INT, NULL);
-        }
-    }
+    float m[16];
+    gl_mat4_to_float(g->matrix, m);
+    glUniformMatrix4fv(glGetUniformLocation(r->program, "u_light_mvp"), 1, GL_FALSE, m);
+    glNamedFramebufferTextureLayer(r->fbo, GL_DEPTH_ATTACHMENT, r->tex, 0, g->layer);
+    glClearNamedFramebufferfv(r->fbo, GL_DEPTH, 0, (const float[1]){1});
+    return true;
+}
+
+void gl_shadows_end(void)
+{
     glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
-void gl_shadows_free(lucent_renderer *r)
+void gl_shadows_bind(const gl_shadows *r)
 {
-    if (r->shadow_tex) glDeleteTextures(1, &r->shadow_tex);
-    if (r->shadow_fbo) glDeleteFramebuffers(1, &r->shadow_fbo);
+    glBindTextureUnit(1, r->tex);
+    glBindSampler(1, r->sampler_compare);
+    glBindTextureUnit(2, r->tex);
+    glBindSampler(2, r->sampler_raw);
+}
+
+void gl_shadows_unbind(void)
+{
+    glBindSampler(1, 0);
+    glBindSampler(2, 0);
+}
+
+static void free_maps(gl_shadows *r)
+{
+    if (r->tex) glDeleteTextures(1, &r->tex);
+    if (r->fbo) glDeleteFramebuffers(1, &r->fbo);
     if (r->sampler_compare) glDeleteSamplers(1, &r->sampler_compare);
     if (r->sampler_raw) glDeleteSamplers(1, &r->sampler_raw);
-    r->shadow_tex = r->shadow_fbo = r->sampler_compare = r->sampler_raw = 0;
+    r->tex = r->fbo = r->sampler_compare = r->sampler_raw = 0;
+}
+
+void gl_shadows_free(gl_shadows *r)
+{
+    free_maps(r);
+    if (r->program) glDeleteProgram(r->program);
+    memset(r, 0, sizeof *r);
 }

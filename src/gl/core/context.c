@@ -7,7 +7,7 @@
 #include <malloc.h>
 #endif
 
-#include "gl/context_internal.h"
+#include "gl/core/context_internal.h"
 
 static const char *const k_platforms[] = {"auto", "surfaceless", "device", "window"};
 

@@ -5,7 +5,7 @@
 #include <pthread.h>
 #include <string.h>
 
-#include "gl/context_internal.h"
+#include "gl/core/context_internal.h"
 
 enum { MAX_DEVICES = 16 };
 

@@ -6,7 +6,7 @@
 
 #include "base/embedded.h"
 #include "base/strbuf.h"
-#include "gl/shader.h"
+#include "gl/core/shader.h"
 
 enum { MAX_DEPTH = 8 };
 

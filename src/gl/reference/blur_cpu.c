@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl/gpu.h"
+#include "gl/reference/reference.h"
 
 enum { MAX_MATERIALS = 8 };
 

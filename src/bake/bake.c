@@ -1,0 +1,215 @@
+/* What a renderer needs from a material (lucent/bake.h), each part rebuilt only when the settings it
+ * depends on changed, the Monte Carlo parts kept in the disk cache. */
+#include <math.h>
+#include <string.h>
+#include <time.h>
+
+#include "lucent/bake.h"
+#include "lucent/cdrf.h"
+
+/* The desc with its zeros resolved. */
+static lucent_bake_desc resolve(const lucent_bake_desc *d, lucent_render_settings *defaults)
+{
+    lucent_bake_desc r = *d;
+    if (!r.settings) *defaults = lucent_render_settings_defaults(), r.settings = defaults;
+    if (!r.profile_photons) r.profile_photons = LUCENT_BAKE_PROFILE_PHOTONS;
+    if (!r.transmit_photons) r.transmit_photons = LUCENT_BAKE_TRANSMIT_PHOTONS;
+    if (!r.sigma0_photons) r.sigma0_photons = LUCENT_BAKE_SIGMA0_PHOTONS;
+    if (r.what & LUCENT_BAKE_TAPS) r.what |= LUCENT_BAKE_PROFILE;
+    if ((r.what & LUCENT_BAKE_TRANSMITTANCE) && r.settings->translucency.transmittance == LUCENT_TRANSMIT_PROFILE)
+        r.what |= LUCENT_BAKE_PROFILE;
+    return r;
+}
+
+static double seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* The material's optical parameters as text: part of every cache key. */
+static void material_key(const lucent_material *m, char *dest, size_t size)
+{
+    snprintf(dest, size, "%s sa %.17g %.17g %.17g ss %.17g %.17g %.17g g %.17g %.17g %.17g eta %.17g", m->name,
+             m->sigma_a[0], m->sigma_a[1], m->sigma_a[2], m->sigma_s[0], m->sigma_s[1], m->sigma_s[2], m->g[0], m->g[1],
+             m->g[2], m->eta);
+}
+
+/* ---- profile ---- */
+
+static lucent_status bake_profile(const lucent_material *m, const lucent_bake_desc *d, lucent_baked *b)
+{
+    const char *source = d->settings->ssss.profile;
+    if (b->profile && !strcmp(b->profile_key, source)) return LUCENT_OK;
+    lucent_profile_destroy(b->profile);
+    b->profile = NULL, b->profile_key[0] = '\0', b->have &= ~(unsigned)LUCENT_BAKE_PROFILE;
+    lucent_profile_source_desc pd = {.source = source, .photons = d->profile_photons, .seed = 1, .pool = d->pool};
+    lucent_status s = lucent_profile_from_source(&pd, m, &b->profile);
+    if (s != LUCENT_OK) return lucent_error_context(s, "material %s: profile %s", m->name, source);
+    snprintf(b->profile_key, sizeof b->profile_key, "%s", source);
+    b->have |= LUCENT_BAKE_PROFILE;
+    return LUCENT_OK;
+}
+
+/* ---- taps (Freude ch. 5 models through lucent/kernel.h) ---- */
+
+static lucent_status bake_taps(const lucent_material *m, const lucent_bake_desc *d, lucent_baked *b)
+{
+    const lucent_ssss_settings *ss = &d->settings->ssss;
+    char key[LUCENT_BAKE_KEY_SIZE];
+    if (snprintf(key, sizeof key, "%.64s/%s/%d/%d", b->profile_key,
+                 lucent_kernel_model_name((lucent_kernel_model)ss->kernel), ss->rank, ss->taps) >= (int)sizeof key)
+        return lucent_error(LUCENT_ERR_INTERNAL, "bake: taps key too long");
+    if (b->taps && !strcmp(key, b->taps_key)) return LUCENT_OK;
+    lucent_taps_destroy(b->taps);
+    b->taps = NULL, b->taps_key[0] = '\0', b->have &= ~(unsigned)LUCENT_BAKE_TAPS;
+    lucent_kernel2d *gt = NULL;
+    lucent_kernel *k = NULL;
+    lucent_kernel_desc kd = lucent_kernel_defaults((lucent_kernel_model)ss->kernel);
+    kd.rank = ss->rank;
+    lucent_status st = lucent_kernel2d_from_profile(b->profile, NULL, &gt);
+    if (st == LUCENT_OK) st = lucent_kernel_build(gt, b->profile, m->name, &kd, &k);
+    if (st == LUCENT_OK) st = lucent_kernel_taps(k, &(lucent_taps_desc){.count = ss->taps}, &b->taps);
+    lucent_kernel_destroy(k);
+    lucent_kernel2d_destroy(gt);
+    if (st != LUCENT_OK) return lucent_error_context(st, "material %s: kernel %s", m->name, key);
+    snprintf(b->taps_key, sizeof b->taps_key, "%s", key);
+    b->have |= LUCENT_BAKE_TAPS;
+    return LUCENT_OK;
+}
+
+/* ---- transmittance (docs/render.md, "Translucency") ---- */
+
+/* The slab's samples, from the cache or the Monte Carlo. The key is the one of earlier versions, so
+ * their cache files stay valid. */
+static lucent_status slab_samples(const lucent_material *m, const lucent_bake_desc *d, lucent_cache *cache,
+                                  lucent_slab_transmittance *t)
+{
+    char mat[512], key[640];
+    material_key(m, mat, sizeof mat);
+    snprintf(key, sizeof key, "slab-transmittance v1 %s photons %llu samples %d seed 1", mat,
+             (unsigned long long)d->transmit_photons, LUCENT_SLAB_SAMPLES);
+    lucent_slab_transmittance_grid(m, t);
+    if (lucent_cache_get(cache, "transmittance", key, "transmittance", 3 * LUCENT_SLAB_SAMPLES, &t->value[0][0]))
+        return LUCENT_OK;
+    double t0 = seconds();
+    lucent_status s = lucent_slab_transmittance_run(m, d->transmit_photons, d->pool, t);
+    if (s != LUCENT_OK) return s;
+    lucent_log(LUCENT_LOG_INFO, "slab transmittance of %s: %d thicknesses to %.3g mm in %.1f s", m->name,
+               LUCENT_SLAB_SAMPLES, t->s_max, seconds() - t0);
+    lucent_cache_field f[2] = {{"thickness_mm", t->thickness, LUCENT_SLAB_SAMPLES},
+                               {"transmittance", &t->value[0][0], 3 * LUCENT_SLAB_SAMPLES}};
+    lucent_cache_put(cache, "transmittance", key, f, 2);
+    return LUCENT_OK;
+}
+
+static lucent_status table_from_slab(const lucent_material *m, const lucent_bake_desc *d, lucent_cache *cache,
+                                     lucent_baked *b)
+{
+    lucent_slab_transmittance t;
+    lucent_status s = slab_samples(m, d, cache, &t);
+    if (s != LUCENT_OK) return s;
+    const int n = LUCENT_BAKE_TRANSMIT_SIZE;
+    b->transmit_range = 2 * t.s_max; /* the table runs to where T is e^-10 of thin: nothing visible beyond */
+    for (int j = 0; j < n; j++)
+        for (int c = 0; c < 3; c++)
+            b->transmittance[3 * j + c] =
+                j == n - 1 ? 0.0f : (float)lucent_slab_transmittance_eval(&t, c, b->transmit_range * j / (n - 1));
+    return LUCENT_OK;
+}
+
+/* Jimenez 2010 with the material's profile: T(s) / T(0), the profile's power outside radius s. */
+static void table_from_profile(const lucent_profile *p, lucent_baked *b)
+{
+    const int n = LUCENT_BAKE_TRANSMIT_SIZE;
+    b->transmit_range = p->count * p->dr;
+    for (int c = 0; c < 3; c++) {
+        double t0 = lucent_profile_tail(p, c, 0);
+        for (int j = 0; j < n; j++) {
+            double s = b->transmit_range * j / (n - 1), t = j == n - 1 ? 0 : lucent_profile_tail(p, c, s);
+            b->transmittance[3 * j + c] = t0 > 0 ? (float)fmax(t / t0, 0) : 0;
+        }
+    }
+}
+
+static lucent_status bake_transmittance(const lucent_material *m, const lucent_bake_desc *d, lucent_cache *cache,
+                                        lucent_baked *b)
+{
+    lucent_transmittance_model model = d->settings->translucency.transmittance;
+    char key[LUCENT_BAKE_KEY_SIZE];
+    snprintf(key, sizeof key, "%s%s%.64s", lucent_transmittance_name(model), model == LUCENT_TRANSMIT_PROFILE ? " " : "",
+             model == LUCENT_TRANSMIT_PROFILE ? b->profile_key : "");
+    if ((b->have & LUCENT_BAKE_TRANSMITTANCE) && !strcmp(key, b->transmit_key)) return LUCENT_OK;
+    b->have &= ~(unsigned)LUCENT_BAKE_TRANSMITTANCE, b->transmit_key[0] = '\0', b->transmit_range = 0;
+    lucent_status s = LUCENT_OK;
+    if (model == LUCENT_TRANSMIT_SLAB) s = table_from_slab(m, d, cache, b);
+    else table_from_profile(b->profile, b);
+    if (s != LUCENT_OK) return s;
+    snprintf(b->transmit_key, sizeof b->transmit_key, "%s", key);
+    b->have |= LUCENT_BAKE_TRANSMITTANCE;
+    return LUCENT_OK;
+}
+
+/* ---- sigma0 (Kubo Fig. 6: Monte Carlo spheres of the material, fitted) ---- */
+
+static void sigma0_cache_key(const lucent_material *m, lucent_cdrf_variant v, uint64_t photons, char *dest,
+                             size_t size)
+{
+    static const double radii[LUCENT_CDRF_FIT_RADIUS_COUNT] = LUCENT_CDRF_FIT_RADII;
+    char mat[512], list[128] = "";
+    material_key(m, mat, sizeof mat);
+    for (int i = 0; i < LUCENT_CDRF_FIT_RADIUS_COUNT; i++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%g", i ? "," : "", radii[i]);
+    snprintf(dest, size, "v1 %s %s photons %llu radii %s bins %d seed 1", mat, lucent_cdrf_variant_name(v),
+             (unsigned long long)photons, list, LUCENT_BAKE_SIGMA0_BINS);
+}
+
+static lucent_status bake_sigma0(const lucent_material *m, const lucent_bake_desc *d, lucent_cache *cache,
+                                 lucent_baked *b)
+{
+    lucent_cdrf_variant v = (lucent_cdrf_variant)d->settings->cdrf.variant;
+    if ((b->have & LUCENT_BAKE_SIGMA0) && !strcmp(b->sigma0_key, lucent_cdrf_variant_name(v))) return LUCENT_OK;
+    b->have &= ~(unsigned)LUCENT_BAKE_SIGMA0, b->sigma0_key[0] = '\0';
+    char key[640];
+    sigma0_cache_key(m, v, d->sigma0_photons, key, sizeof key);
+    b->sigma0_cached = lucent_cache_get(cache, "sigma0", key, "sigma0_mm", 3, b->sigma0);
+    if (!b->sigma0_cached) {
+        double t0 = seconds();
+        lucent_cdrf_fit fit;
+        lucent_cdrf_material_fit_desc fd = {.material = m, .variant = v, .photons = d->sigma0_photons,
+                                            .bins = LUCENT_BAKE_SIGMA0_BINS, .seed = 1, .pool = d->pool};
+        lucent_status s = lucent_cdrf_fit_material(&fd, &fit, NULL);
+        if (s != LUCENT_OK) return s;
+        memcpy(b->sigma0, fit.sigma0, sizeof b->sigma0);
+        lucent_log(LUCENT_LOG_INFO, "sigma0 of %s (%s): %.3g %.3g %.3g mm, fitted in %.1f s", m->name,
+                   lucent_cdrf_variant_name(v), b->sigma0[0], b->sigma0[1], b->sigma0[2], seconds() - t0);
+        lucent_cache_field f[4] = {{"sigma0_mm", fit.sigma0, 3}, {"kd", fit.kd, 3}, {"rms", fit.rms, 3},
+                                   {"lambert_rms", fit.lambert_rms, 3}};
+        lucent_cache_put(cache, "sigma0", key, f, 4);
+    }
+    snprintf(b->sigma0_key, sizeof b->sigma0_key, "%s", lucent_cdrf_variant_name(v));
+    b->have |= LUCENT_BAKE_SIGMA0;
+    return LUCENT_OK;
+}
+
+lucent_status lucent_material_bake(const lucent_material *material, const lucent_bake_desc *desc, lucent_cache *cache,
+                                   lucent_baked *baked)
+{
+    lucent_render_settings defaults;
+    lucent_bake_desc d = resolve(desc, &defaults);
+    lucent_status s = LUCENT_OK;
+    if (d.what & LUCENT_BAKE_PROFILE) s = bake_profile(material, &d, baked);
+    if (s == LUCENT_OK && (d.what & LUCENT_BAKE_TAPS)) s = bake_taps(material, &d, baked);
+    if (s == LUCENT_OK && (d.what & LUCENT_BAKE_TRANSMITTANCE)) s = bake_transmittance(material, &d, cache, baked);
+    if (s == LUCENT_OK && (d.what & LUCENT_BAKE_SIGMA0)) s = bake_sigma0(material, &d, cache, baked);
+    return s;
+}
+
+void lucent_baked_free(lucent_baked *baked)
+{
+    if (!baked) return;
+    lucent_profile_destroy(baked->profile);
+    lucent_taps_destroy(baked->taps);
+    memset(baked, 0, sizeof *baked);
+}

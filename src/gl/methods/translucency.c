@@ -1,0 +1,49 @@
+/* Translucency: light through thin parts (Jimenez 2010; docs/render.md, "Translucency"), added by
+ * ssss and cdrf+translucency. Light reaching the back of a part, whose thickness s the shadow map
+ * gives, leaves the front attenuated by the material's transmittance T(s): the Monte Carlo slab's or
+ * the profile's (lucent/profile.h), baked per material (lucent/bake.h) into a texture row. */
+#include <math.h>
+
+#include "base/settings_table.h"
+#include "gl/methods/surface.h"
+
+SETTINGS_NAMES(transmittance_names, "slab", "profile")
+
+const char *lucent_transmittance_name(lucent_transmittance_model model)
+{
+    const char *n = transmittance_names((int)model);
+    return n ? n : "unknown";
+}
+
+static const lucent_setting k_translucency[] = {
+    SETTING_BOOL("translucency", translucency.enabled, true, "ssss: light through thin parts (shadow-map thickness)"),
+    SETTING_CHOICE("transmittance", translucency.transmittance, "slab", transmittance_names,
+                   "how much light passes a thickness: the Monte Carlo slab, or the profile's tail (Jimenez)"),
+    SETTING_REAL("translucency_curvature", translucency.curvature, 1, -100, 100,
+                 "cdrf+translucency: transmitted light times 1 + this x sigma0 x curvature (the CDRF blog)"),
+};
+
+const lucent_settings_group gl_translucency_settings =
+    SETTINGS_GROUP("translucency", "light through thin parts", k_translucency);
+
+lucent_status gl_translucency_prepare(lucent_renderer *r, const lucent_render_settings *s)
+{
+    lucent_bake_desc d = gl_renderer_bake_desc(r, s, LUCENT_BAKE_TRANSMITTANCE);
+    lucent_status st = gl_tables_bake(&r->tables, &d, r->cache);
+    return st == LUCENT_OK ? gl_tables_upload_transmittance(&r->tables) : st;
+}
+
+void gl_translucency_uniforms(const lucent_renderer *r, const lucent_render_settings *s, int i, GLuint p, bool enabled)
+{
+    const lucent_baked *b = gl_tables_of(&r->tables, i);
+    glUniform1i(glGetUniformLocation(p, "u_translucency"), enabled);
+    glUniform1f(glGetUniformLocation(p, "u_transmit_range"), (float)fmax(b->transmit_range, 1e-6));
+    glUniform1f(glGetUniformLocation(p, "u_transmit_v"), (float)((r->tables.object_material[i] + 0.5) / r->tables.count));
+    glUniform1i(glGetUniformLocation(p, "u_transmit_albedo"), s->translucency.transmittance == LUCENT_TRANSMIT_PROFILE);
+    glUniform1f(glGetUniformLocation(p, "u_curvature_gain"), (float)s->translucency.curvature);
+}
+
+double gl_translucency_range(const lucent_renderer *r, int i)
+{
+    return gl_tables_of(&r->tables, i)->transmit_range;
+}

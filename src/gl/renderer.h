@@ -1,0 +1,66 @@
+/* The renderer core: a scene on a GL context, made of parts each owned by one file (targets.c,
+ * shadows.c, meshes.c, tables.c, programs.c, blur.c) and drawn by one method of methods/ per frame.
+ * Only the core (renderer.c, frame.c, present.c, sidecar.c) and the method files see every part.
+ * Internal to src/gl. */
+#ifndef LUCENT_SRC_GL_RENDERER_H
+#define LUCENT_SRC_GL_RENDERER_H
+
+#include <stdint.h>
+
+#include "gl/core/gpu.h"
+#include "gl/meshes.h"
+#include "gl/programs.h"
+#include "gl/shadows.h"
+#include "gl/tables.h"
+#include "gl/targets.h"
+#include "lucent/render.h"
+
+/* The per-frame uniform block, laid out as std140 (common.glsl, binding 0). */
+typedef struct gl_frame_block {
+    float view_proj[16];
+    float eye[4];
+    float forward[4];
+    float ambient[4];
+    int32_t counts[4];
+    float light_vec[GLR_MAX_LIGHTS][4];
+    float light_rgb[GLR_MAX_LIGHTS][4];
+    float light_shadow[GLR_MAX_LIGHTS][4];
+    float light_texel[GLR_MAX_LIGHTS][4];
+    float light_matrix[GLR_MAX_LIGHTS][16];
+} gl_frame_block;
+
+struct lucent_renderer {
+    lucent_gl_context *ctx;
+    const lucent_scene *scene;
+    lucent_renderer_desc desc;
+    lucent_cache *cache;            /* NULL without desc.cache_dir */
+    gl_targets targets;
+    gl_shadows shadows;
+    gl_meshes meshes;
+    gl_tables tables;
+    gl_programs programs;
+    gl_timer timer;
+    GLuint frame_ubo, empty_vao, dummy_tex, compose_program, present_program;
+    bool aov;                       /* tests: the scene pass's auxiliary outputs */
+    void *state[LUCENT_METHOD_COUNT]; /* each method's own, created by its first frame */
+    lucent_render_settings last;    /* the settings of the last frame */
+    bool have_frame;
+    lucent_frame_times last_times;
+};
+
+/* The bake desc of the renderer for settings s and parts `what` (lucent/bake.h). */
+lucent_bake_desc gl_renderer_bake_desc(const lucent_renderer *r, const lucent_render_settings *s, unsigned what);
+
+/* Draws every visible object's triangles with the bound program (shadow casters, scene passes). */
+void gl_renderer_draw_objects(const lucent_renderer *r);
+
+/* ---- frame.c ---- */
+
+/* Runs one frame of method s->view.method (prepare, then its passes between timestamps). */
+lucent_status gl_frame(lucent_renderer *r, const lucent_render_settings *s, lucent_frame_times *times);
+
+/* ---- tests: auxiliary outputs (normal + curvature, position + object, light 0 terms) ---- */
+void gl_renderer_set_aov(lucent_renderer *r, bool on);
+lucent_status gl_renderer_read_aov(lucent_renderer *r, int which, lucent_image **dest);
+
+#endif

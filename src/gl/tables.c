@@ -1,0 +1,68 @@
+/* The scene's distinct materials, their bakes and the transmittance texture (tables.h). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl/tables.h"
+
+static bool same_material(const lucent_material *a, const lucent_material *b)
+{
+    return !strcmp(a->name, b->name) && !memcmp(a->sigma_a, b->sigma_a, sizeof a->sigma_a) &&
+           !memcmp(a->sigma_s, b->sigma_s, sizeof a->sigma_s) && !memcmp(a->g, b->g, sizeof a->g) && a->eta == b->eta;
+}
+
+lucent_status gl_tables_collect(gl_tables *t, const lucent_scene *scene)
+{
+    t->object_material = calloc((size_t)scene->object_count, sizeof *t->object_material);
+    if (!t->object_material) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    for (int i = 0; i < scene->object_count; i++) {
+        const lucent_material *m = &scene->objects[i].material;
+        int k = 0;
+        while (k < t->count && !same_material(&t->material[k], m)) k++;
+        if (k == GLR_MAX_MATERIALS)
+            return lucent_error(LUCENT_ERR_UNSUPPORTED, "%s: more than %d distinct materials", scene->name,
+                                GLR_MAX_MATERIALS);
+        if (k == t->count) {
+            memset(&t->baked[k], 0, sizeof t->baked[k]);
+            t->material[k] = *m;
+            t->count++;
+        }
+        t->object_material[i] = k;
+    }
+    return LUCENT_OK;
+}
+
+lucent_status gl_tables_bake(gl_tables *t, const lucent_bake_desc *desc, lucent_cache *cache)
+{
+    lucent_status s = LUCENT_OK;
+    for (int i = 0; i < t->count && s == LUCENT_OK; i++) s = lucent_material_bake(&t->material[i], desc, cache, &t->baked[i]);
+    return s;
+}
+
+lucent_status gl_tables_upload_transmittance(gl_tables *t)
+{
+    char key[sizeof t->transmit_key] = "";
+    for (int m = 0; m < t->count; m++)
+        snprintf(key + strlen(key), sizeof key - strlen(key), "%s|", t->baked[m].transmit_key);
+    if (t->transmit_tex && !strcmp(t->transmit_key, key)) return LUCENT_OK;
+    enum { N = LUCENT_BAKE_TRANSMIT_SIZE };
+    float rows[GLR_MAX_MATERIALS][N * 3];
+    for (int m = 0; m < t->count; m++) memcpy(rows[m], t->baked[m].transmittance, sizeof rows[m]);
+    if (t->transmit_tex) glDeleteTextures(1, &t->transmit_tex);
+    t->transmit_tex = gl_texture(GL_RGB32F, N, t->count, GL_LINEAR);
+    glTextureSubImage2D(t->transmit_tex, 0, 0, 0, N, t->count, GL_RGB, GL_FLOAT, rows);
+    snprintf(t->transmit_key, sizeof t->transmit_key, "%s", key);
+    return gl_check("uploading the transmittance tables");
+}
+
+const lucent_baked *gl_tables_of(const gl_tables *t, int object)
+{
+    return &t->baked[t->object_material[object]];
+}
+
+void gl_tables_free(gl_tables *t)
+{
+    for (int i = 0; i < t->count; i++) lucent_baked_free(&t->baked[i]);
+    if (t->transmit_tex) glDeleteTextures(1, &t->transmit_tex);
+    free(t->object_material);
+    memset(t, 0, sizeof *t);
+}
