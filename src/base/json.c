@@ -286,9 +286,40 @@ lucent_status lucent_json_write_file(const char *path, const cJSON *json)
     return s;
 }
 
+/* cJSON prints numbers with 15 significant digits, which does not give every double back; this
+ * writes the shortest of %.15g, %.16g, %.17g that does (non-finite values as null). */
+cJSON *lucent_json_number_item(double value)
+{
+    char text[32];
+    if (!isfinite(value)) return cJSON_CreateNull();
+    for (int digits = 15; digits <= 17; digits++) {
+        snprintf(text, sizeof text, "%.*g", digits, value);
+        if (strtod(text, NULL) == value) break;
+    }
+    return cJSON_CreateRaw(text);
+}
+
+cJSON *lucent_json_add_number(cJSON *object, const char *key, double value)
+{
+    cJSON *n = lucent_json_number_item(value);
+    if (n && !cJSON_AddItemToObject(object, key, n)) {
+        cJSON_Delete(n);
+        return NULL;
+    }
+    return n;
+}
+
 cJSON *lucent_json_add_numbers(cJSON *object, const char *key, const double *values, int count)
 {
-    cJSON *a = cJSON_CreateDoubleArray(values, count);
+    cJSON *a = cJSON_CreateArray();
+    for (int i = 0; a && i < count; i++) {
+        cJSON *n = lucent_json_number_item(values[i]);
+        if (!n || !cJSON_AddItemToArray(a, n)) {
+            cJSON_Delete(n);
+            cJSON_Delete(a);
+            a = NULL;
+        }
+    }
     if (a && !cJSON_AddItemToObject(object, key, a)) {
         cJSON_Delete(a);
         return NULL;

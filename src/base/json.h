@@ -75,7 +75,14 @@ lucent_status lucent_json_check_keys(const lucent_json_node *n, const char *cons
 /* Writes json to path atomically, pretty-printed, with a final newline. */
 lucent_status lucent_json_write_file(const char *path, const cJSON *json);
 
-/* Adds an array of count numbers to object under key; returns it (NULL when out of memory). */
+/* A number item that reads back exactly (cJSON's own keeps 15 digits; non-finite: null). */
+cJSON *lucent_json_number_item(double value);
+
+/* Adds a number that reads back exactly to object under key; returns it (NULL when out of memory). */
+cJSON *lucent_json_add_number(cJSON *object, const char *key, double value);
+
+/* Adds an array of count numbers (each read back exactly) to object under key; returns it (NULL
+ * when out of memory). */
 cJSON *lucent_json_add_numbers(cJSON *object, const char *key, const double *values, int count);
 
 #endif /* LUCENT_SRC_BASE_JSON_H */

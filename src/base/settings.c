@@ -289,9 +289,9 @@ static bool write_member(const lucent_render_settings *s, const lucent_setting *
     char text[256];
     switch (k->type) {
     case LUCENT_SETTING_BOOL: return cJSON_AddBoolToObject(o, k->key, *(const bool *)m) != NULL;
-    case LUCENT_SETTING_INT: return cJSON_AddNumberToObject(o, k->key, *(const int *)m) != NULL;
-    case LUCENT_SETTING_REAL: return cJSON_AddNumberToObject(o, k->key, *(const double *)m) != NULL;
-    case LUCENT_SETTING_SEED: return cJSON_AddNumberToObject(o, k->key, (double)*(const uint64_t *)m) != NULL;
+    case LUCENT_SETTING_INT: return lucent_json_add_number(o, k->key, *(const int *)m) != NULL;
+    case LUCENT_SETTING_REAL: return lucent_json_add_number(o, k->key, *(const double *)m) != NULL;
+    case LUCENT_SETTING_SEED: return lucent_json_add_number(o, k->key, (double)*(const uint64_t *)m) != NULL;
     case LUCENT_SETTING_COLOR: return lucent_json_add_numbers(o, k->key, m, 3) != NULL;
     case LUCENT_SETTING_CHOICE:
     case LUCENT_SETTING_TEXT:
