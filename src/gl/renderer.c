@@ -130,26 +130,12 @@ lucent_status lucent_render_frame(lucent_renderer *r, const lucent_render_settin
     return frame(r, settings, dest ? dest : &t);
 }
 
-/* The final target's rgb as the image, its alpha (coverage) as the mask. */
-static lucent_status read_back(lucent_renderer *r, lucent_render_result *res)
-{
-    const gl_targets *t = &r->targets;
-    lucent_image *rgba = NULL;
-    lucent_status s = gl_read_image(t->fbo_final, 0, t->width, t->height, 4, true, &rgba);
-    if (s == LUCENT_OK) s = lucent_image_convert_channels(rgba, 3, &res->image);
-    if (s == LUCENT_OK) s = lucent_image_create(t->width, t->height, 1, &res->mask);
-    size_t n = (size_t)t->width * (size_t)t->height;
-    for (size_t i = 0; s == LUCENT_OK && i < n; i++) res->mask->data[i] = rgba->data[4 * i + 3] > 0.5f ? 1.0f : 0.0f;
-    lucent_image_destroy(rgba);
-    return s;
-}
-
 lucent_status lucent_render(lucent_renderer *r, const lucent_render_settings *settings, lucent_render_result *dest)
 {
     memset(dest, 0, sizeof *dest);
     lucent_status s = frame(r, settings, &dest->times);
     double t0 = gl_now_ms();
-    if (s == LUCENT_OK) s = read_back(r, dest);
+    if (s == LUCENT_OK) s = gl_renderer_read_back(r, dest);
     dest->readback_ms = gl_now_ms() - t0;
     if (s != LUCENT_OK) lucent_render_result_free(dest);
     return s;

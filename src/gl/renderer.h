@@ -1,6 +1,6 @@
 /* The renderer core: a scene on a GL context, made of parts each owned by one file (targets.c,
  * shadows.c, meshes.c, tables.c, programs.c, blur.c) and drawn by one method of methods/ per frame.
- * Only the core (renderer.c, frame.c, present.c, sidecar.c) and the method files see every part.
+ * Only the core (renderer.c, frame.c, output.c) and the method files see every part.
  * Internal to src/gl. */
 #ifndef LUCENT_SRC_GL_RENDERER_H
 #define LUCENT_SRC_GL_RENDERER_H
@@ -53,6 +53,11 @@ lucent_bake_desc gl_renderer_bake_desc(const lucent_renderer *r, const lucent_re
 
 /* Draws every visible object's triangles with the bound program (shadow casters, scene passes). */
 void gl_renderer_draw_objects(const lucent_renderer *r);
+
+/* ---- output.c ---- */
+
+/* Reads the final target back: rgb as the image, alpha (coverage) as the mask. */
+lucent_status gl_renderer_read_back(lucent_renderer *r, lucent_render_result *res);
 
 /* ---- frame.c ---- */
 

@@ -1,10 +1,10 @@
 /* The renderer's methods: one file each under src/gl/methods/ (lambert.c, cdrf.c, ssss.c), each a
- * small table of functions, listed once in methods.c. A method prepares what its frame needs
+ * small table of functions, listed once in the table of frame.c. A method prepares what its frame needs
  * (rebuilding only what its settings changed) and draws the frame into the final target; the core
  * has already sized the targets and shadow maps, uploaded the frame block and drawn the shadow maps.
  *
  * Adding a method: a file here with its gl_method, its shaders under src/gl/shaders/, its settings
- * group (lucent/settings.h), one line in methods.c and its name in lucent_render_method. */
+ * group (lucent/settings.h), one line in the table of frame.c and its name in lucent_render_method. */
 #ifndef LUCENT_SRC_GL_METHODS_METHOD_H
 #define LUCENT_SRC_GL_METHODS_METHOD_H
 

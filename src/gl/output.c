@@ -1,10 +1,57 @@
-/* The JSON sidecar of a render: what made the image (the scene after overrides, the settings, the
- * GL device), what it cost (per-pass GPU times, CPU setup) and the values it used (albedo, sigma0,
- * curvature ranges, every kernel's taps). Format: docs/render.md. */
+/* What a frame gives out: the images read back, the window's picture (the final target tonemapped
+ * with the settings' operator and exposure, sRGB-encoded), and the JSON sidecar (what made the image:
+ * the scene after overrides, the settings, the GL device; what it cost: per-pass GPU times, CPU setup;
+ * the values it used: albedo, sigma0, curvature ranges, the method's own such as every kernel's
+ * taps; format: docs/render.md). */
+#include <math.h>
 #include <string.h>
+
 #include "base/settings_table.h"
 #include "gl/methods/method.h"
 
+/* ---- read-back ---- */
+
+/* The final target's rgb as the image, its alpha (coverage) as the mask. */
+lucent_status gl_renderer_read_back(lucent_renderer *r, lucent_render_result *res)
+{
+    const gl_targets *t = &r->targets;
+    lucent_image *rgba = NULL;
+    lucent_status s = gl_read_image(t->fbo_final, 0, t->width, t->height, 4, true, &rgba);
+    if (s == LUCENT_OK) s = lucent_image_convert_channels(rgba, 3, &res->image);
+    if (s == LUCENT_OK) s = lucent_image_create(t->width, t->height, 1, &res->mask);
+    size_t n = (size_t)t->width * (size_t)t->height;
+    for (size_t i = 0; s == LUCENT_OK && i < n; i++) res->mask->data[i] = rgba->data[4 * i + 3] > 0.5f ? 1.0f : 0.0f;
+    lucent_image_destroy(rgba);
+    return s;
+}
+
+/* ---- the window ---- */
+
+lucent_status lucent_render_present(lucent_renderer *r)
+{
+    if (!r->ctx->window || !r->have_frame) return LUCENT_OK;
+    lucent_status s = lucent_gl_make_current(r->ctx);
+    if (s == LUCENT_OK && !r->present_program)
+        s = gl_program_build(gl_embedded_source, NULL, "fullscreen.vert.glsl", "present.frag.glsl", NULL,
+                             &r->present_program);
+    if (s != LUCENT_OK) return s;
+    int w, h;
+    gl_window_size(r->ctx, &w, &h);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glViewport(0, 0, w, h);
+    glUseProgram(r->present_program);
+    glBindVertexArray(r->empty_vao);
+    glBindTextureUnit(0, r->targets.final);
+    glUniform1i(glGetUniformLocation(r->present_program, "u_tonemap"), (int)r->last.view.tonemap);
+    glUniform1f(glGetUniformLocation(r->present_program, "u_exposure"), (float)exp2(r->last.view.exposure));
+    glUniform2f(glGetUniformLocation(r->present_program, "u_scale"), (float)r->targets.width / (float)(w > 0 ? w : 1),
+                (float)r->targets.height / (float)(h > 0 ? h : 1));
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl_window_swap(r->ctx);
+    return gl_check("presenting the frame");
+}
+
+/* ---- the sidecar ---- */
 
 static void add_gl(cJSON *root, const lucent_gl_context *ctx)
 {
