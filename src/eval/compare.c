@@ -44,14 +44,13 @@ lucent_compare_desc lucent_compare_defaults(void)
 
 /* ---- the desc ---- */
 
-static lucent_status default_methods(run *r)
+static void default_methods(run *r)
 {
     snprintf(r->method_text, sizeof r->method_text, "%s", LUCENT_COMPARE_DEFAULT_METHODS);
     r->d.method_count = 0;
     for (char *save = NULL, *t = strtok_r(r->method_text, ",", &save); t; t = strtok_r(NULL, ",", &save))
         r->methods[r->d.method_count++] = t;
     r->d.methods = r->methods;
-    return LUCENT_OK;
 }
 
 static lucent_status resolve(const lucent_compare_desc *desc, run *r)
@@ -63,7 +62,8 @@ static lucent_status resolve(const lucent_compare_desc *desc, run *r)
     if (!desc->scenes || desc->scene_count < 1 || desc->scene_count > LUCENT_COMPARE_MAX_SCENES)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "compare: scene_count: give 1 to %d scenes",
                             LUCENT_COMPARE_MAX_SCENES);
-    if (desc->method_count < 0 || desc->method_count > LUCENT_COMPARE_MAX_METHODS || (desc->method_count && !desc->methods))
+    if (desc->method_count < 0 || desc->method_count > LUCENT_COMPARE_MAX_METHODS ||
+        (desc->method_count && !desc->methods))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "compare: method_count: at most %d methods",
                             LUCENT_COMPARE_MAX_METHODS);
     if (desc->override_count < 0 || (desc->override_count && !desc->overrides))
@@ -104,7 +104,8 @@ static lucent_status make_mask(scene_store *ss)
     ss->mask = malloc((size_t)c->width * (size_t)c->height * sizeof *ss->mask);
     if (!ss->mask) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
     ss->mask_pixels = lucent_compare_object_mask(c, ss->mask);
-    if (!ss->mask_pixels) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: no object covers the image", ss->scene->path);
+    if (!ss->mask_pixels)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: no object covers the image", ss->scene->path);
     return LUCENT_OK;
 }
 
@@ -206,15 +207,16 @@ static lucent_status load_scene(const run *r, const char *path, lucent_scene **d
     lucent_status s = LUCENT_OK;
     if (r->d.scale > 0) {
         lucent_scene *probe;
-        s = lucent_scene_load(path, &(lucent_scene_load_desc){.overrides = sets, .override_count = n, .skip_meshes = true},
-                              &probe);
+        lucent_scene_load_desc probe_desc = {.overrides = sets, .override_count = n, .skip_meshes = true};
+        s = lucent_scene_load(path, &probe_desc, &probe);
         if (s == LUCENT_OK) {
             eval_scale_overrides(probe, r->d.scale, size[0], size[1]);
             lucent_scene_destroy(probe);
             sets[n++] = size[0], sets[n++] = size[1];
         }
     }
-    if (s == LUCENT_OK) s = lucent_scene_load(path, &(lucent_scene_load_desc){.overrides = sets, .override_count = n}, dest);
+    lucent_scene_load_desc load = {.overrides = sets, .override_count = n};
+    if (s == LUCENT_OK) s = lucent_scene_load(path, &load, dest);
     free(sets);
     return s;
 }
@@ -280,8 +282,8 @@ static lucent_status compare_scene(const run *r, const char *path, scene_store *
     if (!r->d.out) return LUCENT_OK;
     char chart[EVAL_PATH_SIZE];
     s = eval_path_printf(chart, sizeof chart, "%s/errors.svg", ss->dir);
-    if (s == LUCENT_OK) s = eval_wrote(r->d.on_event, r->d.user, lucent_compare_write_chart(chart, &dest->report), chart);
-    return s;
+    if (s == LUCENT_OK) s = lucent_compare_write_chart(chart, &dest->report);
+    return eval_wrote(r->d.on_event, r->d.user, s, chart);
 }
 
 /* ---- the run ---- */
@@ -299,7 +301,8 @@ static lucent_status compare_all(run *r, lucent_compare_result *dest)
             r->d.on_event(&(lucent_eval_event){.kind = LUCENT_EVAL_SCENE_DONE, .name = st->scenes[i].stem, .index = i},
                           r->d.user);
     }
-    if (s == LUCENT_OK && r->d.out) s = lucent_compare_write_reports(r->d.out, r->d.title, dest, r->d.on_event, r->d.user);
+    if (s == LUCENT_OK && r->d.out)
+        s = lucent_compare_write_reports(r->d.out, r->d.title, dest, r->d.on_event, r->d.user);
     return s;
 }
 
@@ -312,7 +315,8 @@ lucent_status lucent_compare_run(const lucent_compare_desc *desc, lucent_compare
     dest->store = calloc(1, sizeof *dest->store);
     if (dest->store) dest->store->scenes = calloc((size_t)r.d.scene_count, sizeof *dest->store->scenes);
     dest->scenes = calloc((size_t)r.d.scene_count, sizeof *dest->scenes);
-    if (!dest->store || !dest->store->scenes || !dest->scenes) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    if (!dest->store || !dest->store->scenes || !dest->scenes)
+        s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
     if (s == LUCENT_OK && r.d.out) s = eval_make_dirs(r.d.out);
     lucent_gl_context *owned = NULL;
     r.gl = desc->gl;

@@ -21,7 +21,8 @@ void eval_method_describe(const lucent_render_settings *rs, char *dest, size_t s
                  rs->translucency ? " translucency" : "");
     else if (rs->method != LUCENT_METHOD_LAMBERT)
         snprintf(dest, size, "%s, %s, sigma0 from %s%s%s", lucent_cdrf_variant_name(rs->cdrf_variant),
-                 rs->cdrf_lut ? "LUT" : "closed form", rs->sigma0_source == LUCENT_SIGMA0_FIT ? "the sphere fit" : "the diffuse colour",
+                 rs->cdrf_lut ? "LUT" : "closed form",
+                 rs->sigma0_source == LUCENT_SIGMA0_FIT ? "the sphere fit" : "the diffuse colour",
                  rs->method == LUCENT_METHOD_CDRF_TRANSLUCENCY ? ", translucency " : "",
                  rs->method == LUCENT_METHOD_CDRF_TRANSLUCENCY ? lucent_transmittance_name(rs->transmittance) : "");
     else

@@ -30,7 +30,8 @@ static lucent_status check_desc(const lucent_kernel_eval_desc *d)
     if (d->size < 0 || !(d->mm_per_pixel >= 0) || !isfinite(d->mm_per_pixel) || !(d->heat_scale >= 0))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel-eval: size, mm_per_pixel and heat_scale must be >= 0");
     if (d->taps && (d->taps % 2 != 1 || d->taps < 3 || d->taps > 255))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel-eval: taps: %d is not an odd number in 3..255", d->taps);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel-eval: taps: %d is not an odd number in 3..255",
+                            d->taps);
     if (d->profile.source && !lucent_profile_source_known(d->profile.source))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
                             "kernel-eval: profile: unknown source '%s' (dipole, better-dipole, burley or mc)",
@@ -82,7 +83,8 @@ unknown:
 static lucent_status add(ke_run *ev, const char *name, bool plotted)
 {
     if (ev->res->model_count >= LUCENT_KERNEL_EVAL_MAX_MODELS)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel-eval: at most %d models", LUCENT_KERNEL_EVAL_MAX_MODELS);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel-eval: at most %d models",
+                            LUCENT_KERNEL_EVAL_MAX_MODELS);
     lucent_kernel_eval_model *e = &ev->res->models[ev->res->model_count];
     memset(e, 0, sizeof *e);
     lucent_status s = lucent_kernel_eval_model_parse(name, &e->desc);
@@ -106,8 +108,8 @@ static lucent_status choose_models(ke_run *ev)
     }
     if (!ev->d.table65 && strcasecmp(ev->res->material.name, "skin1")) return s;
     lucent_kernel_eval_result *res = ev->res;
-    for (int n = 1; n <= LUCENT_KERNEL_EVAL_TABLE65 && res->model_count + 2 <= LUCENT_KERNEL_EVAL_MAX_MODELS && s == LUCENT_OK;
-         n++) {
+    for (int n = 1; n <= LUCENT_KERNEL_EVAL_TABLE65 && s == LUCENT_OK; n++) {
+        if (res->model_count + 2 > LUCENT_KERNEL_EVAL_MAX_MODELS) break;
         char name[LUCENT_KERNEL_EVAL_NAME_SIZE];
         res->table65[n - 1][0] = res->model_count;
         snprintf(name, sizeof name, "svd-r%d", n);
@@ -173,7 +175,8 @@ static lucent_status write_reports(const ke_run *ev)
 static lucent_status evaluate(ke_run *ev, int index)
 {
     lucent_kernel_eval_model *e = &ev->res->models[index];
-    lucent_status s = lucent_kernel_build(ev->res->ground_truth, ev->profile, ev->res->material.name, &e->desc, &e->kernel);
+    lucent_status s =
+        lucent_kernel_build(ev->res->ground_truth, ev->profile, ev->res->material.name, &e->desc, &e->kernel);
     if (s != LUCENT_OK) {
         if (e->desc.model != LUCENT_KERNEL_MANUAL) return s;
         snprintf(e->skipped, sizeof e->skipped, "%s", lucent_last_error()); /* no Table A.1 preset */
