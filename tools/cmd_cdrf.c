@@ -5,13 +5,12 @@
 #include <string.h>
 #include <strings.h>
 
-#include "base/json.h"
-#include "base/strbuf.h"
 #include "cli.h"
 #include "lucent/cdrf.h"
+#include "lucent/eval.h"
 
 #define PI 3.14159265358979323846
-enum { MAX_OUTS = 8, MAX_RADII = 16, CURVE_POINTS = 91 };
+enum { MAX_OUTS = 8, MAX_RADII = 16 };
 
 static const char k_lut_usage[] =
     "usage: lucent cdrf-lut [--variant kubo|collomb] [options] --out FILE...\n"
@@ -250,116 +249,6 @@ static int parse_fit_args(int argc, char **argv, fit_options *o)
 
 static const char *const k_channel[] = {"R", "G", "B"};
 
-static lucent_status write_fit_json(const char *path, const fit_options *o, const lucent_cdrf_sphere_result *sp,
-                                    const lucent_cdrf_fit *fit)
-{
-    cJSON *root = cJSON_CreateObject();
-    cJSON_AddStringToObject(root, "material", o->material.name);
-    cJSON_AddStringToObject(root, "variant", lucent_cdrf_variant_name(fit->variant));
-    cJSON_AddStringToObject(root, "model", "L(theta) = k_d f(theta; sigma0 / r), theta = angle(normal, light)");
-    cJSON_AddStringToObject(root, "units", "r and sigma0 in mm, theta in radians, L per unit irradiance");
-    cJSON_AddNumberToObject(root, "photons_per_channel", (double)sp[0].photons);
-    cJSON_AddNumberToObject(root, "seed", (double)o->seed);
-    cJSON_AddNumberToObject(root, "cone_radians", o->cone_deg * PI / 180);
-    cJSON_AddNumberToObject(root, "roughness", o->roughness);
-    cJSON *fj = cJSON_AddObjectToObject(root, "fit");
-    lucent_json_add_numbers(fj, "sigma0", fit->sigma0, 3);
-    lucent_json_add_numbers(fj, "kd", fit->kd, 3);
-    lucent_json_add_numbers(fj, "rms", fit->rms, 3);
-    lucent_json_add_numbers(fj, "chi2", fit->chi2, 3);
-    lucent_json_add_numbers(fj, "lambert_kd", fit->lambert_kd, 3);
-    lucent_json_add_numbers(fj, "lambert_rms", fit->lambert_rms, 3);
-    lucent_json_add_numbers(fj, "lambert_chi2", fit->lambert_chi2, 3);
-    cJSON *arr = cJSON_AddArrayToObject(root, "spheres");
-    for (int i = 0; i < o->radius_count; i++) {
-        cJSON *s = cJSON_CreateObject();
-        cJSON_AddItemToArray(arr, s);
-        cJSON_AddNumberToObject(s, "radius", sp[i].radius);
-        lucent_json_add_numbers(s, "entered", sp[i].entered, 3);
-        lucent_json_add_numbers(s, "exited", sp[i].exited, 3);
-        lucent_json_add_numbers(s, "absorbed", sp[i].absorbed, 3);
-        lucent_json_add_numbers(s, "theta", sp[i].theta, sp[i].bins);
-        for (int c = 0; c < 3; c++) {
-            cJSON *ch = cJSON_AddObjectToObject(s, k_channel[c]);
-            lucent_json_add_numbers(ch, "radiance", sp[i].radiance[c], sp[i].bins);
-            lucent_json_add_numbers(ch, "error", sp[i].radiance_se[c], sp[i].bins);
-        }
-    }
-    lucent_status st = lucent_json_write_file(path, root);
-    cJSON_Delete(root);
-    return st;
-}
-
-static lucent_status write_fit_csv(const char *path, const fit_options *o, const lucent_cdrf_sphere_result *sp,
-                                   const lucent_cdrf_fit *fit)
-{
-    lucent_strbuf b = {0};
-    char *text = NULL;
-    lucent_strbuf_printf(&b, "# lucent cdrf-fit: %s; L per unit irradiance, *_se standard errors, *_fit = k_d f(theta; "
-                         "sigma0 / r) (%s)\n", o->material.name, lucent_cdrf_variant_name(fit->variant));
-    lucent_strbuf_printf(&b, "radius_mm,theta_deg,R,R_se,R_fit,G,G_se,G_fit,B,B_se,B_fit\n");
-    for (int i = 0; i < o->radius_count; i++)
-        for (int j = 0; j < sp[i].bins; j++) {
-            lucent_strbuf_printf(&b, "%.9g,%.9g", sp[i].radius, sp[i].theta[j] * 180 / PI);
-            for (int c = 0; c < 3; c++)
-                lucent_strbuf_printf(&b, ",%.9g,%.9g,%.9g", sp[i].radiance[c][j], sp[i].radiance_se[c][j],
-                                     fit->kd[c] * lucent_cdrf_eval(fit->variant, sp[i].theta[j],
-                                                                   fit->sigma0[c] / sp[i].radius));
-            lucent_strbuf_printf(&b, "\n");
-        }
-    lucent_status s = lucent_strbuf_finish(&b, &text);
-    if (s == LUCENT_OK) s = lucent_write_file(path, text, strlen(text));
-    free(text);
-    return s;
-}
-
-static const char *const k_palette[] = {"#c0392b", "#27ae60", "#2e64c8", "#8e44ad", "#d35400", "#16a085",
-                                        "#7f8c8d", "#2c3e50"};
-
-static lucent_status write_fit_svg(const char *path, const fit_options *o, const lucent_cdrf_sphere_result *sp,
-                                   const lucent_cdrf_fit *fit)
-{
-    int n = o->radius_count;
-    lucent_plot_series *series = calloc((size_t)(6 * n), sizeof *series);
-    double *deg = calloc((size_t)(n * LUCENT_CDRF_MAX_BINS), sizeof *deg);
-    double *cx = calloc(CURVE_POINTS, sizeof *cx), *cy = calloc((size_t)(3 * n * CURVE_POINTS), sizeof *cy);
-    char (*labels)[48] = calloc((size_t)(6 * n), sizeof *labels);
-    lucent_status s = LUCENT_OK;
-    if (!series || !deg || !cx || !cy || !labels) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
-    lucent_plot_panel panels[3];
-    static const char *const titles[] = {"red channel", "green channel", "blue channel"};
-    for (int c = 0; c < 3 && s == LUCENT_OK; c++) {
-        for (int i = 0; i < n; i++) {
-            double *d = deg + i * LUCENT_CDRF_MAX_BINS, *y = cy + (c * n + i) * CURVE_POINTS;
-            for (int j = 0; j < sp[i].bins; j++) d[j] = sp[i].theta[j] * 180 / PI;
-            for (int k = 0; k < CURVE_POINTS; k++) {
-                cx[k] = 180.0 * k / (CURVE_POINTS - 1);
-                y[k] = fit->kd[c] * lucent_cdrf_eval(fit->variant, cx[k] * PI / 180, fit->sigma0[c] / sp[i].radius);
-            }
-            char *l1 = labels[(c * n + i) * 2], *l2 = labels[(c * n + i) * 2 + 1];
-            snprintf(l1, 48, "r = %g mm (MC)", sp[i].radius);
-            snprintf(l2, 48, "r = %g mm (fit)", sp[i].radius);
-            const char *col = k_palette[i % 8];
-            series[(c * n + i) * 2] = (lucent_plot_series){.label = l1, .x = d, .y = sp[i].radiance[c],
-                                                           .err = sp[i].radiance_se[c], .count = sp[i].bins,
-                                                           .color = col, .markers = true};
-            series[(c * n + i) * 2 + 1] = (lucent_plot_series){.label = l2, .x = cx, .y = y, .count = CURVE_POINTS,
-                                                               .color = col, .dashed = true};
-        }
-        panels[c] = (lucent_plot_panel){.title = titles[c], .x_label = "theta (degrees, normal to light)",
-                                        .x_min = 0, .x_max = 180,
-                                        .y_label = c == 0 ? "radiance toward the camera" : NULL,
-                                        .series = series + c * 2 * n, .series_count = 2 * n};
-    }
-    char title[200];
-    snprintf(title, sizeof title, "%s: CDRF (%s) fitted to Monte Carlo spheres; sigma0 = %.3g, %.3g, %.3g mm",
-             o->material.name, lucent_cdrf_variant_name(fit->variant), fit->sigma0[0], fit->sigma0[1], fit->sigma0[2]);
-    lucent_plot_desc desc = {.title = title, .panels = panels, .panel_count = 3, .panel_width = 440};
-    if (s == LUCENT_OK) s = lucent_plot_write_svg(path, &desc);
-    free(series), free(deg), free(cx), free(cy), free(labels);
-    return s;
-}
-
 static lucent_status run_fit(fit_options *o)
 {
     lucent_status s = lucent_material_resolve(o->spec, &o->material);
@@ -380,10 +269,14 @@ static lucent_status run_fit(fit_options *o)
     if (o->out) snprintf(prefix, sizeof prefix, "%s", o->out);
     else snprintf(prefix, sizeof prefix, "%s-cdrf", o->material.name);
     static const char *const exts[] = {"json", "csv", "svg"};
+    lucent_cdrf_fit_report report = {.material = &o->material, .spheres = sp, .sphere_count = o->radius_count,
+                                     .fit = &fit, .seed = o->seed, .cone = o->cone_deg * PI / 180,
+                                     .roughness = o->roughness};
     for (int k = 0; k < 3 && s == LUCENT_OK; k++) {
         snprintf(path, sizeof path, "%s.%s", prefix, exts[k]);
-        s = k == 0 ? write_fit_json(path, o, sp, &fit)
-            : k == 1 ? write_fit_csv(path, o, sp, &fit) : write_fit_svg(path, o, sp, &fit);
+        s = k == 0   ? lucent_cdrf_fit_write_json(path, &report)
+            : k == 1 ? lucent_cdrf_fit_write_csv(path, &report)
+                     : lucent_cdrf_fit_write_svg(path, &report);
         if (s == LUCENT_OK) cli_info("wrote %s", path);
     }
     if (s == LUCENT_OK) {

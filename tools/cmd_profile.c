@@ -6,9 +6,9 @@
 #include <string.h>
 
 #include "cli.h"
+#include "lucent/eval.h"
 #include "lucent/mc.h"
 #include "lucent/profile.h"
-#include "profile_out.h"
 
 static const char k_usage[] =
     "usage: lucent profile MATERIAL [--model M | --compare M1,M2,...] [options]\n"
@@ -308,6 +308,53 @@ static void default_prefix(const options *o, char *dest, size_t size)
         if (*p == '/' || *p == ' ') *p = '_';
 }
 
+/* PREFIX.EXT, or PREFIX-MODEL.EXT when several models are compared. */
+static void path_for(const options *o, const char *prefix, const lucent_profile *p, const char *ext, char *dest,
+                     size_t size)
+{
+    int n = o->compare ? snprintf(dest, size, "%s-%s.%s", prefix, p->model, ext)
+                       : snprintf(dest, size, "%s.%s", prefix, ext);
+    if (n >= (int)size) dest[size - 1] = '\0';
+}
+
+static lucent_status wrote(lucent_status s, const char *path)
+{
+    if (s == LUCENT_OK) cli_info("wrote %s", path);
+    return s;
+}
+
+/* One profile's JSON and CSV (and its chart unless models are compared), with its sum of
+ * Gaussians when asked. */
+static lucent_status write_profile(const options *o, const char *prefix, const lucent_profile *p, bool with_sog)
+{
+    lucent_sog sog;
+    char path[600];
+    lucent_status s = with_sog ? lucent_sog_fit(p, &(lucent_sog_desc){.count = o->sog}, &sog) : LUCENT_OK;
+    lucent_profile_report report = {.material = &o->material, .profile = p, .photons = o->photons,
+                                    .seed = o->seed, .sog = with_sog ? &sog : NULL};
+    path_for(o, prefix, p, "json", path, sizeof path);
+    if (s == LUCENT_OK) s = wrote(lucent_profile_write_json(path, &report), path);
+    path_for(o, prefix, p, "csv", path, sizeof path);
+    if (s == LUCENT_OK) s = wrote(lucent_profile_write_csv(path, &o->material, p), path);
+    snprintf(path, sizeof path, "%s.svg", prefix);
+    if (s == LUCENT_OK && !o->compare) s = wrote(lucent_profile_write_svg(path, &o->material, p, report.sog), path);
+    return s;
+}
+
+static lucent_status write_outputs(const options *o, const char *prefix, lucent_profile *const *profiles)
+{
+    lucent_status s = LUCENT_OK;
+    for (int i = 0; i < o->model_count && s == LUCENT_OK; i++)
+        s = write_profile(o, prefix, profiles[i], o->sog > 0 && (!o->compare || i == 0));
+    char path[600];
+    snprintf(path, sizeof path, "%s.svg", prefix);
+    if (s == LUCENT_OK && o->compare)
+        s = wrote(lucent_profile_write_compare_svg(path, &o->material, (const lucent_profile *const *)profiles,
+                                                   o->model_count),
+                  path);
+    return s;
+}
+
 static lucent_status run(options *o)
 {
     lucent_profile *profiles[MODEL_COUNT] = {NULL};
@@ -317,10 +364,7 @@ static lucent_status run(options *o)
     else default_prefix(o, prefix, sizeof prefix);
     for (int i = 0; i < o->model_count && s == LUCENT_OK; i++)
         s = make_profile(o, o->models[i], &o->grid, &profiles[i]);
-    profile_out_desc out = {.prefix = prefix, .material = &o->material, .profiles = profiles,
-                            .count = o->model_count, .compare = o->compare, .photons = o->photons,
-                            .seed = o->seed, .sog = o->sog};
-    if (s == LUCENT_OK) s = profile_out_write(&out);
+    if (s == LUCENT_OK) s = write_outputs(o, prefix, profiles);
     for (int i = 0; i < o->model_count; i++) lucent_profile_destroy(profiles[i]);
     return s;
 }

@@ -4,7 +4,6 @@
 #include <string.h>
 #include <strings.h>
 
-#include "base/json.h"
 #include "cli.h"
 #include "lucent/trace.h"
 
@@ -153,47 +152,10 @@ static char *sidecar_path(const trace_options *o)
     return p;
 }
 
-static cJSON *error_json(const lucent_trace_error *e)
+static lucent_tracer_desc tracer_options(const trace_options *o)
 {
-    cJSON *j = cJSON_CreateObject();
-    cJSON_AddStringToObject(j, "of", "se(Y) / Y per pixel, Y the Rec. 709 luminance, over object pixels (coverage >= 0.5)");
-    cJSON_AddNumberToObject(j, "median", e->median);
-    cJSON_AddNumberToObject(j, "p90", e->p90);
-    cJSON_AddNumberToObject(j, "rms", e->rms);
-    cJSON_AddNumberToObject(j, "pixels", (double)e->pixels);
-    cJSON_AddNumberToObject(j, "dark_pixels", (double)e->dark_pixels);
-    return j;
-}
-
-static lucent_status write_sidecar(const char *path, const trace_options *o, const lucent_scene *sc,
-                                   const lucent_trace_result *r)
-{
-    cJSON *root = cJSON_CreateObject(), *scene = cJSON_Parse(sc->json);
-    if (!root || !scene) {
-        cJSON_Delete(root), cJSON_Delete(scene);
-        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
-    }
-    cJSON_AddStringToObject(root, "renderer", "lucent trace " LUCENT_VERSION_STRING);
-    cJSON_AddStringToObject(root, "scene_file", o->scene);
-    cJSON_AddNumberToObject(root, "width", r->image->width);
-    cJSON_AddNumberToObject(root, "height", r->image->height);
-    cJSON_AddNumberToObject(root, "spp", (double)r->spp);
-    cJSON_AddNumberToObject(root, "seed", (double)r->seed);
-    cJSON_AddNumberToObject(root, "seconds", r->seconds);
-    cJSON_AddNumberToObject(root, "samples_per_second", r->samples_per_second);
-    cJSON_AddNumberToObject(root, "threads", lucent_pool_threads(cli_pool()));
-    cJSON_AddBoolToObject(root, "subsurface_only", o->subsurface_only);
-    cJSON_AddBoolToObject(root, "adaptive", o->adaptive);
-    cJSON_AddBoolToObject(root, "boundary_nee_only", o->boundary_nee_only);
-    cJSON_AddNumberToObject(root, "samples", (double)r->samples);
-    cJSON_AddItemToObject(root, "relative_standard_error", error_json(&r->error));
-    cJSON_AddNumberToObject(root, "truncated_paths", (double)r->truncated);
-    cJSON_AddNumberToObject(root, "escaped_paths", (double)r->escaped);
-    cJSON_AddNumberToObject(root, "nonfinite_contributions", (double)r->nonfinite);
-    cJSON_AddItemToObject(root, "scene", scene);
-    lucent_status s = lucent_json_write_file(path, root);
-    cJSON_Delete(root);
-    return s;
+    return (lucent_tracer_desc){.subsurface_only = o->subsurface_only, .adaptive = o->adaptive,
+                                .boundary_nee_only = o->boundary_nee_only};
 }
 
 static lucent_status write_outputs(const trace_options *o, const lucent_scene *sc, const lucent_trace_result *r)
@@ -206,7 +168,10 @@ static lucent_status write_outputs(const trace_options *o, const lucent_scene *s
         cli_info("wrote %s", o->exr);
     if (s == LUCENT_OK && o->variance && (s = lucent_image_write(o->variance, r->variance, NULL)) == LUCENT_OK)
         cli_info("wrote %s", o->variance);
-    if (s == LUCENT_OK && (s = write_sidecar(json, o, sc, r)) == LUCENT_OK) cli_info("wrote %s", json);
+    lucent_tracer_desc tracer = tracer_options(o);
+    lucent_trace_sidecar_desc side = {.scene = sc, .scene_file = o->scene, .tracer = &tracer, .result = r,
+                                      .threads = lucent_pool_threads(cli_pool())};
+    if (s == LUCENT_OK && (s = lucent_trace_write_sidecar(json, &side)) == LUCENT_OK) cli_info("wrote %s", json);
     free(json);
     return s;
 }
@@ -230,12 +195,10 @@ static lucent_status run(const trace_options *o)
     lucent_scene *sc = NULL;
     lucent_tracer *tr = NULL;
     lucent_trace_result r = {0};
+    lucent_tracer_desc tracer = tracer_options(o);
     lucent_status s = lucent_scene_load(o->scene, &(lucent_scene_load_desc){.overrides = o->sets,
                                                                           .override_count = o->set_count}, &sc);
-    if (s == LUCENT_OK)
-        s = lucent_tracer_create(sc, &(lucent_tracer_desc){.subsurface_only = o->subsurface_only, .adaptive = o->adaptive,
-                                                            .boundary_nee_only = o->boundary_nee_only},
-                                 &tr);
+    if (s == LUCENT_OK) s = lucent_tracer_create(sc, &tracer, &tr);
     lucent_trace_desc d = o->desc;
     d.pool = cli_pool();
     if (s == LUCENT_OK) s = lucent_tracer_render(tr, &d, &r);

@@ -113,6 +113,20 @@ lucent_status lucent_tracer_render(lucent_tracer *tracer, const lucent_trace_des
 /* Frees the images of a result (and zeroes it). */
 void lucent_trace_result_free(lucent_trace_result *result);
 
+/* What a trace's JSON sidecar records (docs/trace.md); a zero field means the default. */
+typedef struct lucent_trace_sidecar_desc {
+    const lucent_scene *scene;         /* required: its JSON after overrides is recorded */
+    const char *scene_file;            /* as given (NULL: scene->path) */
+    const lucent_tracer_desc *tracer;  /* the tracer's options (NULL: the defaults) */
+    const lucent_trace_result *result; /* required */
+    int threads;                       /* the threads that rendered */
+} lucent_trace_sidecar_desc;
+
+/* Writes the sidecar to path (atomically): renderer and version, scene file, size, samples, seed,
+ * time and rate, threads, the tracer's options, the relative standard error over the object, the
+ * paths truncated, escaped or dropped, and the scene after overrides. */
+lucent_status lucent_trace_write_sidecar(const char *path, const lucent_trace_sidecar_desc *desc);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,343 @@
+/* lucent_compare_run: per scene the path-traced reference, every GL method, their measures over
+ * the object mask, their frame times, and (with an output folder) the files. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "eval/internal.h"
+
+typedef struct method_store {
+    char name[EVAL_NAME_SIZE], image[EVAL_PATH_SIZE], error_image[EVAL_PATH_SIZE], settings[EVAL_SETTINGS_SIZE];
+} method_store;
+
+typedef struct scene_store {
+    lucent_scene *scene;
+    char stem[EVAL_NAME_SIZE];  /* the scene's folder under out */
+    char dir[EVAL_PATH_SIZE];   /* out/stem ("" without out) */
+    char reference[EVAL_PATH_SIZE], chart[EVAL_PATH_SIZE], device[300];
+    lucent_trace_result ref;
+    float *mask;                /* object pixels counted in the errors */
+    uint64_t mask_pixels;
+    int method_count;
+    method_store methods[LUCENT_COMPARE_MAX_METHODS];
+    lucent_compare_method rows[LUCENT_COMPARE_MAX_METHODS]; /* the report's view of methods[] */
+    lucent_frame_times times[LUCENT_COMPARE_MAX_METHODS];
+} scene_store;
+
+struct lucent_compare_store {
+    scene_store *scenes;
+    int count; /* scenes begun (each to be freed) */
+};
+
+/* The desc with its defaults resolved. */
+typedef struct run {
+    lucent_compare_desc d;
+    char method_text[1024]; /* the default list, split in place */
+    const char *methods[LUCENT_COMPARE_MAX_METHODS];
+    lucent_gl_context *gl;
+} run;
+
+lucent_compare_desc lucent_compare_defaults(void)
+{
+    return (lucent_compare_desc){.frames = 5, .title = LUCENT_COMPARE_DEFAULT_TITLE};
+}
+
+/* ---- the desc ---- */
+
+static void default_methods(run *r)
+{
+    snprintf(r->method_text, sizeof r->method_text, "%s", LUCENT_COMPARE_DEFAULT_METHODS);
+    r->d.method_count = 0;
+    for (char *save = NULL, *t = strtok_r(r->method_text, ",", &save); t; t = strtok_r(NULL, ",", &save))
+        r->methods[r->d.method_count++] = t;
+    r->d.methods = r->methods;
+}
+
+static lucent_status resolve(const lucent_compare_desc *desc, run *r)
+{
+    lucent_compare_desc def = lucent_compare_defaults();
+    r->d = *desc;
+    if (!r->d.frames) r->d.frames = def.frames;
+    if (!r->d.title) r->d.title = def.title;
+    if (!desc->scenes || desc->scene_count < 1 || desc->scene_count > LUCENT_COMPARE_MAX_SCENES)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "compare: scene_count: give 1 to %d scenes",
+                            LUCENT_COMPARE_MAX_SCENES);
+    if (desc->method_count < 0 || desc->method_count > LUCENT_COMPARE_MAX_METHODS ||
+        (desc->method_count && !desc->methods))
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "compare: method_count: at most %d methods",
+                            LUCENT_COMPARE_MAX_METHODS);
+    if (desc->override_count < 0 || (desc->override_count && !desc->overrides))
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "compare: override_count: %d overrides without a list",
+                            desc->override_count);
+    if (desc->spp < 0 || desc->frames < 0 || !(desc->time_limit >= 0) || !(desc->scale >= 0) || !isfinite(desc->scale))
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "compare: spp, frames, time_limit and scale must be >= 0");
+    if (!desc->method_count) default_methods(r);
+    for (int i = 0; i < r->d.method_count; i++) {
+        lucent_render_settings probe = lucent_render_settings_defaults();
+        lucent_status s = eval_method_settings(r->d.methods[i], &probe);
+        if (s != LUCENT_OK) return lucent_error_context(s, "compare: methods[%d]", i);
+    }
+    return LUCENT_OK;
+}
+
+/* ---- one scene ---- */
+
+/* Tells the files of lucent_compare_write_image. */
+static lucent_status write_image(const run *r, const scene_store *ss, const char *stem, const lucent_image *img,
+                                 const lucent_render_settings *rs)
+{
+    if (!r->d.out) return LUCENT_OK;
+    lucent_tonemap_desc tm = eval_tonemap(rs);
+    lucent_status s = lucent_compare_write_image(ss->dir, stem, img, &tm);
+    static const char *const exts[] = {"exr", "png"};
+    for (int k = 0; k < 2 && s == LUCENT_OK; k++) {
+        char path[EVAL_PATH_SIZE];
+        s = eval_path_printf(path, sizeof path, "%s/%s.%s", ss->dir, stem, exts[k]);
+        eval_wrote(r->d.on_event, r->d.user, s, path);
+    }
+    return s;
+}
+
+static lucent_status make_mask(scene_store *ss)
+{
+    const lucent_image *c = ss->ref.coverage;
+    ss->mask = malloc((size_t)c->width * (size_t)c->height * sizeof *ss->mask);
+    if (!ss->mask) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    ss->mask_pixels = lucent_compare_object_mask(c, ss->mask);
+    if (!ss->mask_pixels)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: no object covers the image", ss->scene->path);
+    return LUCENT_OK;
+}
+
+static lucent_status render_reference(const run *r, scene_store *ss)
+{
+    lucent_tracer *tr;
+    char label[EVAL_NAME_SIZE + 16];
+    snprintf(label, sizeof label, "reference %s", ss->stem);
+    lucent_status s = lucent_tracer_create(ss->scene, NULL, &tr);
+    if (s != LUCENT_OK) return s;
+    s = lucent_tracer_render(
+        tr, &(lucent_trace_desc){.spp = r->d.spp, .pool = r->d.pool, .time_limit = r->d.time_limit, .label = label},
+        &ss->ref);
+    lucent_tracer_destroy(tr);
+    if (s == LUCENT_OK) s = write_image(r, ss, "reference", ss->ref.image, &ss->scene->render);
+    if (s == LUCENT_OK) s = make_mask(ss);
+    snprintf(ss->reference, sizeof ss->reference, "%s/reference.png", ss->stem);
+    return s;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Times the frames (the first render made the image) and keeps the median frame's pass times. */
+static lucent_status time_frames(const run *r, lucent_renderer *rend, const lucent_render_settings *rs,
+                                 lucent_compare_method *row, lucent_frame_times *times)
+{
+    lucent_frame_times t[LUCENT_COMPARE_MAX_FRAMES];
+    double gpu[LUCENT_COMPARE_MAX_FRAMES];
+    int n = r->d.frames < LUCENT_COMPARE_MAX_FRAMES ? r->d.frames : LUCENT_COMPARE_MAX_FRAMES;
+    for (int i = 0; i < n; i++) {
+        lucent_status s = lucent_render_frame(rend, rs, &t[i]);
+        if (s != LUCENT_OK) return s;
+        gpu[i] = t[i].gpu_ms;
+    }
+    qsort(gpu, (size_t)n, sizeof *gpu, cmp_double);
+    for (int i = 0; i < n; i++)
+        if (t[i].gpu_ms == gpu[n / 2]) *times = t[i];
+    row->frame_ms = gpu[n / 2];
+    return LUCENT_OK;
+}
+
+/* Relative RMS errors over the mask, and the heat map of the per-pixel relative error. */
+static lucent_status measure(const run *r, scene_store *ss, const lucent_image *img, int m)
+{
+    lucent_compare_method *row = &ss->rows[m];
+    method_store *ms = &ss->methods[m];
+    lucent_image_error_stats e;
+    lucent_status s = lucent_image_compare(img, ss->ref.image, ss->mask, &e);
+    if (s != LUCENT_OK) return s;
+    row->rel_rms = e.rel_rms_all;
+    for (int c = 0; c < 3; c++) row->rel_rms_rgb[c] = e.rel_rms[c];
+    char stem[EVAL_NAME_SIZE], path[EVAL_PATH_SIZE];
+    eval_file_stem(ms->name, stem, sizeof stem);
+    s = eval_path_printf(ms->error_image, sizeof ms->error_image, "%s/%s-error.png", ss->stem, stem);
+    if (s != LUCENT_OK || !r->d.out) return s;
+    lucent_image *heat = NULL;
+    s = lucent_compare_error_map(img, ss->ref.image, ss->mask, &heat);
+    if (s == LUCENT_OK) s = eval_path_printf(path, sizeof path, "%s/%s-error.png", ss->dir, stem);
+    if (s == LUCENT_OK) s = eval_wrote(r->d.on_event, r->d.user, lucent_image_write(path, heat, NULL), path);
+    lucent_image_destroy(heat);
+    return s;
+}
+
+static lucent_status run_method(const run *r, scene_store *ss, lucent_renderer *rend, int m)
+{
+    const char *method = r->d.methods[m];
+    method_store *ms = &ss->methods[m];
+    lucent_render_settings rs = ss->scene->render;
+    lucent_render_result res = {0};
+    lucent_status s = eval_method_settings(method, &rs);
+    snprintf(ms->name, sizeof ms->name, "%s", method);
+    if (s == LUCENT_OK) s = lucent_render(rend, &rs, &res);
+    char stem[EVAL_NAME_SIZE];
+    eval_file_stem(method, stem, sizeof stem);
+    if (s == LUCENT_OK) s = write_image(r, ss, stem, res.image, &rs);
+    if (s == LUCENT_OK) s = measure(r, ss, res.image, m);
+    if (s == LUCENT_OK) s = time_frames(r, rend, &rs, &ss->rows[m], &ss->times[m]);
+    ss->rows[m].setup_ms = res.times.setup_ms;
+    snprintf(ms->image, sizeof ms->image, "%s/%s.png", ss->stem, stem);
+    eval_method_describe(&rs, ms->settings, sizeof ms->settings);
+    lucent_render_result_free(&res);
+    if (s != LUCENT_OK) return lucent_error_context(s, "%s: method %s", ss->stem, method);
+    return LUCENT_OK;
+}
+
+/* Loads the scene with the overrides and, for a scale, two more that resize it (read from a first,
+ * mesh-less load), so that the scene's JSON records the size the images have. */
+static lucent_status load_scene(const run *r, const char *path, lucent_scene **dest)
+{
+    int n = r->d.override_count;
+    const char **sets = malloc(((size_t)n + 2) * sizeof *sets);
+    if (!sets) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    if (n) memcpy(sets, r->d.overrides, (size_t)n * sizeof *sets);
+    char size[2][48];
+    lucent_status s = LUCENT_OK;
+    if (r->d.scale > 0) {
+        lucent_scene *probe;
+        lucent_scene_load_desc probe_desc = {.overrides = sets, .override_count = n, .skip_meshes = true};
+        s = lucent_scene_load(path, &probe_desc, &probe);
+        if (s == LUCENT_OK) {
+            eval_scale_overrides(probe, r->d.scale, size[0], size[1]);
+            lucent_scene_destroy(probe);
+            sets[n++] = size[0], sets[n++] = size[1];
+        }
+    }
+    lucent_scene_load_desc load = {.overrides = sets, .override_count = n};
+    if (s == LUCENT_OK) s = lucent_scene_load(path, &load, dest);
+    free(sets);
+    return s;
+}
+
+static void fill_report(scene_store *ss, lucent_compare_scene *dest)
+{
+    for (int i = 0; i < ss->method_count; i++) {
+        method_store *m = &ss->methods[i];
+        ss->rows[i].name = m->name, ss->rows[i].image = m->image, ss->rows[i].error_image = m->error_image;
+        ss->rows[i].settings = m->settings;
+    }
+    *dest = (lucent_compare_scene){.name = ss->stem,
+                                   .description = ss->scene->description,
+                                   .width = ss->ref.image->width,
+                                   .height = ss->ref.image->height,
+                                   .reference_image = ss->reference,
+                                   .reference_spp = (int)ss->ref.spp,
+                                   .reference_seconds = ss->ref.seconds,
+                                   .reference_noise = lucent_compare_reference_noise(ss->ref.image, ss->ref.variance,
+                                                                                     ss->mask),
+                                   .device = ss->device,
+                                   .chart = ss->chart,
+                                   .scene_json = ss->scene->json,
+                                   .methods = ss->rows,
+                                   .method_count = ss->method_count};
+}
+
+/* The reference and the renderer's methods, into ss. */
+static lucent_status measure_scene(const run *r, const char *path, scene_store *ss)
+{
+    lucent_status s = load_scene(r, path, &ss->scene);
+    if (s != LUCENT_OK) return s;
+    eval_file_stem(ss->scene->name, ss->stem, sizeof ss->stem);
+    if (r->d.out && (s = eval_path_printf(ss->dir, sizeof ss->dir, "%s/%s", r->d.out, ss->stem)) == LUCENT_OK)
+        s = eval_make_dirs(ss->dir);
+    if (s == LUCENT_OK) s = render_reference(r, ss);
+    char cache[EVAL_PATH_SIZE];
+    const char *cache_dir = NULL;
+    if (s == LUCENT_OK && r->d.out && (s = eval_path_printf(cache, sizeof cache, "%s/.cache", r->d.out)) == LUCENT_OK) {
+        s = eval_make_dirs(cache);
+        cache_dir = cache;
+    }
+    lucent_renderer *rend = NULL;
+    if (s == LUCENT_OK)
+        s = lucent_renderer_create(r->gl, ss->scene, &(lucent_renderer_desc){.pool = r->d.pool, .cache_dir = cache_dir},
+                                   &rend);
+    for (int i = 0; i < r->d.method_count && s == LUCENT_OK; i++, ss->method_count++) s = run_method(r, ss, rend, i);
+    lucent_renderer_destroy(rend);
+    return s;
+}
+
+static lucent_status compare_scene(const run *r, const char *path, scene_store *ss, lucent_compare_scene_result *dest)
+{
+    lucent_status s = measure_scene(r, path, ss);
+    if (s != LUCENT_OK) return s;
+    lucent_gl_info info;
+    lucent_gl_get_info(r->gl, &info);
+    snprintf(ss->device, sizeof ss->device, "%.160s (%.128s)", info.renderer, info.version);
+    snprintf(ss->chart, sizeof ss->chart, "%s/errors.svg", ss->stem);
+    *dest = (lucent_compare_scene_result){
+        .reference = &ss->ref, .mask = ss->mask, .object_pixels = ss->mask_pixels, .times = ss->times};
+    fill_report(ss, &dest->report);
+    if (!r->d.out) return LUCENT_OK;
+    char chart[EVAL_PATH_SIZE];
+    s = eval_path_printf(chart, sizeof chart, "%s/errors.svg", ss->dir);
+    if (s == LUCENT_OK) s = lucent_compare_write_chart(chart, &dest->report);
+    return eval_wrote(r->d.on_event, r->d.user, s, chart);
+}
+
+/* ---- the run ---- */
+
+static lucent_status compare_all(run *r, lucent_compare_result *dest)
+{
+    lucent_compare_store *st = dest->store;
+    lucent_status s = LUCENT_OK;
+    for (int i = 0; i < r->d.scene_count && s == LUCENT_OK; i++) {
+        st->count = i + 1;
+        s = compare_scene(r, r->d.scenes[i], &st->scenes[i], &dest->scenes[i]);
+        if (s != LUCENT_OK) break;
+        dest->scene_count = i + 1;
+        if (r->d.on_event)
+            r->d.on_event(&(lucent_eval_event){.kind = LUCENT_EVAL_SCENE_DONE, .name = st->scenes[i].stem, .index = i},
+                          r->d.user);
+    }
+    if (s == LUCENT_OK && r->d.out)
+        s = lucent_compare_write_reports(r->d.out, r->d.title, dest, r->d.on_event, r->d.user);
+    return s;
+}
+
+lucent_status lucent_compare_run(const lucent_compare_desc *desc, lucent_compare_result *dest)
+{
+    *dest = (lucent_compare_result){0};
+    run r = {0};
+    lucent_status s = resolve(desc, &r);
+    if (s != LUCENT_OK) return s;
+    dest->store = calloc(1, sizeof *dest->store);
+    if (dest->store) dest->store->scenes = calloc((size_t)r.d.scene_count, sizeof *dest->store->scenes);
+    dest->scenes = calloc((size_t)r.d.scene_count, sizeof *dest->scenes);
+    if (!dest->store || !dest->store->scenes || !dest->scenes)
+        s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    if (s == LUCENT_OK && r.d.out) s = eval_make_dirs(r.d.out);
+    lucent_gl_context *owned = NULL;
+    r.gl = desc->gl;
+    if (s == LUCENT_OK && !r.gl && (s = lucent_gl_create(NULL, &owned)) == LUCENT_OK) r.gl = owned;
+    if (s == LUCENT_OK) s = compare_all(&r, dest);
+    lucent_gl_destroy(owned);
+    if (s != LUCENT_OK) lucent_compare_result_free(dest);
+    return s;
+}
+
+void lucent_compare_result_free(lucent_compare_result *result)
+{
+    if (!result) return;
+    lucent_compare_store *st = result->store;
+    for (int i = 0; st && st->scenes && i < st->count; i++) {
+        lucent_trace_result_free(&st->scenes[i].ref);
+        free(st->scenes[i].mask);
+        lucent_scene_destroy(st->scenes[i].scene);
+    }
+    if (st) free(st->scenes);
+    free(st);
+    free(result->scenes);
+    *result = (lucent_compare_result){0};
+}

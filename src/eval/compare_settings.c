@@ -1,0 +1,28 @@
+/* Every use of an individual render setting in the evaluations, kept together: the method a
+ * compare run applies, its description in the tables (the settings the method reads, from the
+ * settings table), the tonemapping of its PNGs and the size --scale gives a scene. */
+#include <math.h>
+#include <stdio.h>
+
+#include "eval/internal.h"
+
+lucent_status eval_method_settings(const char *method, lucent_render_settings *rs)
+{
+    return lucent_render_method_parse(method, &rs->view.method, rs);
+}
+
+void eval_method_describe(const lucent_render_settings *rs, char *dest, size_t size)
+{
+    lucent_render_method_describe(rs, dest, size);
+}
+
+lucent_tonemap_desc eval_tonemap(const lucent_render_settings *rs)
+{
+    return (lucent_tonemap_desc){.op = rs->view.tonemap, .exposure = (float)rs->view.exposure};
+}
+
+void eval_scale_overrides(const lucent_scene *scene, double scale, char width[48], char height[48])
+{
+    snprintf(width, 48, "render.width=%ld", lround(fmax(1, scene->render.view.width * scale)));
+    snprintf(height, 48, "render.height=%ld", lround(fmax(1, scene->render.view.height * scale)));
+}

@@ -1,0 +1,56 @@
+/* Paths, folders and events for the evaluations' outputs. */
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "eval/internal.h"
+
+lucent_status eval_path_printf(char *dest, size_t size, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(dest, size, fmt, ap);
+    va_end(ap);
+    if (n < 0 || (size_t)n >= size) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%.60s...: path too long", dest);
+    return LUCENT_OK;
+}
+
+lucent_status eval_make_dirs(const char *path)
+{
+    char p[EVAL_PATH_SIZE];
+    lucent_status s = eval_path_printf(p, sizeof p, "%s", path);
+    if (s != LUCENT_OK) return s;
+    for (char *q = p + 1;; q++) {
+        if (*q != '/' && *q != '\0') continue;
+        char c = *q;
+        *q = '\0';
+        if (mkdir(p, 0777) != 0 && errno != EEXIST)
+            return lucent_error(LUCENT_ERR_IO, "%s: cannot create the folder: %s", p, strerror(errno));
+        if (!(*q = c)) break;
+    }
+    return LUCENT_OK;
+}
+
+lucent_status eval_make_dir(const char *dir)
+{
+    if (mkdir(dir, 0777) == 0) return LUCENT_OK;
+    struct stat st;
+    if (errno == EEXIST && stat(dir, &st) == 0 && S_ISDIR(st.st_mode)) return LUCENT_OK;
+    return lucent_error(LUCENT_ERR_IO, "%s: cannot create the output directory: %s", dir, strerror(errno));
+}
+
+void eval_file_stem(const char *name, char *dest, size_t size)
+{
+    snprintf(dest, size, "%s", name);
+    for (char *p = dest; *p; p++)
+        if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') || *p == '-'))
+            *p = '-';
+}
+
+lucent_status eval_wrote(lucent_eval_event_fn on_event, void *user, lucent_status s, const char *path)
+{
+    if (s == LUCENT_OK && on_event) on_event(&(lucent_eval_event){.kind = LUCENT_EVAL_WROTE, .path = path}, user);
+    return s;
+}
