@@ -8,7 +8,9 @@
  *   taps           the profile, ssss.kernel, rank, taps        lucent_kernel_build, lucent_kernel_taps
  *   transmittance  translucency.transmittance (and the         lucent_slab_transmittance_run (cached)
  *                  profile for the "profile" model)            or lucent_profile_tail
- *   sigma0         cdrf.variant                                lucent_cdrf_fit_material (cached) */
+ *   sigma0         cdrf.variant                                lucent_cdrf_fit_material (cached)
+ *   sog            the profile, desc.sog_count                 lucent_sog_fit, variances shared by
+ *                                                              the channels (d'Eon & Luebke 2007) */
 #ifndef LUCENT_BAKE_H
 #define LUCENT_BAKE_H
 
@@ -29,7 +31,8 @@ enum {
     LUCENT_BAKE_PROFILE = 1u << 0,
     LUCENT_BAKE_TAPS = 1u << 1,          /* bakes the profile too */
     LUCENT_BAKE_TRANSMITTANCE = 1u << 2, /* bakes the profile too for the "profile" model */
-    LUCENT_BAKE_SIGMA0 = 1u << 3
+    LUCENT_BAKE_SIGMA0 = 1u << 3,
+    LUCENT_BAKE_SOG = 1u << 4 /* bakes the profile too */
 };
 
 /* The defaults of lucent_bake_desc's photon counts, stated once. */
@@ -49,6 +52,7 @@ typedef struct lucent_bake_desc {
     uint64_t profile_photons;               /* 0: LUCENT_BAKE_PROFILE_PHOTONS */
     uint64_t transmit_photons;              /* 0: LUCENT_BAKE_TRANSMIT_PHOTONS */
     uint64_t sigma0_photons;                /* 0: LUCENT_BAKE_SIGMA0_PHOTONS */
+    int sog_count;                          /* Gaussians of the sog part, 1..LUCENT_SOG_MAX (0: 6) */
     lucent_pool *pool;                      /* NULL: serial */
 } lucent_bake_desc;
 
@@ -65,10 +69,11 @@ typedef struct lucent_baked {
     double transmit_range;  /* mm */
     double sigma0[3];       /* mm */
     bool sigma0_cached;     /* read from the disk cache */
+    lucent_sog sog;         /* the profile as a sum of Gaussians with shared variances */
     /* What each part was built from ("dipole", "dipole/preint/1/17", ...): a part is rebuilt when its
      * key changes. */
     char profile_key[LUCENT_BAKE_KEY_SIZE], taps_key[LUCENT_BAKE_KEY_SIZE];
-    char transmit_key[LUCENT_BAKE_KEY_SIZE], sigma0_key[LUCENT_BAKE_KEY_SIZE];
+    char transmit_key[LUCENT_BAKE_KEY_SIZE], sigma0_key[LUCENT_BAKE_KEY_SIZE], sog_key[LUCENT_BAKE_KEY_SIZE];
 } lucent_baked;
 
 /* Bakes what desc asks for into baked, reusing the parts whose settings did not change. cache may

@@ -213,6 +213,10 @@ double lucent_sog_eval(const lucent_sog *s, int c, double r);
 lucent_status lucent_sog_fit(const lucent_profile *p, const lucent_sog_desc *desc,
                              lucent_sog *dest);
 
+/* d'Eon & Luebke 2007's six-Gaussian skin profile (GPU Gems 3, ch. 14, the table of Figure 14-13:
+ * shared variances 0.0064 .. 7.41 mm^2 and RGB weights), as a lucent_sog (rms 0). */
+void lucent_sog_deon_skin(lucent_sog *dest);
+
 /* Creates a profile on grid holding the bin averages of the mixture s (model "sog"). */
 lucent_status lucent_profile_from_sog(const lucent_sog *s, const lucent_profile_grid *grid,
                                       lucent_profile **dest);

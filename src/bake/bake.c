@@ -15,7 +15,8 @@ static lucent_bake_desc resolve(const lucent_bake_desc *d, lucent_render_setting
     if (!r.profile_photons) r.profile_photons = LUCENT_BAKE_PROFILE_PHOTONS;
     if (!r.transmit_photons) r.transmit_photons = LUCENT_BAKE_TRANSMIT_PHOTONS;
     if (!r.sigma0_photons) r.sigma0_photons = LUCENT_BAKE_SIGMA0_PHOTONS;
-    if (r.what & LUCENT_BAKE_TAPS) r.what |= LUCENT_BAKE_PROFILE;
+    if (!r.sog_count) r.sog_count = 6;
+    if (r.what & (LUCENT_BAKE_TAPS | LUCENT_BAKE_SOG)) r.what |= LUCENT_BAKE_PROFILE;
     if ((r.what & LUCENT_BAKE_TRANSMITTANCE) && r.settings->translucency.transmittance == LUCENT_TRANSMIT_PROFILE)
         r.what |= LUCENT_BAKE_PROFILE;
     return r;
@@ -193,6 +194,25 @@ static lucent_status bake_sigma0(const lucent_material *m, const lucent_bake_des
     return LUCENT_OK;
 }
 
+/* ---- the profile as a sum of Gaussians (d'Eon & Luebke 2007: shared variances, RGB weights) ---- */
+
+static lucent_status bake_sog(const lucent_material *m, const lucent_bake_desc *d, lucent_baked *b)
+{
+    char key[LUCENT_BAKE_KEY_SIZE];
+    snprintf(key, sizeof key, "%.64s/%d", b->profile_key, d->sog_count);
+    if ((b->have & LUCENT_BAKE_SOG) && !strcmp(key, b->sog_key)) return LUCENT_OK;
+    b->have &= ~(unsigned)LUCENT_BAKE_SOG, b->sog_key[0] = '\0';
+    if (d->sog_count < 1 || d->sog_count > LUCENT_SOG_MAX)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "material %s: sum of Gaussians: 1 to %d Gaussians, got %d",
+                            m->name, LUCENT_SOG_MAX, d->sog_count);
+    lucent_sog_desc sd = {.count = d->sog_count, .shared_variances = true};
+    lucent_status s = lucent_sog_fit(b->profile, &sd, &b->sog);
+    if (s != LUCENT_OK) return lucent_error_context(s, "material %s: sum of Gaussians", m->name);
+    snprintf(b->sog_key, sizeof b->sog_key, "%s", key);
+    b->have |= LUCENT_BAKE_SOG;
+    return LUCENT_OK;
+}
+
 lucent_status lucent_material_bake(const lucent_material *material, const lucent_bake_desc *desc, lucent_cache *cache,
                                    lucent_baked *baked)
 {
@@ -203,6 +223,7 @@ lucent_status lucent_material_bake(const lucent_material *material, const lucent
     if (s == LUCENT_OK && (d.what & LUCENT_BAKE_TAPS)) s = bake_taps(material, &d, baked);
     if (s == LUCENT_OK && (d.what & LUCENT_BAKE_TRANSMITTANCE)) s = bake_transmittance(material, &d, cache, baked);
     if (s == LUCENT_OK && (d.what & LUCENT_BAKE_SIGMA0)) s = bake_sigma0(material, &d, cache, baked);
+    if (s == LUCENT_OK && (d.what & LUCENT_BAKE_SOG)) s = bake_sog(material, &d, baked);
     return s;
 }
 

@@ -6,10 +6,6 @@
 
 #include "kernel/internal.h"
 
-/* d'Eon & Luebke 2007, skin, red channel (variances mm^2); the first (0.233, 0.0064) is left
- * out, as in Jimenez's implementation. */
-static const double k_weight[5] = {0.100, 0.118, 0.113, 0.358, 0.078};
-static const double k_variance[5] = {0.0484, 0.187, 0.567, 1.99, 7.41};
 
 static void defaults(const lucent_kernel_desc *d, double t[3], double f[3])
 {
@@ -33,6 +29,10 @@ lucent_status kernel_jimenez(const lucent_kernel2d *gt, const lucent_kernel_desc
                                 "(channel %d)", c);
     lucent_status st = kernel_alloc(k, 1, gt ? gt->half : 200, gt ? gt->h : 0.025);
     if (st != LUCENT_OK) return st;
+    /* d'Eon & Luebke's skin, red channel, without its narrowest Gaussian (Jimenez's implementation). */
+    lucent_sog skin;
+    lucent_sog_deon_skin(&skin);
+    const double *k_variance = skin.variance[0] + 1, *k_weight = skin.weight[0] + 1;
     k->gaussians = 5;
     for (int c = 0; c < 3; c++) {
         double s = 0.001 + f[c]; /* G(r / s; v) = exp(-r^2 / (2 v s^2)) / (2 pi v) */

@@ -430,3 +430,16 @@ lucent_status lucent_profile_from_sog(const lucent_sog *s, const lucent_profile_
         }
     return LUCENT_OK;
 }
+
+/* GPU Gems 3, ch. 14, Figure 14-13: variance (mm^2) and red, green, blue weights of skin. */
+void lucent_sog_deon_skin(lucent_sog *dest)
+{
+    static const double v[6] = {0.0064, 0.0484, 0.187, 0.567, 1.99, 7.41};
+    static const double w[3][6] = {{0.233, 0.100, 0.118, 0.113, 0.358, 0.078},
+                                   {0.455, 0.336, 0.198, 0.007, 0.004, 0.0},
+                                   {0.649, 0.344, 0.0, 0.007, 0.0, 0.0}};
+    memset(dest, 0, sizeof *dest);
+    dest->count = 6;
+    for (int c = 0; c < 3; c++)
+        for (int i = 0; i < 6; i++) dest->variance[c][i] = v[i], dest->weight[c][i] = w[c][i];
+}
