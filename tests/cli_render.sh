@@ -1,6 +1,14 @@
 # Cases for `lucent render` (sourced by cli_test.sh: $LUCENT, $TMP, $FIXTURES, expect_ok, expect_fail,
 # expect_true, expect_no_file). Small images on whatever GL the machine has (llvmpipe in CI).
 SC=$FIXTURES/scenes
+# The settings listing is the table; docs/scenes.md carries it verbatim between its markers.
+expect_ok -- "$LUCENT" render --settings
+expect_true "--settings lists the kernel setting with its names" -- grep -q "svd, preint, guided, manual, sog, jimenez" <<<"$OUT"
+expect_ok -- "$LUCENT" render --settings=markdown
+printf '%s\n' "$OUT" > "$TMP/settings.md"
+sed -n '/<!-- settings:begin -->/,/<!-- settings:end -->/p' "$TESTS/../docs/scenes.md" | sed '1d;$d' > "$TMP/settings-doc.md"
+expect_true "docs/scenes.md holds the table of lucent render --settings=markdown" -- diff -u "$TMP/settings-doc.md" "$TMP/settings.md"
+
 if [ -n "${LUCENT_GL_SKIP:-}" ]; then
   echo "skip lucent render cases: $LUCENT_GL_SKIP"
   return 0
@@ -58,3 +66,4 @@ expect_fail 2 "--frames needs a whole number" -- "${RENDER[@]}" render "$SC/sphe
 expect_fail 2 "--gl-platform must be" -- "${RENDER[@]}" render "$SC/sphere.json" --out "$TMP/u.png" --gl-platform vulkan
 expect_fail 2 "unknown option '--frob'" -- "${RENDER[@]}" render "$SC/sphere.json" --out "$TMP/u.png" --frob
 expect_no_file "$TMP/u.png" "$TMP/u.exr" "$TMP/u.txt"
+

@@ -44,6 +44,8 @@ static const char k_usage[] =
     "  --cache DIR         where sigma0 fits and slab tables are kept (default $LUCENT_CACHE_DIR, else\n"
     "                      $XDG_CACHE_HOME/lucent or ~/.cache/lucent)\n"
     "  --no-cache          do not read or write that cache\n"
+    "  --settings          list every render setting (key, default, range, meaning) and exit;\n"
+    "                      --settings=markdown as Markdown tables (docs/scenes.md)\n"
     "  -h, --help          show this help\n"
     "\n"
     "examples:\n"
@@ -58,6 +60,16 @@ typedef struct options {
     char method_set[160];
     lucent_gl_desc gl;
 } options;
+
+/* The settings table as text (or Markdown): what --set render.KEY=VALUE takes. */
+static int list_settings(bool markdown)
+{
+    char *text = NULL;
+    if (lucent_settings_help(markdown, &text) != LUCENT_OK) return cli_fail();
+    fputs(text, stdout);
+    free(text);
+    return CLI_OK;
+}
 
 static int add_set(options *o, const char *kv)
 {
@@ -282,6 +294,8 @@ static lucent_status run(const options *o, lucent_scene *scene)
 int cmd_render(int argc, char **argv)
 {
     if (cli_wants_help(argc, argv)) return fputs(k_usage, stdout), CLI_OK;
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "--settings") || !strcmp(argv[i], "--settings=markdown")) return list_settings(argv[i][10]);
     options o = {.frames = 1};
     int rc = parse_args(argc, argv, &o);
     if (rc == CLI_OK) rc = check_image_path("--out", o.out, true);

@@ -363,7 +363,7 @@ lucent_status lucent_settings_help(bool markdown, char **dest)
     lucent_strbuf b = {0};
     for (int g = 0; g < lucent_settings_group_count(); g++) {
         const lucent_settings_group *grp = lucent_settings_group_get(g);
-        if (markdown) lucent_strbuf_printf(&b, "\n**%s**: %s\n\n| key | default | values | meaning |\n|---|---|---|---|\n", grp->name, grp->doc);
+        if (markdown) lucent_strbuf_printf(&b, "%s**%s**: %s\n\n| key | default | values | meaning |\n|---|---|---|---|\n", g ? "\n" : "", grp->name, grp->doc);
         else lucent_strbuf_printf(&b, "%s%s: %s\n", g ? "\n" : "", grp->name, grp->doc);
         for (int i = 0; i < grp->count; i++) {
             const lucent_setting *k = &grp->settings[i];
