@@ -10,7 +10,7 @@
 #include "lucent/eval.h"
 
 #define PI 3.14159265358979323846
-enum { MAX_OUTS = 8, MAX_RADII = 16 };
+enum { MAX_OUTS = 8, MAX_RADII = LUCENT_CDRF_FIT_MAX_RADII };
 
 static const char k_lut_usage[] =
     "usage: lucent cdrf-lut [--variant kubo|collomb] [options] --out FILE...\n"
@@ -253,18 +253,13 @@ static lucent_status run_fit(fit_options *o)
 {
     lucent_status s = lucent_material_resolve(o->spec, &o->material);
     if (s != LUCENT_OK) return s;
-    lucent_cdrf_sphere_result *sp = calloc((size_t)o->radius_count, sizeof *sp);
-    if (!sp) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "cdrf-fit: out of memory");
-    for (int i = 0; i < o->radius_count && s == LUCENT_OK; i++) {
-        char label[64];
-        snprintf(label, sizeof label, "sphere r = %g mm", o->radii[i]);
-        lucent_cdrf_sphere_desc d = {.material = &o->material, .radius = o->radii[i], .roughness = o->roughness,
-                                     .photons = o->photons, .bins = o->bins, .cone = o->cone_deg * PI / 180,
-                                     .seed = o->seed * 64 + (uint64_t)i, .pool = cli_pool(), .label = label};
-        s = lucent_cdrf_sphere_run(&d, &sp[i]);
-    }
+    lucent_cdrf_sphere_result *sp = NULL;
     lucent_cdrf_fit fit;
-    if (s == LUCENT_OK) s = lucent_cdrf_fit_spheres(sp, o->radius_count, o->variant, o->sigma0_max, &fit);
+    lucent_cdrf_material_fit_desc fd = {.material = &o->material, .variant = o->variant, .radii = o->radii,
+                                        .radius_count = o->radius_count, .photons = o->photons, .bins = o->bins,
+                                        .roughness = o->roughness, .cone = o->cone_deg * PI / 180, .seed = o->seed,
+                                        .sigma0_max = o->sigma0_max, .pool = cli_pool()};
+    s = lucent_cdrf_fit_material(&fd, &fit, &sp);
     char prefix[512], path[600];
     if (o->out) snprintf(prefix, sizeof prefix, "%s", o->out);
     else snprintf(prefix, sizeof prefix, "%s-cdrf", o->material.name);
@@ -297,8 +292,8 @@ int cmd_cdrf_fit(int argc, char **argv)
         fputs(k_fit_usage, stdout);
         return CLI_OK;
     }
-    fit_options o = {.radii = {2, 5, 10, 20}, .radius_count = 4, .photons = 400000, .seed = 1, .bins = 36,
-                     .cone_deg = 0.2 * 180 / PI};
+    fit_options o = {.radii = LUCENT_CDRF_FIT_RADII, .radius_count = LUCENT_CDRF_FIT_RADIUS_COUNT, .photons = 400000,
+                     .seed = 1, .bins = 36, .cone_deg = 0.2 * 180 / PI};
     int rc = parse_fit_args(argc, argv, &o);
     if (rc != CLI_OK) return rc;
     return run_fit(&o) == LUCENT_OK ? CLI_OK : cli_fail();

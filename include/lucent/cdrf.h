@@ -158,10 +158,10 @@ typedef struct lucent_cdrf_material_fit_desc {
     uint64_t photons;        /* per channel and sphere (0: the sphere's default) */
     int bins;                /* theta bins (0: the sphere's default) */
     double roughness, cone;  /* as lucent_cdrf_sphere_desc */
-    uint64_t seed;
+    uint64_t seed;           /* sphere i runs with seed 64 seed + i */
     double sigma0_max;       /* mm (0: 20) */
     lucent_pool *pool;
-    const char *label;       /* progress label (NULL: "CDRF sigma0 fit") */
+    const char *label;       /* progress label before "sphere r = R mm" (may be NULL) */
 } lucent_cdrf_material_fit_desc;
 
 /* Runs the spheres and the fit. spheres (may be NULL) receives the sphere results, radius_count of

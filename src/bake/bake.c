@@ -162,7 +162,7 @@ static void sigma0_cache_key(const lucent_material *m, lucent_cdrf_variant v, ui
     material_key(m, mat, sizeof mat);
     for (int i = 0; i < LUCENT_CDRF_FIT_RADIUS_COUNT; i++)
         snprintf(list + strlen(list), sizeof list - strlen(list), "%s%g", i ? "," : "", radii[i]);
-    snprintf(dest, size, "v1 %s %s photons %llu radii %s bins %d seed 1", mat, lucent_cdrf_variant_name(v),
+    snprintf(dest, size, "v2 %s %s photons %llu radii %s bins %d seed 1", mat, lucent_cdrf_variant_name(v),
              (unsigned long long)photons, list, LUCENT_BAKE_SIGMA0_BINS);
 }
 
@@ -179,7 +179,8 @@ static lucent_status bake_sigma0(const lucent_material *m, const lucent_bake_des
         double t0 = seconds();
         lucent_cdrf_fit fit;
         lucent_cdrf_material_fit_desc fd = {.material = m, .variant = v, .photons = d->sigma0_photons,
-                                            .bins = LUCENT_BAKE_SIGMA0_BINS, .seed = 1, .pool = d->pool};
+                                            .bins = LUCENT_BAKE_SIGMA0_BINS, .seed = 1, .pool = d->pool,
+                                            .label = "CDRF sigma0 fit"};
         lucent_status s = lucent_cdrf_fit_material(&fd, &fit, NULL);
         if (s != LUCENT_OK) return s;
         memcpy(b->sigma0, fit.sigma0, sizeof b->sigma0);
