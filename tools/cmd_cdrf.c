@@ -10,7 +10,6 @@
 #include "cli.h"
 #include "lucent/cdrf.h"
 
-#define PI 3.14159265358979323846
 enum { MAX_OUTS = 8, MAX_RADII = 16, CURVE_POINTS = 91 };
 
 static const char k_lut_usage[] =
@@ -260,7 +259,7 @@ static lucent_status write_fit_json(const char *path, const fit_options *o, cons
     cJSON_AddStringToObject(root, "units", "r and sigma0 in mm, theta in radians, L per unit irradiance");
     cJSON_AddNumberToObject(root, "photons_per_channel", (double)sp[0].photons);
     cJSON_AddNumberToObject(root, "seed", (double)o->seed);
-    cJSON_AddNumberToObject(root, "cone_radians", o->cone_deg * PI / 180);
+    cJSON_AddNumberToObject(root, "cone_radians", o->cone_deg * M_PI / 180);
     cJSON_AddNumberToObject(root, "roughness", o->roughness);
     cJSON *fj = cJSON_AddObjectToObject(root, "fit");
     lucent_json_add_numbers(fj, "sigma0", fit->sigma0, 3);
@@ -300,7 +299,7 @@ static lucent_status write_fit_csv(const char *path, const fit_options *o, const
     lucent_strbuf_printf(&b, "radius_mm,theta_deg,R,R_se,R_fit,G,G_se,G_fit,B,B_se,B_fit\n");
     for (int i = 0; i < o->radius_count; i++)
         for (int j = 0; j < sp[i].bins; j++) {
-            lucent_strbuf_printf(&b, "%.9g,%.9g", sp[i].radius, sp[i].theta[j] * 180 / PI);
+            lucent_strbuf_printf(&b, "%.9g,%.9g", sp[i].radius, sp[i].theta[j] * 180 / M_PI);
             for (int c = 0; c < 3; c++)
                 lucent_strbuf_printf(&b, ",%.9g,%.9g,%.9g", sp[i].radiance[c][j], sp[i].radiance_se[c][j],
                                      fit->kd[c] * lucent_cdrf_eval(fit->variant, sp[i].theta[j],
@@ -331,10 +330,10 @@ static lucent_status write_fit_svg(const char *path, const fit_options *o, const
     for (int c = 0; c < 3 && s == LUCENT_OK; c++) {
         for (int i = 0; i < n; i++) {
             double *d = deg + i * LUCENT_CDRF_MAX_BINS, *y = cy + (c * n + i) * CURVE_POINTS;
-            for (int j = 0; j < sp[i].bins; j++) d[j] = sp[i].theta[j] * 180 / PI;
+            for (int j = 0; j < sp[i].bins; j++) d[j] = sp[i].theta[j] * 180 / M_PI;
             for (int k = 0; k < CURVE_POINTS; k++) {
                 cx[k] = 180.0 * k / (CURVE_POINTS - 1);
-                y[k] = fit->kd[c] * lucent_cdrf_eval(fit->variant, cx[k] * PI / 180, fit->sigma0[c] / sp[i].radius);
+                y[k] = fit->kd[c] * lucent_cdrf_eval(fit->variant, cx[k] * M_PI / 180, fit->sigma0[c] / sp[i].radius);
             }
             char *l1 = labels[(c * n + i) * 2], *l2 = labels[(c * n + i) * 2 + 1];
             snprintf(l1, 48, "r = %g mm (MC)", sp[i].radius);
@@ -370,7 +369,7 @@ static lucent_status run_fit(fit_options *o)
         char label[64];
         snprintf(label, sizeof label, "sphere r = %g mm", o->radii[i]);
         lucent_cdrf_sphere_desc d = {.material = &o->material, .radius = o->radii[i], .roughness = o->roughness,
-                                     .photons = o->photons, .bins = o->bins, .cone = o->cone_deg * PI / 180,
+                                     .photons = o->photons, .bins = o->bins, .cone = o->cone_deg * M_PI / 180,
                                      .seed = o->seed * 64 + (uint64_t)i, .pool = cli_pool(), .label = label};
         s = lucent_cdrf_sphere_run(&d, &sp[i]);
     }
@@ -405,7 +404,7 @@ int cmd_cdrf_fit(int argc, char **argv)
         return CLI_OK;
     }
     fit_options o = {.radii = {2, 5, 10, 20}, .radius_count = 4, .photons = 400000, .seed = 1, .bins = 36,
-                     .cone_deg = 0.2 * 180 / PI};
+                     .cone_deg = 0.2 * 180 / M_PI};
     int rc = parse_fit_args(argc, argv, &o);
     if (rc != CLI_OK) return rc;
     return run_fit(&o) == LUCENT_OK ? CLI_OK : cli_fail();

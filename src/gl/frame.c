@@ -3,6 +3,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "base/mat4.h"
 #include "gl/renderer_internal.h"
 
 /* ---- targets ---- */
@@ -100,7 +101,7 @@ static void light_block(const lucent_renderer *r, int i, gl_frame_block *b)
     b->light_shadow[i][1] = (float)g->near_plane, b->light_shadow[i][2] = (float)g->far_plane;
     b->light_shadow[i][3] = g->ortho ? 1.0f : 0.0f;
     b->light_texel[i][0] = (float)(g->texel / r->shadow_size);
-    gl_mat4_to_float(g->matrix, b->light_matrix[i]);
+    lucent_mat4_to_float(g->matrix, b->light_matrix[i]);
 }
 
 static void frame_block(const lucent_renderer *r, gl_frame_block *b)
@@ -110,8 +111,8 @@ static void frame_block(const lucent_renderer *r, gl_frame_block *b)
     memset(b, 0, sizeof *b);
     lucent_camera_view(cam, view);
     lucent_camera_projection(cam, (double)r->width / r->height, proj);
-    gl_mat4_mul(proj, view, vp);
-    gl_mat4_to_float(vp, b->view_proj);
+    lucent_mat4_mul(proj, view, vp);
+    lucent_mat4_to_float(vp, b->view_proj);
     for (int i = 0; i < 3; i++) f[i] = cam->target[i] - cam->position[i], len += f[i] * f[i];
     for (int i = 0; i < 3; i++) {
         b->eye[i] = (float)cam->position[i];

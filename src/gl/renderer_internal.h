@@ -162,8 +162,4 @@ lucent_status gl_settings_check(const lucent_render_settings *s);
 void gl_renderer_set_aov(lucent_renderer *r, bool on);
 lucent_status gl_renderer_read_aov(lucent_renderer *r, int which, lucent_image **dest);
 
-/* Small double-precision 4x4 helpers (column-major). */
-void gl_mat4_mul(const double a[16], const double b[16], double dest[16]);
-void gl_mat4_to_float(const double m[16], float dest[16]);
-
 #endif

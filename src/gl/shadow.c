@@ -5,24 +5,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "base/mat4.h"
 #include "gl/renderer_internal.h"
-
-void gl_mat4_mul(const double a[16], const double b[16], double dest[16])
-{
-    double t[16];
-    for (int c = 0; c < 4; c++)
-        for (int r = 0; r < 4; r++) {
-            double s = 0;
-            for (int k = 0; k < 4; k++) s += a[4 * k + r] * b[4 * c + k];
-            t[4 * c + r] = s;
-        }
-    memcpy(dest, t, sizeof t);
-}
-
-void gl_mat4_to_float(const double m[16], float dest[16])
-{
-    for (int i = 0; i < 16; i++) dest[i] = (float)m[i];
-}
 
 static void scene_sphere(lucent_renderer *r)
 {
@@ -57,7 +41,7 @@ static void directional(lucent_renderer *r, const lucent_light *l, gl_light *g)
     proj[10] = -2 / (g->far_plane - g->near_plane);
     proj[14] = -(g->far_plane + g->near_plane) / (g->far_plane - g->near_plane);
     proj[15] = 1;
-    gl_mat4_mul(proj, view, g->matrix);
+    lucent_mat4_mul(proj, view, g->matrix);
 }
 
 /* Returns false when the light stands inside the scene's bounding sphere (no single map covers). */
@@ -74,7 +58,7 @@ static bool point(lucent_renderer *r, const lucent_light *l, gl_light *g)
     g->texel = 2 * dist * tan(0.5 * cam.fov_y * M_PI / 180);
     light_view(l->position, r->bound_centre, view);
     lucent_camera_projection(&cam, 1, proj);
-    gl_mat4_mul(proj, view, g->matrix);
+    lucent_mat4_mul(proj, view, g->matrix);
     return true;
 }
 
@@ -144,7 +128,7 @@ void gl_shadows_draw(lucent_renderer *r)
         const gl_light *g = &r->lights[i];
         if (g->layer < 0) continue;
         float m[16];
-        gl_mat4_to_float(g->matrix, m);
+        lucent_mat4_to_float(g->matrix, m);
         glUniformMatrix4fv(loc, 1, GL_FALSE, m);
         glNamedFramebufferTextureLayer(r->shadow_fbo, GL_DEPTH_ATTACHMENT, r->shadow_tex, 0, g->layer);
         glClearNamedFramebufferfv(r->shadow_fbo, GL_DEPTH, 0, (const float[1]){1});
