@@ -1,11 +1,9 @@
 /* `lucent compare`: every real-time method of a scene against the path-traced reference, in error
  * and in time, as an HTML report with images (and Markdown, CSV, JSON). */
-#include <errno.h>
 #include <stdarg.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "base/json.h"
 #include "cli.h"
@@ -153,22 +151,6 @@ static lucent_status path_printf(char *dest, size_t size, const char *fmt, ...)
     int n = vsnprintf(dest, size, fmt, ap);
     va_end(ap);
     if (n < 0 || (size_t)n >= size) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%.60s...: path too long", dest);
-    return LUCENT_OK;
-}
-
-/* mkdir -p */
-static lucent_status make_dirs(const char *path)
-{
-    char p[PATH_SIZE];
-    snprintf(p, sizeof p, "%s", path);
-    for (char *q = p + 1;; q++) {
-        if (*q != '/' && *q != '\0') continue;
-        char c = *q;
-        *q = '\0';
-        if (mkdir(p, 0777) != 0 && errno != EEXIST)
-            return lucent_error(LUCENT_ERR_IO, "%s: cannot create the folder: %s", p, strerror(errno));
-        if (!(*q = c)) break;
-    }
     return LUCENT_OK;
 }
 
@@ -399,10 +381,10 @@ static lucent_status compare_scene(const options *o, lucent_gl_context *gl, cons
     if (s != LUCENT_OK) return s;
     file_stem(sr->scene->name, sr->stem, sizeof sr->stem);
     char dir[PATH_SIZE], cache[PATH_SIZE];
-    if ((s = path_printf(dir, sizeof dir, "%s/%s", o->out, sr->stem)) == LUCENT_OK) s = make_dirs(dir);
+    if ((s = path_printf(dir, sizeof dir, "%s/%s", o->out, sr->stem)) == LUCENT_OK) s = lucent_mkdir_p(dir);
     if (s == LUCENT_OK) s = render_reference(sr, o, dir);
     lucent_renderer *r = NULL;
-    if (s == LUCENT_OK && (s = path_printf(cache, sizeof cache, "%s/.cache", o->out)) == LUCENT_OK) s = make_dirs(cache);
+    if (s == LUCENT_OK && (s = path_printf(cache, sizeof cache, "%s/.cache", o->out)) == LUCENT_OK) s = lucent_mkdir_p(cache);
     if (s == LUCENT_OK)
         s = lucent_renderer_create(gl, sr->scene, &(lucent_renderer_desc){.pool = cli_pool(), .cache_dir = cache}, &r);
     for (int i = 0; i < o->method_count && s == LUCENT_OK; i++, sr->method_count++)
@@ -495,7 +477,7 @@ int cmd_compare(int argc, char **argv)
     if (rc != CLI_OK) return rc;
     scene_run *runs = calloc(MAX_SCENES, sizeof *runs);
     lucent_gl_context *gl = NULL;
-    lucent_status s = runs ? make_dirs(o.out) : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    lucent_status s = runs ? lucent_mkdir_p(o.out) : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
     if (s == LUCENT_OK) s = lucent_gl_create(NULL, &gl);
     int done = 0;
     for (; s == LUCENT_OK && done < o.scene_count; done++) s = compare_scene(&o, gl, o.scenes[done], &runs[done]);

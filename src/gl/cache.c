@@ -2,9 +2,7 @@
  * file per result, DIR/PREFIX-<FNV-1a of the key>.json, holding the full key, so that a changed
  * material, setting or photon count misses. Written atomically; a file that cannot be read, or holds
  * another key, is a miss; failures to write are warnings, never errors. */
-#include <errno.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "base/json.h"
 #include "gl/renderer_internal.h"
@@ -35,24 +33,12 @@ bool gl_cache_read(const char *path, const char *key, const char *field, int cou
     return ok;
 }
 
-static int mkdir_p(const char *dir)
-{
-    char p[1024];
-    snprintf(p, sizeof p, "%s", dir);
-    for (char *s = p + 1; *s; s++)
-        if (*s == '/') {
-            *s = '\0';
-            if (mkdir(p, 0755) != 0 && errno != EEXIST) return -1;
-            *s = '/';
-        }
-    return mkdir(p, 0755) != 0 && errno != EEXIST ? -1 : 0;
-}
-
 void gl_cache_write(const char *dir, const char *path, const char *key, cJSON *json)
 {
     if (!json) return;
-    if (mkdir_p(dir) != 0) {
-        lucent_log(LUCENT_LOG_WARN, "cache: cannot create %s: %s", dir, strerror(errno));
+    if (lucent_mkdir_p(dir) != LUCENT_OK) {
+        lucent_log(LUCENT_LOG_WARN, "cache: %s", lucent_last_error());
+        lucent_clear_error();
     } else {
         cJSON_AddStringToObject(json, "key", key);
         if (lucent_json_write_file(path, json) != LUCENT_OK) {

@@ -47,9 +47,6 @@ void gl_timer_mark(gl_timer *t, const char *name);
 void gl_timer_end(gl_timer *t, lucent_frame_times *dest);
 void gl_timer_free(gl_timer *t);
 
-/* Monotonic wall clock in milliseconds. */
-double gl_now_ms(void);
-
 /* ---- the separable blur (blur.frag.glsl) ---- */
 
 typedef struct gl_blur {

@@ -82,9 +82,9 @@ static lucent_status frame(lucent_renderer *r, const lucent_render_settings *set
     const lucent_render_settings *s = settings ? settings : &r->scene->render;
     lucent_status st = gl_settings_check(s);
     if (st == LUCENT_OK) st = lucent_gl_make_current(r->ctx);
-    double t0 = gl_now_ms();
+    double t0 = lucent_clock_ms();
     if (st == LUCENT_OK) st = gl_prepare(r, s);
-    double setup = gl_now_ms() - t0;
+    double setup = lucent_clock_ms() - t0;
     if (st == LUCENT_OK) st = gl_frame_draw(r, s, times);
     times->setup_ms = setup;
     if (st != LUCENT_OK) return lucent_error_context(st, "%s", r->scene->path[0] ? r->scene->path : r->scene->name);
@@ -117,9 +117,9 @@ lucent_status lucent_render(lucent_renderer *r, const lucent_render_settings *se
 {
     memset(dest, 0, sizeof *dest);
     lucent_status s = frame(r, settings, &dest->times);
-    double t0 = gl_now_ms();
+    double t0 = lucent_clock_ms();
     if (s == LUCENT_OK) s = read_back(r, dest);
-    dest->readback_ms = gl_now_ms() - t0;
+    dest->readback_ms = lucent_clock_ms() - t0;
     if (s != LUCENT_OK) lucent_render_result_free(dest);
     return s;
 }

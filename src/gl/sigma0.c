@@ -62,13 +62,13 @@ lucent_status gl_sigma0_fit(const lucent_material *m, lucent_cdrf_variant varian
         gl_cache_path(desc->cache_dir, "sigma0", key, path, sizeof path);
         if (gl_cache_read(path, key, "sigma0_mm", 3, dest)) return *cached = true, LUCENT_OK;
     }
-    double t0 = gl_now_ms();
+    double t0 = lucent_clock_ms();
     lucent_cdrf_fit fit;
     lucent_status s = run_fit(m, variant, desc, photons, &fit);
     if (s != LUCENT_OK) return s;
     memcpy(dest, fit.sigma0, 3 * sizeof *dest);
     lucent_log(LUCENT_LOG_INFO, "sigma0 of %s (%s): %.3g %.3g %.3g mm, fitted in %.1f s", m->name,
-               lucent_cdrf_variant_name(variant), dest[0], dest[1], dest[2], (gl_now_ms() - t0) * 1e-3);
+               lucent_cdrf_variant_name(variant), dest[0], dest[1], dest[2], (lucent_clock_ms() - t0) * 1e-3);
     if (desc->cache_dir && desc->cache_dir[0]) cache_write(desc->cache_dir, path, key, &fit);
     return LUCENT_OK;
 }

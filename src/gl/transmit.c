@@ -109,11 +109,11 @@ lucent_status gl_transmit_slab(const lucent_material *m, const lucent_renderer_d
         cached = gl_cache_read(path, key, "transmittance", 3 * SAMPLES, &t[0][0]);
     }
     if (!cached) {
-        double t0 = gl_now_ms();
+        double t0 = lucent_clock_ms();
         lucent_status s = simulate(m, s_max, photons, desc->pool, t);
         if (s != LUCENT_OK) return s;
         lucent_log(LUCENT_LOG_INFO, "slab transmittance of %s: %d thicknesses to %.3g mm in %.1f s", m->name, SAMPLES,
-                   s_max, (gl_now_ms() - t0) * 1e-3);
+                   s_max, (lucent_clock_ms() - t0) * 1e-3);
         if (desc->cache_dir && desc->cache_dir[0]) cache_write(desc->cache_dir, path, key, s_max, t);
     }
     *range = 2 * s_max; /* the table runs to where T is e^-10 of thin: nothing visible beyond */
