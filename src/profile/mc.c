@@ -119,17 +119,15 @@ lucent_status lucent_mc_validate(const lucent_mc_desc *desc)
     return check_grid(&d.grid, d.score_a_rz);
 }
 
-/* Normal-incidence Fresnel reflectance (MCML manual eq. 3.1; with a clear first layer, the
- * multiple reflections inside it, eq. 3.2). */
+/* Normal-incidence Fresnel reflectance ((n0 - n1) / (n0 + n1))^2 (MCML manual eq. 3.1; base/optics.h);
+ * with a clear first layer, the multiple reflections inside it (eq. 3.2). */
 double lucent_mc_specular(const lucent_mc_desc *desc)
 {
     double n0 = def(desc->n_above, 1.0), n1 = def(desc->layers[0].n, 1.0);
-    double r1 = (n0 - n1) / (n0 + n1);
-    r1 *= r1;
+    double r1 = lucent_fresnel_dielectric(1.0, n1 / n0, NULL);
     const lucent_mc_layer *l0 = &desc->layers[0];
     if (l0->sigma_a + l0->sigma_s == 0.0 && desc->layer_count > 1) {
-        double n2 = def(desc->layers[1].n, 1.0), r2 = (n1 - n2) / (n1 + n2);
-        r2 *= r2;
+        double n2 = def(desc->layers[1].n, 1.0), r2 = lucent_fresnel_dielectric(1.0, n2 / n1, NULL);
         r1 += (1.0 - r1) * (1.0 - r1) * r2 / (1.0 - r1 * r2);
     }
     return r1;

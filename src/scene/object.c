@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "base/mat4.h"
+#include "base/optics.h"
 #include "material/internal.h"
 #include "scene/internal.h"
 
@@ -227,9 +228,9 @@ static lucent_status read_albedo(const lucent_json_node *n, const char *base_dir
 
 static lucent_status read_surface(const lucent_json_node *n, lucent_scene_object *o)
 {
-    double eta = o->material.eta, f0 = (eta - 1) / (eta + 1);
+    double f0 = lucent_fresnel_dielectric(1.0, o->material.eta, NULL); /* ((eta - 1) / (eta + 1))^2 */
     lucent_status s = scene_read_range(n, "roughness", 0.3, 0, 1, &o->roughness);
-    if (s == LUCENT_OK) s = scene_read_range(n, "specular_f0", f0 * f0, 0, 1, &o->specular_f0);
+    if (s == LUCENT_OK) s = scene_read_range(n, "specular_f0", f0, 0, 1, &o->specular_f0);
     if (s == LUCENT_OK) s = scene_read_range(n, "sss_strength", 1, 0, 1, &o->sss_strength);
     if (s == LUCENT_OK) s = lucent_json_bool_or(n, "visible", true, &o->visible);
     o->sigma0_set = lucent_json_has(n, "sigma0");
