@@ -3,16 +3,8 @@
  * them is the scalar baseline measured in the same run (one thread), so scaling reads off
  * directly. Usage: bench_base [seconds_per_case] */
 #include <stdlib.h>
-#include <time.h>
 
 #include "lucent/base.h"
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 typedef struct work {
     double sums[4096];
@@ -35,9 +27,9 @@ static double numbers_per_second(int threads, int chunks)
 {
     static work w;
     lucent_pool *pool = lucent_pool_create(threads);
-    double t0 = now();
+    double t0 = lucent_clock_seconds();
     lucent_parallel_for(pool, (uint64_t)chunks, 1, draw_chunk, &w);
-    double t = now() - t0;
+    double t = lucent_clock_seconds() - t0;
     lucent_pool_destroy(pool);
     return (double)chunks * (1 << 20) / t;
 }

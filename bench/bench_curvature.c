@@ -9,23 +9,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "lucent/mesh.h"
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static double cpu_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* ", load average 1.23 0.98 0.70" from /proc/loadavg where there is one, then a newline. */
 static void print_load(void)
@@ -63,9 +48,9 @@ static timing time_curvature_desc(const lucent_mesh *m, const lucent_curvature_d
     if (repeats > 64) repeats = 64;
     for (int r = 0; r < repeats; r++) {
         lucent_curvature c = {0};
-        double t0 = now(), c0 = cpu_now();
+        double t0 = lucent_clock_seconds(), c0 = lucent_cpu_seconds();
         lucent_status s = lucent_mesh_curvature(m, d, &c);
-        wall[r] = now() - t0, t.cpu = fmin(t.cpu, cpu_now() - c0);
+        wall[r] = lucent_clock_seconds() - t0, t.cpu = fmin(t.cpu, lucent_cpu_seconds() - c0);
         if (s != LUCENT_OK || !finite_all(&c) || c.invalid_count > m->vertex_count / 100) *ok = 0;
         lucent_curvature_free(&c);
     }
@@ -93,12 +78,12 @@ static void bench_mesh(const char *dir, const char *file, int raw, int repeats, 
     char path[2048];
     snprintf(path, sizeof path, "%s/%s", dir, file);
     lucent_mesh *m;
-    double t0 = now();
+    double t0 = lucent_clock_seconds();
     if (lucent_mesh_load(path, &(lucent_mesh_load_desc){.keep_duplicates = raw}, &m) != LUCENT_OK) {
         printf("  %-26s skipped: %s\n", file, lucent_last_error());
         return;
     }
-    double tl = now() - t0;
+    double tl = lucent_clock_seconds() - t0;
     lucent_mesh_stats st;
     lucent_mesh_stats_compute(m, &st);
     printf("  %-24s %-6s %7zu vertices, load %.2f s; %zu boundary / %zu non-manifold edges, %zu zero-area faces\n",

@@ -5,17 +5,9 @@
  * Usage: bench_kernel */
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 
 #include "lucent/kernel.h"
 #include "lucent/material.h"
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static void fail(const char *what)
 {
@@ -47,10 +39,10 @@ static double time_model(const lucent_kernel2d *gt, const lucent_profile *p, con
     lucent_taps *t = NULL;
     lucent_manual_params mp;
     if (mc->desc.model == LUCENT_KERNEL_MANUAL && lucent_manual_preset(m->name, &mp) != LUCENT_OK) return -1;
-    double t0 = now();
+    double t0 = lucent_clock_seconds();
     if (lucent_kernel_build(gt, p, m->name, &mc->desc, &k) != LUCENT_OK) fail(mc->label);
     if (lucent_kernel_taps(k, NULL, &t) != LUCENT_OK) fail("taps");
-    double dt = now() - t0;
+    double dt = lucent_clock_seconds() - t0;
     if (mc->desc.model == LUCENT_KERNEL_GUIDED) *constraint = k->constraint_error;
     lucent_taps_destroy(t);
     lucent_kernel_destroy(k);
@@ -63,11 +55,11 @@ static void run_material(int index)
     lucent_profile *p = NULL;
     lucent_kernel2d *gt = NULL;
     if (lucent_material_preset(index, &m) != LUCENT_OK) fail("preset");
-    double t0 = now();
+    double t0 = lucent_clock_seconds();
     if (lucent_profile_dipole(&m, NULL, &p) != LUCENT_OK) fail("profile");
-    double t1 = now();
+    double t1 = lucent_clock_seconds();
     if (lucent_kernel2d_from_profile(p, NULL, &gt) != LUCENT_OK) fail("ground truth");
-    double t2 = now(), total = t2 - t0, constraint = 0;
+    double t2 = lucent_clock_seconds(), total = t2 - t0, constraint = 0;
     printf("%-10s %4d %6.1f %6.1f", m.name, 2 * gt->half + 1, (t1 - t0) * 1e3, (t2 - t1) * 1e3);
     for (int i = 0; i < MODEL_COUNT; i++) {
         double dt = time_model(gt, p, &m, &k_models[i], &constraint);
@@ -87,8 +79,8 @@ int main(void)
     printf("%-10s %4s %6s %6s", "material", "grid", "prof", "gt");
     for (int i = 0; i < MODEL_COUNT; i++) printf(" %7s", k_models[i].label);
     printf(" %7s %9s\n", "all", "guided|c|");
-    double t0 = now();
+    double t0 = lucent_clock_seconds();
     for (int i = 0; i < lucent_material_preset_count(); i++) run_material(i);
-    printf("\nall %d presets, every model: %.2f s\n", lucent_material_preset_count(), now() - t0);
+    printf("\nall %d presets, every model: %.2f s\n", lucent_material_preset_count(), lucent_clock_seconds() - t0);
     return 0;
 }

@@ -8,16 +8,8 @@
  * Usage: bench_mc [seconds_per_case] */
 #include <math.h>
 #include <stdlib.h>
-#include <time.h>
 
 #include "lucent/mc.h"
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 typedef struct bench_case {
     const char *name;
@@ -39,9 +31,9 @@ static double rate(const bench_case *c, bool a_rz, int threads, uint64_t n, doub
                         .pool = pool, .score_a_rz = a_rz, .last_bin_collects = true,
                         .grid = {.dr = mfp / 20, .dz = mfp / 20, .nr = 640, .nz = 640, .na = 30}};
     lucent_mc_result r;
-    double t0 = now();
+    double t0 = lucent_clock_seconds();
     lucent_status s = lucent_mc_run(&d, &r);
-    double t = now() - t0;
+    double t = lucent_clock_seconds() - t0;
     lucent_pool_destroy(pool);
     if (s != LUCENT_OK) {
         fprintf(stderr, "bench_mc: %s\n", lucent_last_error());

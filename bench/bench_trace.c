@@ -22,7 +22,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "lucent/lucent.h"
 
@@ -40,15 +39,6 @@ typedef struct run {
     lucent_image *snap[MAX_CHECKPOINTS];
     double seconds[MAX_CHECKPOINTS], cpu[MAX_CHECKPOINTS];
 } run;
-
-/* CPU seconds of the process (all threads): unlike the wall clock, not inflated by other work on a
- * shared machine. With every thread busy, an unloaded machine's wall clock is cpu / threads. */
-static double cpu_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 typedef struct errors {
     double lum, rgb;
@@ -68,10 +58,10 @@ static void advance(run *r, uint64_t seed, int spp, lucent_pool *pool, int cp)
 {
     int more = spp - (int)r->last.spp;
     lucent_trace_result_free(&r->last);
-    double c0 = cpu_seconds();
+    double c0 = lucent_cpu_seconds();
     if (lucent_tracer_render(r->tracer, &(lucent_trace_desc){.spp = more, .seed = seed, .pool = pool}, &r->last))
         die("render");
-    r->cpu[cp] = (cp ? r->cpu[cp - 1] : 0) + cpu_seconds() - c0;
+    r->cpu[cp] = (cp ? r->cpu[cp - 1] : 0) + lucent_cpu_seconds() - c0;
     if (lucent_image_clone(r->last.image, &r->snap[cp])) die("clone");
     r->seconds[cp] = r->last.seconds;
 }

@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 # the OpenGL 4.5 renderer of machines without a GPU, reached through EGL's surfaceless platform).
 PACKAGES=(build-essential cmake pkg-config zlib1g-dev libpng-dev libopenexr-dev libcjson-dev
           libassimp-dev liblapacke-dev libopenblas-dev libnlopt-dev libfftw3-dev glslang-tools
-          libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev libcglm-dev
+          libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev
           libembree-dev)
 command -v npm >/dev/null 2>&1 || PACKAGES+=(nodejs npm)
 

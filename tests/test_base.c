@@ -1,4 +1,5 @@
-/* Tests of src/base: errors, logging, progress, thread pool, RNG streams, atomic files, JSON. */
+/* Tests of src/base: errors, logging, progress, thread pool, RNG streams, atomic files, mkdir -p,
+ * JSON, the clocks, the vector and matrix helpers (the optics: test_optics.c). */
 #include <pthread.h>
 #include <stdatomic.h>
 #include <sys/stat.h>
@@ -6,6 +7,8 @@
 #include <unistd.h>
 
 #include "base/json.h"
+#include "base/mat4.h"
+#include "base/vec3.h"
 #include "lucent/base.h"
 #include "test.h"
 
@@ -410,6 +413,24 @@ TEST(atomic_write_into_read_only_directory)
     chmod(dir, 0755);
 }
 
+TEST(mkdir_p_creates_parents_and_names_what_blocks_it)
+{
+    char dir[1100], file[1100], deep[1200];
+    snprintf(dir, sizeof dir, "%s", test_path("mk/a/b/c"));
+    CHECK_OK(lucent_mkdir_p(dir));
+    struct stat st;
+    CHECK(stat(dir, &st) == 0 && S_ISDIR(st.st_mode));
+    CHECK_OK(lucent_mkdir_p(dir)); /* there already: fine */
+    snprintf(deep, sizeof deep, "%s/", dir);
+    CHECK_OK(lucent_mkdir_p(deep)); /* a trailing slash */
+    snprintf(file, sizeof file, "%s", test_path("mk/file"));
+    CHECK_OK(lucent_write_file(file, "x", 1));
+    snprintf(deep, sizeof deep, "%s/sub", file);
+    CHECK_ERR(lucent_mkdir_p(deep), LUCENT_ERR_IO, file, "cannot create the folder", "Not a directory");
+    CHECK_ERR(lucent_mkdir_p(file), LUCENT_ERR_IO, file, "Not a directory");
+    CHECK_ERR(lucent_mkdir_p(""), LUCENT_ERR_INVALID_ARGUMENT, "empty");
+}
+
 /* ---- JSON ---- */
 
 TEST(json_errors_carry_file_and_path)
@@ -489,6 +510,75 @@ TEST(json_numbers_accept_scalar_when_allowed_and_write_round_trip)
     cJSON_Delete(root);
 }
 
+/* ---- clocks ---- */
+
+TEST(clocks_are_monotonic_and_agree_in_units)
+{
+    /* No wall time is asserted: only that the clock never goes back and that ms = 1000 s. */
+    double prev = lucent_clock_seconds(), cpu = lucent_cpu_seconds();
+    for (int i = 0; i < 1000; i++) {
+        double t = lucent_clock_seconds();
+        CHECK(t >= prev);
+        prev = t;
+    }
+    double s0 = lucent_clock_seconds(), ms = lucent_clock_ms(), s1 = lucent_clock_seconds();
+    CHECK(s0 * 1e3 <= ms * (1 + 1e-15) && ms <= s1 * 1e3 * (1 + 1e-15));
+    CHECK(cpu >= 0 && lucent_cpu_seconds() >= cpu);
+}
+
+/* ---- vectors and matrices ---- */
+
+TEST(vectors_follow_their_definitions_and_zero_normalises_to_zero)
+{
+    v3 a = v3_make(1, 2, 3), b = v3_make(-4, 0.5, 2);
+    v3 s = v3_add(a, b), d = v3_sub(a, b), k = v3_scale(a, -2), m = v3_madd(a, b, 2);
+    CHECK(s.x == -3 && s.y == 2.5 && s.z == 5 && d.x == 5 && d.y == 1.5 && d.z == 1);
+    CHECK(k.x == -2 && k.y == -4 && k.z == -6 && m.x == -7 && m.y == 3 && m.z == 7);
+    CHECK(v3_dot(a, b) == -4 + 1 + 6);
+    CHECK(v3_length(v3_make(3, 4, 12)) == 13);
+    /* a x b = (2 * 2 - 3 * 0.5, 3 * -4 - 1 * 2, 1 * 0.5 - 2 * -4); x x y = z (right-handed) */
+    v3 c = v3_cross(a, b), z = v3_cross(v3_make(1, 0, 0), v3_make(0, 1, 0));
+    CHECK(c.x == 2.5 && c.y == -14 && c.z == 8.5 && z.x == 0 && z.y == 0 && z.z == 1);
+    CHECK(v3_dot(c, a) == 0 && v3_dot(c, b) == 0);
+    v3 u = v3_normalize(v3_make(0, -3, 4));
+    CHECK_NEAR(u.y, -0.6, 4e-16); /* |(0, -3, 4)| = 5; two roundings (1 / 5, then the product) */
+    CHECK_NEAR(u.z, 0.8, 4e-16);
+    /* degenerate input: zero, and non-finite lengths, normalise to the zero vector */
+    const v3 bad[] = {{0, 0, 0}, {-0.0, 0, 0}, {INFINITY, 0, 0}, {NAN, 1, 0}, {1e300, 1e300, 0}};
+    for (int i = 0; i < 5; i++) {
+        v3 n = v3_normalize(bad[i]);
+        CHECK(n.x == 0 && n.y == 0 && n.z == 0);
+    }
+    double arr[3] = {0};
+    v3_store(v3_load((const double[3]){7, 8, 9}), arr);
+    CHECK(arr[0] == 7 && arr[1] == 8 && arr[2] == 9);
+}
+
+TEST(mat4_multiplies_column_major)
+{
+    /* A translation T(1, 2, 3) (column 3) times a scale S(2, 3, 4): T S maps p to S p + t. */
+    double T[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 2, 3, 1};
+    double S[16] = {2, 0, 0, 0, 0, 3, 0, 0, 0, 0, 4, 0, 0, 0, 0, 1}, TS[16], ST[16];
+    lucent_mat4_mul(T, S, TS);
+    lucent_mat4_mul(S, T, ST);
+    const double want_ts[16] = {2, 0, 0, 0, 0, 3, 0, 0, 0, 0, 4, 0, 1, 2, 3, 1};
+    const double want_st[16] = {2, 0, 0, 0, 0, 3, 0, 0, 0, 0, 4, 0, 2, 6, 12, 1};
+    CHECK(memcmp(TS, want_ts, sizeof TS) == 0 && memcmp(ST, want_st, sizeof ST) == 0);
+    /* a general product, element (r, c) = sum_k a(r, k) b(k, c), with dest aliasing a */
+    double A[16], B[16], R[16];
+    for (int i = 0; i < 16; i++) A[i] = i + 1, B[i] = (i % 5) - 2.0;
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++) {
+            R[4 * c + r] = 0;
+            for (int k = 0; k < 4; k++) R[4 * c + r] += A[4 * k + r] * B[4 * c + k];
+        }
+    lucent_mat4_mul(A, B, A);
+    CHECK(memcmp(A, R, sizeof R) == 0);
+    float f[16];
+    lucent_mat4_to_float(want_st, f);
+    CHECK(f[14] == 12.0f && f[15] == 1.0f);
+}
+
 TEST_MAIN(TEST_ENTRY(error_message_and_context), TEST_ENTRY(error_is_per_thread),
           TEST_ENTRY(log_filters_by_level), TEST_ENTRY(progress_silent_by_default_and_draws_when_asked),
           TEST_ENTRY(parallel_for_visits_every_item_once),
@@ -500,6 +590,10 @@ TEST_MAIN(TEST_ENTRY(error_message_and_context), TEST_ENTRY(error_is_per_thread)
           TEST_ENTRY(rng_per_chunk_streams_independent_of_thread_count),
           TEST_ENTRY(atomic_write_replaces_only_when_complete),
           TEST_ENTRY(atomic_write_errors_name_the_path),
-          TEST_ENTRY(atomic_write_into_read_only_directory), TEST_ENTRY(json_errors_carry_file_and_path),
+          TEST_ENTRY(atomic_write_into_read_only_directory),
+          TEST_ENTRY(mkdir_p_creates_parents_and_names_what_blocks_it), TEST_ENTRY(json_errors_carry_file_and_path),
           TEST_ENTRY(json_rejects_broken_text_nan_and_infinity),
-          TEST_ENTRY(json_numbers_accept_scalar_when_allowed_and_write_round_trip))
+          TEST_ENTRY(json_numbers_accept_scalar_when_allowed_and_write_round_trip),
+          TEST_ENTRY(clocks_are_monotonic_and_agree_in_units),
+          TEST_ENTRY(vectors_follow_their_definitions_and_zero_normalises_to_zero),
+          TEST_ENTRY(mat4_multiplies_column_major))

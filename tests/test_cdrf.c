@@ -9,7 +9,6 @@
 #include "lucent/cdrf.h"
 #include "test.h"
 
-#define PI 3.14159265358979323846
 
 /* Independent reference: the Fourier series of the half-wave rectified cosine,
  * max(cos t, 0) = 1/pi + cos(t)/2 + (2/pi) sum_{m>=1} (-1)^(m+1) cos(2 m t) / (4 m^2 - 1);
@@ -17,9 +16,9 @@
  * sigma >= 0.1 (terms beyond m = 60 are below exp(-72)). */
 static double fourier_kubo(double theta, double sigma)
 {
-    double f = 1.0 / PI + 0.5 * exp(-0.5 * sigma * sigma) * cos(theta);
+    double f = 1.0 / M_PI + 0.5 * exp(-0.5 * sigma * sigma) * cos(theta);
     for (int m = 1; m <= 200; m++)
-        f += 2.0 / PI * (m % 2 ? 1.0 : -1.0) * exp(-2.0 * m * m * sigma * sigma) * cos(2.0 * m * theta) /
+        f += 2.0 / M_PI * (m % 2 ? 1.0 : -1.0) * exp(-2.0 * m * m * sigma * sigma) * cos(2.0 * m * theta) /
              (4.0 * m * m - 1.0);
     return f;
 }
@@ -28,7 +27,7 @@ TEST(kubo_at_sigma_zero_is_lambert)
 {
     /* Eq. 1-3 with sigma -> 0: the Gaussian becomes a delta, so f = E = max(cos, 0) (Eq. 2). */
     for (int i = 0; i <= 64; i++) {
-        double t = PI * i / 64;
+        double t = M_PI * i / 64;
         CHECK_NEAR(lucent_cdrf_kubo(t, 0), fmax(cos(t), 0), 0);
         CHECK_NEAR(lucent_cdrf_kubo(t, 1e-6), fmax(cos(t), 0), 1e-6);
         CHECK_NEAR(lucent_cdrf_lambert(t), fmax(cos(t), 0), 0);
@@ -41,7 +40,7 @@ TEST(kubo_matches_the_fourier_series)
     double worst = 0;
     for (int k = 0; k < 6; k++)
         for (int i = 0; i <= 40; i++) {
-            double t = PI * i / 40;
+            double t = M_PI * i / 40;
             worst = fmax(worst, fabs(lucent_cdrf_kubo(t, sigmas[k]) - fourier_kubo(t, sigmas[k])));
         }
     CHECK_MSG(worst < 1e-11, "quadrature vs Fourier series: worst difference %.3g", worst);
@@ -54,17 +53,17 @@ TEST(kubo_is_periodic_and_conserves_the_mean)
     static const double sigmas[] = {0.05, 0.4, 1.2, 3.0};
     for (int k = 0; k < 4; k++) {
         double s = sigmas[k], mean = 0;
-        for (int i = 0; i < 256; i++) mean += lucent_cdrf_kubo(2 * PI * i / 256, s) / 256;
-        CHECK_NEAR(mean, 1.0 / PI, 1e-9);
-        for (double t = 0.1; t < PI; t += 0.37) {
+        for (int i = 0; i < 256; i++) mean += lucent_cdrf_kubo(2 * M_PI * i / 256, s) / 256;
+        CHECK_NEAR(mean, 1.0 / M_PI, 1e-9);
+        for (double t = 0.1; t < M_PI; t += 0.37) {
             CHECK_NEAR(lucent_cdrf_kubo(-t, s), lucent_cdrf_kubo(t, s), 1e-13);
-            CHECK_NEAR(lucent_cdrf_kubo(2 * PI - t, s), lucent_cdrf_kubo(t, s), 1e-12);
-            CHECK_NEAR(lucent_cdrf_kubo(PI + t, s), lucent_cdrf_kubo(PI - t, s), 1e-12);
+            CHECK_NEAR(lucent_cdrf_kubo(2 * M_PI - t, s), lucent_cdrf_kubo(t, s), 1e-12);
+            CHECK_NEAR(lucent_cdrf_kubo(M_PI + t, s), lucent_cdrf_kubo(M_PI - t, s), 1e-12);
         }
     }
     /* sigma -> infinity: everything is smeared to the mean (Fourier: 1/pi + O(exp(-sigma^2/2))). */
-    CHECK_NEAR(lucent_cdrf_kubo(0.3, 10.0), 1.0 / PI, 1e-12);
-    CHECK_NEAR(lucent_cdrf_kubo(0.3, 1e300), 1.0 / PI, 0);
+    CHECK_NEAR(lucent_cdrf_kubo(0.3, 10.0), 1.0 / M_PI, 1e-12);
+    CHECK_NEAR(lucent_cdrf_kubo(0.3, 1e300), 1.0 / M_PI, 0);
     CHECK(isnan(lucent_cdrf_kubo(NAN, 1.0)) && isnan(lucent_cdrf_kubo(INFINITY, 1.0)));
     CHECK(isnan(lucent_cdrf_kubo(1.0, NAN)));
 }
@@ -76,12 +75,12 @@ TEST(collomb_closed_form)
     CHECK_NEAR(lucent_cdrf_collomb(0, 0), 0.575, 1e-15);
     CHECK_NEAR(lucent_cdrf_collomb(0, 1), 1.0, 1e-15);
     /* kappa = 0, theta = pi: min(5 pi / 4, pi) = pi, so cos(...) + 1 = 0 and f = 0.075. */
-    CHECK_NEAR(lucent_cdrf_collomb(PI, 0), 0.075, 1e-15);
+    CHECK_NEAR(lucent_cdrf_collomb(M_PI, 0), 0.075, 1e-15);
     /* kappa = 1, theta = 1: (2/4)(cos 1.5 + 1) / (1 + (ln 2.7 / 1.45)^10). */
     double q = log(2.7) / 1.45;
     CHECK_NEAR(lucent_cdrf_collomb(1, 1), 0.5 * (cos(1.5) + 1) / (1 + pow(q, 10)), 1e-14);
     /* kappa = 3 at theta = pi: (cos(pi) + 1) = 0, 0.075 (1 - 3) < 0 -> clamped to 0. */
-    CHECK_NEAR(lucent_cdrf_collomb(PI, 3), 0, 0);
+    CHECK_NEAR(lucent_cdrf_collomb(M_PI, 3), 0, 0);
     CHECK_NEAR(lucent_cdrf_eval(LUCENT_CDRF_COLLOMB, -1, 1), lucent_cdrf_collomb(1, 1), 0);
     lucent_cdrf_variant v;
     CHECK(lucent_cdrf_variant_parse("collomb", &v) && v == LUCENT_CDRF_COLLOMB);
@@ -265,7 +264,7 @@ static double single_scatter(double theta, double r, double sa, double ss)
     for (int i = 0; i < N; i++) {
         double s = (i + 0.5) * len / N, qz = pz - s;
         double dl = -px + sqrt(fmax(0.0, r * r - qz * qz));
-        sum += ss / (4 * PI) * exp(-st * dl) * exp(-st * s) * len / N;
+        sum += ss / (4 * M_PI) * exp(-st * dl) * exp(-st * s) * len / N;
     }
     return sum;
 }
@@ -285,7 +284,7 @@ TEST(sphere_single_scattering_radiance)
                                                                .cone = 0.25, .pool = pool},
                                     &res));
     for (int j = 1; j < 5; j++) {
-        double ta = PI * j / 6, tb = PI * (j + 1) / 6, num = 0, den = 0;
+        double ta = M_PI * j / 6, tb = M_PI * (j + 1) / 6, num = 0, den = 0;
         for (int k = 0; k < 20; k++) { /* bin average weighted like the estimator: sin theta * cos view */
             double t = ta + (k + 0.5) * (tb - ta) / 20, w = sin(t) * sin(t);
             num += w * single_scatter(t, r, sa, ss), den += w;
@@ -331,7 +330,7 @@ TEST(fit_recovers_synthetic_sigma0)
     for (int i = 0; i < 3; i++) {
         sp[i].bins = 18, sp[i].radius = radii[i];
         for (int j = 0; j < 18; j++) {
-            sp[i].theta[j] = PI * (j + 0.5) / 18;
+            sp[i].theta[j] = M_PI * (j + 0.5) / 18;
             for (int c = 0; c < 3; c++) {
                 sp[i].radiance[c][j] = kd[c] * lucent_cdrf_kubo(sp[i].theta[j], s0[c] / radii[i]);
                 sp[i].radiance_se[c][j] = 0.001;

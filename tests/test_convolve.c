@@ -603,10 +603,10 @@ TEST(signal_shapes)
     lucent_image_stats_compute(img, &st);
     CHECK(st.min[0] == 0.0 && st.max[0] == 1.0);
     /* area: circle pi 0.2^2 at 1, squares 0.22^2 at 1 and 0.5 */
-    double want = 3.14159265358979 * 0.04 + 0.0484 * 1.5;
+    double want = M_PI * 0.04 + 0.0484 * 1.5;
     CHECK_NEAR(st.mean[0], want, 2e-3);
     CHECK(lucent_image_get(img, s / 2 - (int)(0.25 * s), s / 2, 1) == 1.0f); /* circle centre */
-    double t = 30.0 * 3.14159265358979 / 180.0, a = 0.22;
+    double t = 30.0 * M_PI / 180.0, a = 0.22;
     int ax = (int)(s / 2 + (0.22 - 0.5 * a * cos(t)) * s), ay = (int)(s / 2 - 0.5 * a * sin(t) * s);
     int bx = (int)(s / 2 + (0.22 + 0.5 * a * cos(t)) * s), by = (int)(s / 2 + 0.5 * a * sin(t) * s);
     CHECK(lucent_image_get(img, ax, ay, 0) == 1.0f);

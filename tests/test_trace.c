@@ -180,7 +180,7 @@ typedef struct agree_bin {
 static void equator_bins(const lucent_trace_result *r, double R, agree_bin *bins)
 {
     for (int b = 0; b < AGREE_BINS; b++) {
-        double ta = TR_PI * b / AGREE_BINS, tb = TR_PI * (b + 1) / AGREE_BINS, sw = 0, s[3] = {0}, v[3] = {0};
+        double ta = M_PI * b / AGREE_BINS, tb = M_PI * (b + 1) / AGREE_BINS, sw = 0, s[3] = {0}, v[3] = {0};
         for (int x = 0; x < AGREE_WIDTH; x++) {
             double X = ((x + 0.5) / AGREE_WIDTH * 2.1 - 1.05) * R;
             if (fabs(X) >= R) continue;
@@ -210,7 +210,7 @@ static lucent_scene *equator_scene(double R)
     if (!sc) return NULL;
     /* 1000 R away with a field of view of one row 2.1 R / width high: beyond what files allow */
     sc->camera.position[2] = 1000 * R;
-    sc->camera.fov_y = 2 * atan(0.5 * 2.1 / AGREE_WIDTH / 1000) * 180 / TR_PI;
+    sc->camera.fov_y = 2 * atan(0.5 * 2.1 / AGREE_WIDTH / 1000) * 180 / M_PI;
     return sc;
 }
 
@@ -390,7 +390,7 @@ TEST(framing_matches_the_camera_projection)
     CHECK(sc != NULL);
     if (!sc) return;
     CHECK_OK(render(sc, NULL, 4, 1, NULL, &r));
-    double rpx = 24 * tan(asin(1.0 / 4.0)) / tan(0.5 * 35 * TR_PI / 180);
+    double rpx = 24 * tan(asin(1.0 / 4.0)) / tan(0.5 * 35 * M_PI / 180);
     int wrong = 0;
     for (int y = 0; y < 48 && r.coverage; y++)
         for (int x = 0; x < 48; x++) {

@@ -9,7 +9,6 @@
 #include "lucent/cdrf.h"
 #include "lucent/eval.h"
 
-#define PI 3.14159265358979323846
 enum { MAX_OUTS = 8, MAX_RADII = LUCENT_CDRF_FIT_MAX_RADII };
 
 static const char k_lut_usage[] =
@@ -257,7 +256,7 @@ static lucent_status run_fit(fit_options *o)
     lucent_cdrf_fit fit;
     lucent_cdrf_material_fit_desc fd = {.material = &o->material, .variant = o->variant, .radii = o->radii,
                                         .radius_count = o->radius_count, .photons = o->photons, .bins = o->bins,
-                                        .roughness = o->roughness, .cone = o->cone_deg * PI / 180, .seed = o->seed,
+                                        .roughness = o->roughness, .cone = o->cone_deg * M_PI / 180, .seed = o->seed,
                                         .sigma0_max = o->sigma0_max, .pool = cli_pool()};
     s = lucent_cdrf_fit_material(&fd, &fit, &sp);
     char prefix[512], path[600];
@@ -265,7 +264,7 @@ static lucent_status run_fit(fit_options *o)
     else snprintf(prefix, sizeof prefix, "%s-cdrf", o->material.name);
     static const char *const exts[] = {"json", "csv", "svg"};
     lucent_cdrf_fit_report report = {.material = &o->material, .spheres = sp, .sphere_count = o->radius_count,
-                                     .fit = &fit, .seed = o->seed, .cone = o->cone_deg * PI / 180,
+                                     .fit = &fit, .seed = o->seed, .cone = o->cone_deg * M_PI / 180,
                                      .roughness = o->roughness};
     for (int k = 0; k < 3 && s == LUCENT_OK; k++) {
         snprintf(path, sizeof path, "%s.%s", prefix, exts[k]);
@@ -293,7 +292,7 @@ int cmd_cdrf_fit(int argc, char **argv)
         return CLI_OK;
     }
     fit_options o = {.radii = LUCENT_CDRF_FIT_RADII, .radius_count = LUCENT_CDRF_FIT_RADIUS_COUNT, .photons = 400000,
-                     .seed = 1, .bins = 36, .cone_deg = 0.2 * 180 / PI};
+                     .seed = 1, .bins = 36, .cone_deg = 0.2 * 180 / M_PI};
     int rc = parse_fit_args(argc, argv, &o);
     if (rc != CLI_OK) return rc;
     return run_fit(&o) == LUCENT_OK ? CLI_OK : cli_fail();

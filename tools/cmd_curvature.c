@@ -5,7 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <time.h>
 
 #include "cli.h"
 #include "lucent/image.h"
@@ -198,13 +197,6 @@ static lucent_status write_colours(const char *path, const options *o, const luc
     return s;
 }
 
-static double seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static void report(const options *o, const lucent_mesh *m, const lucent_curvature *c, double t, double range)
 {
     lucent_mesh_stats st;
@@ -228,9 +220,9 @@ int cmd_curvature(int argc, char **argv)
     lucent_curvature c = {0};
     lucent_curvature_desc d = {.method = o.method, .smooth_rings = o.smooth, .mm_per_unit = o.mm_per_unit,
                                .pool = cli_pool(), .fast = o.fast};
-    double t0 = seconds();
+    double t0 = lucent_clock_seconds();
     lucent_status s = lucent_mesh_curvature(m, &d, &c);
-    double t = seconds() - t0;
+    double t = lucent_clock_seconds() - t0;
     if (s == LUCENT_OK) {
         double range = o.range > 0 ? o.range : abs_quantile(&c, 0.95);
         if (!(range > 0)) range = 1;

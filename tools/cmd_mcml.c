@@ -2,7 +2,6 @@
  * files (.mco), so MCML users can switch without changing their scripts (docs/mcml.md). */
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "cli.h"
 #include "lucent/mc.h"
@@ -82,13 +81,6 @@ static char *output_path(const options *o, const lucent_mcml_run *run)
     return p;
 }
 
-static double seconds_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static lucent_status run_one(const options *o, lucent_mcml_run *run, int k, int count)
 {
     char label[64];
@@ -99,9 +91,9 @@ static lucent_status run_one(const options *o, lucent_mcml_run *run, int k, int 
     run->desc.pool = cli_pool();
     run->desc.label = label;
     lucent_mc_result r;
-    double t0 = seconds_now();
+    double t0 = lucent_clock_seconds();
     lucent_status s = lucent_mc_run(&run->desc, &r);
-    double t = seconds_now() - t0;
+    double t = lucent_clock_seconds() - t0;
     if (s != LUCENT_OK) s = lucent_error_context(s, "%s: run %d", o->input, k + 1);
     if (s == LUCENT_OK) {
         s = lucent_mcml_write(path, run, &r);

@@ -200,6 +200,24 @@ lucent_status lucent_write_file(const char *path, const void *data, size_t size)
 /* Reads a whole file; *dest is NUL-terminated (not counted in *size) and freed with free(). */
 lucent_status lucent_read_file(const char *path, char **dest, size_t *size);
 
+/* Creates directory `dir` and any missing parents (mkdir -p; mode 0777 less the umask). Succeeds
+ * when they exist already; fails, naming the component, when one cannot be made or is not a
+ * directory. */
+lucent_status lucent_mkdir_p(const char *dir);
+
+/* ---- Clocks ---------------------------------------------------------------------
+ * For measuring intervals (timings, time limits, progress rates); never for results. */
+
+/* Seconds on the monotonic clock (CLOCK_MONOTONIC), from an arbitrary origin. */
+double lucent_clock_seconds(void);
+
+/* The same clock in milliseconds. */
+double lucent_clock_ms(void);
+
+/* CPU seconds used so far by the process, all threads together (CLOCK_PROCESS_CPUTIME_ID): unlike
+ * the wall clock, not inflated by other work on a shared machine. */
+double lucent_cpu_seconds(void);
+
 /* ---- The disk cache of computed results ---------------------------------------------
  * Monte Carlo results that take seconds (sigma0 fits, slab transmittances) kept between runs: one
  * JSON file per result, DIR/PREFIX-<FNV-1a of the key>.json, holding the full key, so that a changed

@@ -2,7 +2,6 @@
  * depends on changed, the Monte Carlo parts kept in the disk cache. */
 #include <math.h>
 #include <string.h>
-#include <time.h>
 
 #include "lucent/bake.h"
 #include "lucent/cdrf.h"
@@ -20,13 +19,6 @@ static lucent_bake_desc resolve(const lucent_bake_desc *d, lucent_render_setting
     if ((r.what & LUCENT_BAKE_TRANSMITTANCE) && r.settings->translucency.transmittance == LUCENT_TRANSMIT_PROFILE)
         r.what |= LUCENT_BAKE_PROFILE;
     return r;
-}
-
-static double seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
 /* The material's optical parameters as text: part of every cache key. */
@@ -94,11 +86,11 @@ static lucent_status slab_samples(const lucent_material *m, const lucent_bake_de
     lucent_slab_transmittance_grid(m, t);
     if (lucent_cache_get(cache, "transmittance", key, "transmittance", 3 * LUCENT_SLAB_SAMPLES, &t->value[0][0]))
         return LUCENT_OK;
-    double t0 = seconds();
+    double t0 = lucent_clock_seconds();
     lucent_status s = lucent_slab_transmittance_run(m, d->transmit_photons, d->pool, t);
     if (s != LUCENT_OK) return s;
     lucent_log(LUCENT_LOG_INFO, "slab transmittance of %s: %d thicknesses to %.3g mm in %.1f s", m->name,
-               LUCENT_SLAB_SAMPLES, t->s_max, seconds() - t0);
+               LUCENT_SLAB_SAMPLES, t->s_max, lucent_clock_seconds() - t0);
     lucent_cache_field f[2] = {{"thickness_mm", t->thickness, LUCENT_SLAB_SAMPLES},
                                {"transmittance", &t->value[0][0], 3 * LUCENT_SLAB_SAMPLES}};
     lucent_cache_put(cache, "transmittance", key, f, 2);
@@ -176,7 +168,7 @@ static lucent_status bake_sigma0(const lucent_material *m, const lucent_bake_des
     sigma0_cache_key(m, v, d->sigma0_photons, key, sizeof key);
     b->sigma0_cached = lucent_cache_get(cache, "sigma0", key, "sigma0_mm", 3, b->sigma0);
     if (!b->sigma0_cached) {
-        double t0 = seconds();
+        double t0 = lucent_clock_seconds();
         lucent_cdrf_fit fit;
         lucent_cdrf_material_fit_desc fd = {.material = m, .variant = v, .photons = d->sigma0_photons,
                                             .bins = LUCENT_BAKE_SIGMA0_BINS, .seed = 1, .pool = d->pool,
@@ -185,7 +177,7 @@ static lucent_status bake_sigma0(const lucent_material *m, const lucent_bake_des
         if (s != LUCENT_OK) return s;
         memcpy(b->sigma0, fit.sigma0, sizeof b->sigma0);
         lucent_log(LUCENT_LOG_INFO, "sigma0 of %s (%s): %.3g %.3g %.3g mm, fitted in %.1f s", m->name,
-                   lucent_cdrf_variant_name(v), b->sigma0[0], b->sigma0[1], b->sigma0[2], seconds() - t0);
+                   lucent_cdrf_variant_name(v), b->sigma0[0], b->sigma0[1], b->sigma0[2], lucent_clock_seconds() - t0);
         lucent_cache_field f[4] = {{"sigma0_mm", fit.sigma0, 3}, {"kd", fit.kd, 3}, {"rms", fit.rms, 3},
                                    {"lambert_rms", fit.lambert_rms, 3}};
         lucent_cache_put(cache, "sigma0", key, f, 4);

@@ -2,10 +2,8 @@
  * DIR/PREFIX-<FNV-1a of the key>.json, holding the full key, so that a changed material, setting or
  * photon count misses. Written atomically; a file that cannot be read, or holds another key, is a
  * miss; failures to write are warnings, never errors. */
-#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "base/json.h"
 
@@ -60,23 +58,11 @@ bool lucent_cache_get(const lucent_cache *cache, const char *prefix, const char 
     return ok;
 }
 
-static int mkdir_p(const char *dir)
-{
-    char p[1024];
-    snprintf(p, sizeof p, "%s", dir);
-    for (char *s = p + 1; *s; s++)
-        if (*s == '/') {
-            *s = '\0';
-            if (mkdir(p, 0755) != 0 && errno != EEXIST) return -1;
-            *s = '/';
-        }
-    return mkdir(p, 0755) != 0 && errno != EEXIST ? -1 : 0;
-}
-
 static void write_entry(const lucent_cache *c, const char *path, cJSON *json)
 {
-    if (mkdir_p(c->dir) != 0) {
-        lucent_log(LUCENT_LOG_WARN, "cache: cannot create %s: %s", c->dir, strerror(errno));
+    if (lucent_mkdir_p(c->dir) != LUCENT_OK) {
+        lucent_log(LUCENT_LOG_WARN, "cache: %s", lucent_last_error());
+        lucent_clear_error();
     } else if (lucent_json_write_file(path, json) != LUCENT_OK) {
         lucent_log(LUCENT_LOG_WARN, "cache: %s", lucent_last_error());
         lucent_clear_error();

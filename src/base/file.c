@@ -1,4 +1,4 @@
-/* Atomic file writes (temporary beside the target, then rename) and whole-file reads. */
+/* Atomic file writes (temporary beside the target, then rename), whole-file reads, mkdir -p. */
 #include <errno.h>
 #include <fcntl.h>
 #include <stdlib.h>
@@ -134,4 +134,35 @@ lucent_status lucent_read_file(const char *path, char **dest, size_t *size)
     *dest = buf;
     if (size) *size = len;
     return LUCENT_OK;
+}
+
+/* One component of lucent_mkdir_p: made now, or there already as a directory. */
+static lucent_status make_one(const char *p)
+{
+    if (mkdir(p, 0777) == 0) return LUCENT_OK;
+    int e = errno;
+    struct stat st;
+    if (e == EEXIST && stat(p, &st) == 0) {
+        if (S_ISDIR(st.st_mode)) return LUCENT_OK;
+        e = ENOTDIR;
+    }
+    return lucent_error(LUCENT_ERR_IO, "%s: cannot create the folder: %s", p, strerror(e));
+}
+
+lucent_status lucent_mkdir_p(const char *dir)
+{
+    if (!dir || !*dir) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "empty folder path");
+    char *p = strdup(dir);
+    if (!p) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", dir);
+    lucent_status s = LUCENT_OK;
+    for (char *q = p + 1; s == LUCENT_OK; q++) { /* each prefix that ends before a '/', then all */
+        if (*q != '/' && *q != '\0') continue;
+        char c = *q;
+        *q = '\0';
+        s = make_one(p);
+        *q = c;
+        if (!c) break;
+    }
+    free(p);
+    return s;
 }

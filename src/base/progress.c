@@ -4,7 +4,6 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "lucent/base.h"
 
@@ -19,13 +18,6 @@ struct lucent_progress {
 
 static FILE *_Atomic g_progress_out;
 
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 void lucent_progress_set_output(FILE *out)
 {
     atomic_store(&g_progress_out, out);
@@ -37,7 +29,7 @@ lucent_progress *lucent_progress_begin(const char *label, uint64_t total)
     if (!p) return NULL;
     snprintf(p->label, sizeof p->label, "%s", label ? label : "");
     p->total = total;
-    p->start = now_seconds();
+    p->start = lucent_clock_seconds();
     pthread_mutex_init(&p->draw_lock, NULL);
     return p;
 }
@@ -69,7 +61,7 @@ static void draw(lucent_progress *p, FILE *out, bool final)
     uint64_t done = atomic_load(&p->done);
     double frac = p->total ? (double)done / (double)p->total : 1.0;
     if (frac > 1) frac = 1;
-    double elapsed = now_seconds() - p->start;
+    double elapsed = lucent_clock_seconds() - p->start;
     double rate = elapsed > 0 ? (double)done / elapsed : 0;
     char bar[31], rate_s[32], time_s[32];
     int fill = (int)(frac * 30);
@@ -89,7 +81,7 @@ void lucent_progress_add(lucent_progress *p, uint64_t n)
     atomic_fetch_add(&p->done, n);
     FILE *out = atomic_load(&g_progress_out);
     if (!out) return;
-    long long t = (long long)(now_seconds() * 1e9);
+    long long t = (long long)(lucent_clock_seconds() * 1e9);
     long long next = atomic_load(&p->next_draw_ns);
     if (t < next || !atomic_compare_exchange_strong(&p->next_draw_ns, &next, t + 100000000LL))
         return;

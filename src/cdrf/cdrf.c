@@ -5,9 +5,8 @@
 
 #include "lucent/cdrf.h"
 
-#define PI 3.14159265358979323846
-#define TWO_PI (2.0 * PI)
-#define HALF_PI (0.5 * PI)
+#define TWO_PI (2.0 * M_PI)
+#define HALF_PI (0.5 * M_PI)
 
 /* The Gaussian is cut at this many standard deviations (its tail beyond: erfc(9/sqrt 2) ~ 2e-19). */
 #define CUT_SIGMAS 9.0
@@ -69,7 +68,7 @@ double lucent_cdrf_kubo(double theta, double sigma)
 {
     if (isnan(sigma) || !isfinite(theta)) return NAN;
     if (!(sigma > 0)) return lucent_cdrf_lambert(theta);
-    if (sigma > 40) return 1.0 / PI; /* the mean of E; the first mode is below exp(-800) */
+    if (sigma > 40) return 1.0 / M_PI; /* the mean of E; the first mode is below exp(-800) */
     theta = fmod(theta, TWO_PI);
     double lo = -CUT_SIGMAS * sigma, hi = CUT_SIGMAS * sigma, sum = 0;
     int kmin = (int)floor((theta - HALF_PI - hi) / TWO_PI), kmax = (int)ceil((theta + HALF_PI - lo) / TWO_PI);
@@ -83,9 +82,9 @@ double lucent_cdrf_kubo(double theta, double sigma)
 double lucent_cdrf_collomb(double theta, double sigma)
 {
     double t = fabs(fmod(theta, TWO_PI));
-    if (t > PI) t = TWO_PI - t;
+    if (t > M_PI) t = TWO_PI - t;
     double k = sigma;
-    double num = cos(fmin((5.0 + k) * t / 4.0, PI)) + 1.0;
+    double num = cos(fmin((5.0 + k) * t / 4.0, M_PI)) + 1.0;
     double q = log(1.0 + 1.7 * k) * t / 1.45;
     double q2 = q * q, q10 = q2 * q2 * q2 * q2 * q2;
     double f = (1.0 + k) / 4.0 * num / (1.0 + q10) + 0.075 * (1.0 - k);

@@ -19,104 +19,26 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/optics.h"
+#include "base/vec3.h"
 #include "lucent/cdrf.h"
 
-#define PI 3.14159265358979323846
 #define RR_THRESHOLD 1e-4
 #define RR_SURVIVAL 0.1
 #define MAX_EVENTS 1000000
 
-typedef struct vec3 {
-    double x, y, z;
-} vec3;
-
-static vec3 v3(double x, double y, double z) { return (vec3){x, y, z}; }
-static vec3 add(vec3 a, vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
-static vec3 scale(vec3 a, double s) { return v3(a.x * s, a.y * s, a.z * s); }
-static double dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static vec3 normalize(vec3 a)
+/* Henyey-Greenstein: a new travel direction from d (base/optics.h), two draws in order. */
+static v3 hg_scatter(v3 d, double g, lucent_rng *rng)
 {
-    double l = sqrt(dot(a, a));
-    return l > 0 ? scale(a, 1.0 / l) : v3(0, 0, 1);
+    double u1 = lucent_rng_uniform(rng), u2 = lucent_rng_uniform(rng);
+    return lucent_hg_sample(d, g, u1, u2);
 }
 
-/* ---- optics ---- */
-
-/* Unpolarised Fresnel reflectance from index ni into nt at incidence cosine ci (> 0); 1 under TIR. */
-static double fresnel(double ci, double ni, double nt)
+/* A GGX microfacet normal visible from wi about n (base/optics.h), two draws in order. */
+static v3 ggx_sample(v3 wi, v3 n, double alpha, lucent_rng *rng)
 {
-    if (ni == nt) return 0; /* index matched: exactly 0, not a rounding residue */
-    double st2 = (ni / nt) * (ni / nt) * (1.0 - ci * ci);
-    if (st2 >= 1.0) return 1.0;
-    double ct = sqrt(1.0 - st2);
-    double rs = (ni * ci - nt * ct) / (ni * ci + nt * ct);
-    double rp = (ni * ct - nt * ci) / (ni * ct + nt * ci);
-    return 0.5 * (rs * rs + rp * rp);
-}
-
-/* Refracts d through a surface with unit normal m on the incident side (m . d < 0), ratio = ni / nt.
- * Returns false under total internal reflection. */
-static bool refract(vec3 d, vec3 m, double ratio, vec3 *dest)
-{
-    double ci = -dot(m, d), st2 = ratio * ratio * (1.0 - ci * ci);
-    if (st2 >= 1.0) return false;
-    *dest = normalize(add(scale(d, ratio), scale(m, ratio * ci - sqrt(1.0 - st2))));
-    return true;
-}
-
-static vec3 reflect(vec3 d, vec3 m) { return add(d, scale(m, -2.0 * dot(d, m))); }
-
-/* An orthonormal basis (t, b) completing n (Duff et al. 2017). */
-static void basis(vec3 n, vec3 *t, vec3 *b)
-{
-    double s = n.z >= 0 ? 1.0 : -1.0, a = -1.0 / (s + n.z), c = n.x * n.y * a;
-    *t = v3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
-    *b = v3(c, s + n.y * n.y * a, -n.y);
-}
-
-/* Smith masking G1 of GGX for a direction with cosine c to the macro normal. */
-static double ggx_g1(double c, double alpha)
-{
-    c = fabs(c);
-    if (c >= 1.0) return 1.0;
-    if (c <= 0.0) return 0.0;
-    double tan2 = (1.0 - c * c) / (c * c);
-    return 2.0 / (1.0 + sqrt(1.0 + alpha * alpha * tan2));
-}
-
-/* Samples a GGX microfacet normal visible from wi around macro normal n (Heitz 2018). */
-static vec3 ggx_sample(vec3 wi, vec3 n, double alpha, lucent_rng *rng)
-{
-    vec3 t, b;
-    basis(n, &t, &b);
-    vec3 v = normalize(v3(alpha * dot(wi, t), alpha * dot(wi, b), dot(wi, n)));
-    double len2 = v.x * v.x + v.y * v.y;
-    vec3 t1 = len2 > 0 ? scale(v3(-v.y, v.x, 0), 1.0 / sqrt(len2)) : v3(1, 0, 0);
-    vec3 t2 = v3(v.y * t1.z - v.z * t1.y, v.z * t1.x - v.x * t1.z, v.x * t1.y - v.y * t1.x);
-    double r = sqrt(lucent_rng_uniform(rng)), phi = 2.0 * PI * lucent_rng_uniform(rng);
-    double p1 = r * cos(phi), p2 = r * sin(phi), s = 0.5 * (1.0 + v.z);
-    p2 = (1.0 - s) * sqrt(fmax(0.0, 1.0 - p1 * p1)) + s * p2;
-    double p3 = sqrt(fmax(0.0, 1.0 - p1 * p1 - p2 * p2));
-    vec3 h = add(add(scale(t1, p1), scale(t2, p2)), scale(v, p3));
-    vec3 m = normalize(v3(alpha * h.x, alpha * h.y, fmax(0.0, h.z)));
-    return normalize(add(add(scale(t, m.x), scale(b, m.y)), scale(n, m.z)));
-}
-
-/* Henyey-Greenstein: a new direction at cosine mu from d. */
-static vec3 hg_scatter(vec3 d, double g, lucent_rng *rng)
-{
-    double u = lucent_rng_uniform(rng), mu;
-    if (fabs(g) < 1e-6) {
-        mu = 2.0 * u - 1.0;
-    } else {
-        double q = (1.0 - g * g) / (1.0 - g + 2.0 * g * u);
-        mu = (1.0 + g * g - q * q) / (2.0 * g);
-    }
-    mu = fmax(-1.0, fmin(1.0, mu));
-    double sn = sqrt(fmax(0.0, 1.0 - mu * mu)), phi = 2.0 * PI * lucent_rng_uniform(rng);
-    vec3 t, b;
-    basis(d, &t, &b);
-    return normalize(add(scale(d, mu), add(scale(t, sn * cos(phi)), scale(b, sn * sin(phi)))));
+    double u1 = lucent_rng_uniform(rng), u2 = lucent_rng_uniform(rng);
+    return lucent_ggx_sample_visible(wi, n, alpha, u1, u2);
 }
 
 /* ---- one run ---- */
@@ -131,20 +53,20 @@ typedef struct sphere_job {
 } sphere_job;
 
 typedef struct photon {
-    vec3 p, d;
+    v3 p, d;
     double w;
     int order;
 } photon;
 
 /* Scores weight w leaving at p (on the sphere) in direction t (outside). */
-static void score(const sphere_job *job, double *tally, vec3 p, vec3 t, double w)
+static void score(const sphere_job *job, double *tally, v3 p, v3 t, double w)
 {
     double rho = sqrt(p.y * p.y + p.z * p.z);
     if (!(rho > 0)) return;
     double tz = (p.y * t.y + p.z * t.z) / rho; /* t rotated about x with p onto (x, 0, rho) */
     if (tz < job->cos_cone) return;
     double theta = acos(fmax(-1.0, fmin(1.0, p.x / job->d.radius)));
-    int bin = (int)(theta / PI * job->d.bins);
+    int bin = (int)(theta / M_PI * job->d.bins);
     if (bin >= job->d.bins) bin = job->d.bins - 1;
     tally[bin] += w;
 }
@@ -153,17 +75,17 @@ static void score(const sphere_job *job, double *tally, vec3 p, vec3 t, double w
 static double enter(const sphere_job *job, photon *ph, lucent_rng *rng)
 {
     double r = job->d.radius, eta = job->d.material->eta, alpha = job->d.roughness;
-    double rho = r * sqrt(lucent_rng_uniform(rng)), phi = 2.0 * PI * lucent_rng_uniform(rng);
-    ph->p = v3(sqrt(fmax(0.0, r * r - rho * rho)), rho * cos(phi), rho * sin(phi));
-    vec3 n = scale(ph->p, 1.0 / r), d = v3(-1, 0, 0), m = n, t;
+    double rho = r * sqrt(lucent_rng_uniform(rng)), phi = 2.0 * M_PI * lucent_rng_uniform(rng);
+    ph->p = v3_make(sqrt(fmax(0.0, r * r - rho * rho)), rho * cos(phi), rho * sin(phi));
+    v3 n = v3_scale(ph->p, 1.0 / r), d = v3_make(-1, 0, 0), m = n, t;
     double w = 1.0;
     ph->d = d, ph->w = 0, ph->order = 0;
-    if (alpha > 0) m = ggx_sample(scale(d, -1.0), n, alpha, rng);
-    if (!refract(d, m, 1.0 / eta, &t)) return 0;
-    w = 1.0 - fresnel(-dot(d, m), 1.0, eta);
+    if (alpha > 0) m = ggx_sample(v3_scale(d, -1.0), n, alpha, rng);
+    if (!lucent_refract(d, m, eta, &t)) return 0;
+    w = 1.0 - lucent_fresnel_dielectric(-v3_dot(d, m), eta, NULL);
     if (alpha > 0) {
-        if (dot(t, n) >= 0) return 0;
-        w *= ggx_g1(dot(t, n), alpha);
+        if (v3_dot(t, n) >= 0) return 0;
+        w *= lucent_ggx_g1(v3_dot(t, n), alpha);
     }
     ph->d = t;
     ph->w = w;
@@ -176,27 +98,27 @@ static double enter(const sphere_job *job, photon *ph, lucent_rng *rng)
 static double leave(const sphere_job *job, double *tally, photon *ph, lucent_rng *rng)
 {
     double r = job->d.radius, eta = job->d.material->eta, alpha = job->d.roughness;
-    vec3 n = scale(ph->p, 1.0 / r), nin = scale(n, -1.0), m = nin, t;
-    if (alpha > 0) m = ggx_sample(scale(ph->d, -1.0), nin, alpha, rng);
-    double f = fresnel(-dot(ph->d, m), eta, 1.0), out = 0;
-    if (f < 1.0 && refract(ph->d, m, eta, &t) && dot(t, n) > 0) {
-        out = ph->w * (1.0 - f) * (alpha > 0 ? ggx_g1(dot(t, n), alpha) : 1.0);
+    v3 n = v3_scale(ph->p, 1.0 / r), nin = v3_scale(n, -1.0), m = nin, t;
+    if (alpha > 0) m = ggx_sample(v3_scale(ph->d, -1.0), nin, alpha, rng);
+    double f = lucent_fresnel_dielectric(-v3_dot(ph->d, m), 1.0 / eta, NULL), out = 0;
+    if (f < 1.0 && lucent_refract(ph->d, m, 1.0 / eta, &t) && v3_dot(t, n) > 0) {
+        out = ph->w * (1.0 - f) * (alpha > 0 ? lucent_ggx_g1(v3_dot(t, n), alpha) : 1.0);
         if (job->d.max_order == 0 || ph->order <= job->d.max_order) score(job, tally, ph->p, t, out);
     }
-    vec3 rd = reflect(ph->d, m);
-    if (dot(rd, n) >= 0) {
+    v3 rd = lucent_reflect(ph->d, m);
+    if (v3_dot(rd, n) >= 0) {
         ph->w = 0; /* a microfacet reflection that points out of the sphere: lost */
     } else {
-        ph->w *= f * (alpha > 0 ? ggx_g1(dot(rd, n), alpha) : 1.0);
+        ph->w *= f * (alpha > 0 ? lucent_ggx_g1(v3_dot(rd, n), alpha) : 1.0);
         ph->d = rd;
     }
     return out;
 }
 
 /* Distance from p (inside) along d to the sphere. */
-static double to_boundary(vec3 p, vec3 d, double r)
+static double to_boundary(v3 p, v3 d, double r)
 {
-    double b = dot(p, d), c = dot(p, p) - r * r, disc = b * b - c;
+    double b = v3_dot(p, d), c = v3_dot(p, p) - r * r, disc = b * b - c;
     double t = -b + sqrt(fmax(0.0, disc));
     return t > 0 ? t : 0;
 }
@@ -214,13 +136,13 @@ static void trace(const sphere_job *job, int ch, double *tally, lucent_rng *rng)
         double s = st > 0 ? -log(1.0 - lucent_rng_uniform(rng)) / st : INFINITY;
         double db = to_boundary(ph.p, ph.d, r);
         if (s < db) {
-            ph.p = add(ph.p, scale(ph.d, s));
+            ph.p = v3_add(ph.p, v3_scale(ph.d, s));
             tally[bins + 2] += ph.w * (1.0 - albedo);
             ph.w *= albedo;
             ph.order++;
             if (ph.w > 0) ph.d = hg_scatter(ph.d, g, rng);
         } else {
-            ph.p = scale(normalize(add(ph.p, scale(ph.d, db))), r);
+            ph.p = v3_scale(v3_normalize(v3_add(ph.p, v3_scale(ph.d, db))), r);
             tally[bins + 1] += leave(job, tally, &ph, rng);
         }
         if (ph.w > 0 && ph.w < RR_THRESHOLD) ph.w = lucent_rng_uniform(rng) < RR_SURVIVAL ? ph.w / RR_SURVIVAL : 0;
@@ -250,7 +172,7 @@ static lucent_status run_batch(void *ctx, uint64_t chunk, uint64_t begin, uint64
 static double cone_projected(double theta, double delta)
 {
     enum { NA = 24, NB = 48 };
-    double ct = cos(theta), stt = sin(theta), da = delta / NA, db = 2.0 * PI / NB, sum = 0;
+    double ct = cos(theta), stt = sin(theta), da = delta / NA, db = 2.0 * M_PI / NB, sum = 0;
     for (int i = 0; i < NA; i++) {
         double a = (i + 0.5) * da, sa = sin(a), ca = cos(a);
         for (int j = 0; j < NB; j++) {
@@ -285,7 +207,7 @@ static lucent_status validate(const lucent_cdrf_sphere_desc *d)
                             d->roughness);
     if (d->bins < 1 || d->bins > LUCENT_CDRF_MAX_BINS)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "CDRF sphere: bins must be in [1, %d]", LUCENT_CDRF_MAX_BINS);
-    if (!(d->cone > 0) || d->cone > 0.5 * PI)
+    if (!(d->cone > 0) || d->cone > 0.5 * M_PI)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "CDRF sphere: cone must be in (0, pi/2] radians");
     if (d->batches < 2 || d->batches > 4096)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "CDRF sphere: batches must be in [2, 4096]");
@@ -298,7 +220,7 @@ static void reduce(const sphere_job *job, lucent_cdrf_sphere_result *dest)
     int B = job->d.batches, bins = job->d.bins;
     double n = (double)job->per_batch;
     for (int j = 0; j < bins; j++) {
-        double ta = PI * j / bins, tb = PI * (j + 1) / bins;
+        double ta = M_PI * j / bins, tb = M_PI * (j + 1) / bins;
         double norm = 2.0 * n * band_norm(ta, tb, job->d.cone);
         dest->theta[j] = 0.5 * (ta + tb);
         for (int c = 0; c < 3; c++) {

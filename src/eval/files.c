@@ -19,18 +19,7 @@ lucent_status eval_path_printf(char *dest, size_t size, const char *fmt, ...)
 
 lucent_status eval_make_dirs(const char *path)
 {
-    char p[EVAL_PATH_SIZE];
-    lucent_status s = eval_path_printf(p, sizeof p, "%s", path);
-    if (s != LUCENT_OK) return s;
-    for (char *q = p + 1;; q++) {
-        if (*q != '/' && *q != '\0') continue;
-        char c = *q;
-        *q = '\0';
-        if (mkdir(p, 0777) != 0 && errno != EEXIST)
-            return lucent_error(LUCENT_ERR_IO, "%s: cannot create the folder: %s", p, strerror(errno));
-        if (!(*q = c)) break;
-    }
-    return LUCENT_OK;
+    return lucent_mkdir_p(path);
 }
 
 lucent_status eval_make_dir(const char *dir)

@@ -6,6 +6,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "base/mat4.h"
 #include "gl/methods/method.h"
 
 /* ---- the methods: the table indexed by lucent_render_method, and the names and variants of
@@ -98,7 +99,7 @@ static void light_block(const lucent_renderer *r, int i, gl_frame_block *b)
     b->light_shadow[i][1] = (float)g->near_plane, b->light_shadow[i][2] = (float)g->far_plane;
     b->light_shadow[i][3] = g->ortho ? 1.0f : 0.0f;
     b->light_texel[i][0] = (float)(g->texel / r->shadows.size);
-    gl_mat4_to_float(g->matrix, b->light_matrix[i]);
+    lucent_mat4_to_float(g->matrix, b->light_matrix[i]);
 }
 
 static void frame_block(const lucent_renderer *r, gl_frame_block *b)
@@ -108,8 +109,8 @@ static void frame_block(const lucent_renderer *r, gl_frame_block *b)
     memset(b, 0, sizeof *b);
     lucent_camera_view(cam, view);
     lucent_camera_projection(cam, (double)r->targets.width / r->targets.height, proj);
-    gl_mat4_mul(proj, view, vp);
-    gl_mat4_to_float(vp, b->view_proj);
+    lucent_mat4_mul(proj, view, vp);
+    lucent_mat4_to_float(vp, b->view_proj);
     for (int i = 0; i < 3; i++) f[i] = cam->target[i] - cam->position[i], len += f[i] * f[i];
     for (int i = 0; i < 3; i++) {
         b->eye[i] = (float)cam->position[i];
@@ -143,9 +144,9 @@ static lucent_status prepare(lucent_renderer *r, const gl_method *m, void **stat
 lucent_status gl_frame(lucent_renderer *r, const lucent_render_settings *s, lucent_frame_times *times)
 {
     const gl_method *m = gl_methods[s->view.method];
-    double t0 = gl_now_ms();
+    double t0 = lucent_clock_ms();
     lucent_status st = prepare(r, m, &r->state[s->view.method], s);
-    times->setup_ms = gl_now_ms() - t0;
+    times->setup_ms = lucent_clock_ms() - t0;
     if (st != LUCENT_OK) return st;
     gl_frame_block b;
     frame_block(r, &b);

@@ -134,9 +134,9 @@ lucent_status lucent_render(lucent_renderer *r, const lucent_render_settings *se
 {
     memset(dest, 0, sizeof *dest);
     lucent_status s = frame(r, settings, &dest->times);
-    double t0 = gl_now_ms();
+    double t0 = lucent_clock_ms();
     if (s == LUCENT_OK) s = gl_renderer_read_back(r, dest);
-    dest->readback_ms = gl_now_ms() - t0;
+    dest->readback_ms = lucent_clock_ms() - t0;
     if (s != LUCENT_OK) lucent_render_result_free(dest);
     return s;
 }

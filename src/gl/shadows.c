@@ -2,6 +2,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "base/mat4.h"
 #include "gl/shadows.h"
 
 static void free_maps(gl_shadows *r);
@@ -39,7 +40,7 @@ static void directional(const gl_shadows *r, const lucent_light *l, gl_light *g)
     proj[10] = -2 / (g->far_plane - g->near_plane);
     proj[14] = -(g->far_plane + g->near_plane) / (g->far_plane - g->near_plane);
     proj[15] = 1;
-    gl_mat4_mul(proj, view, g->matrix);
+    lucent_mat4_mul(proj, view, g->matrix);
 }
 
 /* Returns false when the light stands inside the scene's bounding sphere (no single map covers). */
@@ -56,7 +57,7 @@ static bool point(const gl_shadows *r, const lucent_light *l, gl_light *g)
     g->texel = 2 * dist * tan(0.5 * cam.fov_y * M_PI / 180);
     light_view(l->position, r->bound_centre, view);
     lucent_camera_projection(&cam, 1, proj);
-    gl_mat4_mul(proj, view, g->matrix);
+    lucent_mat4_mul(proj, view, g->matrix);
     return true;
 }
 
@@ -126,7 +127,7 @@ bool gl_shadows_begin(gl_shadows *r, int i)
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.5f, 2.0f);
     float m[16];
-    gl_mat4_to_float(g->matrix, m);
+    lucent_mat4_to_float(g->matrix, m);
     glUniformMatrix4fv(glGetUniformLocation(r->program, "u_light_mvp"), 1, GL_FALSE, m);
     glNamedFramebufferTextureLayer(r->fbo, GL_DEPTH_ATTACHMENT, r->tex, 0, g->layer);
     glClearNamedFramebufferfv(r->fbo, GL_DEPTH, 0, (const float[1]){1});

@@ -24,7 +24,7 @@ static float shapes_shape(double x, double y)
     if (cx * cx + cy * cy < 0.2 * 0.2) return 1.0f;
     /* two squares of side a, rotated by 30 degrees, sharing the side whose midpoint is m:
      * coordinates along u = (cos t, sin t) and v = (-sin t, cos t) from m */
-    const double a = 0.22, mx = 0.22, my = 0.0, t = 30.0 * 3.14159265358979323846 / 180.0;
+    const double a = 0.22, mx = 0.22, my = 0.0, t = 30.0 * M_PI / 180.0;
     double dx = x - mx, dy = y - my;
     double pu = dx * cos(t) + dy * sin(t), pv = -dx * sin(t) + dy * cos(t);
     if (fabs(pv) >= 0.5 * a) return 0.0f;

@@ -20,9 +20,10 @@ void mesh_garimella_vertex(const mesh_vertex_job *j, uint32_t v)
         mesh_slot_others(j->mesh->faces, i, other, other + 1);
         for (int k = 0; k < 2; k++) {
             const double *q = P + 3 * (size_t)other[k];
-            double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]}, dd = v3_dot(d, d);
+            v3 d = v3_sub(v3_load(p), v3_load(q));
+            double dd = v3_dot(d, d);
             if (!(area > 0) || !(dd > 0)) continue;
-            sum += area * 2 * (d[0] * nf[0] + d[1] * nf[1] + d[2] * nf[2]) / dd, wsum += area;
+            sum += area * 2 * (d.x * nf[0] + d.y * nf[1] + d.z * nf[2]) / dd, wsum += area;
         }
     }
     int boundary = o->flags[v] & LUCENT_CURVATURE_BOUNDARY;

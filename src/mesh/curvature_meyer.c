@@ -6,7 +6,6 @@
 
 #include "mesh/internal.h"
 
-static const double k_pi = 3.14159265358979323846;
 static const uint8_t k_next[3] = {1, 2, 0}, k_prev[3] = {2, 0, 1};
 
 /* The exact sum, one atan2 per corner (fans of more than 44 faces). */
@@ -33,10 +32,10 @@ double mesh_angle_sum(const mesh_face_geometry *g, const uint32_t *slot, uint32_
         const mesh_face_geometry *f = g + slot[a] / 3;
         double c = f->cot[slot[a] % 3], q = 1 / (1 + fabs(c)), valid = f->corner[slot[a] % 3] > 0;
         double zr = valid ? c * q : 1, zi = valid * q, r = re * zr - im * zi; /* zero area: angle 0 */
-        im = re * zi + im * zr, re = r, estimate += valid * (0.5 * k_pi) * (1 - c * q);
+        im = re * zi + im * zr, re = r, estimate += valid * (0.5 * M_PI) * (1 - c * q);
     }
-    double d = (atan2(im, re) - estimate) * (0.5 / k_pi), turns = (double)(long)(d + 128.5) - 128;
-    return estimate + (d - turns) * (2 * k_pi);
+    double d = (atan2(im, re) - estimate) * (0.5 / M_PI), turns = (double)(long)(d + 128.5) - 128;
+    return estimate + (d - turns) * (2 * M_PI);
 }
 
 double mesh_angle_deficit_gauss(const mesh_vertex_job *j, uint32_t v, int boundary, double *area)
@@ -45,7 +44,7 @@ double mesh_angle_deficit_gauss(const mesh_vertex_job *j, uint32_t v, int bounda
     uint32_t count = j->adj->start[v + 1] - j->adj->start[v];
     *area = 0;
     for (uint32_t a = 0; a < count; a++) *area += j->geometry[slot[a] / 3].corner[slot[a] % 3];
-    return *area > 0 ? ((boundary ? k_pi : 2 * k_pi) - mesh_angle_sum(j->geometry, slot, count)) / *area : 0;
+    return *area > 0 ? ((boundary ? M_PI : 2 * M_PI) - mesh_angle_sum(j->geometry, slot, count)) / *area : 0;
 }
 
 /* Accumulates the cotangent Laplacian of v over its faces (eq. 8's sum of (cot alpha + cot
@@ -77,7 +76,7 @@ void mesh_meyer_vertex(const mesh_vertex_job *j, uint32_t v)
     }
     cot_laplacian(j, v, lap);
     /* K(x) = lap / (2 A) = 2 H n: H = |lap| / (4 A), signed by the side of the normal. */
-    double H = v3_len(lap) / (4 * area);
+    double H = v3_length(v3_load(lap)) / (4 * area);
     const float *n = j->normals + 3 * (size_t)v;
     if (lap[0] * n[0] + lap[1] * n[1] + lap[2] * n[2] < 0) H = -H;
     double disc = sqrt(fmax(0, H * H - K));

@@ -180,11 +180,12 @@ static void refine_vertex(const refine_job *j, uint32_t v, float *dest)
     for (int i = 0; i < 3; i++) dest[i] = n[i];
     if (j->fan->flags[v] & LUCENT_CURVATURE_INVALID) return;
     lifted_max_normal(j, v, m);
-    double len = v3_len(m), il = 1 / len;
+    double len = v3_length(v3_load(m)), il = 1 / len;
     if (!(len > 0) || !isfinite(len)) return;
     for (int i = 0; i < 3; i++) r[i] = n[i] - (m[0] * p->d1[i] + m[1] * p->d2[i]) * il;
-    if (v3_normalize(r) == 0) return;
-    for (int i = 0; i < 3; i++) dest[i] = (float)r[i];
+    v3 u = v3_normalize(v3_load(r));
+    if (v3_dot(u, u) == 0) return;
+    dest[0] = (float)u.x, dest[1] = (float)u.y, dest[2] = (float)u.z;
 }
 
 static lucent_status refine_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)

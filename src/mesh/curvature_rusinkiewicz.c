@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/optics.h"
 #include "mesh/internal.h"
 #include "mesh/rusinkiewicz.h"
 
@@ -41,13 +42,11 @@ static inline float dotf(const float *a, const float *b) { return a[0] * b[0] + 
  * zeros, no weight) for a degenerate face. */
 static int face_frame(const double *P, const uint32_t *v, face_rec *r)
 {
-    const double *p0 = P + 3 * (size_t)v[0], *p1 = P + 3 * (size_t)v[1], *p2 = P + 3 * (size_t)v[2];
-    /* written out: a loop over k stored the edges and v3_cross reloaded them two at a time,
-     * which store forwarding cannot serve */
-    double e0[3] = {p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]}, e1[3] = {p0[0] - p2[0], p0[1] - p2[1], p0[2] - p2[2]};
-    double e2[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, x[3], l[3], corner[3];
-    v3_cross(e0, e1, x);
-    l[0] = v3_dot(e0, e0), l[1] = v3_dot(e1, e1), l[2] = v3_dot(e2, e2);
+    v3 p0 = v3_load(P + 3 * (size_t)v[0]), p1 = v3_load(P + 3 * (size_t)v[1]), p2 = v3_load(P + 3 * (size_t)v[2]);
+    /* vectors by value: the edges stay in registers (stored edges that a cross product reloads
+     * two at a time are what store forwarding cannot serve) */
+    v3 e0 = v3_sub(p2, p1), e1 = v3_sub(p0, p2), e2 = v3_sub(p1, p0), x = v3_cross(e0, e1);
+    double l[3] = {v3_dot(e0, e0), v3_dot(e1, e1), v3_dot(e2, e2)}, corner[3];
     double x2 = v3_dot(x, x);
     if (!(x2 > 0) || !(l[0] > 0) || !isfinite(x2)) {
         memset(r, 0, sizeof *r);
@@ -55,8 +54,9 @@ static int face_frame(const double *P, const uint32_t *v, face_rec *r)
     }
     double xl = sqrt(x2), len = sqrt(l[0]), q = 1 / (xl * len), in = q * len, it = q * xl, il = it * it;
     mesh_mixed_areas(l, xl, in, corner); /* Meyer et al. 2003, Fig. 4 */
-    for (int k = 0; k < 3; k++)
-        r->t[k] = (float)(e0[k] * it), r->n[k] = (float)(x[k] * in), r->corner[k] = (float)corner[k];
+    r->t[0] = (float)(e0.x * it), r->t[1] = (float)(e0.y * it), r->t[2] = (float)(e0.z * it);
+    r->n[0] = (float)(x.x * in), r->n[1] = (float)(x.y * in), r->n[2] = (float)(x.z * in);
+    for (int k = 0; k < 3; k++) r->corner[k] = (float)corner[k];
     r->u1 = (float)(v3_dot(e0, e1) * il), r->w1 = (float)(xl * il), r->inv_len = (float)it, r->unused = 0;
     return 1;
 }
@@ -75,17 +75,16 @@ static lucent_status faces_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint
     return LUCENT_OK;
 }
 
-/* A tangent frame (pu, pv) at the unit normal n, pu x pv = n, without branches (Duff et al.
- * 2017, "Building an orthonormal basis, revisited", JCGT 6(1), Listing 3). 0 for a zero normal. */
+/* A tangent frame (pu, pv) at the unit normal n, pu x pv = n (lucent_basis, base/optics.h: Duff
+ * et al. 2017). 0 for a zero normal. */
 static int tangent_frame(const float *nf, double *n, double *pu, double *pv)
 {
     double l2 = (double)nf[0] * nf[0] + (double)nf[1] * nf[1] + (double)nf[2] * nf[2];
     if (!(l2 > 0)) return 0;
     double s = 1 / sqrt(l2);
-    for (int k = 0; k < 3; k++) n[k] = nf[k] * s;
-    double sign = copysign(1.0, n[2]), a = -1 / (sign + n[2]), b = n[0] * n[1] * a;
-    pu[0] = 1 + sign * n[0] * n[0] * a, pu[1] = sign * b, pu[2] = -sign * n[0];
-    pv[0] = b, pv[1] = sign + n[1] * n[1] * a, pv[2] = -n[1];
+    v3 u = v3_make(nf[0] * s, nf[1] * s, nf[2] * s), t, b;
+    lucent_basis(u, &t, &b);
+    v3_store(u, n), v3_store(t, pu), v3_store(b, pv);
     return 1;
 }
 
@@ -159,11 +158,9 @@ static void vertex_first(const rus_job *j, uint32_t v)
     float l2 = dotf(m, m), n[3], u[3], w[3];
     double acc[4] = {0, 0, 0, 0};
     if (l2 > 0) {
-        float s = 1 / sqrtf(l2), sign, a, b;
+        float s = 1 / sqrtf(l2);
         for (int k = 0; k < 3; k++) n[k] = m[k] * s;
-        sign = copysignf(1.0f, n[2]), a = -1 / (sign + n[2]), b = n[0] * n[1] * a;
-        u[0] = 1 + sign * n[0] * n[0] * a, u[1] = sign * b, u[2] = -sign * n[0];
-        w[0] = b, w[1] = sign + n[1] * n[1] * a, w[2] = -n[1];
+        lucent_basis_f(n, u, w);
         gather(j, v, u, w, n, acc);
     }
     mesh_principal *p = j->principal + v;

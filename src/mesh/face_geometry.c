@@ -14,13 +14,11 @@ typedef struct geometry_job {
 static void face_geometry(const lucent_mesh *m, size_t f, mesh_face_geometry *g)
 {
     const uint32_t *v = m->faces + 3 * f;
-    const double *p0 = m->positions + 3 * (size_t)v[0], *p1 = m->positions + 3 * (size_t)v[1];
-    const double *p2 = m->positions + 3 * (size_t)v[2];
-    double e0[3] = {p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]}, e1[3] = {p0[0] - p2[0], p0[1] - p2[1], p0[2] - p2[2]};
-    double e2[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, x[3], corner[3];
-    double l[3] = {v3_dot(e0, e0), v3_dot(e1, e1), v3_dot(e2, e2)};
-    v3_cross(e0, e1, x);
-    double xl = v3_len(x);
+    v3 p0 = v3_load(m->positions + 3 * (size_t)v[0]), p1 = v3_load(m->positions + 3 * (size_t)v[1]);
+    v3 p2 = v3_load(m->positions + 3 * (size_t)v[2]);
+    v3 e0 = v3_sub(p2, p1), e1 = v3_sub(p0, p2), e2 = v3_sub(p1, p0);
+    double l[3] = {v3_dot(e0, e0), v3_dot(e1, e1), v3_dot(e2, e2)}, corner[3];
+    double xl = v3_length(v3_cross(e0, e1));
     if (!(xl > 0) || !isfinite(xl)) {
         *g = (mesh_face_geometry){{0, 0, 0}, {0, 0, 0}};
         return;

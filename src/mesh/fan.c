@@ -17,15 +17,15 @@ typedef struct fan_job {
 static void largest_face_normal(const lucent_mesh *m, const uint32_t *slot, uint32_t count, uint32_t v, double *n)
 {
     const double *P = m->positions;
-    double big = 0, e1[3], e2[3], x[3];
+    v3 p = v3_load(P + 3 * v);
+    double big = 0;
     n[0] = n[1] = n[2] = 0;
     for (uint32_t a = 0; a < count; a++) {
         uint32_t j, k;
         mesh_slot_others(m->faces, slot[a], &j, &k);
-        v3_sub(P + 3 * j, P + 3 * v, e1), v3_sub(P + 3 * k, P + 3 * v, e2);
-        v3_cross(e1, e2, x);
+        v3 x = v3_cross(v3_sub(v3_load(P + 3 * j), p), v3_sub(v3_load(P + 3 * k), p));
         double l2 = v3_dot(x, x);
-        if (l2 > big) big = l2, n[0] = x[0], n[1] = x[1], n[2] = x[2];
+        if (l2 > big) big = l2, v3_store(x, n);
     }
 }
 
@@ -105,25 +105,34 @@ static int second_walk(const double *P, uint32_t count, uint32_t v, const fan_lo
     return all;
 }
 
+/* The unit normal from Max's sum, or from the largest face where the sum cancels. */
+static void store_normal(const lucent_mesh *m, const uint32_t *slot, uint32_t count, uint32_t v, double *n, float *dest)
+{
+    v3 u = v3_load(n);
+    if (!(v3_dot(u, u) > 1e-12 * n[3])) largest_face_normal(m, slot, count, v, n), u = v3_load(n);
+    u = v3_normalize(u);
+    dest[0] = (float)u.x, dest[1] = (float)u.y, dest[2] = (float)u.z;
+}
+
 /* The same for a fan of any size, without pairs (high valence, rare). */
 static void max_normal_any(const lucent_mesh *m, const uint32_t *slot, uint32_t count, uint32_t v, float *dest)
 {
-    const double *P = m->positions, *p = P + 3 * v;
-    double n[3] = {0, 0, 0}, mag = 0, e1[3], e2[3], x[3];
+    const double *P = m->positions;
+    v3 p = v3_load(P + 3 * v), sum = {0, 0, 0};
+    double mag = 0;
     for (uint32_t a = 0; a < count; a++) {
         uint32_t j, k;
         mesh_slot_others(m->faces, slot[a], &j, &k);
-        v3_sub(P + 3 * j, p, e1), v3_sub(P + 3 * k, p, e2);
+        v3 e1 = v3_sub(v3_load(P + 3 * j), p), e2 = v3_sub(v3_load(P + 3 * k), p);
         double w = v3_dot(e1, e1) * v3_dot(e2, e2);
         if (!(w > 0)) continue;
-        v3_cross(e1, e2, x);
+        v3 x = v3_cross(e1, e2);
         double iw = 1 / w;
-        for (int i = 0; i < 3; i++) n[i] += x[i] * iw;
+        sum = v3_madd(sum, x, iw);
         mag += v3_dot(x, x) * iw * iw;
     }
-    if (!(v3_dot(n, n) > 1e-12 * mag)) largest_face_normal(m, slot, count, v, n);
-    v3_normalize(n);
-    for (int i = 0; i < 3; i++) dest[i] = (float)n[i];
+    double n[4] = {sum.x, sum.y, sum.z, mag};
+    store_normal(m, slot, count, v, n, dest);
 }
 
 /* Exact test: some neighbour appears once among v's faces. */
@@ -152,14 +161,6 @@ static int any_single_slow(const uint32_t *faces, const uint32_t *slot, uint32_t
         if (seen == 1) return 1;
     }
     return 0;
-}
-
-/* The unit normal from Max's sum, or from the largest face where the sum cancels. */
-static void store_normal(const lucent_mesh *m, const uint32_t *slot, uint32_t count, uint32_t v, double *n, float *dest)
-{
-    if (!(v3_dot(n, n) > 1e-12 * n[3])) largest_face_normal(m, slot, count, v, n);
-    v3_normalize(n);
-    for (int i = 0; i < 3; i++) dest[i] = (float)n[i];
 }
 
 /* Normal, boundary flag and (when wanted) slot pairs of vertex v. */

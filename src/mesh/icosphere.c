@@ -29,7 +29,7 @@ static uint32_t midpoint(edge_map *em, lucent_mesh *m, size_t *nv, uint32_t a, u
     if (em->key[h] == k) return em->value[h];
     double *p = m->positions + 3 * *nv;
     for (int c = 0; c < 3; c++) p[c] = 0.5 * (m->positions[3 * a + c] + m->positions[3 * b + c]);
-    v3_normalize(p);
+    v3_store(v3_normalize(v3_load(p)), p);
     em->key[h] = k, em->value[h] = (uint32_t)*nv;
     return (uint32_t)(*nv)++;
 }
@@ -53,7 +53,7 @@ static void jitter_vertices(lucent_mesh *m, double amount, uint64_t seed)
         lucent_rng_init(seed, v, &rng);
         double *p = m->positions + 3 * v;
         for (int c = 0; c < 3; c++) p[c] += amount * (2 * lucent_rng_uniform(&rng) - 1);
-        v3_normalize(p);
+        v3_store(v3_normalize(v3_load(p)), p);
     }
 }
 
@@ -64,8 +64,7 @@ lucent_status mesh_icosphere(const lucent_primitive_desc *d, lucent_mesh **dest)
     if (s != LUCENT_OK) return s;
     lucent_mesh *m = *dest;
     for (int i = 0; i < 12; i++) {
-        memcpy(m->positions + 3 * i, k_ico_v[i], sizeof k_ico_v[i]);
-        v3_normalize(m->positions + 3 * i);
+        v3_store(v3_normalize(v3_load(k_ico_v[i])), m->positions + 3 * i);
     }
     memcpy(m->faces, k_ico_f, sizeof k_ico_f);
     size_t cap = 64;

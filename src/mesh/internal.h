@@ -1,4 +1,4 @@
-/* Internal helpers shared by the mesh module: small vector math, vertex-to-face adjacency,
+/* Internal helpers shared by the mesh module (vectors: base/vec3.h): vertex-to-face adjacency,
  * per-corner (mixed Voronoi) areas. */
 #ifndef LUCENT_MESH_INTERNAL_H
 #define LUCENT_MESH_INTERNAL_H
@@ -6,34 +6,8 @@
 #include <math.h>
 #include <stdint.h>
 
+#include "base/vec3.h"
 #include "lucent/mesh.h"
-
-static inline void v3_sub(const double *a, const double *b, double *dest)
-{
-    dest[0] = a[0] - b[0], dest[1] = a[1] - b[1], dest[2] = a[2] - b[2];
-}
-static inline double v3_dot(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-static inline void v3_cross(const double *a, const double *b, double *dest)
-{
-    double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2], z = a[0] * b[1] - a[1] * b[0];
-    dest[0] = x, dest[1] = y, dest[2] = z;
-}
-static inline double v3_len(const double *a) { return sqrt(v3_dot(a, a)); }
-/* Normalises in place; a zero (or non-finite) vector becomes zero. Returns the old length. */
-static inline double v3_normalize(double *a)
-{
-    double l = v3_len(a);
-    if (!(l > 0) || !isfinite(l)) {
-        a[0] = a[1] = a[2] = 0;
-        return 0;
-    }
-    double inv = 1 / l; /* one division, not three */
-    a[0] *= inv, a[1] *= inv, a[2] *= inv;
-    return l;
-}
 
 /* Vertex -> incident faces, in CSR form: the faces of vertex v are given by the slots
  * corner[start[v] .. start[v+1]), each the index 3 f + k into mesh->faces where v sits (face f,

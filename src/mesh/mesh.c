@@ -38,14 +38,12 @@ void lucent_mesh_compute_normals(lucent_mesh *mesh)
     memset(n, 0, mesh->vertex_count * 3 * sizeof *n);
     for (size_t f = 0; f < mesh->face_count; f++) {
         const uint32_t *t = mesh->faces + 3 * f;
-        double e1[3], e2[3], c[3];
-        v3_sub(mesh->positions + 3 * t[1], mesh->positions + 3 * t[0], e1);
-        v3_sub(mesh->positions + 3 * t[2], mesh->positions + 3 * t[0], e2);
-        v3_cross(e1, e2, c); /* twice the area times the unit normal */
-        for (int j = 0; j < 3; j++)
-            for (int k = 0; k < 3; k++) n[3 * t[j] + k] += c[k];
+        v3 p0 = v3_load(mesh->positions + 3 * t[0]);
+        v3 e1 = v3_sub(v3_load(mesh->positions + 3 * t[1]), p0), e2 = v3_sub(v3_load(mesh->positions + 3 * t[2]), p0);
+        v3 c = v3_cross(e1, e2); /* twice the area times the unit normal */
+        for (int j = 0; j < 3; j++) v3_store(v3_add(v3_load(n + 3 * t[j]), c), n + 3 * t[j]);
     }
-    for (size_t v = 0; v < mesh->vertex_count; v++) v3_normalize(n + 3 * v);
+    for (size_t v = 0; v < mesh->vertex_count; v++) v3_store(v3_normalize(v3_load(n + 3 * v)), n + 3 * v);
 }
 
 /* ---- welding: an open-addressing hash of exact positions ---- */
@@ -186,9 +184,9 @@ void mesh_adjacency_free(mesh_adjacency *adj)
 
 void mesh_corner_areas_edges(const double e[3][3], double dest[3])
 {
-    double c[3], l[3] = {v3_dot(e[0], e[0]), v3_dot(e[1], e[1]), v3_dot(e[2], e[2])};
-    v3_cross(e[0], e[1], c);
-    double xl = v3_len(c);
+    v3 e0 = v3_load(e[0]), e1 = v3_load(e[1]), e2 = v3_load(e[2]);
+    double l[3] = {v3_dot(e0, e0), v3_dot(e1, e1), v3_dot(e2, e2)};
+    double xl = v3_length(v3_cross(e0, e1));
     dest[0] = dest[1] = dest[2] = 0;
     if (!(xl > 0) || !isfinite(xl)) return;
     mesh_mixed_areas(l, xl, 1 / xl, dest);
@@ -197,9 +195,10 @@ void mesh_corner_areas_edges(const double e[3][3], double dest[3])
 void mesh_corner_areas(const lucent_mesh *mesh, size_t f, double dest[3])
 {
     const uint32_t *t = mesh->faces + 3 * f;
-    const double *p[3] = {mesh->positions + 3 * t[0], mesh->positions + 3 * t[1], mesh->positions + 3 * t[2]};
+    v3 p[3] = {v3_load(mesh->positions + 3 * t[0]), v3_load(mesh->positions + 3 * t[1]),
+               v3_load(mesh->positions + 3 * t[2])};
     double e[3][3];
-    for (int j = 0; j < 3; j++) v3_sub(p[(j + 2) % 3], p[(j + 1) % 3], e[j]); /* e[j] opposite j */
+    for (int j = 0; j < 3; j++) v3_store(v3_sub(p[(j + 2) % 3], p[(j + 1) % 3]), e[j]); /* e[j] opposite j */
     mesh_corner_areas_edges(e, dest);
 }
 

@@ -6,7 +6,6 @@
 
 #include "mesh/internal.h"
 
-static const double k_pi = 3.14159265358979323846;
 
 static lucent_primitive_desc resolve(const lucent_primitive_desc *d)
 {
@@ -41,7 +40,7 @@ static lucent_status make_ellipsoid(const lucent_primitive_desc *d, lucent_mesh 
     lucent_status s = lucent_mesh_create(2 + rings * (size_t)nu, 2 * (size_t)nu * rings, dest);
     if (s != LUCENT_OK) return s;
     lucent_mesh *m = *dest;
-    double du = 2 * k_pi / nu, dv = k_pi / nv;
+    double du = 2 * M_PI / nu, dv = M_PI / nv;
     for (size_t j = 0; j < rings; j++)
         for (int i = 0; i < nu; i++) {
             size_t v = 1 + j * (size_t)nu + (size_t)i;
@@ -75,7 +74,7 @@ static lucent_status make_torus(const lucent_primitive_desc *d, lucent_mesh **de
     lucent_status s = lucent_mesh_create((size_t)nu * (size_t)nv, 2 * (size_t)nu * (size_t)nv, dest);
     if (s != LUCENT_OK) return s;
     lucent_mesh *m = *dest;
-    double du = 2 * k_pi / nu, dv = 2 * k_pi / nv, R = d->major_radius, r = d->radius;
+    double du = 2 * M_PI / nu, dv = 2 * M_PI / nv, R = d->major_radius, r = d->radius;
     for (int i = 0; i < nu; i++)
         for (int j = 0; j < nv; j++) {
             size_t v = (size_t)i * (size_t)nv + (size_t)j;
@@ -120,7 +119,7 @@ static void ellipsoid_curvature(const double *ax, const double *p, lucent_curvat
     double a2 = ax[0] * ax[0], b2 = ax[1] * ax[1], c2 = ax[2] * ax[2];
     double w = p[0] * p[0] / (a2 * a2) + p[1] * p[1] / (b2 * b2) + p[2] * p[2] / (c2 * c2);
     dest->gauss = 1 / (a2 * b2 * c2 * w * w);
-    dest->mean = (a2 + b2 + c2 - v3_dot(p, p)) / (2 * a2 * b2 * c2 * pow(w, 1.5));
+    dest->mean = (a2 + b2 + c2 - v3_dot(v3_load(p), v3_load(p))) / (2 * a2 * b2 * c2 * pow(w, 1.5));
 }
 
 lucent_status lucent_primitive_curvature(const lucent_primitive_desc *desc, const double point[3],

@@ -12,7 +12,6 @@
 #include "profile/mc_internal.h"
 
 #define MC_CHUNK 1024
-#define MC_PI 3.14159265358979323846
 
 static double def(double v, double d) { return v != 0.0 ? v : d; }
 
@@ -120,17 +119,15 @@ lucent_status lucent_mc_validate(const lucent_mc_desc *desc)
     return check_grid(&d.grid, d.score_a_rz);
 }
 
-/* Normal-incidence Fresnel reflectance (MCML manual eq. 3.1; with a clear first layer, the
- * multiple reflections inside it, eq. 3.2). */
+/* Normal-incidence Fresnel reflectance ((n0 - n1) / (n0 + n1))^2 (MCML manual eq. 3.1; base/optics.h);
+ * with a clear first layer, the multiple reflections inside it (eq. 3.2). */
 double lucent_mc_specular(const lucent_mc_desc *desc)
 {
     double n0 = def(desc->n_above, 1.0), n1 = def(desc->layers[0].n, 1.0);
-    double r1 = (n0 - n1) / (n0 + n1);
-    r1 *= r1;
+    double r1 = lucent_fresnel_dielectric(1.0, n1 / n0, NULL);
     const lucent_mc_layer *l0 = &desc->layers[0];
     if (l0->sigma_a + l0->sigma_s == 0.0 && desc->layer_count > 1) {
-        double n2 = def(desc->layers[1].n, 1.0), r2 = (n1 - n2) / (n1 + n2);
-        r2 *= r2;
+        double n2 = def(desc->layers[1].n, 1.0), r2 = lucent_fresnel_dielectric(1.0, n2 / n1, NULL);
         r1 += (1.0 - r1) * (1.0 - r1) * r2 / (1.0 - r1 * r2);
     }
     return r1;
@@ -153,11 +150,7 @@ static void plan_layer(const lucent_mc_desc *d, int i, double z0, mc_layer_k *k)
     k->absorb = mut > 0.0 ? (float)(l->sigma_a / mut) : 0.0f;
     k->g = (float)g;
     k->hg_kind = g == 0.0 ? 0 : fabs(g) == 1.0 ? 3 : fabs(g) < 0.01 ? 2 : 1;
-    k->hg_a = (float)(1.0 + g * g);
-    k->hg_b = (float)(1.0 - g * g);
-    k->hg_c = (float)(1.0 - g);
-    k->hg_d = (float)(2.0 * g);
-    k->hg_e = g != 0.0 ? (float)(1.0 / (2.0 * g)) : 0.0f;
+    k->hg = lucent_hg_prepare_f(g);
     k->n = (float)n;
     double up = i == 0 ? d->n_above : def(d->layers[i - 1].n, 1.0);
     double down = i == d->layer_count - 1 ? d->n_below : def(d->layers[i + 1].n, 1.0);
@@ -202,7 +195,7 @@ static void make_plan(const lucent_mc_desc *d, mc_plan *p)
     p->dz = d->grid.dz;
     p->inv_dr = (float)(1.0 / d->grid.dr);
     p->inv_dz = (float)(1.0 / d->grid.dz);
-    p->inv_da = 2.0 * p->na / MC_PI; /* da = pi / (2 na) */
+    p->inv_da = 2.0 * p->na / M_PI; /* da = pi / (2 na) */
     /* Every counter sums at most N units of weight: keep N * scale below 2^62. */
     int bits = 0;
     while (bits < 62 && ((uint64_t)1 << bits) < d->photons) bits++;
@@ -321,13 +314,13 @@ static void reduce_1d(const reducer *r, size_t off, int count, double (*norm)(co
 
 static double norm_ring(const mc_plan *p, int i)
 {
-    return 2.0 * MC_PI * (i + 0.5) * p->dr * p->dr; /* MCML manual eq. 4.5 */
+    return 2.0 * M_PI * (i + 0.5) * p->dr * p->dr; /* MCML manual eq. 4.5 */
 }
 
 static double norm_solid_angle(const mc_plan *p, int j)
 {
-    double da = MC_PI / (2.0 * p->na);
-    return 4.0 * MC_PI * sin((j + 0.5) * da) * sin(da / 2.0); /* MCML manual eq. 4.7 */
+    double da = M_PI / (2.0 * p->na);
+    return 4.0 * M_PI * sin((j + 0.5) * da) * sin(da / 2.0); /* MCML manual eq. 4.7 */
 }
 
 static double norm_dz(const mc_plan *p, int k)

@@ -5,6 +5,7 @@
 
 #include <stdint.h>
 
+#include "base/optics.h"
 #include "lucent/mc.h"
 
 /* Per-layer constants, precomputed in float for the kernel. */
@@ -13,7 +14,7 @@ typedef struct mc_layer_k {
     float mut, inv_mut;    /* extinction sigma_a + sigma_s and its inverse */
     float absorb;          /* sigma_a / sigma_t: the fraction of weight dropped per interaction */
     float g;               /* HG anisotropy */
-    float hg_a, hg_b, hg_c, hg_d, hg_e; /* 1+g^2, 1-g^2, 1-g, 2g, 1/(2g) */
+    lucent_hg_f hg;        /* the float Henyey-Greenstein sampler's constants (base/optics.h) */
     int hg_kind;           /* 0: isotropic, 1: float HG, 2: double HG (|g| small), 3: |g| = 1 */
     float n;               /* index of refraction */
     float n_up, n_down;    /* the indices beyond the top and the bottom boundary */

@@ -16,8 +16,6 @@
 
 #define MC_WEIGHT 1e-4f  /* roulette threshold (MCML's WEIGHT) */
 #define MC_CHANCE 0.1f   /* roulette survival chance (MCML's CHANCE) */
-#define MC_COS_ZERO 1e-6f
-#define MC_COS_90 1e-6f
 
 /* -ln(m 2^-24) for m in [1, 2^24]: the step length in mean free paths (MCML manual eq. 3.19)
  * without a libm call. m = 2^e f with f in [sqrt(1/2), sqrt(2)) (from the float's bits), and
@@ -46,53 +44,14 @@ static inline float neg_log_u24(uint32_t m)
     return (float)(24 - e) * 0.693147180559945f - t * p;
 }
 
-/* Fresnel reflectance for unpolarised light from index n1 into n2 at incidence cosine ca1
- * (MCML manual eq. 3.36); *ca2 receives the cosine of the transmitted angle (Snell, eq. 3.35). */
-static float fresnel(float n1, float n2, float ca1, float *ca2)
-{
-    if (n1 == n2) {
-        *ca2 = ca1;
-        return 0.0f;
-    }
-    if (ca1 > 1.0f - MC_COS_ZERO) {
-        *ca2 = ca1;
-        float r = (n2 - n1) / (n2 + n1);
-        return r * r;
-    }
-    if (ca1 < MC_COS_90) {
-        *ca2 = 0.0f;
-        return 1.0f;
-    }
-    float sa1 = sqrtf(1.0f - ca1 * ca1);
-    float sa2 = n1 * sa1 / n2;
-    if (sa2 >= 1.0f) {
-        *ca2 = 0.0f;
-        return 1.0f;
-    }
-    float c2 = sqrtf(1.0f - sa2 * sa2);
-    *ca2 = c2;
-    float cap = ca1 * c2 - sa1 * sa2; /* cos(a1 + a2) */
-    float cam = ca1 * c2 + sa1 * sa2; /* cos(a1 - a2) */
-    float sap = sa1 * c2 + ca1 * sa2; /* sin(a1 + a2) */
-    float sam = sa1 * c2 - ca1 * sa2; /* sin(a1 - a2) */
-    return 0.5f * sam * sam * (cam * cam + cap * cap) / (sap * sap * cam * cam);
-}
-
-/* HG cosine of the deflection angle (MCML manual eq. 3.28). */
+/* HG cosine of the deflection angle (MCML manual eq. 3.28; base/optics.h): float with the
+ * layer's prepared constants, double where |g| is small (the float formula cancels there). */
 static inline float hg_cos(const mc_layer_k *L, float xi)
 {
     switch (L->hg_kind) {
     case 0: return 2.0f * xi - 1.0f;
-    case 1: {
-        float t = L->hg_b / (L->hg_c + L->hg_d * xi);
-        float c = (L->hg_a - t * t) * L->hg_e;
-        return c < -1.0f ? -1.0f : c > 1.0f ? 1.0f : c;
-    }
-    case 2: {
-        double g = L->g, t = (1.0 - g * g) / (1.0 - g + 2.0 * g * xi);
-        double c = (1.0 + g * g - t * t) / (2.0 * g);
-        return (float)(c < -1.0 ? -1.0 : c > 1.0 ? 1.0 : c);
-    }
+    case 1: return lucent_hg_sample_cos_f(&L->hg, xi);
+    case 2: return (float)lucent_hg_sample_cos(L->g, xi);
     default: return L->g;
     }
 }
@@ -215,10 +174,13 @@ static int cross(const mc_plan *plan, photon *p, int up, rbuf *rb, lucent_rng *r
     const mc_layer_k *L = &plan->layers[p->layer];
     float ca1 = fabsf(p->uz), ca2 = ca1, r;
     float nt = up ? L->n_up : L->n_down;
-    if (ca1 <= (up ? L->cos_crit_up : L->cos_crit_down))
+    if (ca1 <= (up ? L->cos_crit_up : L->cos_crit_down)) {
         r = 1.0f; /* total internal reflection */
-    else
-        r = fresnel(L->n, nt, ca1, &ca2);
+    } else { /* MCML manual eqs. 3.35, 3.36 (base/optics.h, in double: crossings are rare) */
+        double ct;
+        r = (float)lucent_fresnel_dielectric(ca1, (double)nt / L->n, &ct);
+        ca2 = (float)ct;
+    }
     int reflect = r >= 1.0f || (r > 0.0f && rb->u[rbuf_take(rb, rng)] < r);
     if (reflect) {
         p->uz = -p->uz;

@@ -287,7 +287,7 @@ static void fold_beyond(const lucent_mc_result *r, double *rd_r, double *tt_r, d
 {
     int nr = r->grid.nr, nz = r->grid.nz;
     double dr = r->grid.dr;
-    double ring = 2.0 * 3.14159265358979323846 * (nr - 0.5) * dr * dr;
+    double ring = 2.0 * M_PI * (nr - 0.5) * dr * dr;
     rd_r[nr - 1] += r->rd_beyond / ring;
     tt_r[nr - 1] += r->tt_beyond / ring;
     a_z[nz - 1] += r->a_z_beyond / r->grid.dz;

@@ -7,33 +7,25 @@
 #include "scene/internal.h"
 
 /* The camera's orthonormal frame: right, up and back (eye space looks down -back). */
-static void camera_frame(const lucent_camera *cam, double right[3], double up[3], double back[3])
+static void camera_frame(const lucent_camera *cam, v3 *right, v3 *up, v3 *back)
 {
-    scene_v3_sub(cam->position, cam->target, back);
-    scene_v3_normalize(back);
-    scene_v3_cross(cam->up, back, right);
-    if (scene_v3_normalize(right) == 0) { /* up parallel to the view: pick any perpendicular */
-        double alt[3] = {fabs(back[0]) < 0.9 ? 1 : 0, fabs(back[0]) < 0.9 ? 0 : 1, 0};
-        scene_v3_cross(alt, back, right);
-        scene_v3_normalize(right);
+    *back = v3_normalize(v3_sub(v3_load(cam->position), v3_load(cam->target)));
+    *right = v3_normalize(v3_cross(v3_load(cam->up), *back));
+    if (v3_dot(*right, *right) == 0) { /* up parallel to the view: pick any perpendicular */
+        v3 alt = fabs(back->x) < 0.9 ? v3_make(1, 0, 0) : v3_make(0, 1, 0);
+        *right = v3_normalize(v3_cross(alt, *back));
     }
-    scene_v3_cross(back, right, up);
+    *up = v3_cross(*back, *right);
 }
 
 void lucent_camera_view(const lucent_camera *cam, double dest[16])
 {
-    double r[3], u[3], b[3];
-    camera_frame(cam, r, u, b);
-    memset(dest, 0, 16 * sizeof *dest);
-    for (int i = 0; i < 3; i++) {
-        dest[4 * i + 0] = r[i]; /* column i, rows 0..2: the frame's rows */
-        dest[4 * i + 1] = u[i];
-        dest[4 * i + 2] = b[i];
-    }
-    dest[12] = -scene_v3_dot(r, cam->position);
-    dest[13] = -scene_v3_dot(u, cam->position);
-    dest[14] = -scene_v3_dot(b, cam->position);
-    dest[15] = 1;
+    v3 r, u, b, p = v3_load(cam->position);
+    camera_frame(cam, &r, &u, &b);
+    /* columns 0..2, rows 0..2: the frame's rows; column 3: the eye moved to the origin */
+    const double m[16] = {r.x, u.x, b.x, 0, r.y, u.y, b.y, 0, r.z, u.z, b.z, 0,
+                          -v3_dot(r, p), -v3_dot(u, p), -v3_dot(b, p), 1};
+    memcpy(dest, m, sizeof m);
 }
 
 void lucent_camera_projection(const lucent_camera *cam, double aspect, double dest[16])
@@ -50,14 +42,11 @@ void lucent_camera_projection(const lucent_camera *cam, double aspect, double de
 void lucent_camera_ray(const lucent_camera *cam, int width, int height, double px, double py,
                        double origin[3], double dir[3])
 {
-    double r[3], u[3], b[3];
-    camera_frame(cam, r, u, b);
+    v3 r, u, b;
+    camera_frame(cam, &r, &u, &b);
     double t = tan(0.5 * cam->fov_y * M_PI / 180), aspect = (double)width / height;
     double sx = (2 * px / width - 1) * t * aspect; /* normalised device x times the frustum slope */
     double sy = (1 - 2 * py / height) * t;         /* y from the top row: +1 at the top edge */
-    for (int i = 0; i < 3; i++) {
-        origin[i] = cam->position[i];
-        dir[i] = sx * r[i] + sy * u[i] - b[i];
-    }
-    scene_v3_normalize(dir);
+    memcpy(origin, cam->position, 3 * sizeof *origin);
+    v3_store(v3_normalize(v3_sub(v3_add(v3_scale(r, sx), v3_scale(u, sy)), b)), dir);
 }

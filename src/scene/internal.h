@@ -1,36 +1,12 @@
-/* Internal helpers of the scene module. */
+/* Internal helpers of the scene module (vectors: base/vec3.h). */
 #ifndef LUCENT_SCENE_INTERNAL_H
 #define LUCENT_SCENE_INTERNAL_H
 
 #include <math.h>
 
 #include "base/json.h"
+#include "base/vec3.h"
 #include "lucent/scene.h"
-
-static inline void scene_v3_sub(const double *a, const double *b, double *dest)
-{
-    dest[0] = a[0] - b[0], dest[1] = a[1] - b[1], dest[2] = a[2] - b[2];
-}
-static inline double scene_v3_dot(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-static inline void scene_v3_cross(const double *a, const double *b, double *dest)
-{
-    double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2], z = a[0] * b[1] - a[1] * b[0];
-    dest[0] = x, dest[1] = y, dest[2] = z;
-}
-/* Normalises in place; a zero or non-finite vector becomes zero. Returns the old length. */
-static inline double scene_v3_normalize(double *a)
-{
-    double l = sqrt(scene_v3_dot(a, a));
-    if (!(l > 0) || !isfinite(l)) {
-        a[0] = a[1] = a[2] = 0;
-        return 0;
-    }
-    a[0] /= l, a[1] /= l, a[2] /= l;
-    return l;
-}
 
 /* Applies "key=value" overrides to a parsed scene document; errors name the override. */
 lucent_status scene_apply_overrides(cJSON *root, const char *file, const char *const *overrides, int count);

@@ -6,6 +6,8 @@
 #include <strings.h>
 #include <unistd.h>
 
+#include "base/mat4.h"
+#include "base/optics.h"
 #include "material/internal.h"
 #include "scene/internal.h"
 
@@ -92,18 +94,6 @@ static lucent_status subdivide(const lucent_json_node *n, lucent_scene_object *o
 
 /* ---- the transform: world = T Rz Ry Rx S (mm_per_unit p) ---- */
 
-static void mat_mul(const double a[16], const double b[16], double dest[16])
-{
-    double r[16];
-    for (int c = 0; c < 4; c++)
-        for (int row = 0; row < 4; row++) {
-            double v = 0;
-            for (int k = 0; k < 4; k++) v += a[4 * k + row] * b[4 * c + k];
-            r[4 * c + row] = v;
-        }
-    memcpy(dest, r, sizeof r);
-}
-
 static void mat_rotation(int axis, double degrees, double dest[16])
 {
     double c = cos(degrees * M_PI / 180), s = sin(degrees * M_PI / 180);
@@ -146,7 +136,7 @@ static lucent_status read_transform(const lucent_json_node *n, double mm_per_uni
         else memcpy(sc, one, sizeof sc);
         for (int i = 0; s == LUCENT_OK && i < 3; i++)
             if (!(sc[i] != 0)) s = lucent_json_fail(&t, "scale", LUCENT_ERR_PARSE, "must not be zero");
-        for (int a = 2; s == LUCENT_OK && a >= 0; a--) mat_rotation(a, rot[a], r), mat_mul(m, r, m);
+        for (int a = 2; s == LUCENT_OK && a >= 0; a--) mat_rotation(a, rot[a], r), lucent_mat4_mul(m, r, m);
         for (int c = 0; c < 3; c++)
             for (int row = 0; row < 3; row++) m[4 * c + row] *= sc[c];
         m[12] = tr[0], m[13] = tr[1], m[14] = tr[2];
@@ -201,11 +191,9 @@ static lucent_status make_texcoords(lucent_scene_object *o)
             lo[i] = fmin(lo[i], m->positions[3 * v + i]), hi[i] = fmax(hi[i], m->positions[3 * v + i]);
     for (int i = 0; i < 3; i++) c[i] = 0.5 * (lo[i] + hi[i]);
     for (size_t v = 0; v < m->vertex_count; v++) {
-        double d[3];
-        scene_v3_sub(m->positions + 3 * v, c, d);
-        scene_v3_normalize(d);
-        o->texcoords[2 * v] = 0.5 + atan2(d[2], d[0]) / (2 * M_PI);
-        o->texcoords[2 * v + 1] = acos(fmax(-1, fmin(1, d[1]))) / M_PI;
+        v3 d = v3_normalize(v3_sub(v3_load(m->positions + 3 * v), v3_load(c)));
+        o->texcoords[2 * v] = 0.5 + atan2(d.z, d.x) / (2 * M_PI);
+        o->texcoords[2 * v + 1] = acos(fmax(-1, fmin(1, d.y))) / M_PI;
     }
     return LUCENT_OK;
 }
@@ -240,9 +228,9 @@ static lucent_status read_albedo(const lucent_json_node *n, const char *base_dir
 
 static lucent_status read_surface(const lucent_json_node *n, lucent_scene_object *o)
 {
-    double eta = o->material.eta, f0 = (eta - 1) / (eta + 1);
+    double f0 = lucent_fresnel_dielectric(1.0, o->material.eta, NULL); /* ((eta - 1) / (eta + 1))^2 */
     lucent_status s = scene_read_range(n, "roughness", 0.3, 0, 1, &o->roughness);
-    if (s == LUCENT_OK) s = scene_read_range(n, "specular_f0", f0 * f0, 0, 1, &o->specular_f0);
+    if (s == LUCENT_OK) s = scene_read_range(n, "specular_f0", f0, 0, 1, &o->specular_f0);
     if (s == LUCENT_OK) s = scene_read_range(n, "sss_strength", 1, 0, 1, &o->sss_strength);
     if (s == LUCENT_OK) s = lucent_json_bool_or(n, "visible", true, &o->visible);
     o->sigma0_set = lucent_json_has(n, "sigma0");

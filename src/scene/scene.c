@@ -41,7 +41,7 @@ void lucent_scene_bounds(const lucent_scene *scene, double min[3], double max[3]
 static void resolve_planes(lucent_scene *sc)
 {
     lucent_camera *c = &sc->camera;
-    double lo[3], hi[3], centre[3], d[3];
+    double lo[3], hi[3], centre[3];
     lucent_scene_bounds(sc, lo, hi);
     double radius = 0;
     for (int i = 0; i < 3; i++) {
@@ -49,8 +49,7 @@ static void resolve_planes(lucent_scene *sc)
         radius += lo[i] <= hi[i] ? 0.25 * (hi[i] - lo[i]) * (hi[i] - lo[i]) : 0;
     }
     radius = fmax(sqrt(radius), 1e-3);
-    scene_v3_sub(centre, c->position, d);
-    double dist = sqrt(scene_v3_dot(d, d));
+    double dist = v3_length(v3_sub(v3_load(centre), v3_load(c->position)));
     double far = c->far_plane > 0 ? c->far_plane : 1.05 * (dist + radius);
     double near = c->near_plane > 0 ? c->near_plane : fmax(0.95 * (dist - radius), far * 1e-4);
     c->near_plane = fmin(near, 0.5 * far), c->far_plane = far;

@@ -85,11 +85,11 @@ lucent_status scene_read_camera(const lucent_json_node *root, lucent_camera *des
     if (s == LUCENT_OK) s = scene_read_range(&n, "fov_y", 30, 0.01, 179, &dest->fov_y);
     if (s == LUCENT_OK) s = scene_read_range(&n, "near", 0, 0, 1e12, &dest->near_plane);
     if (s == LUCENT_OK) s = scene_read_range(&n, "far", 0, 0, 1e12, &dest->far_plane);
-    double d[3];
-    scene_v3_sub(dest->target, dest->position, d);
-    if (s == LUCENT_OK && scene_v3_normalize(d) == 0)
+    v3 d = v3_normalize(v3_sub(v3_load(dest->target), v3_load(dest->position)));
+    v3 up_n = v3_normalize(v3_load(dest->up));
+    if (s == LUCENT_OK && v3_dot(d, d) == 0)
         s = lucent_json_fail(&n, "target", LUCENT_ERR_PARSE, "must differ from the position");
-    if (s == LUCENT_OK && scene_v3_normalize((double[3]){dest->up[0], dest->up[1], dest->up[2]}) == 0)
+    if (s == LUCENT_OK && v3_dot(up_n, up_n) == 0)
         s = lucent_json_fail(&n, "up", LUCENT_ERR_PARSE, "must not be zero");
     if (s == LUCENT_OK && dest->far_plane > 0 && dest->far_plane <= dest->near_plane)
         s = lucent_json_fail(&n, "far", LUCENT_ERR_PARSE, "must be greater than near");
@@ -113,8 +113,11 @@ static lucent_status read_light_geometry(const lucent_json_node *n, lucent_light
     lucent_status s = LUCENT_OK;
     if (l->type == LUCENT_LIGHT_DIRECTIONAL) {
         s = lucent_json_numbers(n, "direction", 3, false, l->direction);
-        if (s == LUCENT_OK && scene_v3_normalize(l->direction) == 0)
-            s = lucent_json_fail(n, "direction", LUCENT_ERR_PARSE, "must not be zero");
+        if (s == LUCENT_OK) {
+            v3 dir = v3_normalize(v3_load(l->direction));
+            v3_store(dir, l->direction);
+            if (v3_dot(dir, dir) == 0) s = lucent_json_fail(n, "direction", LUCENT_ERR_PARSE, "must not be zero");
+        }
         double deg = 0;
         if (s == LUCENT_OK) s = scene_read_range(n, "angular_radius", 0, 0, 45, &deg);
         l->angular_radius = deg * M_PI / 180;

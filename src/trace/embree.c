@@ -32,9 +32,9 @@ static double *face_planes(const lucent_mesh *m)
     if (!p) return NULL;
     for (size_t f = 0; f < m->face_count; f++) {
         const uint32_t *v = m->faces + 3 * f;
-        v3 a = v3_from(m->positions + 3 * v[0]), b = v3_from(m->positions + 3 * v[1]);
-        v3 c = v3_from(m->positions + 3 * v[2]);
-        v3 n = v3_norm(v3_cross(v3_sub(b, a), v3_sub(c, a)));
+        v3 a = v3_load(m->positions + 3 * v[0]), b = v3_load(m->positions + 3 * v[1]);
+        v3 c = v3_load(m->positions + 3 * v[2]);
+        v3 n = v3_normalize(v3_cross(v3_sub(b, a), v3_sub(c, a)));
         p[4 * f] = n.x, p[4 * f + 1] = n.y, p[4 * f + 2] = n.z, p[4 * f + 3] = v3_dot(n, a);
     }
     return p;
@@ -136,7 +136,7 @@ bool tr_intersect(const tr_geometry *g, v3 o, v3 d, double tnear, double tfar, t
     rtcIntersect1(g->scene, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     /* Embree's geometric normal of a counter-clockwise triangle points outward (as (v1 - v0) x (v2 - v0)). */
-    hit->n = v3_norm(v3_make(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
+    hit->n = v3_normalize(v3_make(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
     hit->object = g->object[rh.hit.geomID];
     hit->t = rh.ray.tfar;
     double reach = fmax(fabs(o.x), fmax(fabs(o.y), fabs(o.z))) + hit->t;

@@ -70,13 +70,13 @@ static bool emit(const tr_light *l, v3 c, double r, lucent_rng *rng, photon *ph)
     double u1 = lucent_rng_uniform(rng), u2 = lucent_rng_uniform(rng);
     if (l->type == LUCENT_LIGHT_DIRECTIONAL) {
         v3 t, b, a = l->toward;
-        v3_basis(a, &t, &b);
-        double rho = r * sqrt(u1), phi = 2.0 * TR_PI * u2;
+        lucent_basis(a, &t, &b);
+        double rho = r * sqrt(u1), phi = 2.0 * M_PI * u2;
         ph->p = v3_add(v3_madd(c, a, 2.0 * r), v3_add(v3_scale(t, rho * cos(phi)), v3_scale(b, rho * sin(phi))));
         ph->d = v3_neg(a);
     } else if (l->type == LUCENT_LIGHT_POINT || l->type == LUCENT_LIGHT_SPHERE) {
         ph->p = l->position;
-        ph->d = v3_around(v3_make(0, 0, 1), 1.0 - 2.0 * u1, 2.0 * TR_PI * u2);
+        ph->d = lucent_around(v3_make(0, 0, 1), 1.0 - 2.0 * u1, 2.0 * M_PI * u2);
         if (l->type == LUCENT_LIGHT_SPHERE) ph->p = v3_madd(ph->p, ph->d, l->radius * (1.0 + 1e-9));
     } else {
         return false;
@@ -122,7 +122,7 @@ static void trace_photon(const lucent_tracer *tr, const tr_field *fields, double
         long cell = cell_of(&fields[ph->medium], ph->p);
         if (cell >= 0) tally[(fields[ph->medium].offset + (size_t)cell) * 3 + (size_t)c] += ph->w / ob->sigma_t[c];
         ph->w *= ob->sigma_s[c] / ob->sigma_t[c];
-        ph->d = tr_hg_sample(ph->d, ob->g[c], lucent_rng_uniform(rng), lucent_rng_uniform(rng));
+        ph->d = lucent_hg_sample(ph->d, ob->g[c], lucent_rng_uniform(rng), lucent_rng_uniform(rng));
         collisions++;
         if (ph->w < 0.05) ph->w = lucent_rng_uniform(rng) < 0.25 ? ph->w * 4.0 : 0.0;
     }
@@ -148,8 +148,8 @@ static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
     const lucent_tracer *tr = job->tr;
     double lo[3], hi[3], *tally = job->tally + chunk * job->per_chunk;
     lucent_scene_bounds(tr->scene, lo, hi);
-    v3 c = v3_scale(v3_add(v3_from(lo), v3_from(hi)), 0.5);
-    double r = 0.5 * v3_len(v3_sub(v3_from(hi), v3_from(lo))) * 1.01 + tr->eps;
+    v3 c = v3_scale(v3_add(v3_load(lo), v3_load(hi)), 0.5);
+    double r = 0.5 * v3_length(v3_sub(v3_load(hi), v3_load(lo))) * 1.01 + tr->eps;
     lucent_rng rng;
     lucent_rng_init(FIELD_SEED, chunk, &rng);
     for (uint64_t i = begin; i < end; i++) {
@@ -164,7 +164,7 @@ static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
 static bool inside(const lucent_tracer *tr, int object, v3 x)
 {
     int crossings = 0;
-    v3 d = v3_norm(v3_make(1.0, 0.0123, 0.0071));
+    v3 d = v3_normalize(v3_make(1.0, 0.0123, 0.0071));
     for (int i = 0; i < 256; i++) {
         tr_hit h;
         if (!tr_intersect(tr->geometry, x, d, 0.0, INFINITY, &h)) break;
@@ -305,7 +305,7 @@ void tr_field_lookup(const lucent_tracer *tr, int object, v3 x, tr_transform *de
     const float *g = f->grad + (size_t)cell * 9;
     for (int c = 0; c < 3; c++) {
         v3 gv = v3_make(g[3 * c], g[3 * c + 1], g[3 * c + 2]);
-        double len = v3_len(gv);
+        double len = v3_length(gv);
         if (!(len > 0)) continue;
         dest->u[c] = v3_scale(gv, 1.0 / len);
         dest->b[c] = fmin(tr->walk_strength * len / ob->sigma_t[c], TR_WALK_B_MAX);

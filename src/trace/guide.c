@@ -29,7 +29,7 @@ void tr_guide_prepare(const lucent_tracer *tr, tr_guide *g, const tr_light *l)
     g->prepared = true;
     g->has_n0 = false;
     if (!has_target(g)) return;
-    g->toward = l->type == LUCENT_LIGHT_DIRECTIONAL ? l->toward : v3_norm(v3_sub(l->position, g->x));
+    g->toward = l->type == LUCENT_LIGHT_DIRECTIONAL ? l->toward : v3_normalize(v3_sub(l->position, g->x));
     tr_hit h;
     if (tr_intersect(tr->geometry, from, g->toward, 0.0, INFINITY, &h) && h.object == g->object &&
         v3_dot(h.n, g->toward) > 0) {
@@ -50,12 +50,12 @@ bool tr_guide_sample(const lucent_tracer *tr, const tr_guide *g, double u0, doub
                (*w = bs.i, true);
     }
     if (u0 < share) {
-        *w = tr_hg_sample(g->d_in, ob->g_mean, u1, u2);
+        *w = lucent_hg_sample(g->d_in, ob->g_mean, u1, u2);
         return true;
     }
     if (!g->has_n0) return false;
-    v3 m = tr_ggx_sample_visible(g->toward, g->n0, ob->boundary.alpha, u1, u2), t;
-    if (!tr_refract(v3_neg(g->toward), m, 1.0 / ob->boundary.eta, &t) || v3_dot(t, g->n0) >= 0) return false;
+    v3 m = lucent_ggx_sample_visible(g->toward, g->n0, ob->boundary.alpha, u1, u2), t;
+    if (!lucent_refract(v3_neg(g->toward), m, ob->boundary.eta, &t) || v3_dot(t, g->n0) >= 0) return false;
     *w = v3_neg(t);
     return !g->surface || v3_dot(*w, g->n) < 0; /* from a boundary vertex, only inward */
 }
@@ -65,17 +65,16 @@ static double lobe_pdf(const tr_object *ob, const tr_guide *g, v3 w)
     double eta = ob->boundary.eta;
     v3 t = v3_neg(w), l = g->toward;
     if (v3_dot(t, g->n0) >= 0) return 0;
-    v3 m = v3_norm(v3_neg(v3_add(l, v3_scale(t, eta))));
-    if (v3_dot(m, g->n0) < 0) m = v3_neg(m);
-    double lm = v3_dot(l, m), tm = v3_dot(t, m), den = lm + eta * tm;
-    if (lm <= 0 || tm >= 0 || !(den * den > 0)) return 0;
-    return tr_ggx_visible_pdf(l, g->n0, m, ob->boundary.alpha) * eta * eta * fabs(tm) / (den * den);
+    v3 m = lucent_ggx_half_transmit(l, t, 1.0, eta, g->n0); /* Walter eqs. 16, 17 */
+    double lm = v3_dot(l, m), tm = v3_dot(t, m);
+    if (lm <= 0 || tm >= 0) return 0;
+    return lucent_ggx_visible_pdf(l, g->n0, m, ob->boundary.alpha) * lucent_ggx_jacobian_transmit(lm, tm, 1.0, eta);
 }
 
 /* The walk-like share of q: the BSDF's inward directions at a boundary vertex, else the phase function. */
 static double own_pdf(const tr_object *ob, const tr_guide *g, v3 w)
 {
-    if (!g->surface) return tr_hg_eval(v3_dot(g->d_in, w), ob->g_mean);
+    if (!g->surface) return lucent_hg_phase(v3_dot(g->d_in, w), ob->g_mean);
     double pdf;
     if (v3_dot(w, g->n) >= 0) return 0;
     tr_bsdf_eval(&ob->boundary, g->n, g->o, w, &pdf);
@@ -101,5 +100,5 @@ void tr_guide_vertex(const lucent_tracer *tr, const tr_guide *g, const tr_transf
         return;
     }
     double mu = v3_dot(g->d_in, w);
-    for (int k = 0; k < 3; k++) f[k] = tr_hg_eval(mu, ob->g[k]), pdf[k] = tr_walk_pdf(ob, tf, k, g->d_in, w);
+    for (int k = 0; k < 3; k++) f[k] = lucent_hg_phase(mu, ob->g[k]), pdf[k] = tr_walk_pdf(ob, tf, k, g->d_in, w);
 }

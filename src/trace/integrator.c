@@ -159,9 +159,9 @@ static void scatter_direction(tr_path *p, const tr_object *ob, v3 x, const tr_tr
     double mu = v3_dot(p->d, w), pw[3], ph;
     for (int c = 0; c < 3; c++) pw[c] = tr_walk_pdf(ob, tf, c, p->d, w);
     double p_h = pw[p->hero];
-    p->tw *= tr_hg_eval(mu, ob->g[p->hero]) / p_h;
+    p->tw *= lucent_hg_phase(mu, ob->g[p->hero]) / p_h;
     for (int c = 0; c < 3; c++) p->rx[c] = p->r[c];
-    for (int c = 0; c < 3; c++) ph = tr_hg_eval(mu, ob->g[c]), p->beta[c] *= ph / p_h, p->r[c] *= pw[c] / p_h;
+    for (int c = 0; c < 3; c++) ph = lucent_hg_phase(mu, ob->g[c]), p->beta[c] *= ph / p_h, p->r[c] *= pw[c] / p_h;
     p->from_volume = ob->boundary.kind == TR_BOUNDARY_ROUGH && !p->tr->desc.boundary_nee_only;
     p->walk_h = p_h;
     if (ob->boundary.kind == TR_BOUNDARY_MATCHED) {
@@ -219,7 +219,7 @@ bool tr_trace_path(const lucent_tracer *tr, double px, double py, lucent_rng *rn
                  .camera_ray = true};
     double o[3], d[3];
     lucent_camera_ray(&tr->scene->camera, tr->render.view.width, tr->render.view.height, px, py, o, d);
-    p.o = v3_from(o), p.d = v3_from(d);
+    p.o = v3_load(o), p.d = v3_load(d);
     p.hero = (int)(tr_u(&p) * 3.0);
     if (p.hero > 2) p.hero = 2;
     bool covered = false;

@@ -1,7 +1,7 @@
 /* Internal interfaces of the path tracer (src/trace). Embree's types stay in embree.c.
  *
- * Files: embree.c (the ray-tracing scene), bsdf.c (dielectric boundaries), media.c (Henyey-Greenstein
- * and the walk's transform), field.c (the fluence field the walk follows), lights.c (light sampling
+ * Files: embree.c (the ray-tracing scene), bsdf.c (dielectric boundaries), media.c (the walk's
+ * transform), field.c (the fluence field the walk follows), lights.c (light sampling
  * and emission, shadow rays), guide.c (the direction distribution of next-event estimation through a
  * rough boundary), nee.c (next-event estimation and the MIS weights), integrator.c (one camera
  * path), film.c, film_alloc.c, film_result.c (the accumulated estimate: passes, adaptive
@@ -10,12 +10,17 @@
 #ifndef LUCENT_TRACE_INTERNAL_H
 #define LUCENT_TRACE_INTERNAL_H
 
+#include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "base/optics.h"
+#include "base/vec3.h"
 #include "lucent/scene.h"
 #include "lucent/trace.h"
-#include "trace/vec.h"
+
+static inline double tr_max3(const double a[3]) { return fmax(a[0], fmax(a[1], a[2])); }
+static inline double tr_mean3(const double a[3]) { return (a[0] + a[1] + a[2]) * (1.0 / 3.0); }
 
 /* ---- dielectric boundaries (bsdf.c) ----
  * Every surface separates the outside (index 1) from an object's medium (index eta). */
@@ -31,25 +36,8 @@ typedef struct tr_boundary {
     double alpha; /* GGX alpha */
 } tr_boundary;
 
-/* Unpolarised Fresnel reflectance for incidence cosine ci (> 0) from index ni into nt; 1 under total
- * internal reflection, exactly 0 when ni == nt. */
-double tr_fresnel(double ci, double ni, double nt);
-
-/* Refracts incident travel direction d through a surface with unit normal m facing against d
- * (m . d < 0), ratio = ni / nt. Returns false under total internal reflection. */
-bool tr_refract(v3 d, v3 m, double ratio, v3 *dest);
-
-/* GGX normal distribution D(m) for cosine cm between m and the macro normal (Walter eq. 33). */
-double tr_ggx_d(double cm, double alpha);
-
-/* Smith masking G1 of GGX for a direction at cosine c to the macro normal (Walter eq. 34). */
-double tr_ggx_g1(double c, double alpha);
-
-/* Samples a microfacet normal visible from v (unit, v . n > 0) about unit normal n (Heitz 2018). */
-v3 tr_ggx_sample_visible(v3 v, v3 n, double alpha, double u1, double u2);
-
-/* Density of tr_ggx_sample_visible producing m: G1(v) max(0, v . m) D(m) / (v . n). */
-double tr_ggx_visible_pdf(v3 v, v3 n, v3 m, double alpha);
+/* The optics (Fresnel, refraction, GGX D and G1, visible normals, Henyey-Greenstein, the basis)
+ * come from base/optics.h. */
 
 /* The boundary's BSDF for outward normal n, toward-viewer direction o and toward-light direction i
  * (both unit, pointing away from the surface): returns f (radiance convention, with the
@@ -72,12 +60,6 @@ bool tr_bsdf_sample_dir(const tr_boundary *b, v3 n, v3 o, double u0, double u1, 
                         tr_bsdf_sample *dest);
 
 /* ---- media (media.c) ---- */
-
-/* Henyey-Greenstein phase function for the cosine mu between travel directions (HG 1941). */
-double tr_hg_eval(double mu, double g);
-
-/* Samples a new travel direction from d (HG, by inversion of its cumulative distribution). */
-v3 tr_hg_sample(v3 d, double g, double u1, double u2);
 
 typedef struct tr_object tr_object;
 

@@ -26,20 +26,20 @@ static double one_minus_cos(double a)
 
 static void build_one(const lucent_light *in, int index, tr_light *l)
 {
-    *l = (tr_light){.type = in->type, .scene_index = index, .position = v3_from(in->position),
+    *l = (tr_light){.type = in->type, .scene_index = index, .position = v3_load(in->position),
                     .radius = in->radius, .delta = true};
     double scale = in->intensity;
     if (in->type == LUCENT_LIGHT_DIRECTIONAL) {
-        l->toward = v3_neg(v3_norm(v3_from(in->direction)));
+        l->toward = v3_neg(v3_normalize(v3_load(in->direction)));
         if (in->angular_radius > 0) {
             l->delta = false;
-            l->solid_angle = 2.0 * TR_PI * one_minus_cos(in->angular_radius);
+            l->solid_angle = 2.0 * M_PI * one_minus_cos(in->angular_radius);
             l->cos_cone = 1.0 - one_minus_cos(in->angular_radius);
             scale /= l->solid_angle;
         }
     } else if (in->type == LUCENT_LIGHT_SPHERE) {
         l->delta = false;
-        scale /= TR_PI * in->radius * in->radius;
+        scale /= M_PI * in->radius * in->radius;
     } else if (in->type == LUCENT_LIGHT_ENVIRONMENT) {
         l->delta = false;
     }
@@ -51,9 +51,9 @@ static double power_proxy(const lucent_light *in, v3 centre, double radius)
 {
     double c[3] = {in->color[0] * in->intensity, in->color[1] * in->intensity, in->color[2] * in->intensity};
     double y = luminance(c);
-    if (in->type == LUCENT_LIGHT_ENVIRONMENT) return TR_PI * y;
+    if (in->type == LUCENT_LIGHT_ENVIRONMENT) return M_PI * y;
     if (in->type == LUCENT_LIGHT_DIRECTIONAL) return y;
-    double d = fmax(v3_len(v3_sub(v3_from(in->position), centre)), fmax(radius, 1e-3));
+    double d = fmax(v3_length(v3_sub(v3_load(in->position), centre)), fmax(radius, 1e-3));
     return y / (d * d);
 }
 
@@ -68,8 +68,8 @@ lucent_status tr_lights_build(lucent_tracer *tr)
     tr->light_count = n;
     double lo[3], hi[3], w[64], sum = 0;
     lucent_scene_bounds(sc, lo, hi);
-    v3 centre = v3_scale(v3_add(v3_from(lo), v3_from(hi)), 0.5);
-    double radius = lo[0] <= hi[0] ? 0.5 * v3_len(v3_sub(v3_from(hi), v3_from(lo))) : 1.0;
+    v3 centre = v3_scale(v3_add(v3_load(lo), v3_load(hi)), 0.5);
+    double radius = lo[0] <= hi[0] ? 0.5 * v3_length(v3_sub(v3_load(hi), v3_load(lo))) : 1.0;
     for (int i = 0; i < n; i++) {
         build_one(&sc->lights[i], i, &tr->lights[i]);
         w[i] = power_proxy(&sc->lights[i], centre, radius);
@@ -97,20 +97,20 @@ const tr_light *tr_light_pick(const lucent_tracer *tr, double u)
 /* Uniform direction in the cone of axis a and 1 - cos(half-angle) = omc. */
 static v3 sample_cone(v3 a, double omc, double u1, double u2)
 {
-    return v3_around(a, 1.0 - u1 * omc, 2.0 * TR_PI * u2);
+    return lucent_around(a, 1.0 - u1 * omc, 2.0 * M_PI * u2);
 }
 
 static bool sample_sphere_light(const tr_light *l, v3 p, double u1, double u2, tr_light_sample *s)
 {
     v3 to = v3_sub(l->position, p);
-    double dc = v3_len(to);
+    double dc = v3_length(to);
     if (!(dc > l->radius)) return false;
     double sin_max = l->radius / dc, cos_max = sqrt(fmax(0.0, 1.0 - sin_max * sin_max));
     double omc = sin_max * sin_max / (1.0 + cos_max);
     s->w = sample_cone(v3_scale(to, 1.0 / dc), omc, u1, u2);
     double b = v3_dot(s->w, to), disc = l->radius * l->radius - (dc * dc - b * b);
     s->dist = fmax(0.0, b - sqrt(fmax(0.0, disc)));
-    s->pdf = l->select / (2.0 * TR_PI * omc);
+    s->pdf = l->select / (2.0 * M_PI * omc);
     return true;
 }
 
@@ -118,11 +118,11 @@ static void sample_environment(const tr_light *l, v3 n, double u1, double u2, tr
 {
     if (v3_dot(n, n) > 0) {
         double mu = sqrt(u1); /* cosine-weighted: pdf = cos / pi */
-        s->w = v3_around(n, mu, 2.0 * TR_PI * u2);
-        s->pdf = l->select * mu * TR_INV_PI;
+        s->w = lucent_around(n, mu, 2.0 * M_PI * u2);
+        s->pdf = l->select * mu * M_1_PI;
     } else {
-        s->w = v3_around(v3_make(0, 0, 1), 1.0 - 2.0 * u1, 2.0 * TR_PI * u2);
-        s->pdf = l->select * TR_INV_4PI;
+        s->w = lucent_around(v3_make(0, 0, 1), 1.0 - 2.0 * u1, 2.0 * M_PI * u2);
+        s->pdf = l->select * (0.25 * M_1_PI);
     }
     s->dist = INFINITY;
 }
@@ -136,7 +136,7 @@ bool tr_light_sample_from(const tr_light *l, v3 p, v3 n, double u1, double u2, t
         if (!l->delta) s->pdf = l->select / l->solid_angle;
     } else if (l->type == LUCENT_LIGHT_POINT) {
         v3 to = v3_sub(l->position, p);
-        s->dist = v3_len(to);
+        s->dist = v3_length(to);
         if (!(s->dist > 0)) return false;
         s->w = v3_scale(to, 1.0 / s->dist);
         scale = 1.0 / (s->dist * s->dist);
@@ -158,13 +158,13 @@ double tr_light_pdf(const tr_light *l, v3 p, v3 n, v3 w)
     if (l->type == LUCENT_LIGHT_DIRECTIONAL)
         return v3_dot(w, l->toward) >= l->cos_cone ? l->select / l->solid_angle : 0;
     if (l->type == LUCENT_LIGHT_ENVIRONMENT)
-        return surface ? l->select * v3_dot(w, n) * TR_INV_PI : l->select * TR_INV_4PI;
+        return surface ? l->select * v3_dot(w, n) * M_1_PI : l->select * (0.25 * M_1_PI);
     v3 to = v3_sub(l->position, p);
-    double dc = v3_len(to);
+    double dc = v3_length(to);
     if (!(dc > l->radius)) return 0;
     double sin_max = l->radius / dc, cos_max = sqrt(fmax(0.0, 1.0 - sin_max * sin_max));
     if (v3_dot(w, to) < cos_max * dc) return 0;
-    return l->select / (2.0 * TR_PI * sin_max * sin_max / (1.0 + cos_max));
+    return l->select / (2.0 * M_PI * sin_max * sin_max / (1.0 + cos_max));
 }
 
 void tr_lights_escaped(const lucent_tracer *tr, v3 w, tr_light_fn fn, void *ctx)

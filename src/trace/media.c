@@ -1,31 +1,9 @@
-/* Homogeneous media: the Henyey-Greenstein phase function (Henyey & Greenstein 1941,
- * "Diffuse radiation in the galaxy", ApJ 93, eq. 3)
- *   p(mu) = (1 - g^2) / (4 pi (1 + g^2 - 2 g mu)^(3/2)),
- * mu the cosine between the travel directions before and after scattering, and its sampling by
- * inverting the cumulative distribution:
- *   mu = (1 + g^2 - ((1 - g^2) / (1 - g + 2 g u))^2) / (2 g)   (mu = 2u - 1 for g = 0).
- * Free flights and the hero-channel weights live in integrator.c, where the path state is. */
+/* Homogeneous media: the walk's sampling. The Henyey-Greenstein phase function and its sampling
+ * are the library's one copy in base/optics.h (lucent_hg_phase, lucent_hg_sample). Free flights and
+ * the hero-channel weights live in integrator.c, where the path state is. */
 #include <math.h>
 
 #include "trace/internal.h"
-
-double tr_hg_eval(double mu, double g)
-{
-    double k = 1.0 + g * g - 2.0 * g * mu;
-    return TR_INV_4PI * (1.0 - g * g) / (k * sqrt(k));
-}
-
-v3 tr_hg_sample(v3 d, double g, double u1, double u2)
-{
-    double mu;
-    if (fabs(g) < 1e-6) {
-        mu = 2.0 * u1 - 1.0;
-    } else {
-        double q = (1.0 - g * g) / (1.0 - g + 2.0 * g * u1);
-        mu = (1.0 + g * g - q * q) / (2.0 * g);
-    }
-    return v3_around(d, fmax(-1.0, fmin(1.0, mu)), 2.0 * TR_PI * u2);
-}
 
 /* ---- the walk's sampling: an exponential transform up the fluence gradient ----
  * A camera path's vertex at x finds light in proportion to the fluence phi there. Modelling phi as
@@ -42,8 +20,8 @@ v3 tr_hg_sample(v3 d, double g, double u1, double u2)
 
 static double b_pdf(double b, double mu)
 {
-    if (b < 1e-6) return TR_INV_4PI;
-    return b / (2.0 * TR_PI * (1.0 - b * mu) * log((1.0 + b) / (1.0 - b)));
+    if (b < 1e-6) return 0.25 * M_1_PI;
+    return b / (2.0 * M_PI * (1.0 - b * mu) * log((1.0 + b) / (1.0 - b)));
 }
 
 static double mix_of(const tr_object *ob, const tr_transform *tf, int k)
@@ -58,14 +36,14 @@ double tr_walk_sigma(const tr_object *ob, const tr_transform *tf, int k, v3 w)
 
 double tr_walk_pdf(const tr_object *ob, const tr_transform *tf, int k, v3 d_in, v3 w)
 {
-    double m = mix_of(ob, tf, k), p = m < 1.0 ? tr_hg_eval(v3_dot(d_in, w), ob->g[k]) : 0.0;
+    double m = mix_of(ob, tf, k), p = m < 1.0 ? lucent_hg_phase(v3_dot(d_in, w), ob->g[k]) : 0.0;
     return m > 0 ? (1.0 - m) * p + m * b_pdf(tf->b[k], v3_dot(w, tf->u[k])) : p;
 }
 
 v3 tr_walk_sample(const tr_object *ob, const tr_transform *tf, int k, v3 d_in, double u0, double u1, double u2)
 {
     double m = mix_of(ob, tf, k), b = tf->b[k];
-    if (!(m > 0) || u0 >= m) return tr_hg_sample(d_in, ob->g[k], u1, u2);
+    if (!(m > 0) || u0 >= m) return lucent_hg_sample(d_in, ob->g[k], u1, u2);
     double mu = b < 1e-6 ? 2.0 * u1 - 1.0 : (1.0 - pow(1.0 + b, 1.0 - u1) * pow(1.0 - b, u1)) / b;
-    return v3_around(tf->u[k], fmax(-1.0, fmin(1.0, mu)), 2.0 * TR_PI * u2);
+    return lucent_around(tf->u[k], fmax(-1.0, fmin(1.0, mu)), 2.0 * M_PI * u2);
 }

@@ -93,7 +93,7 @@ void tr_nee_volume_matched(tr_path *p, v3 x)
     for (int k = 0; k < 3; k++) {
         double walk = ls.delta ? 0.0 : tr_walk_pdf(ob, &tf, k, p->d, ls.w) * Tw[k];
         den += p->r[k] * (ls.pdf + walk);
-        v[k] = p->beta[k] * tr_hg_eval(mu, ob->g[k]) * ls.le[k] * T[k];
+        v[k] = p->beta[k] * lucent_hg_phase(mu, ob->g[k]) * ls.le[k] * T[k];
     }
     den /= 3.0;
     if (!(den > 0)) return;

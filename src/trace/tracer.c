@@ -3,18 +3,10 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "trace/field.h"
 #include "trace/film.h"
 #include "trace/internal.h"
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* The share of the fluence gradient the walk follows (media.c, field.c): measured on the benchmark
  * sphere, 0.7 beats 0 (the analog walk) and 1 (variance of the dark half 1.3x lower than either). */
@@ -163,7 +155,7 @@ static lucent_status resolve(const lucent_tracer *tr, const lucent_trace_desc *i
 
 static bool should_stop(const lucent_tracer *tr, const lucent_trace_desc *d, double start)
 {
-    if (d->time_limit > 0 && now() - start >= d->time_limit) return true;
+    if (d->time_limit > 0 && lucent_clock_seconds() - start >= d->time_limit) return true;
     return d->target_error > 0 && tr->film->passes >= 16 && tr_film_error_rms(tr->film) <= d->target_error;
 }
 
@@ -174,7 +166,7 @@ lucent_status lucent_tracer_render(lucent_tracer *tr, const lucent_trace_desc *d
     lucent_trace_desc d;
     lucent_status s = resolve(tr, desc, &d);
     if (s != LUCENT_OK) return s;
-    double start = now(); /* the guiding field's pre-pass counts as rendering time */
+    double start = lucent_clock_seconds(); /* the guiding field's pre-pass counts as rendering time */
     if (!tr->fields && tr->walk_strength > 0 && (s = tr_field_build(tr, d.pool)) != LUCENT_OK) return s;
     tr->film->seed = d.seed;
     uint64_t per_pass = (uint64_t)tr->render.view.width * (uint64_t)tr->render.view.height * (tr->desc.adaptive ? 5 : 1);
@@ -184,6 +176,6 @@ lucent_status lucent_tracer_render(lucent_tracer *tr, const lucent_trace_desc *d
         if (should_stop(tr, &d, start)) break;
     }
     lucent_progress_end(progress);
-    tr->film->seconds += now() - start;
+    tr->film->seconds += lucent_clock_seconds() - start;
     return s == LUCENT_OK ? tr_film_result(tr->film, dest) : s;
 }

@@ -1,7 +1,6 @@
 /* Textures, framebuffers, read-back and GPU timer queries. */
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "gl/core/gpu.h"
 
@@ -80,19 +79,12 @@ lucent_status gl_read_image(GLuint fbo, int attachment, int width, int height, i
 
 /* ---- timer queries ---- */
 
-double gl_now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
-
 void gl_timer_begin(gl_timer *t)
 {
     if (!t->created) glGenQueries(LUCENT_RENDER_MAX_PASSES + 1, t->queries);
     t->created = true;
     t->count = 0;
-    t->cpu_start = gl_now_ms();
+    t->cpu_start = lucent_clock_ms();
     glQueryCounter(t->queries[0], GL_TIMESTAMP);
 }
 
@@ -106,7 +98,7 @@ void gl_timer_mark(gl_timer *t, const char *name)
 void gl_timer_end(gl_timer *t, lucent_frame_times *dest)
 {
     glFinish();
-    double cpu = gl_now_ms() - t->cpu_start;
+    double cpu = lucent_clock_ms() - t->cpu_start;
     memset(dest, 0, sizeof *dest);
     GLuint64 stamp[LUCENT_RENDER_MAX_PASSES + 1];
     for (int i = 0; i <= t->count; i++) glGetQueryObjectui64v(t->queries[i], GL_QUERY_RESULT, &stamp[i]);
@@ -124,23 +116,4 @@ void gl_timer_free(gl_timer *t)
 {
     if (t->created) glDeleteQueries(LUCENT_RENDER_MAX_PASSES + 1, t->queries);
     t->created = false;
-}
-
-/* ---- 4x4 matrices ---- */
-
-void gl_mat4_mul(const double a[16], const double b[16], double dest[16])
-{
-    double t[16];
-    for (int c = 0; c < 4; c++)
-        for (int r = 0; r < 4; r++) {
-            double s = 0;
-            for (int k = 0; k < 4; k++) s += a[4 * k + r] * b[4 * c + k];
-            t[4 * c + r] = s;
-        }
-    memcpy(dest, t, sizeof t);
-}
-
-void gl_mat4_to_float(const double m[16], float dest[16])
-{
-    for (int i = 0; i < 16; i++) dest[i] = (float)m[i];
 }

@@ -47,11 +47,5 @@ void gl_timer_mark(gl_timer *t, const char *name);
 void gl_timer_end(gl_timer *t, lucent_frame_times *dest);
 void gl_timer_free(gl_timer *t);
 
-/* Monotonic wall clock in milliseconds. */
-double gl_now_ms(void);
-
-/* ---- small double-precision 4x4 helpers (column-major) ---- */
-void gl_mat4_mul(const double a[16], const double b[16], double dest[16]);
-void gl_mat4_to_float(const double m[16], float dest[16]);
 
 #endif

@@ -1,17 +1,17 @@
 /* CPU reference of the Lambert and CDRF shading with the specular lobe (see reference.h). */
 #include <math.h>
 
+#include "base/vec3.h"
 #include "gl/reference/reference.h"
 
 static double dot3(const double *a, const double *b)
 {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    return v3_dot(v3_load(a), v3_load(b));
 }
 
 static void normalise3(double *a)
 {
-    double l = sqrt(dot3(a, a));
-    if (l > 0) a[0] /= l, a[1] /= l, a[2] /= l;
+    v3_store(v3_normalize(v3_load(a)), a);
 }
 
 double gl_ref_lut(const lucent_image *lut, double sigma_max, double cos_theta, double sigma)
