@@ -239,13 +239,15 @@ static void write_column(FILE *f, const char *head, const double *v, int n, doub
     fputc('\n', f);
 }
 
-/* A 2-D array, row-major, 5 numbers per line (MCML's layout). */
+/* A 2-D array, row-major, 5 numbers per line (MCML's layout); value i is scaled by k, and by
+ * col[i % cols] when col is given. */
 static void write_grid(FILE *f, const char *comment, const char *head, const double *v, size_t n,
-                       double k)
+                       double k, const double *col, size_t cols)
 {
     fprintf(f, "%s%s\n", comment, head);
     for (size_t i = 0; i < n; i++)
-        fprintf(f, "%12.4E%s", v ? v[i] * k : 0.0, (i + 1) % 5 == 0 || i + 1 == n ? "\n" : " ");
+        fprintf(f, "%12.4E%s", v ? v[i] * k * (col ? col[i % cols] : 1.0) : 0.0,
+                (i + 1) % 5 == 0 || i + 1 == n ? "\n" : " ");
     fputc('\n', f);
 }
 
@@ -258,13 +260,13 @@ static void write_inparm(FILE *f, const lucent_mcml_run *run, const lucent_mc_de
     fprintf(f, "%d\t%d\t%d\t# No. of dz, dr, da.\n\n", d->grid.nz, d->grid.nr, d->grid.na);
     fprintf(f, "%d\t\t\t\t# Number of layers\n", d->layer_count);
     fprintf(f, "#n\tmua\tmus\tg\td\t# One line for each layer\n");
-    fprintf(f, "%G\t\t\t\t# n for medium above\n", d->n_above);
+    fprintf(f, "%G\t\t\t\t# n for medium above\n", d->n_above > 0 ? d->n_above : 1.0);
     for (int i = 0; i < d->layer_count; i++) {
         const lucent_mc_layer *l = &d->layers[i];
-        fprintf(f, "%G\t%G\t%G\t%G\t%G\t# layer %d\n", l->n, l->sigma_a * CM, l->sigma_s * CM, l->g,
+        fprintf(f, "%G\t%G\t%G\t%G\t%G\t# layer %d\n", l->n > 0 ? l->n : 1.0, l->sigma_a * CM, l->sigma_s * CM, l->g,
                 l->thickness / CM, i + 1);
     }
-    fprintf(f, "%G\t\t\t\t# n for medium below\n\n", d->n_below);
+    fprintf(f, "%G\t\t\t\t# n for medium below\n\n", d->n_below > 0 ? d->n_below : 1.0);
 }
 
 /* The last radial / depth bins hold everything beyond the grid when the run collected it there
@@ -280,8 +282,9 @@ static void fold_beyond(const lucent_mc_result *r, double *rd_r, double *tt_r, d
     a_z[nz - 1] += r->a_z_beyond / r->grid.dz;
 }
 
+/* per_cos[j] = mcml_2d_per_lucent(j, na): the angular 2-D arrays' factor. */
 static void write_results(FILE *f, const lucent_mc_result *r, double *rd_r, double *tt_r,
-                          double *a_z)
+                          double *a_z, const double *per_cos)
 {
     int nr = r->grid.nr, nz = r->grid.nz, na = r->grid.na;
     fprintf(f, "RAT #Reflectance, absorption, transmission. \n");
@@ -295,31 +298,33 @@ static void write_results(FILE *f, const lucent_mc_result *r, double *rd_r, doub
     /* densities: per mm^k -> per cm^k */
     write_column(f, "A_z #A[0], [1],..A[nz-1]. [1/cm]", a_z, nz, CM);
     write_column(f, "Rd_r #Rd[0], [1],..Rd[nr-1]. [1/cm2]", rd_r, nr, CM * CM);
-    write_column(f, "Rd_a #Rd[0], [1],..Rd[na-1]. [sr-1]", r->rd_a, na, 1.0);
+    double k_a = mcml_1d_per_lucent(na);
+    write_column(f, "Rd_a #Rd[0], [1],..Rd[na-1]. [sr-1]", r->rd_a, na, k_a);
     write_column(f, "Tt_r #Tt[0], [1],..Tt[nr-1]. [1/cm2]", tt_r, nr, CM * CM);
-    write_column(f, "Tt_a #Tt[0], [1],..Tt[na-1]. [sr-1]", r->tt_a, na, 1.0);
+    write_column(f, "Tt_a #Tt[0], [1],..Tt[na-1]. [sr-1]", r->tt_a, na, k_a);
     write_grid(f,
                "# A[r][z]. [1/cm3]\n# A[0][0], [0][1],..[0][nz-1]\n# A[1][0], [1][1],..[1][nz-1]\n"
                "# ...\n# A[nr-1][0], [nr-1][1],..[nr-1][nz-1]\n",
-               "A_rz", r->a_rz, (size_t)nr * (size_t)nz, CM * CM * CM);
+               "A_rz", r->a_rz, (size_t)nr * (size_t)nz, CM * CM * CM, NULL, 1);
     write_grid(f,
                "# Rd[r][angle]. [1/(cm2sr)].\n# Rd[0][0], [0][1],..[0][na-1]\n"
                "# Rd[1][0], [1][1],..[1][na-1]\n# ...\n# Rd[nr-1][0], [nr-1][1],..[nr-1][na-1]\n",
-               "Rd_ra", r->rd_ra, (size_t)nr * (size_t)na, CM * CM);
+               "Rd_ra", r->rd_ra, (size_t)nr * (size_t)na, CM * CM, per_cos, (size_t)na);
     write_grid(f,
                "# T[r][angle]. [1/(cm2sr)].\n# T[0][0], [0][1],..[0][na-1]\n"
                "# T[1][0], [1][1],..[1][na-1]\n# ...\n# T[nr-1][0], [nr-1][1],..[nr-1][na-1]\n",
-               "Tt_ra", r->tt_ra, (size_t)nr * (size_t)na, CM * CM);
+               "Tt_ra", r->tt_ra, (size_t)nr * (size_t)na, CM * CM, per_cos, (size_t)na);
 }
 
 lucent_status lucent_mcml_write(const char *path, const lucent_mcml_run *run,
                                 const lucent_mc_result *result)
 {
     const lucent_mc_result *r = result;
-    size_t nr = (size_t)r->grid.nr, nz = (size_t)r->grid.nz;
-    double *buf = malloc((2 * nr + nz) * sizeof *buf);
+    size_t nr = (size_t)r->grid.nr, nz = (size_t)r->grid.nz, na = (size_t)r->grid.na;
+    double *buf = malloc((2 * nr + nz + na) * sizeof *buf);
     if (!buf) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
-    double *rd_r = buf, *tt_r = buf + nr, *a_z = buf + 2 * nr;
+    double *rd_r = buf, *tt_r = buf + nr, *a_z = buf + 2 * nr, *per_cos = buf + 2 * nr + nz;
+    for (size_t j = 0; j < na; j++) per_cos[j] = mcml_2d_per_lucent((int)j, (int)na);
     memcpy(rd_r, r->rd_r, nr * sizeof *buf);
     memcpy(tt_r, r->tt_r, nr * sizeof *buf);
     memcpy(a_z, r->a_z, nz * sizeof *buf);
@@ -339,7 +344,7 @@ lucent_status lucent_mcml_write(const char *path, const lucent_mcml_run *run,
             LUCENT_VERSION_STRING, r->batches, r->rd, r->rd_se, r->a, r->a_se, r->tt, r->tt_se,
             r->a_rz ? "" : "\n# A(r,z) was not scored: A_rz holds zeros.");
     write_inparm(f, run, &run->desc);
-    write_results(f, r, rd_r, tt_r, a_z);
+    write_results(f, r, rd_r, tt_r, a_z, per_cos);
     free(buf);
     if (ferror(f)) {
         lucent_atomic_abort(af);
