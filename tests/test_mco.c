@@ -149,15 +149,25 @@ TEST(malformed_files_name_the_line)
         CHECK(m.a_z == NULL && m.run.layers == NULL);
         free(text);
     }
-    /* cut inside A_rz (line 130 on), and with the 1-D section Tt_a gone */
+    /* cut inside A_rz (line 130 on: 600 values, 13 characters each), and with the 1-D section
+     * Tt_a gone */
     char *cut = strdup(good);
     cut[strstr(cut, "\nA_rz\n") - cut + 400] = '\0';
     lucent_mco m;
+    CHECK_ERR(lucent_mco_parse(cut, "t.mco", &m), LUCENT_ERR_PARSE,
+              "line 130: A_rz: the rest of the file is too short for 600 values (nr x nz)");
+    strcpy(cut, good);
+    cut[strstr(cut, "\nA_rz\n") - cut + 1300] = '\0';
     CHECK_ERR(lucent_mco_parse(cut, "t.mco", &m), LUCENT_ERR_PARSE,
               "unexpected end of file, expected A_rz: 600 values (nr x nz)");
     cut[strstr(cut, "\nTt_a #") - cut + 1] = '\0';
     CHECK_ERR(lucent_mco_parse(cut, "t.mco", &m), LUCENT_ERR_PARSE,
               "line 118: unexpected end of file: missing the section Tt_a");
+    /* a short file naming a huge grid is refused before anything large is allocated */
+    CHECK_ERR(lucent_mco_parse("A1\nInParm\nx.mco A\n10\n0.01 0.01\n200 100000 1\n1\n1\n"
+                               "1 1 1 0 1\n1\nRAT\n0\n0\n0\n1\nA_rz\n1\n", "t.mco", &m),
+              LUCENT_ERR_PARSE,
+              "line 16: A_rz: the rest of the file is too short for 20000000 values (nr x nz)");
     CHECK_ERR(lucent_mco_parse("", "t.mco", &m), LUCENT_ERR_PARSE,
               "t.mco: line 1: unexpected end of file, expected the format version (A1)");
     CHECK_ERR(lucent_mco_read(MCO "absent.mco", &m), LUCENT_ERR_IO, "absent.mco");

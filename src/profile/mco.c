@@ -125,6 +125,10 @@ static lucent_status read_section(mcml_reader *r, lucent_mco *m, int id, const s
         if (s == LUCENT_OK) m->rsp = v[0], m->rd = v[1], m->a = v[2], m->tt = v[3];
         return s;
     }
+    /* each value takes two characters at least: a short file cannot make us allocate much */
+    if (spec->count > strlen(r->p) / 2 + 1)
+        return mcml_fail(r, "%s: the rest of the file is too short for %zu values (%s)",
+                         k_section[id], spec->count, spec->count_name);
     double *v = malloc((spec->count ? spec->count : 1) * sizeof *v);
     if (!v) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
     *spec->dest = v;
