@@ -50,7 +50,6 @@ typedef struct options {
     const char *compare; /* the .mco to compare with */
     const char *csv, *json;
     unsigned long long seed, photons;
-    bool seed_given;
 } options;
 
 static bool parse_seed(const char *text, unsigned long long *dest)
@@ -74,10 +73,7 @@ static int parse_count(const char *name, const char *v, unsigned long long *dest
 static int parse_option(int argc, char **argv, int *i, options *o)
 {
     const char *v;
-    if (cli_option(argc, argv, i, "--seed", &v)) {
-        o->seed_given = true;
-        return parse_count("--seed", v, &o->seed, false);
-    }
+    if (cli_option(argc, argv, i, "--seed", &v)) return parse_count("--seed", v, &o->seed, false);
     if (cli_option(argc, argv, i, "--photons", &v)) return parse_count("--photons", v, &o->photons, true);
     struct { const char *name; const char **dest; const char *what; } files[] = {
         {"--out-dir", &o->out_dir, "a directory"},
