@@ -16,7 +16,7 @@ for t in material mcml image scene; do
 done
 mkdir -p "$out/corpus_material" "$out/corpus_mcml" "$out/corpus_image" "$out/corpus_scene"
 cp tests/fixtures/materials/*.json data/materials.json "$out/corpus_material/" 2>/dev/null || true
-cp tests/fixtures/mcml/*.mci "$out/corpus_mcml/" 2>/dev/null || true
+cp tests/fixtures/mcml/*.mci tests/fixtures/mcml/mco/*.mco "$out/corpus_mcml/" 2>/dev/null || true
 cp data/scenes/*.json tests/fixtures/scenes/*.json "$out/corpus_scene/" 2>/dev/null || true
 for t in material mcml image scene; do
   echo "== fuzz_$t for ${secs}s"

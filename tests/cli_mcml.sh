@@ -76,4 +76,45 @@ expect_fail 2 "missing the input file" -- "$LUCENT" mcml
 expect_fail 2 "unknown option '--frobnicate'" -- "$LUCENT" mcml "$MCI/vanhulst.mci" --frobnicate
 expect_fail 2 "--seed needs a whole number" -- "$LUCENT" mcml "$MCI/vanhulst.mci" --seed x
 expect_fail 2 "one input file" -- "$LUCENT" mcml a.mci b.mci
+# ---- --compare: Lucent against real MCML 1.2.2 output (tests/fixtures/mcml/mco/README.md) ----
+MCO=$MCI/mco
+mkdir -p "$TMP/cmp"
+expect_ok -- "$LUCENT" mcml --compare "$MCO/gcontrast_small.mco" --threads 1 -q \
+  --csv "$TMP/cmp/c.csv" --json "$TMP/cmp/c.json"
+for section in Rsp RAT A_l A_z Rd_r Rd_a Tt_r Tt_a summary:; do
+  expect_true "--compare prints the section $section" -- grep -q "^$section " <<<"$OUT"
+done
+expect_true "--compare runs as many photons as MCML did and estimates MCML's SE from Lucent's" -- \
+  grep -q "^Lucent (20000 photons, seed 1) against .*gcontrast_small.mco (MCML, 20000 photons)" <<<"$OUT"
+expect_true "Rd, A and Tt are given in standard errors" -- \
+  awk '$1 == "RAT" && $2 == "Rd" && $0 ~ / SE/ { f = 1 } END { exit !f }' <<<"$OUT"
+expect_true "the CSV has a row per bin: 1 + 1 + 3 + 2 + 30 + 20 + 5 + 20 + 5 lines" -- \
+  test "$(wc -l < "$TMP/cmp/c.csv")" = 87
+expect_true "the JSON has the summary" -- grep -q '"beyond_3se"' "$TMP/cmp/c.json"
+expect_ok -- "$LUCENT" mcml "$MCO/gcontrast_small.mci" --compare "$MCO/gcontrast_small.mco" \
+  --photons 40000 --seed 3 --threads 2
+expect_true "an .mci describing the .mco runs; --photons and --seed are Lucent's" -- \
+  grep -q "^Lucent (40000 photons, seed 3) against" <<<"$OUT"
+expect_true "MCML's SE is Lucent's x sqrt(40000 / 20000)" -- grep -q "Lucent's x 1.414" <<<"$OUT"
+# a wrong total stands out
+sed 's/^0.566199 /0.6 /' "$MCO/gcontrast_small.mco" > "$TMP/cmp/wrong_rd.mco"
+expect_ok -- "$LUCENT" mcml --compare "$TMP/cmp/wrong_rd.mco" --threads 2
+expect_true "Rd 0.6 instead of 0.5662 is beyond 3 SE" -- \
+  awk '$1 == "RAT" && $2 == "Rd" && /beyond 3 SE/ { f = 1 } END { exit !f }' <<<"$OUT"
+# an .mci of another simulation, malformed .mco files: exit 1, file and line named, nothing written
+expect_fail 1 "vanhulst.mci: no run describes the simulation of $MCO/gcontrast_small.mco (run 1: the number of layers is 1, the .mco's is 2)" -- \
+  "$LUCENT" mcml "$MCI/vanhulst.mci" --compare "$MCO/gcontrast_small.mco" --csv "$TMP/cmp/x.csv"
+head -n 100 "$MCO/gcontrast_small.mco" > "$TMP/cmp/cut.mco"
+expect_fail 1 "$TMP/cmp/cut.mco: line 101: unexpected end of file, expected Tt_r: 20 values (nr)" -- \
+  "$LUCENT" mcml --compare "$TMP/cmp/cut.mco" --csv "$TMP/cmp/x.csv"
+sed 's/^  2.3516E+00$/  2.3516E+0x/' "$MCO/gcontrast_small.mco" > "$TMP/cmp/bad.mco"
+expect_fail 1 "$TMP/cmp/bad.mco: line 37: A_z: value 2: expected a number, got '2.3516E+0x'" -- \
+  "$LUCENT" mcml --compare "$TMP/cmp/bad.mco" --json "$TMP/cmp/x.json"
+expect_no_file "$TMP/cmp/x.csv" "$TMP/cmp/x.json"
+expect_fail 1 "$MCO/absent.mco" -- "$LUCENT" mcml --compare "$MCO/absent.mco"
+expect_fail 1 "$TMP/missing/c.csv" -- "$LUCENT" mcml --compare "$MCO/gcontrast_small.mco" --csv "$TMP/missing/c.csv"
+expect_fail 2 "--csv goes with --compare" -- "$LUCENT" mcml "$MCI/vanhulst.mci" --csv "$TMP/cmp/x.csv"
+expect_fail 2 "--out-dir does not go with --compare" -- "$LUCENT" mcml --compare "$MCO/gcontrast_small.mco" --out-dir "$TMP"
+expect_fail 2 "--photons needs a whole number in [1, 1e12]" -- "$LUCENT" mcml --compare "$MCO/gcontrast_small.mco" --photons 0
+expect_fail 2 "--compare needs an MCML output file" -- "$LUCENT" mcml --compare
 fi

@@ -10,6 +10,7 @@
 #include "lucent/kernel.h"
 #include "lucent/material.h"
 #include "lucent/mc.h"
+#include "lucent/mcml.h"
 #include "lucent/mesh.h"
 #include "lucent/profile.h"
 #include "lucent/render.h"
