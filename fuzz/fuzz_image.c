@@ -18,7 +18,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
     fwrite(data + 1, 1, size - 1, f);
     fclose(f);
     lucent_image *img = NULL;
-    if (lucent_image_read(path, &img) == LUCENT_OK) lucent_image_destroy(img);
+    if (lucent_image_load(path, &img) == LUCENT_OK) lucent_image_destroy(img);
     unlink(path);
     return 0;
 }

@@ -83,9 +83,9 @@ TEST(collomb_closed_form)
     CHECK_NEAR(lucent_cdrf_collomb(M_PI, 3), 0, 0);
     CHECK_NEAR(lucent_cdrf_eval(LUCENT_CDRF_COLLOMB, -1, 1), lucent_cdrf_collomb(1, 1), 0);
     lucent_cdrf_variant v;
-    CHECK(lucent_cdrf_variant_parse("collomb", &v) && v == LUCENT_CDRF_COLLOMB);
-    CHECK(lucent_cdrf_variant_parse("kubo", &v) && v == LUCENT_CDRF_KUBO);
-    CHECK(!lucent_cdrf_variant_parse("lambert", &v));
+    CHECK(lucent_cdrf_variant_parse("collomb", &v) == LUCENT_OK && v == LUCENT_CDRF_COLLOMB);
+    CHECK(lucent_cdrf_variant_parse("kubo", &v) == LUCENT_OK && v == LUCENT_CDRF_KUBO);
+    CHECK_ERR(lucent_cdrf_variant_parse("lambert", &v), LUCENT_ERR_INVALID_ARGUMENT, "lambert", "kubo, collomb");
     CHECK(strcmp(lucent_cdrf_variant_name(LUCENT_CDRF_COLLOMB), "collomb") == 0);
 }
 
@@ -163,7 +163,7 @@ TEST(lut_files)
     static const char *const names[] = {"lut.exr", "lut.pfm"};
     for (int k = 0; k < 2; k++) {
         CHECK_OK(lucent_cdrf_lut_write(test_path(names[k]), lut, 2, NULL));
-        CHECK_OK(lucent_image_read(test_path(names[k]), &back));
+        CHECK_OK(lucent_image_load(test_path(names[k]), &back));
         if (!back) continue;
         CHECK(back->width == 17 && back->height == 9);
         for (int i = 0; i < 17 * 9; i++) CHECK_NEAR(back->data[i * back->channels], lut->data[i], 0);

@@ -566,8 +566,8 @@ TEST(errors_name_the_parameter)
     CHECK_ERR(lucent_convolve_taps(src, &taps, LUCENT_BORDER_CLAMP, NULL, small),
               LUCENT_ERR_INVALID_ARGUMENT, "dest");
     lucent_border b = LUCENT_BORDER_CLAMP;
-    CHECK(lucent_border_parse("zero", &b) && b == LUCENT_BORDER_ZERO);
-    CHECK(!lucent_border_parse("wrap", &b));
+    CHECK(lucent_border_parse("zero", &b) == LUCENT_OK && b == LUCENT_BORDER_ZERO);
+    CHECK_ERR(lucent_border_parse("wrap", &b), LUCENT_ERR_INVALID_ARGUMENT, "wrap", "clamp, zero");
     CHECK(strcmp(lucent_border_name(LUCENT_BORDER_CLAMP), "clamp") == 0);
     lucent_image_destroy(src);
     lucent_image_destroy(small);

@@ -189,9 +189,9 @@ TEST(kernel_eval_on_an_impulse)
     lucent_image *exact = NULL, *model = NULL;
     char path[700];
     snprintf(path, sizeof path, "%s/exact.exr", dir);
-    CHECK_OK(lucent_image_read(path, &exact));
+    CHECK_OK(lucent_image_load(path, &exact));
     snprintf(path, sizeof path, "%s/svd-r2.exr", dir);
-    CHECK_OK(lucent_image_read(path, &model));
+    CHECK_OK(lucent_image_load(path, &model));
     for (int c = 0; exact && model && c < 3; c++) {
         double energy = 0;
         for (int i = 0; i < 64 * 64; i++) energy += exact->data[i * 3 + c];

@@ -85,7 +85,7 @@ static void check_method(const lucent_compare_scene_result *sr, int k, const cha
     for (char *p = stem; *p; p++) *p = *p == ':' ? '-' : *p;
     snprintf(path, sizeof path, "%s/test-sphere/%s.exr", dir, stem);
     lucent_image *img = NULL;
-    CHECK_OK(lucent_image_read(path, &img));
+    CHECK_OK(lucent_image_load(path, &img));
     if (!img) return;
     const lucent_image *ref = sr->reference->image;
     double e = hand_rel_rms(img, ref, mask, -1);
@@ -102,7 +102,7 @@ static void check_method(const lucent_compare_scene_result *sr, int k, const cha
     CHECK(m->frame_ms > 0 && sr->times[k].pass_count > 0);
     snprintf(path, sizeof path, "%s/test-sphere/%s-error.png", dir, stem);
     lucent_image *heat = NULL;
-    CHECK_OK(lucent_image_read(path, &heat));
+    CHECK_OK(lucent_image_load(path, &heat));
     lucent_image_destroy(heat);
     lucent_image_destroy(img);
 }
@@ -143,7 +143,7 @@ TEST(compare_run_errors_are_the_relative_rms_over_the_mask)
     for (int k = 0; root && k < 2; k++) check_method(sr, k, dir, mask, noise, root);
     lucent_image *written = NULL; /* the reference file is the reference measured against */
     snprintf(path, sizeof path, "%s/test-sphere/reference.exr", dir);
-    CHECK_OK(lucent_image_read(path, &written));
+    CHECK_OK(lucent_image_load(path, &written));
     CHECK(written && !memcmp(written->data, ref->data, (size_t)ref->width * ref->height * 3 * sizeof(float)));
     lucent_image_destroy(written);
     cJSON_Delete(root);

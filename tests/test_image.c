@@ -150,10 +150,11 @@ TEST(tonemap_operators)
     CHECK(lucent_tonemap_value(LUCENT_TONEMAP_CLAMP, NAN) == 0.0f);
     CHECK(lucent_tonemap_value(LUCENT_TONEMAP_NONE, 2.0f) == 2.0f);
     lucent_tonemap_op op;
-    CHECK(lucent_tonemap_op_parse("filmic", &op) && op == LUCENT_TONEMAP_FILMIC);
-    CHECK(!lucent_tonemap_op_parse("aces", &op));
+    CHECK(lucent_tonemap_op_parse("filmic", &op) == LUCENT_OK && op == LUCENT_TONEMAP_FILMIC);
+    CHECK_ERR(lucent_tonemap_op_parse("aces", &op), LUCENT_ERR_INVALID_ARGUMENT, "aces", "reinhard");
     for (int i = 0; i < 4; i++) /* the names the sidecar writes read back */
-        CHECK(lucent_tonemap_op_parse(lucent_tonemap_op_name((lucent_tonemap_op)i), &op) && op == (lucent_tonemap_op)i);
+        CHECK(lucent_tonemap_op_parse(lucent_tonemap_op_name((lucent_tonemap_op)i), &op) == LUCENT_OK &&
+              op == (lucent_tonemap_op)i);
     CHECK(!strcmp(lucent_tonemap_op_name((lucent_tonemap_op)7), "unknown"));
 
     lucent_image *img;
@@ -178,7 +179,7 @@ static void check_png_roundtrip(int ch, int bits, bool linear)
     const char *path = test_path(bits == 8 ? "rt8.png" : "rt16.png");
     lucent_image_write_desc d = {.png_bits = bits, .png_linear = linear};
     CHECK_OK(lucent_image_write(path, img, &d));
-    CHECK_OK(lucent_image_read(path, &back));
+    CHECK_OK(lucent_image_load(path, &back));
     if (!back) return lucent_image_destroy(img);
     CHECK(back->width == 13 && back->height == 7 && back->channels == ch);
     double step = bits == 8 ? 1.0 / 255 : 1.0 / 65535, worst = 0;
@@ -249,7 +250,7 @@ TEST(png_palette_written_by_libpng)
     const char *path = test_path("palette.png");
     CHECK(write_raw_png(path, 2, 2, 2, PNG_COLOR_TYPE_PALETTE, rows, palette_chunks));
     lucent_image *img = NULL;
-    CHECK_OK(lucent_image_read(path, &img));
+    CHECK_OK(lucent_image_load(path, &img));
     if (!img) return;
     CHECK(img->channels == 4 && img->width == 2 && img->height == 2);
     CHECK_NEAR(lucent_image_get(img, 1, 0, 0), 1.0, 1e-6);        /* red */
@@ -279,7 +280,7 @@ TEST(png_grey_formats_written_by_libpng)
     const char *path = test_path("ga16.png");
     CHECK(write_raw_png(path, 2, 1, 16, PNG_COLOR_TYPE_GRAY_ALPHA, ga, linear_gamma_chunk));
     lucent_image *img = NULL;
-    CHECK_OK(lucent_image_read_png(path, &img));
+    CHECK_OK(lucent_image_load_png(path, &img));
     if (img) {
         CHECK(img->channels == 4);
         CHECK_NEAR(img->data[0], 32768.0 / 65535, 1e-7); /* linear, by the gAMA chunk */
@@ -291,7 +292,7 @@ TEST(png_grey_formats_written_by_libpng)
     const png_byte bits1[1] = {0x50};
     path = test_path("grey1.png");
     CHECK(write_raw_png(path, 4, 1, 1, PNG_COLOR_TYPE_GRAY, bits1, grey_trns_chunk));
-    CHECK_OK(lucent_image_read_png(path, &img));
+    CHECK_OK(lucent_image_load_png(path, &img));
     if (img) {
         CHECK(img->channels == 4 && img->width == 4);
         CHECK(img->data[3] == 0.0f && img->data[4] == 1.0f && img->data[7] == 1.0f);
@@ -301,7 +302,7 @@ TEST(png_grey_formats_written_by_libpng)
     const png_byte g8[2] = {0, 188};
     path = test_path("grey8.png");
     CHECK(write_raw_png(path, 2, 1, 8, PNG_COLOR_TYPE_GRAY, g8, NULL));
-    CHECK_OK(lucent_image_read_png(path, &img));
+    CHECK_OK(lucent_image_load_png(path, &img));
     if (img) {
         CHECK(img->channels == 1);
         CHECK_NEAR(img->data[1], srgb_dec(188.0 / 255), 1e-6);
@@ -325,7 +326,7 @@ static void check_truncations(const char *name, const char *substring, int step)
     for (size_t len = 0; len < size; len += (len < 64 ? 1 : (size_t)step)) {
         write_bytes(cut, data, len);
         lucent_image *img = NULL;
-        lucent_status s = lucent_image_read(cut, &img);
+        lucent_status s = lucent_image_load(cut, &img);
         CHECK_MSG(s != LUCENT_OK && img == NULL, "%s cut to %zu of %zu bytes was accepted", name, len,
                   size);
         CHECK_MSG((strstr(lucent_last_error(), cut_name) && strstr(lucent_last_error(), substring)) ||
@@ -347,12 +348,12 @@ TEST(png_malformed)
 
     const char *text = test_path("text.png");
     write_bytes(text, "hello, I am not a picture\n", 26);
-    CHECK_ERR(lucent_image_read(text, &out), LUCENT_ERR_PARSE, "text.png: not a PNG file (bad signature)");
+    CHECK_ERR(lucent_image_load(text, &out), LUCENT_ERR_PARSE, "text.png: not a PNG file (bad signature)");
     write_bytes(text, "", 0);
-    CHECK_ERR(lucent_image_read(text, &out), LUCENT_ERR_PARSE, "text.png: not a PNG file");
-    CHECK_ERR(lucent_image_read(test_path("absent.png"), &out), LUCENT_ERR_IO, "absent.png",
+    CHECK_ERR(lucent_image_load(text, &out), LUCENT_ERR_PARSE, "text.png: not a PNG file");
+    CHECK_ERR(lucent_image_load(test_path("absent.png"), &out), LUCENT_ERR_IO, "absent.png",
               "No such file");
-    CHECK_ERR(lucent_image_read(test_tmpdir(), &out), LUCENT_ERR_UNSUPPORTED, "unknown image format");
+    CHECK_ERR(lucent_image_load(test_tmpdir(), &out), LUCENT_ERR_UNSUPPORTED, "unknown image format");
 
     /* a corrupted byte inside IDAT (CRC mismatch) */
     char *data;
@@ -361,7 +362,7 @@ TEST(png_malformed)
     if (data) {
         data[size / 2] ^= 0x55;
         write_bytes(test_path("crc.png"), data, size);
-        CHECK_ERR(lucent_image_read(test_path("crc.png"), &out), LUCENT_ERR_PARSE, "crc.png",
+        CHECK_ERR(lucent_image_load(test_path("crc.png"), &out), LUCENT_ERR_PARSE, "crc.png",
                   "corrupt PNG data");
         free(data);
     }
@@ -380,7 +381,7 @@ TEST(exr_float_and_half_roundtrips)
     for (int k = 0; k < 5; k++) { /* float: exact, whatever the (lossless) compression */
         lucent_image_write_desc d = {.exr_compression = comps[k]};
         CHECK_OK(lucent_image_write(test_path("f.exr"), img, &d));
-        CHECK_OK(lucent_image_read(test_path("f.exr"), &back));
+        CHECK_OK(lucent_image_load(test_path("f.exr"), &back));
         if (!back) continue;
         CHECK(back->channels == 4 && back->width == 37 && back->height == 21);
         CHECK_MSG(memcmp(back->data, img->data, lucent_image_value_count(img) * 4) == 0,
@@ -390,7 +391,7 @@ TEST(exr_float_and_half_roundtrips)
     /* half: 11 significant bits, round to nearest: relative error <= 2^-11 for normal values */
     CHECK_OK(lucent_image_write(test_path("h.exr"), img,
                                 &(lucent_image_write_desc){.exr_pixel = LUCENT_EXR_PIXEL_HALF}));
-    CHECK_OK(lucent_image_read(test_path("h.exr"), &back));
+    CHECK_OK(lucent_image_load(test_path("h.exr"), &back));
     if (back) {
         double worst = 0;
         for (size_t i = 0; i < lucent_image_value_count(img); i++)
@@ -408,7 +409,7 @@ TEST(exr_grey_and_rgb)
     for (int ch = 1; ch <= 3; ch += 2) {
         lucent_image *img = make_image(5, 300, ch, -1, 1), *back = NULL; /* many zip chunks */
         CHECK_OK(lucent_image_write_exr(test_path("g.exr"), img, NULL));
-        CHECK_OK(lucent_image_read_exr(test_path("g.exr"), &back));
+        CHECK_OK(lucent_image_load_exr(test_path("g.exr"), &back));
         if (back) {
             CHECK(back->channels == ch);
             CHECK(memcmp(back->data, img->data, lucent_image_value_count(img) * 4) == 0);
@@ -473,7 +474,7 @@ TEST(exr_tiled_written_by_openexr)
     const char *path = test_path("tiled.exr");
     CHECK(write_tiled_exr(path, 10, 7)); /* partial tiles on the right and the bottom */
     lucent_image *img = NULL;
-    CHECK_OK(lucent_image_read(path, &img));
+    CHECK_OK(lucent_image_load(path, &img));
     if (!img) return;
     CHECK(img->width == 10 && img->height == 7 && img->channels == 4);
     int bad = 0;
@@ -518,7 +519,7 @@ TEST(exr_uint_channel_written_by_openexr)
     const uint32_t v[3] = {7, 100000, 4000000000u}; /* 4e9 = 15625000 * 2^8: exact in float */
     CHECK(write_uint_exr(test_path("uint.exr"), v));
     lucent_image *img = NULL;
-    CHECK_OK(lucent_image_read(test_path("uint.exr"), &img));
+    CHECK_OK(lucent_image_load(test_path("uint.exr"), &img));
     if (!img) return;
     CHECK(img->channels == 1 && img->width == 3);
     CHECK(img->data[0] == 7.0f && img->data[1] == 100000.0f && img->data[2] == 4e9f);
@@ -535,9 +536,9 @@ TEST(exr_malformed)
     check_truncations("ok.exr", "OpenEXR", 97);
     check_truncations("none.exr", "OpenEXR", 211);
     write_bytes(test_path("text.exr"), "not an exr, clearly", 19);
-    CHECK_ERR(lucent_image_read(test_path("text.exr"), &out), LUCENT_ERR_PARSE, "text.exr",
+    CHECK_ERR(lucent_image_load(test_path("text.exr"), &out), LUCENT_ERR_PARSE, "text.exr",
               "not an OpenEXR file (bad magic number)");
-    CHECK_ERR(lucent_image_read(test_path("absent.exr"), &out), LUCENT_ERR_IO, "absent.exr",
+    CHECK_ERR(lucent_image_load(test_path("absent.exr"), &out), LUCENT_ERR_IO, "absent.exr",
               "No such file");
     CHECK(out == NULL);
 }
@@ -550,7 +551,7 @@ TEST(pfm_roundtrip_exact)
         lucent_image *img = make_image(6, 4, ch, -1e6f, 1e6f), *back = NULL;
         img->data[0] = INFINITY;
         CHECK_OK(lucent_image_write(test_path("rt.pfm"), img, NULL));
-        CHECK_OK(lucent_image_read(test_path("rt.pfm"), &back));
+        CHECK_OK(lucent_image_load(test_path("rt.pfm"), &back));
         if (back) {
             CHECK(back->channels == ch && back->width == 6 && back->height == 4);
             CHECK(memcmp(back->data, img->data, lucent_image_value_count(img) * 4) == 0);
@@ -572,7 +573,7 @@ TEST(pfm_big_endian_bottom_up)
                                   0x3F, 0x80, 0x00, 0x00, 0x40, 0x00, 0x00, 0x00};
     write_bytes(test_path("be.pfm"), file, sizeof file);
     lucent_image *img = NULL;
-    CHECK_OK(lucent_image_read(test_path("be.pfm"), &img));
+    CHECK_OK(lucent_image_load(test_path("be.pfm"), &img));
     if (!img) return;
     CHECK(img->channels == 1 && img->width == 1 && img->height == 2);
     CHECK(img->data[0] == 2.0f && img->data[1] == 1.0f); /* top row first in memory */
@@ -599,7 +600,7 @@ TEST(pfm_malformed)
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         write_bytes(test_path("bad.pfm"), cases[i].text, strlen(cases[i].text));
         lucent_image *img = NULL;
-        CHECK_ERR(lucent_image_read(test_path("bad.pfm"), &img), LUCENT_ERR_PARSE, "bad.pfm",
+        CHECK_ERR(lucent_image_load(test_path("bad.pfm"), &img), LUCENT_ERR_PARSE, "bad.pfm",
                   cases[i].message);
         CHECK(img == NULL);
     }
@@ -655,7 +656,7 @@ TEST(write_replaces_only_when_complete)
     CHECK_OK(lucent_image_write(test_path("keep.png"), a, NULL));
     lucent_image_write_desc bad = {.png_bits = 7};
     CHECK(lucent_image_write(test_path("keep.png"), a, &bad) != LUCENT_OK);
-    CHECK_OK(lucent_image_read(test_path("keep.png"), &b)); /* the old file is intact */
+    CHECK_OK(lucent_image_load(test_path("keep.png"), &b)); /* the old file is intact */
     CHECK(count_entries(test_tmpdir(), "keep.png") == 1);
     CHECK_ERR(lucent_image_write(test_path("x.tiff"), a, NULL), LUCENT_ERR_UNSUPPORTED, "x.tiff");
     lucent_image_destroy(b);

@@ -91,7 +91,7 @@ TEST(ground_truth_is_normalised_and_symmetric)
         lucent_medium_from_material(&m, c, &md);
         for (int j = 3; j < gt->half / 2; j += 7) {
             double x = j * gt->h, cell = gt->value[c][gt->half * n + gt->half + j] / (gt->h * gt->h);
-            double expect = lucent_dipole_profile(&md, x) / lucent_profile_total(p, c);
+            double expect = lucent_dipole_eval(&md, x) / lucent_profile_total(p, c);
             CHECK_MSG(fabs(cell / expect - 1) < 0.02, "channel %d x %g: %g vs %g", c, x, cell, expect);
         }
     }
@@ -321,9 +321,9 @@ TEST(bad_arguments_fail_with_messages)
     lucent_kernel_destroy(other);
     lucent_kernel_model model;
     lucent_kernel_format format;
-    CHECK_ERR(lucent_kernel_model_find("svd2", &model), LUCENT_ERR_NOT_FOUND, "svd2");
-    CHECK_ERR(lucent_kernel_format_find("wgsl", &format), LUCENT_ERR_NOT_FOUND, "wgsl");
-    CHECK_OK(lucent_kernel_model_find("Jimenez", &model));
+    CHECK_ERR(lucent_kernel_model_parse("svd2", &model), LUCENT_ERR_INVALID_ARGUMENT, "svd2");
+    CHECK_ERR(lucent_kernel_format_parse("wgsl", &format), LUCENT_ERR_INVALID_ARGUMENT, "wgsl");
+    CHECK_OK(lucent_kernel_model_parse("Jimenez", &model));
     CHECK(model == LUCENT_KERNEL_JIMENEZ);
     lucent_kernel_destroy(k);
     lucent_kernel2d_destroy(gt);

@@ -229,7 +229,7 @@ TEST(validation)
 TEST(mcml_read_converts_cm_to_mm)
 {
     lucent_mcml_file f;
-    CHECK_OK(lucent_mcml_read(FIXTURES "/two_runs.mci", &f));
+    CHECK_OK(lucent_mcml_load(FIXTURES "/two_runs.mci", &f));
     CHECK(f.run_count == 2);
     if (f.run_count != 2) return;
     const lucent_mcml_run *r = &f.runs[0];
@@ -259,7 +259,7 @@ TEST(mcml_errors_name_the_line)
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         char path[512];
         snprintf(path, sizeof path, "%s/%s", FIXTURES, bad[i].file);
-        CHECK_ERR(lucent_mcml_read(path, &f), LUCENT_ERR_PARSE, bad[i].msg);
+        CHECK_ERR(lucent_mcml_load(path, &f), LUCENT_ERR_PARSE, bad[i].msg);
         CHECK(f.runs == NULL);
     }
     CHECK_ERR(lucent_mcml_parse("1.0\n1\nx.mco B\n", "t.mci", &f), LUCENT_ERR_PARSE,
@@ -290,7 +290,7 @@ static int mco_section(const char *text, const char *head, double *dest, int max
 TEST(mcml_write_units_and_last_bin)
 {
     lucent_mcml_file f;
-    CHECK_OK(lucent_mcml_read(FIXTURES "/vanhulst.mci", &f));
+    CHECK_OK(lucent_mcml_load(FIXTURES "/vanhulst.mci", &f));
     if (f.run_count != 1) return;
     lucent_mcml_run *run = &f.runs[0];
     run->desc.photons = 20000;

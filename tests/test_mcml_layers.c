@@ -112,7 +112,7 @@ static void check_case(const char *name, uint64_t photons, uint64_t seed)
     const cJSON *width = cJSON_GetObjectItem(doc, "ring_width_cm");
     lucent_mcml_file mci;
     snprintf(path, sizeof path, PEER "%s.mci", name);
-    lucent_status s = lucent_mcml_read(path, &mci);
+    lucent_status s = lucent_mcml_load(path, &mci);
     CHECK_OK(s);
     if (!peer || !cJSON_IsNumber(width) || s != LUCENT_OK) {
         CHECK_MSG(false, "%s: the peer file or the .mci is unusable", name);

@@ -258,7 +258,7 @@ TEST(check_run_names_the_difference)
     lucent_mco m;
     CHECK_OK(lucent_mco_read(MCO "gcontrast_small.mco", &m));
     lucent_mcml_file f;
-    CHECK_OK(lucent_mcml_read(MCO "gcontrast_small.mci", &f));
+    CHECK_OK(lucent_mcml_load(MCO "gcontrast_small.mci", &f));
     CHECK_OK(lucent_mco_check_run(&m, &f.runs[0].desc));
     f.runs[0].layers[1].sigma_s = 15.0;
     CHECK_ERR(lucent_mco_check_run(&m, &f.runs[0].desc), LUCENT_ERR_INVALID_ARGUMENT,

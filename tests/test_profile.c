@@ -57,8 +57,8 @@ static double integrate_radial(radial_fn f, const void *ctx, double r0, double r
     return sum;
 }
 
-static double f_dipole(const void *ctx, double r) { return lucent_dipole_profile(ctx, r); }
-static double f_better(const void *ctx, double r) { return lucent_better_dipole_profile(ctx, r); }
+static double f_dipole(const void *ctx, double r) { return lucent_dipole_eval(ctx, r); }
+static double f_better(const void *ctx, double r) { return lucent_better_dipole_eval(ctx, r); }
 
 /* ---- Grid ---- */
 
@@ -243,9 +243,9 @@ TEST(multipole_mismatched_faces_match_1d_solution)
         t[k] = mp[1];
         /* the pointwise profile at r = 0.3 from the same poles (n = 200 vs 10: converged) */
         double out[2], out10[2];
-        lucent_multipole_profile(&md, &slab, 0.3, out);
+        lucent_multipole_eval(&md, &slab, 0.3, out);
         slab.poles = 10;
-        lucent_multipole_profile(&md, &slab, 0.3, out10);
+        lucent_multipole_eval(&md, &slab, 0.3, out10);
         CHECK_NEAR(out[0], out10[0], 1e-9);
         CHECK_NEAR(out[1], out10[1], 1e-9);
     }
@@ -269,11 +269,11 @@ TEST(multipole_converges_to_dipole)
     lucent_medium md = {.sigma_a = 0.032, .sigma_s_prime = 0.74, .eta = 1.3};
     double rs[] = {0.0, 0.1, 1.0, 5.0};
     for (int k = 0; k < 4; k++) {
-        double out[2], dip = lucent_dipole_profile(&md, rs[k]);
-        lucent_multipole_profile(&md, &(lucent_slab_desc){.thickness = 500.0}, rs[k], out);
+        double out[2], dip = lucent_dipole_eval(&md, rs[k]);
+        lucent_multipole_eval(&md, &(lucent_slab_desc){.thickness = 500.0}, rs[k], out);
         CHECK_NEAR(out[0], dip, 1e-12 * dip);
         CHECK(out[1] >= 0.0 && out[1] < 1e-40);
-        lucent_multipole_profile(&md, &(lucent_slab_desc){.thickness = 3.0}, rs[k], out);
+        lucent_multipole_eval(&md, &(lucent_slab_desc){.thickness = 3.0}, rs[k], out);
         CHECK(out[0] < dip && out[1] > 0.0); /* a thin slab reflects less and transmits */
     }
 }
@@ -309,7 +309,7 @@ static double f_slab(const void *ctx, double r)
 {
     const slab_ctx *s = ctx;
     double out[2];
-    lucent_multipole_profile(&s->md, &s->slab, r, out);
+    lucent_multipole_eval(&s->md, &s->slab, r, out);
     return out[s->which];
 }
 
@@ -525,7 +525,7 @@ typedef struct burley_ctx {
 static double f_burley(const void *ctx, double r)
 {
     const burley_ctx *b = ctx;
-    return lucent_burley_profile(b->a, b->s, r);
+    return lucent_burley_eval(b->a, b->s, r);
 }
 
 /* Christensen & Burley 2015: R integrates to A (the normalisation of the profile). */
@@ -647,7 +647,7 @@ TEST(sog_fits_dipole)
                lucent_profile_total(p, c));
         CHECK(s.rms[c] < 0.02);
         CHECK_NEAR(mass, lucent_profile_total(p, c), 0.02);
-        CHECK(fabs(lucent_sog_eval(&s, c, 1.0) - lucent_dipole_profile(&(lucent_medium){
+        CHECK(fabs(lucent_sog_eval(&s, c, 1.0) - lucent_dipole_eval(&(lucent_medium){
               m.sigma_a[c], m.sigma_s[c], m.eta}, 1.0)) < 0.05 * lucent_sog_eval(&s, c, 1.0));
     }
     lucent_profile_destroy(p);
@@ -713,10 +713,10 @@ TEST(invalid_arguments)
               LUCENT_ERR_INVALID_ARGUMENT, "length");
     lucent_medium md = {.sigma_a = 0.1, .sigma_s_prime = -1.0, .eta = 1.3};
     CHECK_ERR(lucent_medium_validate(&md), LUCENT_ERR_INVALID_ARGUMENT, "sigma_s_prime");
-    CHECK(isnan(lucent_dipole_profile(&md, 1.0)));
+    CHECK(isnan(lucent_dipole_eval(&md, 1.0)));
     CHECK(isnan(lucent_better_dipole_total(&md)));
     md.sigma_s_prime = 1.0;
-    CHECK(isnan(lucent_dipole_profile(&md, -1.0)));
+    CHECK(isnan(lucent_dipole_eval(&md, -1.0)));
     m = grey(0.1, 1.0, 1.3);
     CHECK_OK(lucent_profile_dipole(&m, &(lucent_profile_grid){.dr = 0.1, .count = 10}, &p));
     lucent_sog s;

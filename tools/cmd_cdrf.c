@@ -80,7 +80,7 @@ static int parse_lut_args(int argc, char **argv, lut_options *o)
     for (int i = 1; i < argc; i++) {
         const char *v;
         if (cli_option(argc, argv, &i, "--variant", &v)) {
-            if (!lucent_cdrf_variant_parse(v, &o->desc.variant))
+            if (lucent_cdrf_variant_parse(v, &o->desc.variant) != LUCENT_OK)
                 return cli_usage_error("cdrf-lut", "--variant must be kubo or collomb");
         } else if (cli_option(argc, argv, &i, "--width", &v)) {
             if (!cli_parse_int(v, &o->desc.width) || o->desc.width < 2 || o->desc.width > 8192)
@@ -231,7 +231,7 @@ static int parse_fit_args(int argc, char **argv, fit_options *o)
         rc = CLI_OK;
         if (cli_option(argc, argv, &i, "--radii", &v)) rc = parse_radii(v, o);
         else if (cli_option(argc, argv, &i, "--variant", &v))
-            rc = lucent_cdrf_variant_parse(v, &o->variant) ? CLI_OK
+            rc = lucent_cdrf_variant_parse(v, &o->variant) == LUCENT_OK ? CLI_OK
                  : cli_usage_error("cdrf-fit", "--variant must be kubo or collomb");
         else if (cli_option(argc, argv, &i, "--out", &v))
             rc = (o->out = v) ? CLI_OK : cli_usage_error("cdrf-fit", "--out needs a file prefix");

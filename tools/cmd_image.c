@@ -134,7 +134,7 @@ static int run_info(int argc, char **argv)
     }
     if (npos != 1) return cli_usage_error("image info", "expected one image file");
     lucent_image *img;
-    if (lucent_image_read(pos[0], &img) != LUCENT_OK) return cli_fail();
+    if (lucent_image_load(pos[0], &img) != LUCENT_OK) return cli_fail();
     lucent_image_stats st;
     lucent_image_stats_compute(img, &st);
     if (json) print_info_json(pos[0], img, &st);
@@ -161,7 +161,7 @@ static int parse_convert_option(int argc, char **argv, int *i, convert_args *a)
             return cli_usage_error(cmd, "--exposure needs a number of stops (|E| <= 100)");
         a->tonemap.exposure = (float)e;
     } else if (take_option(argc, argv, i, "--tonemap", &v)) {
-        if (!lucent_tonemap_op_parse(v, &a->tonemap.op))
+        if (lucent_tonemap_op_parse(v, &a->tonemap.op) != LUCENT_OK)
             return cli_usage_error(cmd, "--tonemap must be none, clamp, reinhard or filmic");
     } else if (take_option(argc, argv, i, "--bits", &v)) {
         if (!cli_parse_int(v, &a->bits) || (a->bits != 8 && a->bits != 16))
@@ -223,7 +223,7 @@ static int run_convert(int argc, char **argv)
     if (lucent_image_format_from_path(a.out, &f) != LUCENT_OK) return cli_fail();
     if ((rc = check_convert_format(&a, f)) != CLI_OK) return rc;
     lucent_image *img;
-    if (lucent_image_read(a.in, &img) != LUCENT_OK) return cli_fail();
+    if (lucent_image_load(a.in, &img) != LUCENT_OK) return cli_fail();
     lucent_image_tonemap(img, &a.tonemap);
     lucent_image_write_desc d = {.png_bits = a.bits, .exr_pixel = a.half ? LUCENT_EXR_PIXEL_HALF : 0};
     lucent_status s = fit_channels(&img, f);
@@ -283,9 +283,9 @@ static lucent_status to_channels(lucent_image **img, int channels)
 /* Reads A, B and the mask; makes A and B comparable (RGB when their channels differ). */
 static lucent_status load_diff_inputs(const diff_args *d, lucent_image *im[3])
 {
-    lucent_status s = lucent_image_read(d->a, &im[0]);
-    if (s == LUCENT_OK) s = lucent_image_read(d->b, &im[1]);
-    if (s == LUCENT_OK && d->mask) s = lucent_image_read(d->mask, &im[2]);
+    lucent_status s = lucent_image_load(d->a, &im[0]);
+    if (s == LUCENT_OK) s = lucent_image_load(d->b, &im[1]);
+    if (s == LUCENT_OK && d->mask) s = lucent_image_load(d->mask, &im[2]);
     if (s == LUCENT_OK && im[2]) s = to_channels(&im[2], 1);
     if (s == LUCENT_OK && im[0]->channels != im[1]->channels) {
         s = to_channels(&im[0], 3);

@@ -96,11 +96,11 @@ static int parse_named(options *o, const char *name, const char *v)
 {
     if (!v) return cli_usage_error("kernel", "%s needs a value", name);
     if (!strcmp(name, "--model"))
-        return lucent_kernel_model_find(v, &o->desc.model) == LUCENT_OK
+        return lucent_kernel_model_parse(v, &o->desc.model) == LUCENT_OK
                    ? CLI_OK
                    : cli_usage_error("kernel", "unknown model '%s'", v);
     if (!strcmp(name, "--export"))
-        return lucent_kernel_format_find(v, &o->format) == LUCENT_OK
+        return lucent_kernel_format_parse(v, &o->format) == LUCENT_OK
                    ? CLI_OK
                    : cli_usage_error("kernel", "unknown export format '%s' (glsl, hlsl, c, json)", v);
     if (!strcmp(name, "--profile")) {

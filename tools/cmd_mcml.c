@@ -166,7 +166,7 @@ static lucent_status compare_desc(const options *o, const lucent_mco *mco, lucen
 {
     *dest = mco->run.desc;
     if (!o->input) return LUCENT_OK;
-    lucent_status s = lucent_mcml_read(o->input, mci);
+    lucent_status s = lucent_mcml_load(o->input, mci);
     if (s != LUCENT_OK) return s;
     char first[512] = "";
     for (int k = 0; k < mci->run_count; k++) {
@@ -315,7 +315,7 @@ int cmd_mcml(int argc, char **argv)
     if (rc != CLI_OK) return rc;
     if (o.compare) return cmd_compare_mco(&o);
     lucent_mcml_file file;
-    if (lucent_mcml_read(o.input, &file) != LUCENT_OK) return cli_fail();
+    if (lucent_mcml_load(o.input, &file) != LUCENT_OK) return cli_fail();
     lucent_status s = LUCENT_OK;
     for (int k = 0; k < file.run_count && s == LUCENT_OK; k++)
         s = run_one(&o, &file.runs[k], k, file.run_count);

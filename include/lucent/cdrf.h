@@ -22,8 +22,8 @@ typedef enum lucent_cdrf_variant {
     LUCENT_CDRF_COLLOMB = 1 /* the blog's closed-form fit, its kappa read as sigma */
 } lucent_cdrf_variant;
 
-/* Parses "kubo" or "collomb" (case-sensitive); false otherwise. */
-bool lucent_cdrf_variant_parse(const char *name, lucent_cdrf_variant *dest);
+/* Parses "kubo" or "collomb" (case-sensitive); LUCENT_ERR_INVALID_ARGUMENT listing them otherwise. */
+lucent_status lucent_cdrf_variant_parse(const char *name, lucent_cdrf_variant *dest);
 
 /* Returns "kubo" or "collomb". */
 const char *lucent_cdrf_variant_name(lucent_cdrf_variant variant);

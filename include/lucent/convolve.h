@@ -61,9 +61,10 @@ typedef struct lucent_conv_taps {
     const float *sign[3]; /* rank factors per channel (+1 / -1 for SVD terms); NULL: all +1 */
 } lucent_conv_taps;
 
-/* Returns the name of a border mode ("clamp", "zero"); parses it back (false if unknown). */
+/* Returns the name of a border mode ("clamp", "zero"); parses it back (LUCENT_ERR_INVALID_ARGUMENT
+ * listing the names if unknown). */
 const char *lucent_border_name(lucent_border border);
-bool lucent_border_parse(const char *name, lucent_border *dest);
+lucent_status lucent_border_parse(const char *name, lucent_border *dest);
 
 /* Checks a 2-D kernel: size odd, 1 .. LUCENT_CONVOLVE_MAX_SIZE, w[0] set, weights finite.
  * The message names the field ("kernel size", "kernel w[1][17]"). */

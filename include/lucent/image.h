@@ -114,19 +114,19 @@ lucent_status lucent_image_format_from_path(const char *path, lucent_image_forma
 
 /* Reads a PNG, EXR or PFM file, chosen by extension, into a new linear float image.
  * Every failure names the file in the message. */
-lucent_status lucent_image_read(const char *path, lucent_image **dest);
+lucent_status lucent_image_load(const char *path, lucent_image **dest);
 
 /* Reads a PNG: grey gives 1 channel; grey+alpha, RGB, palette and tRNS give 3 or 4 channels.
  * 1, 2, 4, 8 and 16-bit samples are scaled to [0, 1]; colour is decoded with the sRGB curve,
  * or with 1/gamma when the file has a gAMA chunk and no sRGB chunk (gAMA 1.0: linear). */
-lucent_status lucent_image_read_png(const char *path, lucent_image **dest);
+lucent_status lucent_image_load_png(const char *path, lucent_image **dest);
 
 /* Reads part 0 of an OpenEXR file (scanline or tiled, level 0; half, float or uint samples):
  * channels R, G, B [, A] give 3 or 4 channels; Y [, A] gives 1 or 4; a lone channel gives 1. */
-lucent_status lucent_image_read_exr(const char *path, lucent_image **dest);
+lucent_status lucent_image_load_exr(const char *path, lucent_image **dest);
 
 /* Reads a PFM file ("PF": RGB, "Pf": grey; negative scale: little endian; rows bottom-to-top). */
-lucent_status lucent_image_read_pfm(const char *path, lucent_image **dest);
+lucent_status lucent_image_load_pfm(const char *path, lucent_image **dest);
 
 /* Writes img atomically (complete file or none) in the format of desc (NULL: defaults). */
 lucent_status lucent_image_write(const char *path, const lucent_image *img,
@@ -157,8 +157,8 @@ typedef struct lucent_tonemap_desc {
     float exposure;       /* stops: values are multiplied by 2^exposure first; default 0 */
 } lucent_tonemap_desc;
 
-/* Parses "none", "clamp", "reinhard" or "filmic"; false for anything else. */
-bool lucent_tonemap_op_parse(const char *name, lucent_tonemap_op *dest);
+/* Parses "none", "clamp", "reinhard" or "filmic"; LUCENT_ERR_INVALID_ARGUMENT listing them otherwise. */
+lucent_status lucent_tonemap_op_parse(const char *name, lucent_tonemap_op *dest);
 
 /* Returns the operator's name ("none", "clamp", "reinhard", "filmic"; "unknown" out of range). */
 const char *lucent_tonemap_op_name(lucent_tonemap_op op);

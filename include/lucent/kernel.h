@@ -108,8 +108,8 @@ lucent_kernel_desc lucent_kernel_defaults(lucent_kernel_model model);
 /* Returns the model's name ("svd", "preint", "guided", "manual", "sog", "jimenez"). */
 const char *lucent_kernel_model_name(lucent_kernel_model model);
 
-/* Finds a model by name; LUCENT_ERR_NOT_FOUND otherwise. */
-lucent_status lucent_kernel_model_find(const char *name, lucent_kernel_model *dest);
+/* Parses a model name; LUCENT_ERR_INVALID_ARGUMENT listing the models otherwise. */
+lucent_status lucent_kernel_model_parse(const char *name, lucent_kernel_model *dest);
 
 /* Fills dest with the Table A.1 parameters of Freude 2014 for Apple, Ketchup, Marble, Skin1 or
  * Wholemilk (case-insensitive); LUCENT_ERR_NOT_FOUND otherwise. */
@@ -174,8 +174,8 @@ typedef enum lucent_kernel_format {
     LUCENT_KERNEL_FORMAT_COUNT
 } lucent_kernel_format;
 
-/* Finds a format by name ("glsl", "hlsl", "c", "json"); LUCENT_ERR_NOT_FOUND otherwise. */
-lucent_status lucent_kernel_format_find(const char *name, lucent_kernel_format *dest);
+/* Parses a format name ("glsl", "hlsl", "c", "json"); LUCENT_ERR_INVALID_ARGUMENT otherwise. */
+lucent_status lucent_kernel_format_parse(const char *name, lucent_kernel_format *dest);
 
 /* Writes taps as text (ending in a newline): GLSL and HLSL declarations plus a one-pass blur
  * function (no #version, no entry point), a C header, or JSON. label names the kernel in

@@ -131,7 +131,7 @@ typedef struct lucent_mcml_file {
 lucent_status lucent_mcml_parse(const char *text, const char *name, lucent_mcml_file *dest);
 
 /* Reads and parses an .mci file. */
-lucent_status lucent_mcml_read(const char *path, lucent_mcml_file *dest);
+lucent_status lucent_mcml_load(const char *path, lucent_mcml_file *dest);
 
 /* Frees what lucent_mcml_parse allocated and zeroes f. */
 void lucent_mcml_file_free(lucent_mcml_file *f);

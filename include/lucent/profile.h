@@ -80,7 +80,7 @@ lucent_status lucent_medium_validate(const lucent_medium *md);
 
 /* Returns R_d(r) of the classical dipole, mm^-2 (Jensen et al. 2001, eq. 4 with
  * z_r = 1/sigma_t', z_v = z_r (1 + 4A/3)). Invalid medium or r < 0: NaN. */
-double lucent_dipole_profile(const lucent_medium *md, double r);
+double lucent_dipole_eval(const lucent_medium *md, double r);
 
 /* Fills dest with the classical-dipole profile of m (bin averages, integrated exactly);
  * grid may be NULL (the default grid). */
@@ -91,7 +91,7 @@ lucent_status lucent_profile_dipole(const lucent_material *m, const lucent_profi
 
 /* Returns R_d(r) of the better dipole, mm^-2: alpha' (C_phi phi(r) + C_E E(r)) with Grosjean's
  * D = (2 sigma_a + sigma_s') / (3 sigma_t'^2), z_v = -z_r - 4AD. Invalid input: NaN. */
-double lucent_better_dipole_profile(const lucent_medium *md, double r);
+double lucent_better_dipole_eval(const lucent_medium *md, double r);
 
 /* Returns the better dipole's total diffuse reflectance 2 pi integral_0^inf R_d(r) r dr in
  * closed form. Invalid medium: NaN. */
@@ -119,7 +119,7 @@ typedef struct lucent_slab_desc {
  * the top and bottom faces; poles 0 means 10. NaN when invalid. A slab thinner than its
  * transport mean free path 1/sigma_t' is computed as is (T can be negative; no warning here,
  * the profile builders warn). */
-void lucent_multipole_profile(const lucent_medium *md, const lucent_slab_desc *slab, double r,
+void lucent_multipole_eval(const lucent_medium *md, const lucent_slab_desc *slab, double r,
                               double dest[2]);
 
 /* Fills dest[0] and dest[1] with the totals (integrals over the plane) of R and T of the same
@@ -166,7 +166,7 @@ double lucent_burley_scale(lucent_burley_fit fit, double albedo);
 
 /* Returns R(r) = A s (e^{-s r} + e^{-s r / 3}) / (8 pi r), mm^-2, for the surface albedo A and
  * the inverse length s (mm^-1, s = scale / l). Integrates to A over the plane. r = 0: +inf. */
-double lucent_burley_profile(double albedo, double s, double r);
+double lucent_burley_eval(double albedo, double s, double r);
 
 /* Per-channel parameters of Burley's profile. */
 typedef struct lucent_burley_params {

@@ -22,12 +22,12 @@ static const double k_gl_w[6] = {0.2491470458134027850005624, 0.2334925365383548
                                  0.2031674267230659217490645, 0.1600783285433462263346525,
                                  0.1069393259953184309602547, 0.0471753363865118271946160};
 
-bool lucent_cdrf_variant_parse(const char *name, lucent_cdrf_variant *dest)
+lucent_status lucent_cdrf_variant_parse(const char *name, lucent_cdrf_variant *dest)
 {
     if (name && strcmp(name, "kubo") == 0) *dest = LUCENT_CDRF_KUBO;
     else if (name && strcmp(name, "collomb") == 0) *dest = LUCENT_CDRF_COLLOMB;
-    else return false;
-    return true;
+    else return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "unknown CDRF variant '%s' (kubo, collomb)", name ? name : "");
+    return LUCENT_OK;
 }
 
 const char *lucent_cdrf_variant_name(lucent_cdrf_variant variant)

@@ -71,7 +71,7 @@ lucent_status lucent_kernel_eval_model_parse(const char *name, lucent_kernel_des
     }
     bool norm = !strcmp(base, "svd-norm");
     if (norm) snprintf(base, sizeof base, "svd");
-    if (lucent_kernel_model_find(base, &model) != LUCENT_OK) goto unknown;
+    if (lucent_kernel_model_parse(base, &model) != LUCENT_OK) goto unknown;
     *dest = lucent_kernel_defaults(model);
     dest->rank = rank, dest->k = 1, dest->normalize = norm;
     return LUCENT_OK;

@@ -27,15 +27,16 @@ const char *lucent_tonemap_op_name(lucent_tonemap_op op)
     return op >= 0 && op < 4 ? k_tonemap_names[op] : "unknown";
 }
 
-bool lucent_tonemap_op_parse(const char *name, lucent_tonemap_op *dest)
+lucent_status lucent_tonemap_op_parse(const char *name, lucent_tonemap_op *dest)
 {
     for (int i = 0; i < 4; i++) {
         if (name && strcmp(name, k_tonemap_names[i]) == 0) {
             *dest = (lucent_tonemap_op)i;
-            return true;
+            return LUCENT_OK;
         }
     }
-    return false;
+    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "unknown tonemap '%s' (none, clamp, reinhard, filmic)",
+                        name ? name : "");
 }
 
 static float clamp01(float x)

@@ -226,7 +226,7 @@ static lucent_status probe_magic(const char *path)
                         got == 0 ? "empty file" : "bad magic number");
 }
 
-lucent_status lucent_image_read_exr(const char *path, lucent_image **dest)
+lucent_status lucent_image_load_exr(const char *path, lucent_image **dest)
 {
     *dest = NULL;
     lucent_status s = probe_magic(path);

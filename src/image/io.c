@@ -41,15 +41,15 @@ lucent_status lucent_image_format_from_path(const char *path, lucent_image_forma
                         "%s: unknown image format (expected a .png, .exr or .pfm file name)", path);
 }
 
-lucent_status lucent_image_read(const char *path, lucent_image **dest)
+lucent_status lucent_image_load(const char *path, lucent_image **dest)
 {
     *dest = NULL;
     lucent_image_format f;
     lucent_status s = lucent_image_format_from_path(path, &f);
     if (s != LUCENT_OK) return s;
-    if (f == LUCENT_IMAGE_FORMAT_PNG) return lucent_image_read_png(path, dest);
-    if (f == LUCENT_IMAGE_FORMAT_EXR) return lucent_image_read_exr(path, dest);
-    return lucent_image_read_pfm(path, dest);
+    if (f == LUCENT_IMAGE_FORMAT_PNG) return lucent_image_load_png(path, dest);
+    if (f == LUCENT_IMAGE_FORMAT_EXR) return lucent_image_load_exr(path, dest);
+    return lucent_image_load_pfm(path, dest);
 }
 
 lucent_status lucent_image_write(const char *path, const lucent_image *img,

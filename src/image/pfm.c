@@ -91,7 +91,7 @@ static lucent_status read_pixels(const char *path, FILE *fp, const pfm_header *h
     return LUCENT_OK;
 }
 
-lucent_status lucent_image_read_pfm(const char *path, lucent_image **dest)
+lucent_status lucent_image_load_pfm(const char *path, lucent_image **dest)
 {
     *dest = NULL;
     FILE *fp = fopen(path, "rb");

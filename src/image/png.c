@@ -153,7 +153,7 @@ static lucent_status check_signature(png_job *job)
     return LUCENT_OK;
 }
 
-lucent_status lucent_image_read_png(const char *path, lucent_image **dest)
+lucent_status lucent_image_load_png(const char *path, lucent_image **dest)
 {
     *dest = NULL;
     png_job job = {.path = path};

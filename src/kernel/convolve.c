@@ -26,16 +26,12 @@ const char *lucent_border_name(lucent_border border)
     return border == LUCENT_BORDER_ZERO ? "zero" : "clamp";
 }
 
-bool lucent_border_parse(const char *name, lucent_border *dest)
+lucent_status lucent_border_parse(const char *name, lucent_border *dest)
 {
-    if (!name) return false;
-    if (strcmp(name, "clamp") == 0)
-        *dest = LUCENT_BORDER_CLAMP;
-    else if (strcmp(name, "zero") == 0)
-        *dest = LUCENT_BORDER_ZERO;
-    else
-        return false;
-    return true;
+    if (name && strcmp(name, "clamp") == 0) *dest = LUCENT_BORDER_CLAMP;
+    else if (name && strcmp(name, "zero") == 0) *dest = LUCENT_BORDER_ZERO;
+    else return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "unknown border '%s' (clamp, zero)", name ? name : "");
+    return LUCENT_OK;
 }
 
 /* Checks src and dest: present, 1, 3 or 4 channels, the same size. */

@@ -9,14 +9,14 @@
 
 static const char *const k_format_names[LUCENT_KERNEL_FORMAT_COUNT] = {"glsl", "hlsl", "c", "json"};
 
-lucent_status lucent_kernel_format_find(const char *name, lucent_kernel_format *dest)
+lucent_status lucent_kernel_format_parse(const char *name, lucent_kernel_format *dest)
 {
     for (int f = 0; name && f < LUCENT_KERNEL_FORMAT_COUNT; f++)
         if (strcasecmp(name, k_format_names[f]) == 0) {
             *dest = (lucent_kernel_format)f;
             return LUCENT_OK;
         }
-    return lucent_error(LUCENT_ERR_NOT_FOUND, "unknown export format '%s' (glsl, hlsl, c, json)",
+    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "unknown export format '%s' (glsl, hlsl, c, json)",
                         name ? name : "");
 }
 

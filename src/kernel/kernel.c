@@ -13,14 +13,14 @@ const char *lucent_kernel_model_name(lucent_kernel_model model)
     return model >= 0 && model < LUCENT_KERNEL_MODEL_COUNT ? k_model_names[model] : "unknown";
 }
 
-lucent_status lucent_kernel_model_find(const char *name, lucent_kernel_model *dest)
+lucent_status lucent_kernel_model_parse(const char *name, lucent_kernel_model *dest)
 {
     for (int m = 0; name && m < LUCENT_KERNEL_MODEL_COUNT; m++)
         if (strcasecmp(name, k_model_names[m]) == 0) {
             *dest = (lucent_kernel_model)m;
             return LUCENT_OK;
         }
-    return lucent_error(LUCENT_ERR_NOT_FOUND,
+    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
                         "unknown kernel model '%s' (svd, preint, guided, manual, sog, jimenez)",
                         name ? name : "");
 }

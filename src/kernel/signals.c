@@ -76,7 +76,7 @@ lucent_status lucent_signal_load(const char *spec, int width, int height, lucent
     if (strcmp(spec, "edge") == 0) return lucent_signal_edge(width, height, dest);
     if (strcmp(spec, "shapes") == 0) return lucent_signal_shapes(width, height, dest);
     lucent_image *img = NULL;
-    lucent_status s = lucent_image_read(spec, &img);
+    lucent_status s = lucent_image_load(spec, &img);
     if (s != LUCENT_OK) return s;
     if (img->channels != 1) {
         *dest = img;

@@ -86,7 +86,7 @@ static double dipole_bin(const dipole *d, double r0, double r1)
     return d->alpha * (d->ce * e + d->cphi * phi);
 }
 
-double lucent_dipole_profile(const lucent_medium *md, double r)
+double lucent_dipole_eval(const lucent_medium *md, double r)
 {
     if (lucent_medium_validate(md) != LUCENT_OK || !(r >= 0.0)) return NAN;
     dipole d;
@@ -94,7 +94,7 @@ double lucent_dipole_profile(const lucent_medium *md, double r)
     return dipole_value(&d, r);
 }
 
-double lucent_better_dipole_profile(const lucent_medium *md, double r)
+double lucent_better_dipole_eval(const lucent_medium *md, double r)
 {
     if (lucent_medium_validate(md) != LUCENT_OK || !(r >= 0.0)) return NAN;
     dipole d;
@@ -167,7 +167,7 @@ double lucent_burley_scale(lucent_burley_fit fit, double albedo)
 }
 
 /* Christensen & Burley 2015, eq. 2 with d = 1/s: R(r) = A s (e^{-sr} + e^{-sr/3}) / (8 pi r). */
-double lucent_burley_profile(double albedo, double s, double r)
+double lucent_burley_eval(double albedo, double s, double r)
 {
     if (!(r >= 0.0) || !(s > 0.0)) return NAN;
     if (r == 0.0) return albedo > 0.0 ? INFINITY : 0.0;

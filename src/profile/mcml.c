@@ -207,7 +207,7 @@ lucent_status lucent_mcml_parse(const char *text, const char *name, lucent_mcml_
     return s;
 }
 
-lucent_status lucent_mcml_read(const char *path, lucent_mcml_file *dest)
+lucent_status lucent_mcml_load(const char *path, lucent_mcml_file *dest)
 {
     memset(dest, 0, sizeof *dest);
     char *text;

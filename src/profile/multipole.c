@@ -154,7 +154,7 @@ static void sum_poles(const lucent_medium *md, const lucent_slab_desc *slab_desc
     dest[1] = s.alpha * tsum;
 }
 
-void lucent_multipole_profile(const lucent_medium *md, const lucent_slab_desc *slab_desc, double r,
+void lucent_multipole_eval(const lucent_medium *md, const lucent_slab_desc *slab_desc, double r,
                               double dest[2])
 {
     dest[0] = dest[1] = NAN;

@@ -219,7 +219,7 @@ static lucent_status read_albedo(const lucent_json_node *n, const char *base_dir
         o->albedo_source = LUCENT_ALBEDO_TEXTURE;
         s = lucent_json_string(n, "albedo_texture", &file);
         join_path(base_dir, file, path, sizeof path);
-        if (s == LUCENT_OK && !skip && lucent_image_read(path, &o->albedo_texture) != LUCENT_OK)
+        if (s == LUCENT_OK && !skip && lucent_image_load(path, &o->albedo_texture) != LUCENT_OK)
             s = lucent_json_fail(n, "albedo_texture", LUCENT_ERR_PARSE, "%s", lucent_last_error());
         if (s == LUCENT_OK && o->mesh) s = make_texcoords(o);
     }

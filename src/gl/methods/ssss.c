@@ -34,7 +34,7 @@ static lucent_status parse_kernel(const char *text, lucent_render_settings *dest
     lucent_kernel_model model;
     size_t len = strcspn(text, "0123456789");
     if (len == 0 || len >= sizeof name) {
-        lucent_status s = lucent_kernel_model_find(text, &model);
+        lucent_status s = lucent_kernel_model_parse(text, &model);
         if (s == LUCENT_OK) dest->ssss.kernel = (int)model, dest->ssss.rank = 1;
         return s;
     }
@@ -44,10 +44,10 @@ static lucent_status parse_kernel(const char *text, lucent_render_settings *dest
     if (text[len]) {
         char *end;
         long v = strtol(text + len, &end, 10);
-        if (*end || v < 1 || v > LUCENT_KERNEL_MAX_RANK) return lucent_kernel_model_find(text, &model);
+        if (*end || v < 1 || v > LUCENT_KERNEL_MAX_RANK) return lucent_kernel_model_parse(text, &model);
         r = (int)v;
     }
-    lucent_status s = lucent_kernel_model_find(name, &model);
+    lucent_status s = lucent_kernel_model_parse(name, &model);
     if (s == LUCENT_OK && r > 1 && model != LUCENT_KERNEL_SVD && model != LUCENT_KERNEL_SOG)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel model '%s' has rank 1 only (svd and sog take a rank)",
                             name);
