@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/optics.h"
 #include "lucent/render.h"
 #include "lucent/trace.h"
 
@@ -96,16 +97,17 @@ static void accumulate(const lucent_scene *sc, int height, int row0, const lucen
         }
 }
 
-static void reference(double radius, double seconds, lucent_pool *pool, bins *ref)
+static void reference(double radius, double seconds, bool subsurface, lucent_pool *pool, bins *ref)
 {
     lucent_scene *sc = scene(radius, STRIP, "lambert", NULL);
     lucent_tracer *tr = NULL;
     lucent_trace_result res = {0};
-    if (lucent_tracer_create(sc, NULL, &tr) != LUCENT_OK) fail("tracer");
+    if (lucent_tracer_create(sc, &(lucent_tracer_desc){.subsurface_only = subsurface}, &tr) != LUCENT_OK) fail("tracer");
     lucent_trace_desc td = {.spp = 100000, .time_limit = seconds, .pool = pool, .label = "reference"};
     if (lucent_tracer_render(tr, &td, &res) != LUCENT_OK) fail("trace");
     accumulate(sc, STRIP, 0, res.image, res.variance, radius, ref);
-    printf("R %g mm: reference %llu spp in %.0f s\n", radius, (unsigned long long)res.spp, res.seconds);
+    printf("R %g mm: reference%s %llu spp in %.0f s\n", radius, subsurface ? " (subsurface only)" : "",
+           (unsigned long long)res.spp, res.seconds);
     lucent_trace_result_free(&res);
     lucent_tracer_destroy(tr);
     lucent_scene_destroy(sc);
@@ -122,6 +124,52 @@ static void method(lucent_gl_context *ctx, double radius, const method_case *m, 
     lucent_render_result_free(&res);
     lucent_renderer_destroy(r);
     lucent_scene_destroy(sc);
+}
+
+/* Lambert's diffuse radiance in closed form at the sphere point seen through pixel (x, y), the albedo
+ * the material's dipole Rd (luminance), optionally times the boundary's Fresnel transmittances of the
+ * light (in) and of the view (out), each normalised by its cosine-weighted hemispherical mean (Jensen
+ * 2001, S_d = F_t(w_i) R_d F_t(w_o) / pi; the normalisation keeps the total at Rd). */
+static double lambert_analytic(const lucent_scene *sc, int x, int y, double radius, int fresnel)
+{
+    double o[3], d[3];
+    lucent_camera_ray(&sc->camera, SIZE, STRIP, x + 0.5, y + 0.5, o, d);
+    double b = o[0] * d[0] + o[1] * d[1] + o[2] * d[2], c = o[0] * o[0] + o[1] * o[1] + o[2] * o[2] - radius * radius;
+    double t = -b - sqrt(b * b - c), n[3], rd = 0;
+    for (int i = 0; i < 3; i++) n[i] = (o[i] + t * d[i]) / radius;
+    lucent_material_derived md;
+    lucent_material_derive(&sc->objects[0].material, &md);
+    rd = 0.2126 * md.rd[0] + 0.7152 * md.rd[1] + 0.0722 * md.rd[2];
+    double eta = sc->objects[0].material.eta, ci = fmax(n[0], 0), co = -(n[0] * d[0] + n[1] * d[1] + n[2] * d[2]);
+    static double mean_t = 0;
+    if (mean_t == 0) /* 2 int_0^1 (1 - F(mu)) mu dmu */
+        for (int k = 0; k < 2000; k++) {
+            double mu = (k + 0.5) / 2000;
+            mean_t += 2 * (1 - lucent_fresnel_dielectric(mu, eta, NULL)) * mu / 2000;
+        }
+    double f = 1;
+    if (fresnel & 1) f *= (1 - lucent_fresnel_dielectric(fmax(ci, 1e-6), eta, NULL)) / mean_t;
+    if (fresnel & 2) f *= (1 - lucent_fresnel_dielectric(fmax(co, 1e-6), eta, NULL)) / mean_t;
+    return rd * ci / M_PI * f;
+}
+
+static void analytic_rows(const lucent_scene *sc, double radius, const bins *ref)
+{
+    static const char *const names[4] = {"Lambert analytic", "  x Ft(in)", "  x Ft(out)", "  x Ft(in) Ft(out)"};
+    for (int f = 0; f < 4; f++) {
+        bins a;
+        memset(&a, 0, sizeof a);
+        for (int y = 0; y < STRIP; y++)
+            for (int x = 0; x < SIZE; x++) {
+                double th = pixel_theta(sc, STRIP, x, y, radius);
+                if (th < 0) continue;
+                int k = (int)fmin(th / 10, BINS - 1);
+                a.sum[k] += lambert_analytic(sc, x, y, radius, f), a.n[k]++;
+            }
+        printf("%-18s", names[f]);
+        for (int k = 0; k < BINS; k++) printf(" %5.2f", ref->sum[k] > 0 && a.n[k] ? a.sum[k] / a.n[k] / (ref->sum[k] / ref->n[k]) : 0.0);
+        printf("\n");
+    }
 }
 
 static void table(double radius, const bins *ref, const bins *m)
@@ -156,7 +204,18 @@ int main(int argc, char **argv)
            "(the angle between normal and light; 90 is the terminator). Goal: within 10%% (0.90-1.10).\n");
     for (int i = 0; i < count; i++) {
         bins ref, m[METHODS];
-        reference(radii[i], seconds, pool, &ref);
+        reference(radii[i], seconds, false, pool, &ref);
+        if (getenv("EQUATOR_SUBSURFACE")) { /* what the boundary's reflection is of the reference */
+            bins sub;
+            reference(radii[i], seconds, true, pool, &sub);
+            printf("specular share  ");
+            for (int k = 0; k < BINS; k++) printf(" %5.2f", ref.sum[k] > 0 ? 1 - sub.sum[k] / ref.sum[k] : 0.0);
+            printf("\n");
+            ref = sub;
+            lucent_scene *sc = scene(radii[i], STRIP, "lambert", NULL);
+            analytic_rows(sc, radii[i], &ref);
+            lucent_scene_destroy(sc);
+        }
         for (int j = 0; j < METHODS; j++) method(ctx, radii[i], &k_methods[j], pool, &m[j]);
         table(radii[i], &ref, m);
     }
