@@ -44,7 +44,7 @@ __attribute__((noinline)) static char *edit(const char *text, const char *find, 
 TEST(reads_mcml_output)
 {
     lucent_mco m;
-    CHECK_OK(lucent_mco_read(MCO "gcontrast_small.mco", &m));
+    CHECK_OK(lucent_mco_load(MCO "gcontrast_small.mco", &m));
     const lucent_mc_desc *d = &m.run.desc;
     CHECK(d->photons == 20000 && d->layer_count == 2 && strcmp(m.run.output, "gcontrast_small.mco") == 0);
     CHECK(d->grid.nz == 30 && d->grid.nr == 20 && d->grid.na == 5);
@@ -71,7 +71,7 @@ TEST(mcml_output_is_consistent_with_itself)
         lucent_mco m;
         char path[512];
         snprintf(path, sizeof path, MCO "%s", files[f]);
-        CHECK_OK(lucent_mco_read(path, &m));
+        CHECK_OK(lucent_mco_load(path, &m));
         const lucent_mc_grid *g = &m.run.desc.grid;
         double rd = 0, tt = 0, a = 0, a_l = 0, rd_a = 0, rd_ra = 0;
         for (int i = 0; i < g->nr; i++) {
@@ -111,7 +111,7 @@ TEST(reads_lucent_output)
     CHECK_OK(lucent_mc_run(&run.desc, &r));
     CHECK_OK(lucent_mcml_write(test_path("half.mco"), &run, &r));
     lucent_mco m;
-    CHECK_OK(lucent_mco_read(test_path("half.mco"), &m));
+    CHECK_OK(lucent_mco_load(test_path("half.mco"), &m));
     CHECK(isinf(m.run.desc.layers[0].thickness) && m.run.desc.photons == 2000);
     CHECK_NEAR(m.rd, r.rd, 5e-6 * r.rd);
     for (int i = 0; i < 10; i++) CHECK_NEAR(m.rd_r[i], r.rd_r[i], 5e-5 * r.rd_r[i]);
@@ -170,7 +170,7 @@ TEST(malformed_files_name_the_line)
               "line 16: A_rz: the rest of the file is too short for 20000000 values (nr x nz)");
     CHECK_ERR(lucent_mco_parse("", "t.mco", &m), LUCENT_ERR_PARSE,
               "t.mco: line 1: unexpected end of file, expected the format version (A1)");
-    CHECK_ERR(lucent_mco_read(MCO "absent.mco", &m), LUCENT_ERR_IO, "absent.mco");
+    CHECK_ERR(lucent_mco_load(MCO "absent.mco", &m), LUCENT_ERR_IO, "absent.mco");
     /* without the 2-D sections the file still reads (they are not compared) */
     cut = strcpy(cut, good);
     cut[strstr(cut, "\nA_rz\n") - cut + 1] = '\0';
@@ -197,14 +197,14 @@ static void run_of(const lucent_mco *m, uint64_t photons, lucent_mc_result *r)
 TEST(compare_with_itself)
 {
     lucent_mco m;
-    CHECK_OK(lucent_mco_read(MCO "nmismatch_small.mco", &m));
+    CHECK_OK(lucent_mco_load(MCO "nmismatch_small.mco", &m));
     lucent_mc_result r;
     run_of(&m, 20000, &r);
     lucent_mcml_run run = m.run;
     run.output = "self.mco";
     CHECK_OK(lucent_mcml_write(test_path("self.mco"), &run, &r));
     lucent_mco self;
-    CHECK_OK(lucent_mco_read(test_path("self.mco"), &self));
+    CHECK_OK(lucent_mco_load(test_path("self.mco"), &self));
     lucent_mco_comparison c;
     CHECK_OK(lucent_mco_compare(&self, &r, &c));
     CHECK(c.rsp_equal && c.a_l_on_grid && c.se_scale == 1.0);
@@ -228,7 +228,7 @@ TEST(compare_with_itself)
 TEST(compare_finds_differences)
 {
     lucent_mco m;
-    CHECK_OK(lucent_mco_read(MCO "gcontrast_small.mco", &m));
+    CHECK_OK(lucent_mco_load(MCO "gcontrast_small.mco", &m));
     lucent_mc_result r;
     run_of(&m, 80000, &r);
     m.rd *= 1.05;
@@ -256,7 +256,7 @@ TEST(compare_finds_differences)
 TEST(check_run_names_the_difference)
 {
     lucent_mco m;
-    CHECK_OK(lucent_mco_read(MCO "gcontrast_small.mco", &m));
+    CHECK_OK(lucent_mco_load(MCO "gcontrast_small.mco", &m));
     lucent_mcml_file f;
     CHECK_OK(lucent_mcml_load(MCO "gcontrast_small.mci", &f));
     CHECK_OK(lucent_mco_check_run(&m, &f.runs[0].desc));
@@ -280,7 +280,7 @@ TEST(check_run_names_the_difference)
 TEST(comparison_files)
 {
     lucent_mco m;
-    CHECK_OK(lucent_mco_read(MCO "gcontrast_small.mco", &m));
+    CHECK_OK(lucent_mco_load(MCO "gcontrast_small.mco", &m));
     lucent_mc_result r;
     run_of(&m, 20000, &r);
     lucent_mco_comparison c;

@@ -294,7 +294,7 @@ static lucent_status run_compare(const options *o, const lucent_mco *mco, lucent
 static int cmd_compare_mco(const options *o)
 {
     lucent_mco mco;
-    if (lucent_mco_read(o->compare, &mco) != LUCENT_OK) return cli_fail();
+    if (lucent_mco_load(o->compare, &mco) != LUCENT_OK) return cli_fail();
     lucent_mcml_file mci = {0};
     lucent_mc_desc d;
     lucent_status s = compare_desc(o, &mco, &mci, &d);

@@ -200,6 +200,9 @@ lucent_status lucent_write_file(const char *path, const void *data, size_t size)
 /* Reads a whole file; *dest is NUL-terminated (not counted in *size) and freed with free(). */
 lucent_status lucent_read_file(const char *path, char **dest, size_t *size);
 
+/* Reads a whole text file (LUCENT_ERR_PARSE "not a text file" when it holds a NUL byte); free with free(). */
+lucent_status lucent_read_text_file(const char *path, char **dest);
+
 /* Creates directory `dir` and any missing parents (mkdir -p; mode 0777 less the umask). Succeeds
  * when they exist already; fails, naming the component, when one cannot be made or is not a
  * directory. */

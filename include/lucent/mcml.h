@@ -37,7 +37,7 @@ typedef struct lucent_mco {
 lucent_status lucent_mco_parse(const char *text, const char *name, lucent_mco *dest);
 
 /* Reads and parses an .mco file. */
-lucent_status lucent_mco_read(const char *path, lucent_mco *dest);
+lucent_status lucent_mco_load(const char *path, lucent_mco *dest);
 
 /* Frees what lucent_mco_parse allocated and zeroes m. */
 void lucent_mco_free(lucent_mco *m);

@@ -166,3 +166,15 @@ lucent_status lucent_mkdir_p(const char *dir)
     free(p);
     return s;
 }
+
+lucent_status lucent_read_text_file(const char *path, char **dest)
+{
+    size_t size;
+    lucent_status s = lucent_read_file(path, dest, &size);
+    if (s == LUCENT_OK && strlen(*dest) != size) {
+        free(*dest);
+        *dest = NULL;
+        s = lucent_error(LUCENT_ERR_PARSE, "%s: not a text file", path);
+    }
+    return s;
+}

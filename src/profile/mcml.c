@@ -211,11 +211,9 @@ lucent_status lucent_mcml_load(const char *path, lucent_mcml_file *dest)
 {
     memset(dest, 0, sizeof *dest);
     char *text;
-    size_t size;
-    lucent_status s = lucent_read_file(path, &text, &size);
+    lucent_status s = lucent_read_text_file(path, &text);
     if (s != LUCENT_OK) return s;
-    if (strlen(text) != size) s = lucent_error(LUCENT_ERR_PARSE, "%s: not a text file", path);
-    if (s == LUCENT_OK) s = lucent_mcml_parse(text, path, dest);
+    s = lucent_mcml_parse(text, path, dest);
     free(text);
     return s;
 }

@@ -225,15 +225,13 @@ lucent_status lucent_mco_parse(const char *text, const char *name, lucent_mco *d
     return s;
 }
 
-lucent_status lucent_mco_read(const char *path, lucent_mco *dest)
+lucent_status lucent_mco_load(const char *path, lucent_mco *dest)
 {
     memset(dest, 0, sizeof *dest);
     char *text;
-    size_t size;
-    lucent_status s = lucent_read_file(path, &text, &size);
+    lucent_status s = lucent_read_text_file(path, &text);
     if (s != LUCENT_OK) return s;
-    if (strlen(text) != size) s = lucent_error(LUCENT_ERR_PARSE, "%s: not a text file", path);
-    if (s == LUCENT_OK) s = lucent_mco_parse(text, path, dest);
+    s = lucent_mco_parse(text, path, dest);
     free(text);
     return s;
 }
