@@ -44,8 +44,8 @@ int main(int argc, char **argv)
     printf("  1 thread : %8.1f M numbers/s  (%.2f ns each)\n", one / 1e6, 1e9 / one);
     for (int t = 2; t <= cores; t *= 2) {
         double many = numbers_per_second(t, chunks);
-        printf("  %d threads: %8.1f M numbers/s  speed-up %.2fx over 1 thread (ideal %dx)\n", t,
-               many / 1e6, many / one, t);
+        printf("  %d threads: %8.1f M numbers/s  speed-up %.2fx over 1 thread (ideal %dx)\n", t, many / 1e6, many / one,
+               t);
     }
     return 0;
 }

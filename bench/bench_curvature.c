@@ -69,8 +69,8 @@ static void bench_method(const lucent_mesh *m, int method, int fast, int repeats
     d.pool = two;
     timing t2 = time_curvature_desc(m, &d, repeats, &ok);
     printf("    %-13s 1 thread %.3f s (median %.3f, cpu %.3f), 2 threads %.3f s (median %.3f, cpu %.3f)  %s%s\n",
-           fast ? "rusink. fast" : lucent_curvature_method_name(method), t1.best, t1.median, t1.cpu, t2.best,
-           t2.median, t2.cpu, ok ? "finite" : "NON-FINITE OR FAILED", anchor);
+           fast ? "rusink. fast" : lucent_curvature_method_name(method), t1.best, t1.median, t1.cpu, t2.best, t2.median,
+           t2.cpu, ok ? "finite" : "NON-FINITE OR FAILED", anchor);
 }
 
 static void bench_mesh(const char *dir, const char *file, int raw, int repeats, lucent_pool *one, lucent_pool *two)
@@ -99,8 +99,13 @@ static void bench_mesh(const char *dir, const char *file, int raw, int repeats, 
 
 static void bench_torus(double jitter, const char *anchor)
 {
-    lucent_primitive_desc d = {.kind = LUCENT_PRIMITIVE_TORUS, .major_radius = 3, .radius = 1,
-                               .u_count = 192, .v_count = 64, .jitter = jitter, .seed = 7};
+    lucent_primitive_desc d = {.kind = LUCENT_PRIMITIVE_TORUS,
+                               .major_radius = 3,
+                               .radius = 1,
+                               .u_count = 192,
+                               .v_count = 64,
+                               .jitter = jitter,
+                               .seed = 7};
     lucent_mesh *m;
     if (lucent_mesh_primitive(&d, &m) != LUCENT_OK) return;
     printf("  torus 192x64%s:", jitter > 0 ? " jittered 1/4 cell" : "");

@@ -78,8 +78,8 @@ typedef struct bins {
 } bins;
 
 /* Accumulates the luminance of rows [row0, row0 + STRIP) of img (and its variance, may be NULL). */
-static void accumulate(const lucent_scene *sc, int height, int row0, const lucent_image *img,
-                       const lucent_image *var, double radius, bins *dest)
+static void accumulate(const lucent_scene *sc, int height, int row0, const lucent_image *img, const lucent_image *var,
+                       double radius, bins *dest)
 {
     memset(dest, 0, sizeof *dest);
     for (int y = 0; y < STRIP; y++)
@@ -102,7 +102,8 @@ static void reference(double radius, double seconds, bool subsurface, lucent_poo
     lucent_scene *sc = scene(radius, STRIP, "lambert", NULL);
     lucent_tracer *tr = NULL;
     lucent_trace_result res = {0};
-    if (lucent_tracer_create(sc, &(lucent_tracer_desc){.subsurface_only = subsurface}, &tr) != LUCENT_OK) fail("tracer");
+    if (lucent_tracer_create(sc, &(lucent_tracer_desc){.subsurface_only = subsurface}, &tr) != LUCENT_OK)
+        fail("tracer");
     lucent_trace_desc td = {.spp = 100000, .time_limit = seconds, .pool = pool, .label = "reference"};
     if (lucent_tracer_render(tr, &td, &res) != LUCENT_OK) fail("trace");
     accumulate(sc, STRIP, 0, res.image, res.variance, radius, ref);
@@ -167,7 +168,8 @@ static void analytic_rows(const lucent_scene *sc, double radius, const bins *ref
                 a.sum[k] += lambert_analytic(sc, x, y, radius, f), a.n[k]++;
             }
         printf("%-18s", names[f]);
-        for (int k = 0; k < BINS; k++) printf(" %5.2f", ref->sum[k] > 0 && a.n[k] ? a.sum[k] / a.n[k] / (ref->sum[k] / ref->n[k]) : 0.0);
+        for (int k = 0; k < BINS; k++)
+            printf(" %5.2f", ref->sum[k] > 0 && a.n[k] ? a.sum[k] / a.n[k] / (ref->sum[k] / ref->n[k]) : 0.0);
         printf("\n");
     }
 }
@@ -177,8 +179,7 @@ static void table(double radius, const bins *ref, const bins *m)
     printf("R %g mm   theta:", radius);
     for (int k = 0; k < BINS; k++) printf(" %5d", 10 * k + 5);
     printf("\n%-18s", "reference (se %)");
-    for (int k = 0; k < BINS; k++)
-        printf(" %5.1f", ref->sum[k] > 0 ? 100 * sqrt(ref->var[k]) / ref->sum[k] : 0.0);
+    for (int k = 0; k < BINS; k++) printf(" %5.1f", ref->sum[k] > 0 ? 100 * sqrt(ref->var[k]) / ref->sum[k] : 0.0);
     printf("\n");
     for (int i = 0; i < METHODS; i++) {
         printf("%-18s", k_methods[i].label);

@@ -21,12 +21,9 @@ typedef struct model_case {
 } model_case;
 
 static const model_case k_models[] = {
-    {"svd1", {.model = LUCENT_KERNEL_SVD, .rank = 1}},
-    {"svd4", {.model = LUCENT_KERNEL_SVD, .rank = 4}},
-    {"preint", {.model = LUCENT_KERNEL_PREINT}},
-    {"guided", {.model = LUCENT_KERNEL_GUIDED, .k = 1}},
-    {"manual", {.model = LUCENT_KERNEL_MANUAL}},
-    {"sog4", {.model = LUCENT_KERNEL_SOG, .rank = 4}},
+    {"svd1", {.model = LUCENT_KERNEL_SVD, .rank = 1}}, {"svd4", {.model = LUCENT_KERNEL_SVD, .rank = 4}},
+    {"preint", {.model = LUCENT_KERNEL_PREINT}},       {"guided", {.model = LUCENT_KERNEL_GUIDED, .k = 1}},
+    {"manual", {.model = LUCENT_KERNEL_MANUAL}},       {"sog4", {.model = LUCENT_KERNEL_SOG, .rank = 4}},
     {"jimenez", {.model = LUCENT_KERNEL_JIMENEZ}},
 };
 enum { MODEL_COUNT = sizeof k_models / sizeof k_models[0] };
@@ -63,8 +60,10 @@ static void run_material(int index)
     printf("%-10s %4d %6.1f %6.1f", m.name, 2 * gt->half + 1, (t1 - t0) * 1e3, (t2 - t1) * 1e3);
     for (int i = 0; i < MODEL_COUNT; i++) {
         double dt = time_model(gt, p, &m, &k_models[i], &constraint);
-        if (dt < 0) printf(" %7s", "-");
-        else printf(" %7.1f", dt * 1e3), total += dt;
+        if (dt < 0)
+            printf(" %7s", "-");
+        else
+            printf(" %7.1f", dt * 1e3), total += dt;
     }
     printf(" %7.1f %9.1e\n", total * 1e3, constraint);
     lucent_kernel2d_destroy(gt);

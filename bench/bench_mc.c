@@ -27,8 +27,13 @@ static double rate(const bench_case *c, bool a_rz, int threads, uint64_t n, doub
 {
     double mfp = 1.0 / (c->layer.sigma_a + c->layer.sigma_s);
     lucent_pool *pool = threads > 1 ? lucent_pool_create(threads) : NULL;
-    lucent_mc_desc d = {.layers = &c->layer, .layer_count = 1, .photons = n, .seed = 1,
-                        .pool = pool, .score_a_rz = a_rz, .last_bin_collects = true,
+    lucent_mc_desc d = {.layers = &c->layer,
+                        .layer_count = 1,
+                        .photons = n,
+                        .seed = 1,
+                        .pool = pool,
+                        .score_a_rz = a_rz,
+                        .last_bin_collects = true,
                         .grid = {.dr = mfp / 20, .dz = mfp / 20, .nr = 640, .nz = 640, .na = 30}};
     lucent_mc_result r;
     double t0 = lucent_clock_seconds();
@@ -58,8 +63,7 @@ static void run_case(const bench_case *c, bool a_rz, int cores, double seconds)
         snprintf(anchor, sizeof anchor, "%.1fk", lo / 1e3);
     printf("  %-12s %-7s %7.0fk/s per core = %5.1fx MCML (%s)  %7.0fk/s on %d cores (%.2fx)  "
            "Rd %.4f\n",
-           c->name, a_rz ? "A(r,z)" : "no Arz", one / 1e3, one / hi, anchor, all / 1e3, cores,
-           all / one, rd);
+           c->name, a_rz ? "A(r,z)" : "no Arz", one / 1e3, one / hi, anchor, all / 1e3, cores, all / one, rd);
 }
 
 int main(int argc, char **argv)

@@ -22,11 +22,13 @@ typedef struct method_case {
     bool lut;
 } method_case;
 
-static const method_case k_cases[] = {
-    {"lambert", "lambert", true},         {"cdrf (LUT)", "cdrf", true},
-    {"cdrf (closed form)", "cdrf", false}, {"cdrf+translucency", "cdrf+translucency", true},
-    {"ssss preint 17", "ssss:preint", true}, {"ssss jimenez 17", "ssss:jimenez", true},
-    {"ssss svd3 17", "ssss:svd3", true}};
+static const method_case k_cases[] = {{"lambert", "lambert", true},
+                                      {"cdrf (LUT)", "cdrf", true},
+                                      {"cdrf (closed form)", "cdrf", false},
+                                      {"cdrf+translucency", "cdrf+translucency", true},
+                                      {"ssss preint 17", "ssss:preint", true},
+                                      {"ssss jimenez 17", "ssss:jimenez", true},
+                                      {"ssss svd3 17", "ssss:svd3", true}};
 enum { CASES = sizeof k_cases / sizeof k_cases[0], MAX_FRAMES = 200 };
 
 typedef struct measured {
@@ -94,8 +96,8 @@ static void run(lucent_renderer *r, const lucent_render_settings *s, double min_
         }
     for (int m = 0; m < CASES; m++) {
         samples *p = &smp[m];
-        dest[m] = (measured){minimum(p->f, p->n), minimum(p->g, p->n), minimum(p->b, p->n), minimum(p->c, p->n),
-                             median(p->f, p->n), p->n};
+        dest[m] = (measured){minimum(p->f, p->n), minimum(p->g, p->n), minimum(p->b, p->n),
+                             minimum(p->c, p->n), median(p->f, p->n),  p->n};
     }
 }
 
@@ -113,8 +115,7 @@ static lucent_scene *load(const char *path, const char *mesh)
 static void settings_for(const lucent_scene *sc, const method_case *m, int w, int h, lucent_render_settings *dest)
 {
     *dest = sc->render;
-    if (lucent_render_method_parse(m->method, &dest->view.method, dest) != LUCENT_OK)
-        fail(m->method);
+    if (lucent_render_method_parse(m->method, &dest->view.method, dest) != LUCENT_OK) fail(m->method);
     dest->cdrf.lut = m->lut;
     dest->ssss.taps = 17;
     dest->view.width = w, dest->view.height = h;
@@ -124,7 +125,8 @@ static void print_ratios(const measured *res, const char *size)
 {
     const measured *lam = &res[0], *cdrf = &res[1], *closed = &res[2], *ssss = &res[4];
     printf("  %s: cdrf (LUT) / lambert: frame %.2fx, geometry pass %.2fx   [Kubo Table 1: 1.17x-1.44x; target "
-           "<= 1.05x]\n", size, cdrf->frame_ms / lam->frame_ms, cdrf->geometry_ms / lam->geometry_ms);
+           "<= 1.05x]\n",
+           size, cdrf->frame_ms / lam->frame_ms, cdrf->geometry_ms / lam->geometry_ms);
     printf("  %s: cdrf (closed form) / lambert: frame %.2fx   [Kubo Table 1 without LUT: 4.3x-6.3x]\n", size,
            closed->frame_ms / lam->frame_ms);
     printf("  %s: ssss blur (preint 17) / geometry pass: %.2fx; blur %.3f ms   [Jimenez: 1.05 ms at 1080p, GTX 580; "
@@ -156,7 +158,8 @@ int main(int argc, char **argv)
     lucent_gl_info info;
     lucent_gl_get_info(ctx, &info);
     printf("renderer: %s on %s | %s | %s (%s)\n", sc->name, info.renderer, info.vendor, info.version, info.platform);
-    printf("mesh: %s, %zu triangles; shadow map %d^2; best of >= 3 rounds (>= %.1f s per method) after one warm-up; methods interleaved\n",
+    printf("mesh: %s, %zu triangles; shadow map %d^2; best of >= 3 rounds (>= %.1f s per method) after one warm-up; "
+           "methods interleaved\n",
            res1 ? "dragon res1" : "dragon res2 (res1 missing)", sc->objects[0].mesh->face_count,
            sc->render.view.shadow_map_size, min_seconds);
     static const int sizes[2][2] = {{512, 512}, {1920, 1080}};

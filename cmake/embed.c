@@ -38,8 +38,7 @@ int main(int argc, char **argv)
     for (int i = 3; i < argc; i++)
         if (embed_one(out, argv[2], argv[i], i - 3)) return 1;
     fprintf(out, "const lucent_embedded_file lucent_embedded_files[] = {\n");
-    for (int i = 3; i < argc; i++)
-        fprintf(out, "    {NAME_%d, data_%d, SIZE_%d},\n", i - 3, i - 3, i - 3);
+    for (int i = 3; i < argc; i++) fprintf(out, "    {NAME_%d, data_%d, SIZE_%d},\n", i - 3, i - 3, i - 3);
     fprintf(out, "    {NULL, NULL, 0}};\n");
     if (fclose(out) != 0 || rename(tmp, argv[1]) != 0) return 1;
     return 0;

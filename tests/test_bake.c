@@ -61,8 +61,8 @@ TEST(profile_transmittance_is_normalised_and_falls)
     lucent_render_settings s = lucent_render_settings_defaults();
     s.translucency.transmittance = LUCENT_TRANSMIT_PROFILE;
     lucent_baked b = {0};
-    CHECK_OK(lucent_material_bake(&m, &(lucent_bake_desc){.what = LUCENT_BAKE_TRANSMITTANCE, .settings = &s}, NULL,
-                                  &b));
+    CHECK_OK(
+        lucent_material_bake(&m, &(lucent_bake_desc){.what = LUCENT_BAKE_TRANSMITTANCE, .settings = &s}, NULL, &b));
     CHECK(b.have & LUCENT_BAKE_PROFILE); /* the profile model needs the profile */
     for (int c = 0; c < 3; c++) {
         CHECK_NEAR(b.transmittance[c], 1, 1e-6); /* T(0) / T(0) */
@@ -80,8 +80,10 @@ TEST(monte_carlo_parts_come_back_from_the_cache_bit_for_bit)
     lucent_render_settings s = lucent_render_settings_defaults();
     lucent_cache *cache = NULL;
     CHECK_OK(lucent_cache_create(test_path("cache/deeper"), &cache));
-    lucent_bake_desc d = {.what = LUCENT_BAKE_TRANSMITTANCE | LUCENT_BAKE_SIGMA0, .settings = &s,
-                          .transmit_photons = 2000, .sigma0_photons = 2000};
+    lucent_bake_desc d = {.what = LUCENT_BAKE_TRANSMITTANCE | LUCENT_BAKE_SIGMA0,
+                          .settings = &s,
+                          .transmit_photons = 2000,
+                          .sigma0_photons = 2000};
     lucent_baked first = {0}, second = {0};
     CHECK_OK(lucent_material_bake(&m, &d, cache, &first));
     CHECK(!first.sigma0_cached && !(first.have & LUCENT_BAKE_PROFILE)); /* the slab needs no profile */
@@ -92,9 +94,9 @@ TEST(monte_carlo_parts_come_back_from_the_cache_bit_for_bit)
     CHECK(first.transmit_range == second.transmit_range);
     /* the sigma0 part is the material's fit with the stated radii, bins and photons */
     lucent_cdrf_fit fit;
-    CHECK_OK(lucent_cdrf_fit_material(&(lucent_cdrf_material_fit_desc){.material = &m, .photons = 2000,
-                                                                       .bins = LUCENT_BAKE_SIGMA0_BINS, .seed = 1},
-                                      &fit, NULL));
+    CHECK_OK(lucent_cdrf_fit_material(
+        &(lucent_cdrf_material_fit_desc){.material = &m, .photons = 2000, .bins = LUCENT_BAKE_SIGMA0_BINS, .seed = 1},
+        &fit, NULL));
     CHECK(!memcmp(fit.sigma0, first.sigma0, sizeof fit.sigma0));
     /* another photon count misses the cache */
     lucent_baked third = {0};

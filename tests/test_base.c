@@ -86,8 +86,7 @@ TEST(progress_silent_by_default_and_draws_when_asked)
     size_t n = fread(text, 1, sizeof text - 1, f);
     fclose(f);
     text[n] = '\0';
-    CHECK_MSG(strstr(text, "photons") && strstr(text, "100.0%") && strstr(text, "took"),
-              "final bar: %s", text);
+    CHECK_MSG(strstr(text, "photons") && strstr(text, "100.0%") && strstr(text, "took"), "final bar: %s", text);
     CHECK(n > 0 && text[n - 1] == '\n');
 }
 
@@ -127,8 +126,7 @@ TEST(parallel_for_visits_every_item_once)
         lucent_pool_destroy(pool);
     }
     CHECK_OK(lucent_parallel_for(NULL, 0, 1, visit_chunk, NULL)); /* nothing to do */
-    CHECK_ERR(lucent_parallel_for(NULL, 10, 0, visit_chunk, NULL), LUCENT_ERR_INVALID_ARGUMENT,
-              "chunk size");
+    CHECK_ERR(lucent_parallel_for(NULL, 10, 0, visit_chunk, NULL), LUCENT_ERR_INVALID_ARGUMENT, "chunk size");
 }
 
 static lucent_status fail_some_chunks(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
@@ -144,8 +142,7 @@ TEST(parallel_for_reports_lowest_failing_chunk)
     lucent_pool *pool = lucent_pool_create(2);
     for (int rep = 0; rep < 20; rep++) {
         lucent_clear_error();
-        CHECK_ERR(lucent_parallel_for(pool, 64, 1, fail_some_chunks, NULL), LUCENT_ERR_NUMERIC,
-                  "chunk 13 failed");
+        CHECK_ERR(lucent_parallel_for(pool, 64, 1, fail_some_chunks, NULL), LUCENT_ERR_NUMERIC, "chunk 13 failed");
     }
     lucent_pool_destroy(pool);
 }
@@ -373,8 +370,8 @@ TEST(atomic_write_errors_name_the_path)
     CHECK_ERR(lucent_write_file(path, "x", 1), LUCENT_ERR_IO, path, "Not a directory");
 
     CHECK_ERR(lucent_write_file(test_tmpdir(), "x", 1), LUCENT_ERR_IO, "is a directory");
-    CHECK_ERR(lucent_read_file(test_path("missing.txt"), &(char *){0}, NULL), LUCENT_ERR_IO,
-              "missing.txt", "cannot open");
+    CHECK_ERR(lucent_read_file(test_path("missing.txt"), &(char *){0}, NULL), LUCENT_ERR_IO, "missing.txt",
+              "cannot open");
 }
 
 /* Writes into dir/out.txt and checks the failure; returns the number of failed checks. */
@@ -454,8 +451,7 @@ TEST(json_errors_carry_file_and_path)
     const char *s;
     CHECK_ERR(lucent_json_string(&light, "kind", &s), LUCENT_ERR_PARSE,
               "scene.json: scene.lights[1].kind: expected a string, got a number");
-    CHECK_ERR(lucent_json_number(&light, "power", dir), LUCENT_ERR_PARSE,
-              "scene.lights[1].power: missing field");
+    CHECK_ERR(lucent_json_number(&light, "power", dir), LUCENT_ERR_PARSE, "scene.lights[1].power: missing field");
     bool on;
     CHECK_OK(lucent_json_bool_or(&light, "on", false, &on));
     CHECK(on);
@@ -473,12 +469,11 @@ TEST(json_errors_carry_file_and_path)
 TEST(json_rejects_broken_text_nan_and_infinity)
 {
     cJSON *root;
-    CHECK_ERR(lucent_json_parse_text("{\n \"a\": 1,\n \"b\": }", "m.json", &root), LUCENT_ERR_PARSE,
-              "m.json: line 3", "invalid JSON");
-    CHECK_ERR(lucent_json_parse_text("{\"a\": 1,\n \"sigma_a\": [0.1, NaN, 2]}", "m.json", &root),
-              LUCENT_ERR_PARSE, "m.json: line 2, column 19 (in field \"sigma_a\"): not a number JSON allows");
-    CHECK_ERR(lucent_json_parse_text("{\"a\": [1, 2", "m.json", &root), LUCENT_ERR_PARSE,
-              "unexpected end of file");
+    CHECK_ERR(lucent_json_parse_text("{\n \"a\": 1,\n \"b\": }", "m.json", &root), LUCENT_ERR_PARSE, "m.json: line 3",
+              "invalid JSON");
+    CHECK_ERR(lucent_json_parse_text("{\"a\": 1,\n \"sigma_a\": [0.1, NaN, 2]}", "m.json", &root), LUCENT_ERR_PARSE,
+              "m.json: line 2, column 19 (in field \"sigma_a\"): not a number JSON allows");
+    CHECK_ERR(lucent_json_parse_text("{\"a\": [1, 2", "m.json", &root), LUCENT_ERR_PARSE, "unexpected end of file");
     CHECK_OK(lucent_json_parse_text("{\"a\": 1e999, \"a2\": 1, \"a2\": 2}", "m.json", &root));
     lucent_json_node doc = lucent_json_root(root, "m.json", "");
     double v;
@@ -579,17 +574,14 @@ TEST(mat4_multiplies_column_major)
     CHECK(f[14] == 12.0f && f[15] == 1.0f);
 }
 
-TEST_MAIN(TEST_ENTRY(error_message_and_context), TEST_ENTRY(error_is_per_thread),
-          TEST_ENTRY(log_filters_by_level), TEST_ENTRY(progress_silent_by_default_and_draws_when_asked),
-          TEST_ENTRY(parallel_for_visits_every_item_once),
-          TEST_ENTRY(parallel_for_reports_lowest_failing_chunk),
-          TEST_ENTRY(parallel_for_nested_runs_without_deadlock), TEST_ENTRY(pool_size_from_environment),
-          TEST_ENTRY(rng_matches_xoshiro256starstar_reference), TEST_ENTRY(rng_streams_are_uniform),
-          TEST_ENTRY(rng_neighbouring_streams_are_independent),
+TEST_MAIN(TEST_ENTRY(error_message_and_context), TEST_ENTRY(error_is_per_thread), TEST_ENTRY(log_filters_by_level),
+          TEST_ENTRY(progress_silent_by_default_and_draws_when_asked), TEST_ENTRY(parallel_for_visits_every_item_once),
+          TEST_ENTRY(parallel_for_reports_lowest_failing_chunk), TEST_ENTRY(parallel_for_nested_runs_without_deadlock),
+          TEST_ENTRY(pool_size_from_environment), TEST_ENTRY(rng_matches_xoshiro256starstar_reference),
+          TEST_ENTRY(rng_streams_are_uniform), TEST_ENTRY(rng_neighbouring_streams_are_independent),
           TEST_ENTRY(rng_same_seed_same_numbers_other_seed_differs),
           TEST_ENTRY(rng_per_chunk_streams_independent_of_thread_count),
-          TEST_ENTRY(atomic_write_replaces_only_when_complete),
-          TEST_ENTRY(atomic_write_errors_name_the_path),
+          TEST_ENTRY(atomic_write_replaces_only_when_complete), TEST_ENTRY(atomic_write_errors_name_the_path),
           TEST_ENTRY(atomic_write_into_read_only_directory),
           TEST_ENTRY(mkdir_p_creates_parents_and_names_what_blocks_it), TEST_ENTRY(json_errors_carry_file_and_path),
           TEST_ENTRY(json_rejects_broken_text_nan_and_infinity),

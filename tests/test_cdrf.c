@@ -9,7 +9,6 @@
 #include "lucent/cdrf.h"
 #include "test.h"
 
-
 /* Independent reference: the Fourier series of the half-wave rectified cosine,
  * max(cos t, 0) = 1/pi + cos(t)/2 + (2/pi) sum_{m>=1} (-1)^(m+1) cos(2 m t) / (4 m^2 - 1);
  * convolving with a Gaussian multiplies mode k by exp(-k^2 sigma^2 / 2). Converges fast for
@@ -205,9 +204,8 @@ TEST(sphere_pure_absorber_transmission)
      * Nothing leaves toward the camera (every exit travels along -x). */
     lucent_material m = make_material(0.3, 0, 0, 1.0);
     lucent_cdrf_sphere_result res;
-    CHECK_OK(lucent_cdrf_sphere_run(&(lucent_cdrf_sphere_desc){.material = &m, .radius = 2, .photons = 40000,
-                                                               .bins = 12, .seed = 3},
-                                    &res));
+    CHECK_OK(lucent_cdrf_sphere_run(
+        &(lucent_cdrf_sphere_desc){.material = &m, .radius = 2, .photons = 40000, .bins = 12, .seed = 3}, &res));
     double a = 0.6, r = 2, t = 2 * (1 - exp(-a * r) * (1 + a * r)) / (a * r * a * r);
     for (int c = 0; c < 3; c++) {
         CHECK_NEAR(res.entered[c], 1.0, 1e-12);
@@ -232,9 +230,8 @@ TEST(sphere_conserves_energy_and_fresnel_entry)
     }
     lucent_material m = make_material(0, 2.0, 0.5, eta);
     lucent_cdrf_sphere_result res;
-    CHECK_OK(lucent_cdrf_sphere_run(&(lucent_cdrf_sphere_desc){.material = &m, .radius = 1, .photons = 20000,
-                                                               .bins = 6, .seed = 5},
-                                    &res));
+    CHECK_OK(lucent_cdrf_sphere_run(
+        &(lucent_cdrf_sphere_desc){.material = &m, .radius = 1, .photons = 20000, .bins = 6, .seed = 5}, &res));
     for (int c = 0; c < 3; c++) {
         CHECK_NEAR(res.entered[c], 1 - refl, 0.004);
         CHECK_NEAR(res.exited[c] / res.entered[c], 1.0, 0.005);
@@ -242,14 +239,16 @@ TEST(sphere_conserves_energy_and_fresnel_entry)
     }
     /* A rough boundary with a tiny GGX alpha behaves like the smooth one. */
     lucent_cdrf_sphere_result rough;
-    CHECK_OK(lucent_cdrf_sphere_run(&(lucent_cdrf_sphere_desc){.material = &m, .radius = 1, .photons = 20000,
-                                                               .bins = 6, .seed = 5, .roughness = 1e-4},
-                                    &rough));
+    CHECK_OK(lucent_cdrf_sphere_run(
+        &(lucent_cdrf_sphere_desc){
+            .material = &m, .radius = 1, .photons = 20000, .bins = 6, .seed = 5, .roughness = 1e-4},
+        &rough));
     CHECK_NEAR(rough.entered[0], 1 - refl, 0.004);
     /* A rough boundary loses some light to masking but keeps most of it. */
-    CHECK_OK(lucent_cdrf_sphere_run(&(lucent_cdrf_sphere_desc){.material = &m, .radius = 1, .photons = 20000,
-                                                               .bins = 6, .seed = 5, .roughness = 0.5},
-                                    &rough));
+    CHECK_OK(lucent_cdrf_sphere_run(
+        &(lucent_cdrf_sphere_desc){
+            .material = &m, .radius = 1, .photons = 20000, .bins = 6, .seed = 5, .roughness = 0.5},
+        &rough));
     CHECK(rough.entered[0] > 0.7 && rough.entered[0] < 1 - refl + 0.01);
     CHECK(rough.exited[0] <= rough.entered[0] + 1e-3);
 }
@@ -279,9 +278,14 @@ TEST(sphere_single_scattering_radiance)
     lucent_material m = make_material(sa, ss, 0, 1.0);
     lucent_cdrf_sphere_result res;
     lucent_pool *pool = lucent_pool_create(2);
-    CHECK_OK(lucent_cdrf_sphere_run(&(lucent_cdrf_sphere_desc){.material = &m, .radius = r, .photons = 600000,
-                                                               .bins = 6, .seed = 11, .max_order = 1,
-                                                               .cone = 0.25, .pool = pool},
+    CHECK_OK(lucent_cdrf_sphere_run(&(lucent_cdrf_sphere_desc){.material = &m,
+                                                               .radius = r,
+                                                               .photons = 600000,
+                                                               .bins = 6,
+                                                               .seed = 11,
+                                                               .max_order = 1,
+                                                               .cone = 0.25,
+                                                               .pool = pool},
                                     &res));
     for (int j = 1; j < 5; j++) {
         double ta = M_PI * j / 6, tb = M_PI * (j + 1) / 6, num = 0, den = 0;
@@ -290,14 +294,14 @@ TEST(sphere_single_scattering_radiance)
             num += w * single_scatter(t, r, sa, ss), den += w;
         }
         double expect = num / den, got = res.radiance[0][j], se = res.radiance_se[0][j];
-        CHECK_MSG(fabs(got - expect) <= 3 * se + 0.03 * expect, "bin %d: MC %.5g +- %.2g, single scattering %.5g",
-                  j, got, se, expect);
+        CHECK_MSG(fabs(got - expect) <= 3 * se + 0.03 * expect, "bin %d: MC %.5g +- %.2g, single scattering %.5g", j,
+                  got, se, expect);
     }
     /* The same seed gives the same numbers on one thread and on two. */
     lucent_cdrf_sphere_result one, two;
     lucent_material skin = make_material(0.1, 1.0, 0.3, 1.3);
-    lucent_cdrf_sphere_desc d = {.material = &skin, .radius = 2, .photons = 20000, .bins = 9, .seed = 2,
-                                 .roughness = 0.3};
+    lucent_cdrf_sphere_desc d = {
+        .material = &skin, .radius = 2, .photons = 20000, .bins = 9, .seed = 2, .roughness = 0.3};
     CHECK_OK(lucent_cdrf_sphere_run(&d, &one));
     d.pool = pool;
     CHECK_OK(lucent_cdrf_sphere_run(&d, &two));

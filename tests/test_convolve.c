@@ -15,8 +15,7 @@ static lucent_image *random_image(int w, int h, int ch, uint64_t seed)
     if (lucent_image_create(w, h, ch, &img) != LUCENT_OK) abort();
     lucent_rng rng;
     lucent_rng_init(seed, 0, &rng);
-    for (size_t k = 0; k < lucent_image_value_count(img); k++)
-        img->data[k] = lucent_rng_uniformf(&rng);
+    for (size_t k = 0; k < lucent_image_value_count(img); k++) img->data[k] = lucent_rng_uniformf(&rng);
     return img;
 }
 
@@ -102,25 +101,22 @@ static double worst_fft_diff;
 
 /* ---- 2-D: FFT against direct ----------------------------------------------------------------- */
 
-static void fft_vs_direct(int w, int h, int ch, int n, lucent_border border, uint64_t seed,
-                          lucent_pool *pool)
+static void fft_vs_direct(int w, int h, int ch, int n, lucent_border border, uint64_t seed, lucent_pool *pool)
 {
     lucent_image *src = random_image(w, h, ch, seed);
     lucent_image *a = blank_like(src), *b = blank_like(src);
-    float *wr = random_weights((size_t)n * n, seed, 1),
-          *wg = random_weights((size_t)n * n, seed, 2),
+    float *wr = random_weights((size_t)n * n, seed, 1), *wg = random_weights((size_t)n * n, seed, 2),
           *wb = random_weights((size_t)n * n, seed, 3);
     lucent_conv_kernel2d k = {n, {wr, wg, wb}};
     if (ch == 1) k.w[1] = k.w[2] = NULL;
     CHECK_OK(lucent_convolve_2d(src, &k, border, pool, a));
     CHECK_OK(lucent_convolve_2d_direct(src, &k, border, pool, b));
     double d = max_abs_diff(a, b);
-    CHECK_MSG(d <= 1e-5, "%dx%dx%d kernel %d %s: FFT vs direct max diff %.3g", w, h, ch, n,
-              lucent_border_name(border), d);
+    CHECK_MSG(d <= 1e-5, "%dx%dx%d kernel %d %s: FFT vs direct max diff %.3g", w, h, ch, n, lucent_border_name(border),
+              d);
     if (d > worst_fft_diff) worst_fft_diff = d;
     if (ch == 4) /* alpha copied */
-        for (size_t p = 0; p < (size_t)w * h; p++)
-            CHECK(a->data[p * 4 + 3] == src->data[p * 4 + 3]);
+        for (size_t p = 0; p < (size_t)w * h; p++) CHECK(a->data[p * 4 + 3] == src->data[p * 4 + 3]);
     lucent_image_destroy(src);
     lucent_image_destroy(a);
     lucent_image_destroy(b);
@@ -137,8 +133,8 @@ TEST(fft_equals_direct)
                                    {23, 23, 3, 1}, {1, 1, 3, 7},    {120, 90, 3, 45}};
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         for (int b = 0; b < 2; b++)
-            fft_vs_direct(cases[i][0], cases[i][1], cases[i][2], cases[i][3], (lucent_border)b,
-                          100 + i, b ? pool : NULL);
+            fft_vs_direct(cases[i][0], cases[i][1], cases[i][2], cases[i][3], (lucent_border)b, 100 + i,
+                          b ? pool : NULL);
     lucent_pool_destroy(pool);
     printf("  FFT vs direct: max |diff| %.3g over all cases\n", worst_fft_diff);
 }
@@ -169,8 +165,7 @@ TEST(delta_reproduces_kernel)
     const float *kxs[3] = {kx, NULL, NULL}, *kys[3] = {ky, NULL, NULL};
     CHECK_OK(lucent_convolve_separable(src, kxs, kys, 7, LUCENT_BORDER_ZERO, NULL, a));
     for (int j = 0; j < 7; j++)
-        for (int i = 0; i < 7; i++)
-            CHECK_NEAR(lucent_image_get(a, x0 - 3 + i, y0 - 3 + j, 2), kx[i] * ky[j], 1e-6);
+        for (int i = 0; i < 7; i++) CHECK_NEAR(lucent_image_get(a, x0 - 3 + i, y0 - 3 + j, 2), kx[i] * ky[j], 1e-6);
     lucent_image_destroy(src);
     lucent_image_destroy(a);
     lucent_image_destroy(b);
@@ -243,12 +238,10 @@ TEST(rank_n_sum_equals_2d)
     }
     lucent_conv_kernel2d k = {n, {k2[0], k2[1], k2[2]}};
     for (int b = 0; b < 2; b++) {
-        CHECK_OK(
-            lucent_convolve_separable_sum(src, rank, kxs, kys, n, (lucent_border)b, NULL, sep));
+        CHECK_OK(lucent_convolve_separable_sum(src, rank, kxs, kys, n, (lucent_border)b, NULL, sep));
         CHECK_OK(lucent_convolve_2d(src, &k, (lucent_border)b, NULL, full));
         double d = max_abs_diff(sep, full);
-        CHECK_MSG(d <= 1e-5, "rank %d %s: max diff %.3g", rank,
-                  lucent_border_name((lucent_border)b), d);
+        CHECK_MSG(d <= 1e-5, "rank %d %s: max diff %.3g", rank, lucent_border_name((lucent_border)b), d);
     }
     lucent_image_destroy(src);
     lucent_image_destroy(sep);
@@ -275,8 +268,7 @@ static void preintegration_case(int gaussian, double width, double *edge_diff, d
     for (int y = 0; y < h; y++) /* + a horizontal edge: still additively separable */
         for (int x = 0; x < w; x++)
             for (int c = 0; c < 3; c++)
-                lucent_image_set(edge, x, y, c,
-                                 lucent_image_get(edge, x, y, c) + (y < h / 3 ? 0.5f : 0.0f));
+                lucent_image_set(edge, x, y, c, lucent_image_get(edge, x, y, c) + (y < h / 3 ? 0.5f : 0.0f));
     CHECK_OK(lucent_signal_shapes(w, h, &shapes));
     lucent_image *sep = blank_like(edge), *full = blank_like(edge);
     /* clamp: the border-extended signal stays additively separable */
@@ -289,8 +281,7 @@ static void preintegration_case(int gaussian, double width, double *edge_diff, d
     if (gaussian) { /* the marginal of the sampled Gaussian is the normalised 1-D Gaussian */
         double sum = 0.0;
         for (int i = -n / 2; i <= n / 2; i++) sum += exp(-i * i / (2.0 * width * width));
-        for (int i = -n / 2; i <= n / 2; i++)
-            CHECK_NEAR(a[i + n / 2], exp(-i * i / (2.0 * width * width)) / sum, 1e-6);
+        for (int i = -n / 2; i <= n / 2; i++) CHECK_NEAR(a[i + n / 2], exp(-i * i / (2.0 * width * width)) / sum, 1e-6);
     }
     lucent_image_destroy(edge);
     lucent_image_destroy(shapes);
@@ -305,8 +296,7 @@ TEST(preintegration_exact_for_edges)
     double ge, gs, ee, es;
     preintegration_case(1, 4.0, &ge, &gs);
     preintegration_case(0, 3.0, &ee, &es);
-    printf("  Gaussian: edge %.3g, shapes %.3g; exponential: edge %.3g, shapes %.3g (max |diff|)\n",
-           ge, gs, ee, es);
+    printf("  Gaussian: edge %.3g, shapes %.3g; exponential: edge %.3g, shapes %.3g (max |diff|)\n", ge, gs, ee, es);
     CHECK_MSG(ge <= 1e-5, "Gaussian edge: %.3g", ge);
     CHECK_MSG(gs <= 1e-5, "Gaussian shapes (Gaussian is separable): %.3g", gs);
     CHECK_MSG(ee <= 1e-5, "exponential edge: %.3g", ee);
@@ -333,8 +323,7 @@ TEST(taps_integer_equal_sparse_kernel)
         CHECK_OK(lucent_convolve_taps(src, &taps, (lucent_border)bd, NULL, a));
         CHECK_OK(lucent_convolve_separable(src, ks, NULL, n, (lucent_border)bd, NULL, b));
         double d = max_abs_diff(a, b);
-        CHECK_MSG(d <= 1e-6, "%s: taps vs sparse kernel %.3g",
-                  lucent_border_name((lucent_border)bd), d);
+        CHECK_MSG(d <= 1e-6, "%s: taps vs sparse kernel %.3g", lucent_border_name((lucent_border)bd), d);
     }
     lucent_image_destroy(src);
     lucent_image_destroy(a);
@@ -366,8 +355,7 @@ TEST(taps_fractional_interpolate)
     /* a ramp read half a pixel off: one tap at +0.5 gives src(x - 0.5) = x - 0.5 inside */
     lucent_image *ramp = NULL;
     CHECK_OK(lucent_image_create(8, 2, 1, &ramp));
-    for (int x = 0; x < 8; x++)
-        lucent_image_set(ramp, x, 0, 0, (float)x), lucent_image_set(ramp, x, 1, 0, (float)x);
+    for (int x = 0; x < 8; x++) lucent_image_set(ramp, x, 0, 0, (float)x), lucent_image_set(ramp, x, 1, 0, (float)x);
     lucent_image *out = blank_like(ramp);
     float o1 = 0.5f, w1 = 1.0f;
     lucent_conv_taps one = {.count = 1, .offsets = &o1, .weights = {&w1, NULL, NULL}};
@@ -450,13 +438,11 @@ TEST(energy_conserved_away_from_edges)
     lucent_image *out = blank_like(src);
     for (int m = 0; m < 3; m++) {
         if (m == 0) CHECK_OK(lucent_convolve_2d(src, &k2, LUCENT_BORDER_CLAMP, NULL, out));
-        if (m == 1)
-            CHECK_OK(lucent_convolve_separable(src, ks, NULL, n, LUCENT_BORDER_CLAMP, NULL, out));
+        if (m == 1) CHECK_OK(lucent_convolve_separable(src, ks, NULL, n, LUCENT_BORDER_CLAMP, NULL, out));
         if (m == 2) CHECK_OK(lucent_convolve_taps(src, &taps, LUCENT_BORDER_CLAMP, NULL, out));
         for (int c = 0; c < 3; c++) {
             double s0 = channel_sum(src, c), s1 = channel_sum(out, c);
-            CHECK_MSG(fabs(s1 - s0) <= 1e-5 * s0, "method %d channel %d: sum %.9g -> %.9g", m, c,
-                      s0, s1);
+            CHECK_MSG(fabs(s1 - s0) <= 1e-5 * s0, "method %d channel %d: sum %.9g -> %.9g", m, c, s0, s1);
         }
     }
     lucent_image_destroy(src);
@@ -523,48 +509,47 @@ TEST(errors_name_the_parameter)
     nanw[4] = NAN;
     lucent_conv_kernel2d k = {5, {w, NULL, NULL}};
     const float *ks[3] = {w, NULL, NULL};
-    CHECK_ERR(lucent_convolve_2d(src, &k, LUCENT_BORDER_CLAMP, NULL, small),
-              LUCENT_ERR_INVALID_ARGUMENT, "dest", "10x10x3", "12x10x3");
-    CHECK_ERR(lucent_convolve_2d_direct(src, &k, LUCENT_BORDER_CLAMP, NULL, grey),
-              LUCENT_ERR_INVALID_ARGUMENT, "dest", "12x10x1");
+    CHECK_ERR(lucent_convolve_2d(src, &k, LUCENT_BORDER_CLAMP, NULL, small), LUCENT_ERR_INVALID_ARGUMENT, "dest",
+              "10x10x3", "12x10x3");
+    CHECK_ERR(lucent_convolve_2d_direct(src, &k, LUCENT_BORDER_CLAMP, NULL, grey), LUCENT_ERR_INVALID_ARGUMENT, "dest",
+              "12x10x1");
     CHECK_ERR(lucent_convolve_separable(src, ks, NULL, 5, LUCENT_BORDER_CLAMP, NULL, small),
               LUCENT_ERR_INVALID_ARGUMENT, "dest");
     k.size = 4;
-    CHECK_ERR(lucent_convolve_2d(src, &k, LUCENT_BORDER_CLAMP, NULL, src),
-              LUCENT_ERR_INVALID_ARGUMENT, "kernel size", "4", "odd");
-    CHECK_ERR(lucent_convolve_2d_direct(src, &k, LUCENT_BORDER_CLAMP, NULL, src),
-              LUCENT_ERR_INVALID_ARGUMENT, "kernel size");
+    CHECK_ERR(lucent_convolve_2d(src, &k, LUCENT_BORDER_CLAMP, NULL, src), LUCENT_ERR_INVALID_ARGUMENT, "kernel size",
+              "4", "odd");
+    CHECK_ERR(lucent_convolve_2d_direct(src, &k, LUCENT_BORDER_CLAMP, NULL, src), LUCENT_ERR_INVALID_ARGUMENT,
+              "kernel size");
     k.size = 0;
     CHECK_ERR(lucent_conv_kernel2d_check(&k), LUCENT_ERR_INVALID_ARGUMENT, "kernel size");
     lucent_conv_kernel2d kn = {3, {w, nanw, NULL}};
-    CHECK_ERR(lucent_convolve_2d(src, &kn, LUCENT_BORDER_CLAMP, NULL, src),
-              LUCENT_ERR_INVALID_ARGUMENT, "kernel w[1][4]");
+    CHECK_ERR(lucent_convolve_2d(src, &kn, LUCENT_BORDER_CLAMP, NULL, src), LUCENT_ERR_INVALID_ARGUMENT,
+              "kernel w[1][4]");
     lucent_conv_kernel2d k0 = {3, {NULL, w, NULL}};
     CHECK_ERR(lucent_conv_kernel2d_check(&k0), LUCENT_ERR_INVALID_ARGUMENT, "w[0]");
-    CHECK_ERR(lucent_convolve_separable(src, ks, NULL, 4, LUCENT_BORDER_CLAMP, NULL, src),
-              LUCENT_ERR_INVALID_ARGUMENT, "length is 4", "odd");
+    CHECK_ERR(lucent_convolve_separable(src, ks, NULL, 4, LUCENT_BORDER_CLAMP, NULL, src), LUCENT_ERR_INVALID_ARGUMENT,
+              "length is 4", "odd");
     const float *nulls[3] = {NULL, NULL, NULL};
-    CHECK_ERR(lucent_convolve_separable(src, ks, nulls, 5, LUCENT_BORDER_CLAMP, NULL, src),
-              LUCENT_ERR_INVALID_ARGUMENT, "ky[0]");
+    CHECK_ERR(lucent_convolve_separable(src, ks, nulls, 5, LUCENT_BORDER_CLAMP, NULL, src), LUCENT_ERR_INVALID_ARGUMENT,
+              "ky[0]");
     CHECK_ERR(lucent_convolve_separable_sum(src, 0, ks, NULL, 5, LUCENT_BORDER_CLAMP, NULL, src),
               LUCENT_ERR_INVALID_ARGUMENT, "rank");
     float off[2] = {0.0f, NAN}, wt[2] = {1.0f, 1.0f};
     lucent_conv_taps taps = {.count = 2, .offsets = off, .weights = {wt, NULL, NULL}};
-    CHECK_ERR(lucent_convolve_taps(src, &taps, LUCENT_BORDER_CLAMP, NULL, src),
-              LUCENT_ERR_INVALID_ARGUMENT, "offsets[1]");
+    CHECK_ERR(lucent_convolve_taps(src, &taps, LUCENT_BORDER_CLAMP, NULL, src), LUCENT_ERR_INVALID_ARGUMENT,
+              "offsets[1]");
     float sg[1] = {NAN};
     off[1] = 1.0f;
     taps.sign[0] = sg;
-    CHECK_ERR(lucent_convolve_taps(src, &taps, LUCENT_BORDER_CLAMP, NULL, src),
-              LUCENT_ERR_INVALID_ARGUMENT, "sign[0][0]");
+    CHECK_ERR(lucent_convolve_taps(src, &taps, LUCENT_BORDER_CLAMP, NULL, src), LUCENT_ERR_INVALID_ARGUMENT,
+              "sign[0][0]");
     taps.rank = -1;
-    CHECK_ERR(lucent_convolve_taps(src, &taps, LUCENT_BORDER_CLAMP, NULL, src),
-              LUCENT_ERR_INVALID_ARGUMENT, "taps rank");
+    CHECK_ERR(lucent_convolve_taps(src, &taps, LUCENT_BORDER_CLAMP, NULL, src), LUCENT_ERR_INVALID_ARGUMENT,
+              "taps rank");
     taps.count = 0;
-    CHECK_ERR(lucent_convolve_taps(src, &taps, LUCENT_BORDER_CLAMP, NULL, src),
-              LUCENT_ERR_INVALID_ARGUMENT, "taps count");
-    CHECK_ERR(lucent_convolve_taps(src, &taps, LUCENT_BORDER_CLAMP, NULL, small),
-              LUCENT_ERR_INVALID_ARGUMENT, "dest");
+    CHECK_ERR(lucent_convolve_taps(src, &taps, LUCENT_BORDER_CLAMP, NULL, src), LUCENT_ERR_INVALID_ARGUMENT,
+              "taps count");
+    CHECK_ERR(lucent_convolve_taps(src, &taps, LUCENT_BORDER_CLAMP, NULL, small), LUCENT_ERR_INVALID_ARGUMENT, "dest");
     lucent_border b = LUCENT_BORDER_CLAMP;
     CHECK(lucent_border_parse("zero", &b) == LUCENT_OK && b == LUCENT_BORDER_ZERO);
     CHECK_ERR(lucent_border_parse("wrap", &b), LUCENT_ERR_INVALID_ARGUMENT, "wrap", "clamp, zero");
@@ -583,8 +568,7 @@ TEST(signal_edge)
     CHECK(e && e->channels == 3);
     for (int y = 0; y < 4; y++)
         for (int x = 0; x < 8; x++)
-            for (int c = 0; c < 3; c++)
-                CHECK(lucent_image_get(e, x, y, c) == (x < 4 ? 1.0f : 0.0f));
+            for (int c = 0; c < 3; c++) CHECK(lucent_image_get(e, x, y, c) == (x < 4 ? 1.0f : 0.0f));
     lucent_image_destroy(e);
     CHECK_OK(lucent_signal_edge(9, 3, &e));
     CHECK(lucent_image_get(e, 3, 1, 0) == 1.0f);
@@ -623,8 +607,7 @@ TEST(signal_load)
 {
     lucent_image *img = NULL, *grey = NULL;
     CHECK_OK(lucent_signal_load("edge", 0, 0, &img));
-    CHECK(img && img->width == LUCENT_SIGNAL_DEFAULT_SIZE &&
-          img->height == LUCENT_SIGNAL_DEFAULT_SIZE);
+    CHECK(img && img->width == LUCENT_SIGNAL_DEFAULT_SIZE && img->height == LUCENT_SIGNAL_DEFAULT_SIZE);
     lucent_image_destroy(img);
     CHECK_OK(lucent_signal_load("shapes", 64, 32, &img));
     CHECK(img && img->width == 64 && img->height == 32);
@@ -647,7 +630,6 @@ TEST_MAIN(TEST_ENTRY(fft_equals_direct), TEST_ENTRY(delta_reproduces_kernel),
           TEST_ENTRY(separable_equals_outer_product), TEST_ENTRY(rank_n_sum_equals_2d),
           TEST_ENTRY(preintegration_exact_for_edges), TEST_ENTRY(taps_integer_equal_sparse_kernel),
           TEST_ENTRY(taps_fractional_interpolate), TEST_ENTRY(taps_rank_n_with_signs),
-          TEST_ENTRY(energy_conserved_away_from_edges),
-          TEST_ENTRY(dest_may_be_src_and_threads_do_not_matter),
+          TEST_ENTRY(energy_conserved_away_from_edges), TEST_ENTRY(dest_may_be_src_and_threads_do_not_matter),
           TEST_ENTRY(errors_name_the_parameter), TEST_ENTRY(signal_edge), TEST_ENTRY(signal_shapes),
           TEST_ENTRY(signal_load))

@@ -79,10 +79,10 @@ TEST(compare_refuses_a_desc_without_scenes_or_with_an_unknown_method)
     CHECK_ERR(lucent_compare_run(&(lucent_compare_desc){0}, &r), LUCENT_ERR_INVALID_ARGUMENT, "scene_count");
     CHECK(r.scene_count == 0 && r.scenes == NULL);
     const char *scenes[] = {"whatever.json"}, *methods[] = {"lambert", "phong"};
-    CHECK_ERR(lucent_compare_run(&(lucent_compare_desc){.scenes = scenes, .scene_count = 1, .methods = methods,
-                                                        .method_count = 2},
-                                 &r),
-              LUCENT_ERR_INVALID_ARGUMENT, "methods[1]", "phong");
+    CHECK_ERR(
+        lucent_compare_run(
+            &(lucent_compare_desc){.scenes = scenes, .scene_count = 1, .methods = methods, .method_count = 2}, &r),
+        LUCENT_ERR_INVALID_ARGUMENT, "methods[1]", "phong");
     lucent_compare_desc d = lucent_compare_defaults();
     CHECK(d.frames == 5 && d.method_count == 0 && !strcmp(d.title, LUCENT_COMPARE_DEFAULT_TITLE));
     lucent_compare_result_free(&r); /* a zero result is fine */
@@ -179,9 +179,15 @@ TEST(kernel_eval_on_an_impulse)
     const char *models[] = {"svd-r2"};
     events ev = {0};
     lucent_kernel_eval_result r;
-    CHECK_OK(lucent_kernel_eval_run(&(lucent_kernel_eval_desc){.material = &m, .models = models, .model_count = 1,
-                                                               .signal = signal, .mm_per_pixel = 1, .taps = 9,
-                                                               .out = dir, .on_event = count_events, .user = &ev},
+    CHECK_OK(lucent_kernel_eval_run(&(lucent_kernel_eval_desc){.material = &m,
+                                                               .models = models,
+                                                               .model_count = 1,
+                                                               .signal = signal,
+                                                               .mm_per_pixel = 1,
+                                                               .taps = 9,
+                                                               .out = dir,
+                                                               .on_event = count_events,
+                                                               .user = &ev},
                                     &r));
     CHECK(r.model_count == 1 && r.models[0].kernel && r.kernel_pixels < 40 && r.taps == 9 && r.table65_count == 0);
     /* signal.png, exact.png/.exr, svd-r2.png/.exr/-diff.png, the same for -taps, 4 reports: 13. */
@@ -214,9 +220,14 @@ TEST(kernel_eval_skips_manual_without_a_preset_and_writes_nothing_without_out)
     const char *models[] = {"manual", "preint"};
     events ev = {0};
     lucent_kernel_eval_result r;
-    CHECK_OK(lucent_kernel_eval_run(&(lucent_kernel_eval_desc){.material = &m, .models = models, .model_count = 2,
-                                                               .size = 24, .mm_per_pixel = 1, .no_taps = true,
-                                                               .on_event = count_events, .user = &ev},
+    CHECK_OK(lucent_kernel_eval_run(&(lucent_kernel_eval_desc){.material = &m,
+                                                               .models = models,
+                                                               .model_count = 2,
+                                                               .size = 24,
+                                                               .mm_per_pixel = 1,
+                                                               .no_taps = true,
+                                                               .on_event = count_events,
+                                                               .user = &ev},
                                     &r));
     CHECK(ev.wrote == 0 && ev.skipped == 1 && !strcmp(ev.skipped_name, "manual") && strstr(ev.reason, "Table A.1"));
     CHECK(r.model_count == 2 && !r.models[0].kernel && r.models[0].skipped[0] && r.models[1].kernel);
@@ -262,7 +273,8 @@ TEST(profile_csv_and_json_hold_the_profile)
     text = read_text(json);
     cJSON *root = text ? cJSON_Parse(text) : NULL;
     CHECK(root && cJSON_GetObjectItem(root, "bins")->valueint == p->count);
-    CHECK(root && cJSON_GetArraySize(cJSON_GetObjectItem(cJSON_GetObjectItemCaseSensitive(root, "R"), "value")) == p->count);
+    CHECK(root &&
+          cJSON_GetArraySize(cJSON_GetObjectItem(cJSON_GetObjectItemCaseSensitive(root, "R"), "value")) == p->count);
     CHECK(root && cJSON_GetObjectItem(cJSON_GetObjectItem(root, "sum_of_gaussians"), "count")->valueint == 2);
     CHECK(root && !cJSON_GetObjectItem(root, "photons_per_channel")); /* recorded for "mc" only */
     cJSON_Delete(root);
@@ -278,15 +290,16 @@ TEST(cdrf_fit_csv_tabulates_the_fitted_function)
 {
     lucent_material m;
     CHECK_OK(lucent_material_resolve("marble", &m));
-    lucent_cdrf_sphere_result sp[2] = {{.bins = 4, .radius = 2, .photons = 100}, {.bins = 4, .radius = 5, .photons = 100}};
+    lucent_cdrf_sphere_result sp[2] = {{.bins = 4, .radius = 2, .photons = 100},
+                                       {.bins = 4, .radius = 5, .photons = 100}};
     for (int i = 0; i < 2; i++)
         for (int j = 0; j < 4; j++) {
             sp[i].theta[j] = (j + 0.5) * M_PI / 4;
             for (int c = 0; c < 3; c++) sp[i].radiance[c][j] = 0.1 * (j + 1), sp[i].radiance_se[c][j] = 0.01;
         }
     lucent_cdrf_fit fit = {.variant = LUCENT_CDRF_KUBO, .kd = {0.5, 1, 2}};
-    lucent_cdrf_fit_report rep = {.material = &m, .spheres = sp, .sphere_count = 2, .fit = &fit, .seed = 7,
-                                  .cone = 0.2, .roughness = 0.1};
+    lucent_cdrf_fit_report rep = {
+        .material = &m, .spheres = sp, .sphere_count = 2, .fit = &fit, .seed = 7, .cone = 0.2, .roughness = 0.1};
     const char *csv = test_path("fit.csv");
     CHECK_OK(lucent_cdrf_fit_write_csv(csv, &rep));
     char *text = read_text(csv), *line = text ? strchr(text, '\n') : NULL; /* past the comment */

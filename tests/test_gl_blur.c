@@ -79,8 +79,11 @@ static void compare_gpu_cpu(const lucent_taps *const *taps, int materials, lucen
 {
     frame f = make_frame(96, 80);
     lucent_image *gpu = NULL, *cpu = NULL;
-    lucent_ssss_blur_desc d = {.taps = taps, .material_count = materials, .filter = filter,
-                               .pixel_scale = 80 / (2 * tan(15 * M_PI / 180)), .width_scale = 1.5};
+    lucent_ssss_blur_desc d = {.taps = taps,
+                               .material_count = materials,
+                               .filter = filter,
+                               .pixel_scale = 80 / (2 * tan(15 * M_PI / 180)),
+                               .width_scale = 1.5};
     CHECK_OK(lucent_image_create(96, 80, 3, &gpu));
     CHECK_OK(lucent_image_create(96, 80, 3, &cpu));
     if (gpu && cpu && f.irr) {
@@ -137,7 +140,10 @@ TEST(blur_reference_equals_convolve_taps)
             for (int i = 0; i < t->rank * t->count; i++) w[c][i] = (float)t->weight[c][i];
             for (int p = 0; p < t->rank; p++) sign[c][p] = (float)t->sign[c][p];
         }
-        lucent_conv_taps ct = {.count = t->count, .rank = t->rank, .offsets = off, .weights = {w[0], w[1], w[2]},
+        lucent_conv_taps ct = {.count = t->count,
+                               .rank = t->rank,
+                               .offsets = off,
+                               .weights = {w[0], w[1], w[2]},
                                .sign = {sign[0], sign[1], sign[2]}};
         lucent_image *rgb = NULL;
         CHECK_OK(lucent_image_convert_channels(f.irr, 3, &rgb));
@@ -175,8 +181,8 @@ TEST(blur_depth_filters_stop_leaks)
         const lucent_taps *one[1] = {t};
         double leak[3];
         for (int f = 0; f < 3; f++) {
-            lucent_ssss_blur_desc d = {.taps = one, .material_count = 1, .pixel_scale = 200,
-                                       .filter = (lucent_depth_filter)f};
+            lucent_ssss_blur_desc d = {
+                .taps = one, .material_count = 1, .pixel_scale = 200, .filter = (lucent_depth_filter)f};
             CHECK_OK(lucent_ssss_blur_cpu(irr, depth, NULL, &d, NULL, out));
             leak[f] = lucent_image_get(out, 30, 4, 0);
         }
@@ -192,10 +198,7 @@ TEST(blur_depth_filters_stop_leaks)
     lucent_taps_destroy(t);
 }
 
-static void cleanup(void)
-{
-    lucent_gl_destroy(g_ctx);
-}
+static void cleanup(void) { lucent_gl_destroy(g_ctx); }
 
 int main(int argc, char **argv)
 {

@@ -76,8 +76,8 @@ static cJSON *results_method(cJSON *root, int index)
     return cJSON_GetArrayItem(cJSON_GetObjectItem(scene, "methods"), index);
 }
 
-static void check_method(const lucent_compare_scene_result *sr, int k, const char *dir, const float *mask,
-                         double noise, cJSON *results)
+static void check_method(const lucent_compare_scene_result *sr, int k, const char *dir, const float *mask, double noise,
+                         cJSON *results)
 {
     const lucent_compare_method *m = &sr->report.methods[k];
     char path[700], stem[64];
@@ -115,9 +115,15 @@ TEST(compare_run_errors_are_the_relative_rms_over_the_mask)
     const char *scenes[] = {scene}, *methods[] = {"lambert", "ssss:preint"};
     lucent_compare_result r;
     seen s = {.result = &r, .done_index = -1};
-    CHECK_OK(lucent_compare_run(&(lucent_compare_desc){.scenes = scenes, .scene_count = 1, .methods = methods,
-                                                       .method_count = 2, .spp = 4, .frames = 1, .out = dir,
-                                                       .on_event = on_event, .user = &s},
+    CHECK_OK(lucent_compare_run(&(lucent_compare_desc){.scenes = scenes,
+                                                       .scene_count = 1,
+                                                       .methods = methods,
+                                                       .method_count = 2,
+                                                       .spp = 4,
+                                                       .frames = 1,
+                                                       .out = dir,
+                                                       .on_event = on_event,
+                                                       .user = &s},
                                 &r));
     CHECK(r.scene_count == 1 && s.done == 1 && s.done_index == 0 && s.methods_when_done == 2 && s.html == 1);
     /* reference.exr/.png, per method .exr/.png/-error.png, errors.svg, 4 reports: 2 + 6 + 1 + 4. */
@@ -160,9 +166,16 @@ TEST(compare_run_without_out_measures_and_writes_nothing)
     const char *scenes[] = {scene}, *methods[] = {"lambert"}, *sets[] = {"render.width=24", "render.height=20"};
     lucent_compare_result r;
     seen s = {.result = &r};
-    CHECK_OK(lucent_compare_run(&(lucent_compare_desc){.scenes = scenes, .scene_count = 1, .methods = methods,
-                                                       .method_count = 1, .overrides = sets, .override_count = 2,
-                                                       .spp = 2, .frames = 1, .scale = 2, .on_event = on_event,
+    CHECK_OK(lucent_compare_run(&(lucent_compare_desc){.scenes = scenes,
+                                                       .scene_count = 1,
+                                                       .methods = methods,
+                                                       .method_count = 1,
+                                                       .overrides = sets,
+                                                       .override_count = 2,
+                                                       .spp = 2,
+                                                       .frames = 1,
+                                                       .scale = 2,
+                                                       .on_event = on_event,
                                                        .user = &s},
                                 &r));
     CHECK(s.done == 1 && s.wrote == 0);
@@ -178,8 +191,12 @@ TEST(compare_run_fails_on_a_bad_scene_and_keeps_nothing)
     snprintf(scene, sizeof scene, "%s/tests/fixtures/scenes/sphere.json", LUCENT_SOURCE_DIR);
     const char *scenes[] = {scene}, *methods[] = {"lambert"}, *sets[] = {"render.taps=4"};
     lucent_compare_result r;
-    CHECK_ERR(lucent_compare_run(&(lucent_compare_desc){.scenes = scenes, .scene_count = 1, .methods = methods,
-                                                        .method_count = 1, .overrides = sets, .override_count = 1,
+    CHECK_ERR(lucent_compare_run(&(lucent_compare_desc){.scenes = scenes,
+                                                        .scene_count = 1,
+                                                        .methods = methods,
+                                                        .method_count = 1,
+                                                        .overrides = sets,
+                                                        .override_count = 1,
                                                         .spp = 1},
                                  &r),
               LUCENT_ERR_PARSE, "sphere.json", "render.taps");

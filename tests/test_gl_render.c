@@ -33,10 +33,7 @@ static lucent_renderer *renderer_with(const lucent_scene *sc, const lucent_rende
     return r;
 }
 
-static lucent_renderer *renderer_of(const lucent_scene *sc)
-{
-    return renderer_with(sc, NULL);
-}
+static lucent_renderer *renderer_of(const lucent_scene *sc) { return renderer_with(sc, NULL); }
 
 /* ---- the CDRF and Lambert passes against the CPU reference ---- */
 
@@ -87,10 +84,15 @@ TEST(cdrf_and_lambert_equal_cpu_reference)
     lucent_renderer *r = renderer_of(sc);
     if (!r) return lucent_scene_destroy(sc);
     gl_renderer_set_aov(r, true);
-    static const struct { lucent_render_method m; lucent_cdrf_variant v; bool lut; } cases[] = {
-        {LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, true},     {LUCENT_METHOD_CDRF, LUCENT_CDRF_COLLOMB, true},
-        {LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, false},    {LUCENT_METHOD_CDRF, LUCENT_CDRF_COLLOMB, false},
-        {LUCENT_METHOD_LAMBERT, LUCENT_CDRF_KUBO, false}};
+    static const struct {
+        lucent_render_method m;
+        lucent_cdrf_variant v;
+        bool lut;
+    } cases[] = {{LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, true},
+                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_COLLOMB, true},
+                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, false},
+                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_COLLOMB, false},
+                 {LUCENT_METHOD_LAMBERT, LUCENT_CDRF_KUBO, false}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         lucent_render_settings s = sc->render;
         s.view.method = cases[k].m, s.cdrf.variant = cases[k].v, s.cdrf.lut = cases[k].lut;
@@ -252,15 +254,19 @@ TEST(slab_translucency_matches_monte_carlo_transmittance)
         lucent_material_derived d;
         lucent_material_derive(m, &d);
         for (int c = 0; c < 3; c++) {
-            lucent_mc_layer layer = {.n = m->eta, .sigma_a = m->sigma_a[c], .sigma_s = m->sigma_s[c], .g = m->g[c],
-                                     .thickness = 4};
-            lucent_mc_desc md = {.layers = &layer, .layer_count = 1, .photons = 400000, .seed = 12345,
+            lucent_mc_layer layer = {
+                .n = m->eta, .sigma_a = m->sigma_a[c], .sigma_s = m->sigma_s[c], .g = m->g[c], .thickness = 4};
+            lucent_mc_desc md = {.layers = &layer,
+                                 .layer_count = 1,
+                                 .photons = 400000,
+                                 .seed = 12345,
                                  .grid = {.dr = 1, .nr = 1, .nz = 1, .na = 1}};
             lucent_mc_result mc = {0};
             CHECK_OK(lucent_mc_run(&md, &mc));
             double t = mc.tt, expected = 3 * t / M_PI, got = with[c] - without[c];
             double tol = 3 * sqrt(t * (1 - t) / TABLE_PHOTONS) / t + (exp(d.sigma_tr[c] * 0.025) - 1) + 0.01;
-            printf("     channel %d: transmitted %.5f, 3 T(4 mm) / pi %.5f (T %.4f +- %.4f), rel. diff %.2f%%, tol %.2f%%\n",
+            printf("     channel %d: transmitted %.5f, 3 T(4 mm) / pi %.5f (T %.4f +- %.4f), rel. diff %.2f%%, tol "
+                   "%.2f%%\n",
                    c, got, expected, t, mc.tt_se, 100 * (got / expected - 1), 100 * tol);
             CHECK_MSG(fabs(got / expected - 1) <= tol, "channel %d: %g vs %g", c, got, expected);
             lucent_mc_result_free(&mc);
@@ -281,7 +287,8 @@ TEST(timings_name_every_pass)
         s.ssss.kernel = LUCENT_KERNEL_SVD, s.ssss.rank = 2;
         lucent_render_result res;
         CHECK_OK(lucent_render(r, &s, &res));
-        static const char *const names[] = {"shadow", "geometry", "blur h1", "blur v1", "blur h2", "blur v2", "compose"};
+        static const char *const names[] = {"shadow",  "geometry", "blur h1", "blur v1",
+                                            "blur h2", "blur v2",  "compose"};
         CHECK(res.times.pass_count == 7);
         double sum = 0;
         for (int i = 0; i < res.times.pass_count && i < 7; i++) {
@@ -375,7 +382,8 @@ static const char *broken_sources(const char *name, void *user)
     if (!strcmp(name, "main.frag.glsl"))
         return "// line 1\n#include \"part.glsl\"\nout vec4 o;\nvoid main()\n{\n    o = vec4(undefined_thing);\n}\n";
     if (!strcmp(name, "part.glsl")) return "// part, line 1\nfloat part_ok(float x) { return x; }\n";
-    if (!strcmp(name, "bad_part.frag.glsl")) return "#include \"bad.glsl\"\nout vec4 o;\nvoid main() { o = vec4(1); }\n";
+    if (!strcmp(name, "bad_part.frag.glsl"))
+        return "#include \"bad.glsl\"\nout vec4 o;\nvoid main() { o = vec4(1); }\n";
     if (!strcmp(name, "bad.glsl")) return "// bad, line 1\n// line 2\nfloat f() { return nonsense; }\n";
     return gl_embedded_source(name, NULL);
 }
@@ -398,12 +406,14 @@ TEST(shader_errors_name_file_and_line)
 
 int main(int argc, char **argv)
 {
-    static const test_case cases[] = {
-        TEST_ENTRY(cdrf_and_lambert_equal_cpu_reference), TEST_ENTRY(sphere_lit_along_view_axis_is_symmetric),
-        TEST_ENTRY(translucency_brightens_a_backlit_disc_in_red),
-        TEST_ENTRY(slab_translucency_matches_monte_carlo_transmittance), TEST_ENTRY(timings_name_every_pass),
-        TEST_ENTRY(settings_change_between_frames), TEST_ENTRY(context_errors_name_their_cause),
-        TEST_ENTRY(shader_errors_name_file_and_line)};
+    static const test_case cases[] = {TEST_ENTRY(cdrf_and_lambert_equal_cpu_reference),
+                                      TEST_ENTRY(sphere_lit_along_view_axis_is_symmetric),
+                                      TEST_ENTRY(translucency_brightens_a_backlit_disc_in_red),
+                                      TEST_ENTRY(slab_translucency_matches_monte_carlo_transmittance),
+                                      TEST_ENTRY(timings_name_every_pass),
+                                      TEST_ENTRY(settings_change_between_frames),
+                                      TEST_ENTRY(context_errors_name_their_cause),
+                                      TEST_ENTRY(shader_errors_name_file_and_line)};
     int rc = test_run(cases, (int)(sizeof cases / sizeof cases[0]), argc, argv);
     lucent_gl_destroy(g_ctx);
     return rc;

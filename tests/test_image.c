@@ -24,10 +24,7 @@ static double srgb_enc(double x)
     return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1 / 2.4) - 0.055;
 }
 
-static double srgb_dec(double e)
-{
-    return e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4);
-}
+static double srgb_dec(double e) { return e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4); }
 
 /* An image whose values sweep [lo, hi] deterministically (a simple LCG, no RNG dependency). */
 static lucent_image *make_image(int w, int h, int ch, float lo, float hi)
@@ -189,8 +186,8 @@ static void check_png_roundtrip(int ch, int bits, bool linear)
         double err = alpha || linear ? fabs(r - v) : fabs(srgb_enc(r) - srgb_enc(v));
         worst = fmax(worst, err);
     }
-    CHECK_MSG(worst <= 0.5 * step + 2e-7, "%d-bit %d-channel PNG: worst encoded error %.3g > %.3g",
-              bits, ch, worst, 0.5 * step);
+    CHECK_MSG(worst <= 0.5 * step + 2e-7, "%d-bit %d-channel PNG: worst encoded error %.3g > %.3g", bits, ch, worst,
+              0.5 * step);
     lucent_image_destroy(back);
     lucent_image_destroy(img);
 }
@@ -327,10 +324,8 @@ static void check_truncations(const char *name, const char *substring, int step)
         write_bytes(cut, data, len);
         lucent_image *img = NULL;
         lucent_status s = lucent_image_load(cut, &img);
-        CHECK_MSG(s != LUCENT_OK && img == NULL, "%s cut to %zu of %zu bytes was accepted", name, len,
-                  size);
-        CHECK_MSG((strstr(lucent_last_error(), cut_name) && strstr(lucent_last_error(), substring)) ||
-                      len == 0,
+        CHECK_MSG(s != LUCENT_OK && img == NULL, "%s cut to %zu of %zu bytes was accepted", name, len, size);
+        CHECK_MSG((strstr(lucent_last_error(), cut_name) && strstr(lucent_last_error(), substring)) || len == 0,
                   "%s cut to %zu bytes: message \"%s\"", name, len, lucent_last_error());
         lucent_image_destroy(img);
         checked++;
@@ -351,8 +346,7 @@ TEST(png_malformed)
     CHECK_ERR(lucent_image_load(text, &out), LUCENT_ERR_PARSE, "text.png: not a PNG file (bad signature)");
     write_bytes(text, "", 0);
     CHECK_ERR(lucent_image_load(text, &out), LUCENT_ERR_PARSE, "text.png: not a PNG file");
-    CHECK_ERR(lucent_image_load(test_path("absent.png"), &out), LUCENT_ERR_IO, "absent.png",
-              "No such file");
+    CHECK_ERR(lucent_image_load(test_path("absent.png"), &out), LUCENT_ERR_IO, "absent.png", "No such file");
     CHECK_ERR(lucent_image_load(test_tmpdir(), &out), LUCENT_ERR_UNSUPPORTED, "unknown image format");
 
     /* a corrupted byte inside IDAT (CRC mismatch) */
@@ -362,8 +356,7 @@ TEST(png_malformed)
     if (data) {
         data[size / 2] ^= 0x55;
         write_bytes(test_path("crc.png"), data, size);
-        CHECK_ERR(lucent_image_load(test_path("crc.png"), &out), LUCENT_ERR_PARSE, "crc.png",
-                  "corrupt PNG data");
+        CHECK_ERR(lucent_image_load(test_path("crc.png"), &out), LUCENT_ERR_PARSE, "crc.png", "corrupt PNG data");
         free(data);
     }
     CHECK(out == NULL);
@@ -389,14 +382,13 @@ TEST(exr_float_and_half_roundtrips)
         lucent_image_destroy(back);
     }
     /* half: 11 significant bits, round to nearest: relative error <= 2^-11 for normal values */
-    CHECK_OK(lucent_image_write(test_path("h.exr"), img,
-                                &(lucent_image_write_desc){.exr_pixel = LUCENT_EXR_PIXEL_HALF}));
+    CHECK_OK(
+        lucent_image_write(test_path("h.exr"), img, &(lucent_image_write_desc){.exr_pixel = LUCENT_EXR_PIXEL_HALF}));
     CHECK_OK(lucent_image_load(test_path("h.exr"), &back));
     if (back) {
         double worst = 0;
         for (size_t i = 0; i < lucent_image_value_count(img); i++)
-            if (img->data[i] != 0)
-                worst = fmax(worst, fabs(back->data[i] - img->data[i]) / fabs(img->data[i]));
+            if (img->data[i] != 0) worst = fmax(worst, fabs(back->data[i] - img->data[i]) / fabs(img->data[i]));
         CHECK_MSG(worst <= ldexp(1, -11), "half EXR: relative error %.3g > 2^-11", worst);
         CHECK(back->data[0] == 0.0f && back->data[1] == -2.5f && back->data[2] == 1.0f);
         lucent_image_destroy(back);
@@ -419,10 +411,7 @@ TEST(exr_grey_and_rgb)
     }
 }
 
-static void quiet_exr(exr_const_context_t c, exr_result_t code, const char *msg)
-{
-    (void)c, (void)code, (void)msg;
-}
+static void quiet_exr(exr_const_context_t c, exr_result_t code, const char *msg) { (void)c, (void)code, (void)msg; }
 
 /* Writes a tiled EXR with the OpenEXR C API directly: channels Y (half) and A (float), 4x4 tiles,
  * data window (10, 20) - (10 + w - 1, 20 + h - 1). Y = x + 100 y, A = 0.5. */
@@ -451,12 +440,11 @@ static bool write_tiled_exr(const char *path, int w, int h)
         for (int tx = 0; ok && tx < (w + 3) / 4; tx++, first = false) {
             exr_chunk_info_t ci;
             ok = !exr_write_tile_chunk_info(ctx, part, tx, ty, 0, 0, &ci) &&
-                 !(first ? exr_encoding_initialize(ctx, part, &ci, &enc)
-                         : exr_encoding_update(ctx, part, &ci, &enc));
+                 !(first ? exr_encoding_initialize(ctx, part, &ci, &enc) : exr_encoding_update(ctx, part, &ci, &enc));
             for (int i = 0; ok && i < enc.channel_count; i++) {
                 exr_coding_channel_info_t *c = &enc.channels[i];
-                c->encode_from_ptr = (const uint8_t *)(src + 2 * (ty * 4 * w + tx * 4) +
-                                                       (strcmp(c->channel_name, "A") == 0));
+                c->encode_from_ptr =
+                    (const uint8_t *)(src + 2 * (ty * 4 * w + tx * 4) + (strcmp(c->channel_name, "A") == 0));
                 c->user_pixel_stride = 8, c->user_line_stride = 8 * w;
                 c->user_data_type = EXR_PIXEL_FLOAT, c->user_bytes_per_element = 4;
             }
@@ -538,8 +526,7 @@ TEST(exr_malformed)
     write_bytes(test_path("text.exr"), "not an exr, clearly", 19);
     CHECK_ERR(lucent_image_load(test_path("text.exr"), &out), LUCENT_ERR_PARSE, "text.exr",
               "not an OpenEXR file (bad magic number)");
-    CHECK_ERR(lucent_image_load(test_path("absent.exr"), &out), LUCENT_ERR_IO, "absent.exr",
-              "No such file");
+    CHECK_ERR(lucent_image_load(test_path("absent.exr"), &out), LUCENT_ERR_IO, "absent.exr", "No such file");
     CHECK(out == NULL);
 }
 
@@ -569,8 +556,8 @@ TEST(pfm_big_endian_bottom_up)
 {
     /* "Pf", 1 x 2, scale +1 (big endian); the file's first row is the image's bottom row.
      * 1.0f = 3F800000, 2.0f = 40000000. */
-    const unsigned char file[] = {'P', 'f', '\n', '1', ' ', '2', '\n', '1', '.', '0', '\n',
-                                  0x3F, 0x80, 0x00, 0x00, 0x40, 0x00, 0x00, 0x00};
+    const unsigned char file[] = {'P',  'f',  '\n', '1',  ' ',  '2',  '\n', '1',  '.', '0',
+                                  '\n', 0x3F, 0x80, 0x00, 0x00, 0x40, 0x00, 0x00, 0x00};
     write_bytes(test_path("be.pfm"), file, sizeof file);
     lucent_image *img = NULL;
     CHECK_OK(lucent_image_load(test_path("be.pfm"), &img));
@@ -600,8 +587,7 @@ TEST(pfm_malformed)
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         write_bytes(test_path("bad.pfm"), cases[i].text, strlen(cases[i].text));
         lucent_image *img = NULL;
-        CHECK_ERR(lucent_image_load(test_path("bad.pfm"), &img), LUCENT_ERR_PARSE, "bad.pfm",
-                  cases[i].message);
+        CHECK_ERR(lucent_image_load(test_path("bad.pfm"), &img), LUCENT_ERR_PARSE, "bad.pfm", cases[i].message);
         CHECK(img == NULL);
     }
     lucent_image *img = make_image(9, 5, 3, 0, 1);
@@ -619,8 +605,7 @@ TEST(write_into_missing_directory)
     for (int i = 0; i < 3; i++) {
         char name[64];
         snprintf(name, sizeof name, "missing/x.%s", exts[i]);
-        CHECK_ERR(lucent_image_write(test_path(name), img, NULL), LUCENT_ERR_IO, name,
-                  "No such file or directory");
+        CHECK_ERR(lucent_image_write(test_path(name), img, NULL), LUCENT_ERR_IO, name, "No such file or directory");
     }
     CHECK(count_entries(test_tmpdir(), "missing") == 0);
     lucent_image_destroy(img);
@@ -642,8 +627,7 @@ TEST(write_into_read_only_directory)
     for (int i = 0; i < 2; i++) {
         char name[64];
         snprintf(name, sizeof name, "ro/x.%s", exts[i]);
-        CHECK_ERR(lucent_image_write(test_path(name), img, NULL), LUCENT_ERR_IO, name,
-                  "Permission denied");
+        CHECK_ERR(lucent_image_write(test_path(name), img, NULL), LUCENT_ERR_IO, name, "Permission denied");
     }
     CHECK(count_entries(dir, "") == 2); /* "." and ".." only: no file, no temporary */
     chmod(dir, 0755);
@@ -724,8 +708,7 @@ TEST(compare_size_mismatch)
     lucent_image_error_stats e;
     CHECK_ERR(lucent_image_compare(a, b, NULL, &e), LUCENT_ERR_INVALID_ARGUMENT, "64x32", "64x48");
     CHECK_OK(lucent_image_create(32, 32, 1, &m));
-    CHECK_ERR(lucent_image_compare_masked(a, a, m, &e), LUCENT_ERR_INVALID_ARGUMENT, "mask is 32x32",
-              "64x32");
+    CHECK_ERR(lucent_image_compare_masked(a, a, m, &e), LUCENT_ERR_INVALID_ARGUMENT, "mask is 32x32", "64x32");
     lucent_image *d;
     CHECK_ERR(lucent_image_difference(a, b, LUCENT_DIFF_SIGNED, &d), LUCENT_ERR_INVALID_ARGUMENT, "64x48");
     CHECK(d == NULL);
@@ -788,15 +771,13 @@ TEST(image_stats)
     lucent_image_destroy(img);
 }
 
-TEST_MAIN(TEST_ENTRY(create_access_and_limits), TEST_ENTRY(convert_channels),
-          TEST_ENTRY(srgb_curve_known_values), TEST_ENTRY(tonemap_operators),
-          TEST_ENTRY(png_roundtrips), TEST_ENTRY(png_palette_written_by_libpng),
+TEST_MAIN(TEST_ENTRY(create_access_and_limits), TEST_ENTRY(convert_channels), TEST_ENTRY(srgb_curve_known_values),
+          TEST_ENTRY(tonemap_operators), TEST_ENTRY(png_roundtrips), TEST_ENTRY(png_palette_written_by_libpng),
           TEST_ENTRY(png_grey_formats_written_by_libpng), TEST_ENTRY(png_malformed),
           TEST_ENTRY(exr_float_and_half_roundtrips), TEST_ENTRY(exr_grey_and_rgb),
           TEST_ENTRY(exr_tiled_written_by_openexr), TEST_ENTRY(exr_uint_channel_written_by_openexr),
-          TEST_ENTRY(exr_malformed),
-          TEST_ENTRY(pfm_roundtrip_exact), TEST_ENTRY(pfm_big_endian_bottom_up),
+          TEST_ENTRY(exr_malformed), TEST_ENTRY(pfm_roundtrip_exact), TEST_ENTRY(pfm_big_endian_bottom_up),
           TEST_ENTRY(pfm_malformed), TEST_ENTRY(write_into_missing_directory),
           TEST_ENTRY(write_into_read_only_directory), TEST_ENTRY(write_replaces_only_when_complete),
-          TEST_ENTRY(rms_hand_computed), TEST_ENTRY(compare_size_mismatch),
-          TEST_ENTRY(difference_error_map_heatmap), TEST_ENTRY(image_stats))
+          TEST_ENTRY(rms_hand_computed), TEST_ENTRY(compare_size_mismatch), TEST_ENTRY(difference_error_map_heatmap),
+          TEST_ENTRY(image_stats))

@@ -80,8 +80,8 @@ static double exact_minus_separable(const lucent_image *src, const preint_case *
     CHECK_OK(lucent_image_create(src->width, src->height, src->channels, &separable));
     lucent_conv_kernel2d kernel = {.size = n, .w = {pc->k2[0], pc->k2[1], pc->k2[2]}};
     CHECK_OK(lucent_convolve_2d(src, &kernel, LUCENT_BORDER_CLAMP, NULL, exact));
-    CHECK_OK(lucent_convolve_separable(src, (const float *const *)pc->k1, NULL, n,
-                                       LUCENT_BORDER_CLAMP, NULL, separable));
+    CHECK_OK(
+        lucent_convolve_separable(src, (const float *const *)pc->k1, NULL, n, LUCENT_BORDER_CLAMP, NULL, separable));
     double d = max_difference(exact, separable);
     lucent_image_destroy(exact);
     lucent_image_destroy(separable);
@@ -125,5 +125,4 @@ TEST(preint_not_exact_for_a_square)
     preint_teardown(&pc);
 }
 
-TEST_MAIN(TEST_ENTRY(preint_exact_for_additively_separable_signals),
-          TEST_ENTRY(preint_not_exact_for_a_square))
+TEST_MAIN(TEST_ENTRY(preint_exact_for_additively_separable_signals), TEST_ENTRY(preint_not_exact_for_a_square))

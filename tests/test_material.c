@@ -107,8 +107,7 @@ TEST(rd_against_published_table)
                 CHECK_NEAR(d.rd[c], 0.126, 0.001); /* the known discrepancy */
                 continue;
             }
-            CHECK_MSG(diff <= 0.008, "%s[%d]: Rd %.4f vs published %.2f", names[i], c, d.rd[c],
-                      rd[i][c]);
+            CHECK_MSG(diff <= 0.008, "%s[%d]: Rd %.4f vs published %.2f", names[i], c, d.rd[c], rd[i][c]);
             if (diff > worst) worst = diff;
         }
     }
@@ -117,9 +116,8 @@ TEST(rd_against_published_table)
 
 TEST(presets)
 {
-    static const char *const names[] = {"Apple",   "Chicken1", "Chicken2", "Cream",
-                                        "Ketchup", "Marble",   "Potato",   "Skimmilk",
-                                        "Skin1",   "Skin2",    "Wholemilk"};
+    static const char *const names[] = {"Apple",  "Chicken1", "Chicken2", "Cream", "Ketchup",  "Marble",
+                                        "Potato", "Skimmilk", "Skin1",    "Skin2", "Wholemilk"};
     CHECK(lucent_material_preset_count() == 11);
     for (int i = 0; i < 11; i++) {
         lucent_material m;
@@ -164,12 +162,10 @@ static lucent_material parse_one(const char *text)
 
 TEST(units)
 {
-    lucent_material mm = parse_one(
-        "{\"units\":\"mm^-1\",\"sigma_a\":[0.1,0.2,0.3],\"sigma_s\":[1,2,3],\"eta\":1.3}");
-    lucent_material cm =
-        parse_one("{\"units\":\"cm^-1\",\"sigma_a\":[1,2,3],\"sigma_s\":[10,20,30],\"eta\":1.3}");
-    lucent_material m1 = parse_one(
-        "{\"units\":\"1/m\",\"sigma_a\":[100,200,300],\"sigma_s\":[1e3,2e3,3e3],\"eta\":1.3}");
+    lucent_material mm = parse_one("{\"units\":\"mm^-1\",\"sigma_a\":[0.1,0.2,0.3],\"sigma_s\":[1,2,3],\"eta\":1.3}");
+    lucent_material cm = parse_one("{\"units\":\"cm^-1\",\"sigma_a\":[1,2,3],\"sigma_s\":[10,20,30],\"eta\":1.3}");
+    lucent_material m1 =
+        parse_one("{\"units\":\"1/m\",\"sigma_a\":[100,200,300],\"sigma_s\":[1e3,2e3,3e3],\"eta\":1.3}");
     for (int c = 0; c < 3; c++) {
         CHECK_NEAR(cm.sigma_a[c], mm.sigma_a[c], 1e-15); /* 1 cm^-1 = 0.1 mm^-1 */
         CHECK_NEAR(cm.sigma_s[c], mm.sigma_s[c], 1e-15);
@@ -178,8 +174,8 @@ TEST(units)
     }
     CHECK(strcmp(mm.name, "t") == 0); /* a lone material is named after its file */
     /* Lengths: a mean free path of 0.1 cm is 1 mm. */
-    lucent_material l = parse_one(
-        "{\"name\":\"x\",\"units\":\"cm\",\"albedo\":0.9,\"mean_free_path\":0.1,\"eta\":1.3}");
+    lucent_material l =
+        parse_one("{\"name\":\"x\",\"units\":\"cm\",\"albedo\":0.9,\"mean_free_path\":0.1,\"eta\":1.3}");
     CHECK_NEAR(l.sigma_a[0] + l.sigma_s[0], 1.0, 1e-12);
     CHECK_NEAR(l.sigma_s[0], 0.9, 1e-12);
 }
@@ -217,8 +213,8 @@ TEST(albedo_round_trips)
         CHECK_NEAR(e.rd[c], d.rd[c], 1e-10);
     }
     double bad[3] = {0.5, 1.5, 0.5}, mfp[3] = {1, 1, 1};
-    CHECK_ERR(lucent_material_set_albedo(LUCENT_ALBEDO_SINGLE, bad, mfp, &r),
-              LUCENT_ERR_INVALID_ARGUMENT, "albedo[1]", "in [0, 1]");
+    CHECK_ERR(lucent_material_set_albedo(LUCENT_ALBEDO_SINGLE, bad, mfp, &r), LUCENT_ERR_INVALID_ARGUMENT, "albedo[1]",
+              "in [0, 1]");
 }
 
 TEST(dipole_inverse)
@@ -256,8 +252,8 @@ TEST(fixtures_that_load)
     lucent_material one;
     CHECK_OK(lucent_material_resolve(FIXTURE("two.json") "#SOAP", &one));
     CHECK(strcmp(one.name, "soap") == 0);
-    CHECK_ERR(lucent_material_resolve(FIXTURE("two.json"), &one), LUCENT_ERR_INVALID_ARGUMENT,
-              "two.json", "holds 2 materials");
+    CHECK_ERR(lucent_material_resolve(FIXTURE("two.json"), &one), LUCENT_ERR_INVALID_ARGUMENT, "two.json",
+              "holds 2 materials");
 }
 
 /* Each malformed file: status, and a message naming the file and the field. */
@@ -265,12 +261,13 @@ TEST(malformed_fixtures)
 {
     lucent_material *m = (lucent_material *)&m;
     int n = -1;
-#define BAD(file, ...)                                                                             \
-    CHECK_ERR(lucent_material_load(FIXTURE(file), &m, &n), LUCENT_ERR_PARSE, file, __VA_ARGS__);   \
+#define BAD(file, ...)                                                                                                 \
+    CHECK_ERR(lucent_material_load(FIXTURE(file), &m, &n), LUCENT_ERR_PARSE, file, __VA_ARGS__);                       \
     CHECK(m == NULL && n == 0)
     BAD("missing_field.json", "eta: missing field");
     BAD("negative.json", "sigma_a[1]: must be >= 0", "-0.02");
-    BAD("nan.json", "line 4, column 21", "(in field \"sigma_a\")", "not a number JSON allows"); /* NaN is not JSON: named by line, column and field */
+    BAD("nan.json", "line 4, column 21", "(in field \"sigma_a\")",
+        "not a number JSON allows"); /* NaN is not JSON: named by line, column and field */
     BAD("huge.json", "sigma_s_prime[1]: expected a finite number"); /* 1e999 reads as inf */
     BAD("wrong_type.json", "eta: expected a number, got a string");
     BAD("broken.json", "invalid JSON");
@@ -296,21 +293,17 @@ TEST(malformed_text)
     T("{%s,\"sigma_a\":[1,2,3]}", "sigma_s: missing field");
     T("{%s,\"sigma_a\":[1,2],\"sigma_s\":1}", "sigma_a: expected 3 numbers");
     T("{%s,\"sigma_a\":1,\"sigma_s\":1,\"sigma_s_prime\":1}", "not both");
-    T("{%s,\"sigma_a\":1,\"sigma_s\":1,\"albedo\":0.5}",
-      "albedo: cannot be combined with \"sigma_a\"");
+    T("{%s,\"sigma_a\":1,\"sigma_s\":1,\"albedo\":0.5}", "albedo: cannot be combined with \"sigma_a\"");
     T("{%s,\"sigma_a\":0,\"sigma_s\":0}", "sigma_a + sigma_s[0]: must be > 0");
     T("{%s,\"sigma_a\":1,\"sigma_s\":1,\"g\":1}", "g: must be in (-1, 1)");
     T("{%s,\"sigma_a\":1,\"sigma_s\":null}", "sigma_s: expected 3 numbers or one number, got null");
     T("{%s}", "sigma_a: missing field");
     T("{%s,\"sigma_a\":1,\"sigma_s\":1,\"name\":\"\"}", "name: must have 1 to 63 characters");
-    T("{%s,\"albedo\":0.5,\"mean_free_path\":1}",
-      "units: expected \"mm\", \"cm\" or \"m\" with mean_free_path");
+    T("{%s,\"albedo\":0.5,\"mean_free_path\":1}", "units: expected \"mm\", \"cm\" or \"m\" with mean_free_path");
 #undef T
-    bad_text(
-        "{\"units\":\"mm\",\"eta\":1.3,\"diffuse_reflectance\":1,\"diffuse_mean_free_path\":1}",
-        "diffuse_reflectance: must be in [0, 1), got 1");
-    bad_text("{\"units\":\"mm^-1\",\"eta\":0.9,\"sigma_a\":1,\"sigma_s\":1}",
-             "eta: must be in [1, 3], got 0.9");
+    bad_text("{\"units\":\"mm\",\"eta\":1.3,\"diffuse_reflectance\":1,\"diffuse_mean_free_path\":1}",
+             "diffuse_reflectance: must be in [0, 1), got 1");
+    bad_text("{\"units\":\"mm^-1\",\"eta\":0.9,\"sigma_a\":1,\"sigma_s\":1}", "eta: must be in [1, 3], got 0.9");
     bad_text("[1, 2]", "expected an object");
     bad_text("{\"materials\": []}", "materials: expected at least one material");
     bad_text("{\"materials\": [{\"units\":\"mm^-1\",\"eta\":1.3,\"sigma_a\":1,\"sigma_s\":1}]}",
@@ -357,9 +350,7 @@ TEST(json_round_trip)
     free(text);
 }
 
-TEST_MAIN(TEST_ENTRY(rd_skin1_and_marble), TEST_ENTRY(derived_by_hand),
-          TEST_ENTRY(rd_against_published_table), TEST_ENTRY(presets),
-          TEST_ENTRY(presets_thread_safe), TEST_ENTRY(units), TEST_ENTRY(sigma_s_prime_and_g),
-          TEST_ENTRY(albedo_round_trips), TEST_ENTRY(dipole_inverse),
-          TEST_ENTRY(fixtures_that_load), TEST_ENTRY(malformed_fixtures),
-          TEST_ENTRY(malformed_text), TEST_ENTRY(validate), TEST_ENTRY(json_round_trip))
+TEST_MAIN(TEST_ENTRY(rd_skin1_and_marble), TEST_ENTRY(derived_by_hand), TEST_ENTRY(rd_against_published_table),
+          TEST_ENTRY(presets), TEST_ENTRY(presets_thread_safe), TEST_ENTRY(units), TEST_ENTRY(sigma_s_prime_and_g),
+          TEST_ENTRY(albedo_round_trips), TEST_ENTRY(dipole_inverse), TEST_ENTRY(fixtures_that_load),
+          TEST_ENTRY(malformed_fixtures), TEST_ENTRY(malformed_text), TEST_ENTRY(validate), TEST_ENTRY(json_round_trip))

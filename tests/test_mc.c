@@ -13,18 +13,18 @@
 #define FIXTURES LUCENT_SOURCE_DIR "/tests/fixtures/mcml"
 
 /* 3 standard errors, with the statistical error of the expected value's rounding negligible. */
-#define CHECK_3SE(value, se, expected)                                                        \
-    do {                                                                                      \
-        CHECK_MSG(fabs((value) - (expected)) <= 3.0 * (se) && (se) > 0.0,                     \
-                  "%s = %.5f +- %.5f, expected %.5f (%.1f standard errors)", #value, (value), \
-                  (se), (expected), fabs((value) - (expected)) / (se));                       \
+#define CHECK_3SE(value, se, expected)                                                                                 \
+    do {                                                                                                               \
+        CHECK_MSG(fabs((value) - (expected)) <= 3.0 * (se) && (se) > 0.0,                                              \
+                  "%s = %.5f +- %.5f, expected %.5f (%.1f standard errors)", #value, (value), (se), (expected),        \
+                  fabs((value) - (expected)) / (se));                                                                  \
     } while (0)
 
 /* Energy balance: within 3 standard errors, plus 1e-6 for float rounding of the packet weight
  * (without roulette the balance is exact in exact arithmetic and its standard error is ~0). */
-#define CHECK_BALANCE(r)                                                                    \
-    CHECK_MSG(fabs((r).balance - 1.0) <= 3.0 * (r).balance_se + 1e-6,                        \
-              "Rsp + Rd + A + Tt = %.9f +- %.9f, expected 1", (r).balance, (r).balance_se)
+#define CHECK_BALANCE(r)                                                                                               \
+    CHECK_MSG(fabs((r).balance - 1.0) <= 3.0 * (r).balance_se + 1e-6, "Rsp + Rd + A + Tt = %.9f +- %.9f, expected 1",  \
+              (r).balance, (r).balance_se)
 
 /* mm: mu_a 1, mu_s 9 mm^-1, d 0.2 mm is the same slab as 10, 90 cm^-1, 0.02 cm. */
 static const lucent_mc_layer k_vanhulst = {1.0, 1.0, 9.0, 0.75, 0.2};
@@ -33,8 +33,11 @@ TEST(vanhulst_slab)
 {
     lucent_pool *pool = lucent_pool_create(2);
     lucent_mc_result r;
-    CHECK_OK(lucent_mc_run(&(lucent_mc_desc){.layers = &k_vanhulst, .layer_count = 1,
-                                             .photons = 200000, .seed = 7, .pool = pool,
+    CHECK_OK(lucent_mc_run(&(lucent_mc_desc){.layers = &k_vanhulst,
+                                             .layer_count = 1,
+                                             .photons = 200000,
+                                             .seed = 7,
+                                             .pool = pool,
                                              .grid = {.dr = 0.01, .dz = 0.01, .nr = 50, .nz = 20}},
                            &r));
     CHECK_NEAR(r.rsp, 0.0, 0.0);
@@ -42,8 +45,7 @@ TEST(vanhulst_slab)
     CHECK_3SE(r.tt, r.tt_se, 0.66096);
     CHECK_BALANCE(r);
     CHECK(r.rd_se < 0.002 && r.tt_se < 0.002); /* the test means something */
-    printf("  van de Hulst: Rd %.5f +- %.5f (0.09739), Tt %.5f +- %.5f (0.66096)\n", r.rd,
-           r.rd_se, r.tt, r.tt_se);
+    printf("  van de Hulst: Rd %.5f +- %.5f (0.09739), Tt %.5f +- %.5f (0.66096)\n", r.rd, r.rd_se, r.tt, r.tt_se);
     lucent_mc_result_free(&r);
     lucent_pool_destroy(pool);
 }
@@ -53,16 +55,15 @@ TEST(giovanelli_half_space)
     lucent_pool *pool = lucent_pool_create(2);
     lucent_mc_layer half = {1.5, 0.1, 0.9, 0.0, INFINITY};
     lucent_mc_result r;
-    CHECK_OK(lucent_mc_run(&(lucent_mc_desc){.layers = &half, .layer_count = 1, .photons = 100000,
-                                             .seed = 11, .pool = pool},
-                           &r));
+    CHECK_OK(lucent_mc_run(
+        &(lucent_mc_desc){.layers = &half, .layer_count = 1, .photons = 100000, .seed = 11, .pool = pool}, &r));
     CHECK_NEAR(r.rsp, 0.04, 1e-12);
     CHECK_3SE(r.rsp + r.rd, r.rd_se, 0.2600);
     CHECK_BALANCE(r);
     CHECK(r.tt == 0.0);
     CHECK(r.rd_se < 0.002);
-    printf("  Giovanelli: Rsp + Rd %.5f +- %.5f (0.2600), balance %.5f +- %.5f\n", r.rsp + r.rd,
-           r.rd_se, r.balance, r.balance_se);
+    printf("  Giovanelli: Rsp + Rd %.5f +- %.5f (0.2600), balance %.5f +- %.5f\n", r.rsp + r.rd, r.rd_se, r.balance,
+           r.balance_se);
     lucent_mc_result_free(&r);
     lucent_pool_destroy(pool);
 }
@@ -71,10 +72,9 @@ static bool same_result(const lucent_mc_result *a, const lucent_mc_result *b)
 {
     size_t nr = (size_t)a->grid.nr, nz = (size_t)a->grid.nz, na = (size_t)a->grid.na;
 #define SAME(f, n) (memcmp(a->f, b->f, (n) * sizeof(double)) == 0)
-    return a->rd == b->rd && a->rd_se == b->rd_se && a->a == b->a && a->tt == b->tt &&
-           a->balance_se == b->balance_se && SAME(rd_r, nr) && SAME(rd_r_se, nr) &&
-           SAME(tt_r, nr) && SAME(rd_a, na) && SAME(a_z, nz) && SAME(a_z_se, nz) &&
-           SAME(rd_ra, nr * na) && SAME(tt_ra, nr * na) && SAME(a_rz, nr * nz) &&
+    return a->rd == b->rd && a->rd_se == b->rd_se && a->a == b->a && a->tt == b->tt && a->balance_se == b->balance_se &&
+           SAME(rd_r, nr) && SAME(rd_r_se, nr) && SAME(tt_r, nr) && SAME(rd_a, na) && SAME(a_z, nz) &&
+           SAME(a_z_se, nz) && SAME(rd_ra, nr * na) && SAME(tt_ra, nr * na) && SAME(a_rz, nr * nz) &&
            SAME(a_layer, (size_t)a->layer_count);
 #undef SAME
 }
@@ -89,8 +89,11 @@ TEST(same_seed_same_result_for_any_thread_count)
     int threads[3] = {1, 2, 3};
     for (int i = 0; i < 3; i++) {
         lucent_pool *pool = lucent_pool_create(threads[i]);
-        CHECK_OK(lucent_mc_run(&(lucent_mc_desc){.layers = k_three, .layer_count = 3,
-                                                 .photons = 20000, .seed = 3, .pool = pool,
+        CHECK_OK(lucent_mc_run(&(lucent_mc_desc){.layers = k_three,
+                                                 .layer_count = 3,
+                                                 .photons = 20000,
+                                                 .seed = 3,
+                                                 .pool = pool,
                                                  .score_a_rz = true,
                                                  .grid = {.dr = 0.02, .nr = 40, .nz = 40}},
                                &r[i]));
@@ -100,8 +103,11 @@ TEST(same_seed_same_result_for_any_thread_count)
     CHECK(same_result(&r[0], &r[2]));
     CHECK_BALANCE(r[0]);
     lucent_mc_result other;
-    CHECK_OK(lucent_mc_run(&(lucent_mc_desc){.layers = k_three, .layer_count = 3, .photons = 20000,
-                                             .seed = 4, .score_a_rz = true,
+    CHECK_OK(lucent_mc_run(&(lucent_mc_desc){.layers = k_three,
+                                             .layer_count = 3,
+                                             .photons = 20000,
+                                             .seed = 4,
+                                             .score_a_rz = true,
                                              .grid = {.dr = 0.02, .nr = 40, .nz = 40}},
                            &other));
     CHECK(other.rd != r[0].rd); /* the seed matters */
@@ -113,8 +119,11 @@ TEST(same_seed_same_result_for_any_thread_count)
 TEST(profiles_integrate_to_totals)
 {
     lucent_mc_result r;
-    CHECK_OK(lucent_mc_run(&(lucent_mc_desc){.layers = k_three, .layer_count = 3, .photons = 20000,
-                                             .seed = 5, .score_a_rz = true,
+    CHECK_OK(lucent_mc_run(&(lucent_mc_desc){.layers = k_three,
+                                             .layer_count = 3,
+                                             .photons = 20000,
+                                             .seed = 5,
+                                             .score_a_rz = true,
                                              .last_bin_collects = true,
                                              .grid = {.dr = 0.05, .dz = 0.01, .nr = 50, .nz = 80}},
                            &r));
@@ -146,8 +155,10 @@ TEST(profiles_integrate_to_totals)
 TEST(beyond_the_grid)
 {
     lucent_mc_result r;
-    CHECK_OK(lucent_mc_run(&(lucent_mc_desc){.layers = &k_vanhulst, .layer_count = 1,
-                                             .photons = 20000, .seed = 1,
+    CHECK_OK(lucent_mc_run(&(lucent_mc_desc){.layers = &k_vanhulst,
+                                             .layer_count = 1,
+                                             .photons = 20000,
+                                             .seed = 1,
                                              .grid = {.dr = 0.001, .dz = 0.001, .nr = 10, .nz = 10}},
                            &r));
     double rd = 0;
@@ -164,9 +175,7 @@ TEST(beer_lambert)
 {
     lucent_mc_layer l = {1.0, 2.0, 0.0, 0.0, 0.5};
     lucent_mc_result r;
-    CHECK_OK(lucent_mc_run(&(lucent_mc_desc){.layers = &l, .layer_count = 1, .photons = 2000,
-                                             .seed = 1},
-                           &r));
+    CHECK_OK(lucent_mc_run(&(lucent_mc_desc){.layers = &l, .layer_count = 1, .photons = 2000, .seed = 1}, &r));
     /* Albedo 0: the first interaction absorbs the whole packet, so T is the probability
      * that the first step crosses the slab, exp(-sigma_t d). */
     CHECK_3SE(r.tt, r.tt_se, exp(-1.0));
@@ -194,28 +203,27 @@ TEST(validation)
 {
     lucent_mc_layer l[2] = {{1.4, 0.1, 1.0, 0.0, INFINITY}, {1.4, 0.1, 1.0, 0.0, 1.0}};
     lucent_mc_result r;
-    CHECK_ERR(lucent_mc_run(&(lucent_mc_desc){.layers = l, .layer_count = 2}, &r),
-              LUCENT_ERR_INVALID_ARGUMENT, "layers[0].thickness", "semi-infinite");
+    CHECK_ERR(lucent_mc_run(&(lucent_mc_desc){.layers = l, .layer_count = 2}, &r), LUCENT_ERR_INVALID_ARGUMENT,
+              "layers[0].thickness", "semi-infinite");
     l[0].thickness = 1.0;
     l[1].g = 1.5;
-    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = l, .layer_count = 2}),
-              LUCENT_ERR_INVALID_ARGUMENT, "layers[1].g: must be in [-1, 1], got 1.5");
+    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = l, .layer_count = 2}), LUCENT_ERR_INVALID_ARGUMENT,
+              "layers[1].g: must be in [-1, 1], got 1.5");
     l[1].g = 0.0;
     l[1].n = 0.5;
-    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = l, .layer_count = 2}),
-              LUCENT_ERR_INVALID_ARGUMENT, "layers[1].n");
+    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = l, .layer_count = 2}), LUCENT_ERR_INVALID_ARGUMENT,
+              "layers[1].n");
     l[1].n = 1.4;
     l[1].sigma_a = -1;
-    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = l, .layer_count = 2}),
-              LUCENT_ERR_INVALID_ARGUMENT, "layers[1].sigma_a");
+    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = l, .layer_count = 2}), LUCENT_ERR_INVALID_ARGUMENT,
+              "layers[1].sigma_a");
     l[1].sigma_a = 0.1;
-    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = l, .layer_count = 0}),
-              LUCENT_ERR_INVALID_ARGUMENT, "layers");
-    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = l, .layer_count = 2,
-                                                   .grid = {.nr = 200000}}),
+    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = l, .layer_count = 0}), LUCENT_ERR_INVALID_ARGUMENT,
+              "layers");
+    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = l, .layer_count = 2, .grid = {.nr = 200000}}),
               LUCENT_ERR_INVALID_ARGUMENT, "too many bins");
-    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = l, .layer_count = 2, .score_a_rz = 1,
-                                                   .grid = {.nr = 100000, .nz = 100000}}),
+    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){
+                  .layers = l, .layer_count = 2, .score_a_rz = 1, .grid = {.nr = 100000, .nz = 100000}}),
               LUCENT_ERR_INVALID_ARGUMENT, "too many bins");
     CHECK_OK(lucent_mc_validate(&(lucent_mc_desc){.layers = l, .layer_count = 2}));
     lucent_mc_desc d;
@@ -236,9 +244,9 @@ TEST(mcml_read_converts_cm_to_mm)
     CHECK(strcmp(r->output, "glass.mco") == 0 && r->line == 5);
     CHECK(r->desc.photons == 3000 && r->desc.layer_count == 3);
     CHECK(r->desc.grid.nz == 30 && r->desc.grid.nr == 40 && r->desc.grid.na == 5);
-    CHECK_NEAR(r->desc.grid.dr, 0.02, 1e-15);           /* 20E-4 cm */
-    CHECK_NEAR(r->layers[1].sigma_s, 10.0, 1e-12);      /* 100 cm^-1 */
-    CHECK_NEAR(r->layers[1].thickness, 0.1, 1e-15);     /* 0.01 cm */
+    CHECK_NEAR(r->desc.grid.dr, 0.02, 1e-15);       /* 20E-4 cm */
+    CHECK_NEAR(r->layers[1].sigma_s, 10.0, 1e-12);  /* 100 cm^-1 */
+    CHECK_NEAR(r->layers[1].thickness, 0.1, 1e-15); /* 0.01 cm */
     CHECK(r->desc.score_a_rz && r->desc.last_bin_collects);
     CHECK(isinf(f.runs[1].layers[0].thickness));
     lucent_mcml_file_free(&f);
@@ -247,7 +255,9 @@ TEST(mcml_read_converts_cm_to_mm)
 TEST(mcml_errors_name_the_line)
 {
     lucent_mcml_file f;
-    struct { const char *file, *msg; } bad[] = {
+    struct {
+        const char *file, *msg;
+    } bad[] = {
         {"missing_line.mci", "missing_line.mci: line 13: unexpected end of file"},
         {"negative_thickness.mci", "line 15: layer 1: thickness d must be > 0"},
         {"bad_g.mci", "line 15: layer 1: g must be in [-1, 1], got 1.5"},
@@ -266,8 +276,7 @@ TEST(mcml_errors_name_the_line)
               "t.mci: line 3: output format 'B' is not supported");
     CHECK_ERR(lucent_mcml_parse("2.0\n", "t.mci", &f), LUCENT_ERR_PARSE, "line 1: file version 2");
     CHECK_ERR(lucent_mcml_parse("", "t.mci", &f), LUCENT_ERR_PARSE, "line 1: unexpected end");
-    CHECK_ERR(lucent_mcml_parse("1\n1\na A\n10\n.1 .1\n1 1 1\n2\n1\n1 1 1 0 inf\n1 1 1 0 1\n1\n",
-                                "t.mci", &f),
+    CHECK_ERR(lucent_mcml_parse("1\n1\na A\n10\n.1 .1\n1 1 1\n2\n1\n1 1 1 0 inf\n1 1 1 0 1\n1\n", "t.mci", &f),
               LUCENT_ERR_PARSE, "line 9: layer 1: only the last layer may be semi-infinite");
 }
 
@@ -322,8 +331,7 @@ TEST(mcml_write_units_and_last_bin)
 }
 
 TEST_MAIN(TEST_ENTRY(vanhulst_slab), TEST_ENTRY(giovanelli_half_space),
-          TEST_ENTRY(same_seed_same_result_for_any_thread_count),
-          TEST_ENTRY(profiles_integrate_to_totals), TEST_ENTRY(beyond_the_grid),
-          TEST_ENTRY(beer_lambert), TEST_ENTRY(glass_layer), TEST_ENTRY(validation),
+          TEST_ENTRY(same_seed_same_result_for_any_thread_count), TEST_ENTRY(profiles_integrate_to_totals),
+          TEST_ENTRY(beyond_the_grid), TEST_ENTRY(beer_lambert), TEST_ENTRY(glass_layer), TEST_ENTRY(validation),
           TEST_ENTRY(mcml_read_converts_cm_to_mm), TEST_ENTRY(mcml_errors_name_the_line),
           TEST_ENTRY(mcml_write_units_and_last_bin))

@@ -52,8 +52,8 @@ static void check_3se(const char *name, const char *what, double v, double se, c
     }
     double c = sqrt(se * se + pse * pse);
     CHECK_MSG(c > 0 && fabs(v - pv) <= 3.0 * c,
-              "%s: %s: Lucent %.6f +- %.6f, MCML (xoshiro256**) %.6f +- %.6f: %.1f combined SE",
-              name, what, v, se, pv, pse, c > 0 ? fabs(v - pv) / c : INFINITY);
+              "%s: %s: Lucent %.6f +- %.6f, MCML (xoshiro256**) %.6f +- %.6f: %.1f combined SE", name, what, v, se, pv,
+              pse, c > 0 ? fabs(v - pv) / c : INFINITY);
 }
 
 /* Lucent's integral of a radial profile over bin k: value * ring area (2 pi (k + 1/2) dr^2). */
@@ -62,8 +62,8 @@ static double ring(const double *density, int k, double dr)
     return density[k] * 2.0 * 3.14159265358979323846 * (k + 0.5) * dr * dr;
 }
 
-static void check_rings(const char *name, const char *what, const double *v, const double *se,
-                        double dr, const cJSON *peer)
+static void check_rings(const char *name, const char *what, const double *v, const double *se, double dr,
+                        const cJSON *peer)
 {
     for (size_t i = 0; i < sizeof k_rings / sizeof *k_rings; i++) {
         int k = k_rings[i];
@@ -73,8 +73,7 @@ static void check_rings(const char *name, const char *what, const double *v, con
     }
 }
 
-static void check_against_peer(const char *name, const lucent_mc_result *r, const cJSON *p,
-                               double dr)
+static void check_against_peer(const char *name, const lucent_mc_result *r, const cJSON *p, double dr)
 {
     check_3se(name, "Rd", r->rd, r->rd_se, cJSON_GetObjectItem(p, "rd"));
     check_3se(name, "A", r->a, r->a_se, cJSON_GetObjectItem(p, "a"));

@@ -48,8 +48,8 @@ TEST(reads_mcml_output)
     const lucent_mc_desc *d = &m.run.desc;
     CHECK(d->photons == 20000 && d->layer_count == 2 && strcmp(m.run.output, "gcontrast_small.mco") == 0);
     CHECK(d->grid.nz == 30 && d->grid.nr == 20 && d->grid.na == 5);
-    CHECK_NEAR(d->grid.dz, 0.05, 1e-15); /* 0.005 cm */
-    CHECK_NEAR(d->grid.dr, 0.5, 1e-15);  /* 0.05 cm */
+    CHECK_NEAR(d->grid.dz, 0.05, 1e-15);           /* 0.005 cm */
+    CHECK_NEAR(d->grid.dr, 0.5, 1e-15);            /* 0.05 cm */
     CHECK_NEAR(d->layers[0].sigma_s, 10.0, 1e-12); /* 100 1/cm */
     CHECK_NEAR(d->layers[1].g, 0.3, 0);
     CHECK_NEAR(d->layers[1].thickness, 1.0, 1e-12); /* 0.1 cm */
@@ -89,7 +89,7 @@ TEST(mcml_output_is_consistent_with_itself)
         for (int k = 0; k < g->nz; k++) a += m.a_z[k] * g->dz;
         for (int l = 0; l < m.run.desc.layer_count; l++) a_l += m.a_l[l];
         CHECK_NEAR(rd, m.rd, 1e-4 * m.rd);
-        CHECK_NEAR(rd_a, m.rd, 1e-4 * m.rd);  /* the file's angular units became Lucent's */
+        CHECK_NEAR(rd_a, m.rd, 1e-4 * m.rd); /* the file's angular units became Lucent's */
         CHECK_NEAR(rd_ra, m.rd, 1e-4 * m.rd);
         CHECK_NEAR(tt, m.tt, 1e-4 * m.tt);
         CHECK_NEAR(a, m.a, 1e-4 * m.a);
@@ -103,10 +103,15 @@ TEST(mcml_output_is_consistent_with_itself)
 TEST(reads_lucent_output)
 {
     lucent_mc_layer l = {1.4, 0.1, 10.0, 0.9, INFINITY};
-    lucent_mcml_run run = {.output = "half.mco", .layers = &l,
-                           .desc = {.layers = &l, .layer_count = 1, .photons = 2000, .seed = 3,
+    lucent_mcml_run run = {.output = "half.mco",
+                           .layers = &l,
+                           .desc = {.layers = &l,
+                                    .layer_count = 1,
+                                    .photons = 2000,
+                                    .seed = 3,
                                     .grid = {.dr = 0.1, .dz = 0.1, .nr = 10, .nz = 8, .na = 4},
-                                    .score_a_rz = true, .last_bin_collects = true}};
+                                    .score_a_rz = true,
+                                    .last_bin_collects = true}};
     lucent_mc_result r;
     CHECK_OK(lucent_mc_run(&run.desc, &r));
     CHECK_OK(lucent_mcml_write(test_path("half.mco"), &run, &r));
@@ -127,7 +132,9 @@ TEST(malformed_files_name_the_line)
 {
     char *good = fixture_text("gcontrast_small.mco");
     if (!good) return;
-    struct { const char *find, *repl, *msg; } bad[] = {
+    struct {
+        const char *find, *repl, *msg;
+    } bad[] = {
         {"A1 \t#", "A2 \t#", "t.mco: line 1: expected the format version A1"},
         {"A1 \t#", "B1 \t#", "line 1: binary .mco files (B1) are not supported"},
         {"InParm \t", "InParms \t", "line 12: expected the section InParm, got 'InParms'"},
@@ -165,9 +172,9 @@ TEST(malformed_files_name_the_line)
               "line 118: unexpected end of file: missing the section Tt_a");
     /* a short file naming a huge grid is refused before anything large is allocated */
     CHECK_ERR(lucent_mco_parse("A1\nInParm\nx.mco A\n10\n0.01 0.01\n200 100000 1\n1\n1\n"
-                               "1 1 1 0 1\n1\nRAT\n0\n0\n0\n1\nA_rz\n1\n", "t.mco", &m),
-              LUCENT_ERR_PARSE,
-              "line 16: A_rz: the rest of the file is too short for 20000000 values (nr x nz)");
+                               "1 1 1 0 1\n1\nRAT\n0\n0\n0\n1\nA_rz\n1\n",
+                               "t.mco", &m),
+              LUCENT_ERR_PARSE, "line 16: A_rz: the rest of the file is too short for 20000000 values (nr x nz)");
     CHECK_ERR(lucent_mco_parse("", "t.mco", &m), LUCENT_ERR_PARSE,
               "t.mco: line 1: unexpected end of file, expected the format version (A1)");
     CHECK_ERR(lucent_mco_load(MCO "absent.mco", &m), LUCENT_ERR_IO, "absent.mco");
@@ -246,8 +253,7 @@ TEST(compare_finds_differences)
     lucent_mco_comparison_free(&c);
     m.run.layers[0].thickness = 0.52; /* 0.052 cm: off the 0.005 cm grid */
     CHECK_OK(lucent_mco_compare(&m, &r, &c));
-    CHECK(!c.a_l_on_grid && c.sections[LUCENT_MCO_A_L].incomparable == 2 &&
-          c.sections[LUCENT_MCO_A_L].compared == 0);
+    CHECK(!c.a_l_on_grid && c.sections[LUCENT_MCO_A_L].incomparable == 2 && c.sections[LUCENT_MCO_A_L].compared == 0);
     lucent_mco_comparison_free(&c);
     lucent_mc_result_free(&r);
     lucent_mco_free(&m);
@@ -265,8 +271,7 @@ TEST(check_run_names_the_difference)
               "layer 2: mus [1/cm] is 150, the .mco's is 60");
     f.runs[0].layers[1].sigma_s = 6.0;
     f.runs[0].desc.grid.nr = 21;
-    CHECK_ERR(lucent_mco_check_run(&m, &f.runs[0].desc), LUCENT_ERR_INVALID_ARGUMENT,
-              "nr is 21, the .mco's is 20");
+    CHECK_ERR(lucent_mco_check_run(&m, &f.runs[0].desc), LUCENT_ERR_INVALID_ARGUMENT, "nr is 21, the .mco's is 20");
     lucent_mc_result r;
     CHECK_OK(lucent_mc_run(&f.runs[0].desc, &r));
     lucent_mco_comparison c;
@@ -305,14 +310,13 @@ TEST(comparison_files)
     CHECK(cJSON_GetObjectItem(summary, "beyond_3se")->valueint == c.beyond3);
     CHECK(cJSON_GetArraySize(cJSON_GetObjectItem(json, "sections")) == LUCENT_MCO_SECTION_COUNT);
     cJSON_Delete(json);
-    CHECK_ERR(lucent_mco_comparison_write_csv(test_path("no/such/dir/c.csv"), &c), LUCENT_ERR_IO,
-              "no/such/dir");
+    CHECK_ERR(lucent_mco_comparison_write_csv(test_path("no/such/dir/c.csv"), &c), LUCENT_ERR_IO, "no/such/dir");
     lucent_mco_comparison_free(&c);
     lucent_mc_result_free(&r);
     lucent_mco_free(&m);
 }
 
 TEST_MAIN(TEST_ENTRY(reads_mcml_output), TEST_ENTRY(mcml_output_is_consistent_with_itself),
-          TEST_ENTRY(reads_lucent_output), TEST_ENTRY(malformed_files_name_the_line),
-          TEST_ENTRY(compare_with_itself), TEST_ENTRY(compare_finds_differences),
-          TEST_ENTRY(check_run_names_the_difference), TEST_ENTRY(comparison_files))
+          TEST_ENTRY(reads_lucent_output), TEST_ENTRY(malformed_files_name_the_line), TEST_ENTRY(compare_with_itself),
+          TEST_ENTRY(compare_finds_differences), TEST_ENTRY(check_run_names_the_difference),
+          TEST_ENTRY(comparison_files))

@@ -105,8 +105,13 @@ static double torus_error(double jitter, lucent_curvature_method method, double 
 static double torus_error_desc(double jitter, const lucent_curvature_desc *cd, double *gauss_err)
 {
     lucent_mesh *m;
-    lucent_primitive_desc d = {.kind = LUCENT_PRIMITIVE_TORUS, .major_radius = 3, .radius = 1,
-                               .u_count = 192, .v_count = 64, .jitter = jitter, .seed = 7};
+    lucent_primitive_desc d = {.kind = LUCENT_PRIMITIVE_TORUS,
+                               .major_radius = 3,
+                               .radius = 1,
+                               .u_count = 192,
+                               .v_count = 64,
+                               .jitter = jitter,
+                               .seed = 7};
     CHECK_OK(lucent_mesh_primitive(&d, &m));
     lucent_curvature c = {0};
     CHECK_OK(lucent_mesh_curvature(m, cd, &c));
@@ -170,8 +175,10 @@ static void check_sphere(const lucent_primitive_desc *d, double tol, double othe
         lucent_curvature c = curvature_of(m, (lucent_curvature_method)method);
         double eh = max_rel(&c, c.mean, 1 / d->radius), ek = max_rel(&c, c.gauss, 1 / (d->radius * d->radius));
         printf("  %s %s: max rel error H %.2g, K %.2g\n", what, lucent_curvature_method_name(method), eh, ek);
-        if (method == LUCENT_CURVATURE_RUSINKIEWICZ) CHECK(eh <= tol && ek <= 2 * tol);
-        else CHECK(eh <= other_tol && ek <= fmax(0.01, other_tol) && all_finite(&c));
+        if (method == LUCENT_CURVATURE_RUSINKIEWICZ)
+            CHECK(eh <= tol && ek <= 2 * tol);
+        else
+            CHECK(eh <= other_tol && ek <= fmax(0.01, other_tol) && all_finite(&c));
         for (size_t v = 0; v < c.count; v++) CHECK(c.flags[v] == 0); /* closed: no boundary */
         lucent_curvature_free(&c);
     }
@@ -184,12 +191,15 @@ static void check_sphere(const lucent_primitive_desc *d, double tol, double othe
  * pointwise error reaches 15% (it does not converge pointwise on irregular meshes, Xu 2004). */
 TEST(spheres_exact)
 {
-    check_sphere(&(lucent_primitive_desc){.kind = LUCENT_PRIMITIVE_UV_SPHERE, .radius = 2,
-                                          .u_count = 64, .v_count = 32}, 1e-4, 2e-3, "uv sphere R=2");
-    check_sphere(&(lucent_primitive_desc){.kind = LUCENT_PRIMITIVE_ICOSPHERE, .radius = 0.5,
-                                          .subdivisions = 4}, 1e-4, 1e-4, "icosphere R=0.5");
-    check_sphere(&(lucent_primitive_desc){.kind = LUCENT_PRIMITIVE_ICOSPHERE, .radius = 1,
-                                          .subdivisions = 4, .jitter = 0.2, .seed = 3}, 1e-4, 0.3, "jittered icosphere");
+    check_sphere(
+        &(lucent_primitive_desc){.kind = LUCENT_PRIMITIVE_UV_SPHERE, .radius = 2, .u_count = 64, .v_count = 32}, 1e-4,
+        2e-3, "uv sphere R=2");
+    check_sphere(&(lucent_primitive_desc){.kind = LUCENT_PRIMITIVE_ICOSPHERE, .radius = 0.5, .subdivisions = 4}, 1e-4,
+                 1e-4, "icosphere R=0.5");
+    check_sphere(
+        &(lucent_primitive_desc){
+            .kind = LUCENT_PRIMITIVE_ICOSPHERE, .radius = 1, .subdivisions = 4, .jitter = 0.2, .seed = 3},
+        1e-4, 0.3, "jittered icosphere");
 }
 
 /* Ellipsoid 1 x 1.5 x 2: mean and Gaussian curvature within 1% RMS. */
@@ -311,12 +321,14 @@ TEST(binary_ply_gz_obj_gltf)
     static const char gltf[] =
         "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
         "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":1},\"indices\":0}]}],"
-        "\"buffers\":[{\"uri\":\"data:application/octet-stream;base64,AAABAAIAAAAAAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAAAAAACAPwAAAAA=\",\"byteLength\":44}],"
+        "\"buffers\":[{\"uri\":\"data:application/octet-stream;base64,AAABAAIAAAAAAAAAAAAAAAAAAAAAAIA/"
+        "AAAAAAAAAAAAAAAAAACAPwAAAAA=\",\"byteLength\":44}],"
         "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":6,\"target\":34963},"
         "{\"buffer\":0,\"byteOffset\":8,\"byteLength\":36,\"target\":34962}],"
         "\"accessors\":[{\"bufferView\":0,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"},"
         "{\"bufferView\":1,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\",\"max\":[1,1,0],\"min\":[0,0,0]}]}";
-    CHECK_OK(lucent_mesh_load_memory(gltf, sizeof gltf - 1, "tri.gltf", &(lucent_mesh_load_desc){.format = "gltf"}, &m));
+    CHECK_OK(
+        lucent_mesh_load_memory(gltf, sizeof gltf - 1, "tri.gltf", &(lucent_mesh_load_desc){.format = "gltf"}, &m));
     if (m) CHECK(m->vertex_count == 3 && m->face_count == 1);
     lucent_mesh_destroy(m);
 }
@@ -367,7 +379,8 @@ TEST(dirty_mesh_no_nan)
 TEST(ply_round_trip)
 {
     lucent_mesh *m, *back;
-    CHECK_OK(lucent_mesh_primitive(&(lucent_primitive_desc){.kind = LUCENT_PRIMITIVE_ICOSPHERE, .subdivisions = 2}, &m));
+    CHECK_OK(
+        lucent_mesh_primitive(&(lucent_primitive_desc){.kind = LUCENT_PRIMITIVE_ICOSPHERE, .subdivisions = 2}, &m));
     double *vals = calloc(m->vertex_count, sizeof *vals);
     uint8_t *rgb = calloc(3 * m->vertex_count, 1);
     const char *names[] = {"mean"};
@@ -393,15 +406,16 @@ static void check_scan(const char *name, int raw, int expect_nonmanifold, int ex
     lucent_mesh_stats st;
     CHECK_OK(lucent_mesh_stats_compute(m, &st));
     printf("  %s%s: %zu vertices, %zu faces, %zu boundary, %zu non-manifold edges, %zu zero-area faces, "
-           "%zu unused\n", name, raw ? " (raw)" : "", m->vertex_count, m->face_count, st.boundary_edges,
-           st.nonmanifold_edges, st.degenerate_faces, st.unused_vertices);
+           "%zu unused\n",
+           name, raw ? " (raw)" : "", m->vertex_count, m->face_count, st.boundary_edges, st.nonmanifold_edges,
+           st.degenerate_faces, st.unused_vertices);
     if (expect_nonmanifold >= 0) CHECK(st.nonmanifold_edges == (size_t)expect_nonmanifold);
     if (expect_unused >= 0) CHECK(st.unused_vertices == (size_t)expect_unused);
     lucent_pool *pool = lucent_pool_create(0);
     for (int method = 0; method < 3; method++) {
         lucent_curvature c = {0};
-        CHECK_OK(lucent_mesh_curvature(m, &(lucent_curvature_desc){.method = method, .pool = pool,
-                                                                  .smooth_rings = method == 0}, &c));
+        CHECK_OK(lucent_mesh_curvature(
+            m, &(lucent_curvature_desc){.method = method, .pool = pool, .smooth_rings = method == 0}, &c));
         CHECK_MSG(all_finite(&c), "%s %s: non-finite curvature", name, lucent_curvature_method_name(method));
         lucent_curvature_free(&c);
     }
@@ -427,8 +441,8 @@ TEST(stanford_scans_finite)
  * orientation, the exact path), exactly the three corners when one face is removed. */
 TEST(boundary_flags)
 {
-    lucent_primitive_desc d = {.kind = LUCENT_PRIMITIVE_TORUS, .major_radius = 3, .radius = 1,
-                               .u_count = 24, .v_count = 12};
+    lucent_primitive_desc d = {
+        .kind = LUCENT_PRIMITIVE_TORUS, .major_radius = 3, .radius = 1, .u_count = 24, .v_count = 12};
     lucent_mesh *m, *open, *flip;
     CHECK_OK(lucent_mesh_primitive(&d, &m));
     CHECK_OK(lucent_mesh_create(m->vertex_count, m->face_count - 1, &open));
@@ -466,8 +480,8 @@ static lucent_image *paint_plain(const lucent_mesh *m, double azimuth, double *c
     uint8_t *rgb = malloc(3 * m->vertex_count);
     for (size_t v = 0; v < m->vertex_count; v++) rgb[3 * v] = 255, rgb[3 * v + 1] = rgb[3 * v + 2] = 0;
     lucent_image *img = NULL;
-    CHECK_OK(lucent_mesh_paint(m, &(lucent_mesh_paint_desc){.width = 200, .height = 200, .azimuth = azimuth,
-                                                            .colors = rgb}, &img));
+    CHECK_OK(lucent_mesh_paint(
+        m, &(lucent_mesh_paint_desc){.width = 200, .height = 200, .azimuth = azimuth, .colors = rgb}, &img));
     free(rgb);
     double covered = 0;
     int x_lo = 200, x_hi = -1;
@@ -489,10 +503,11 @@ static lucent_image *paint_plain(const lucent_mesh *m, double azimuth, double *c
 TEST(paint_projects_and_colours_the_mesh)
 {
     lucent_mesh *sphere = NULL, *ellipsoid = NULL;
-    CHECK_OK(lucent_mesh_primitive(&(lucent_primitive_desc){.kind = LUCENT_PRIMITIVE_ICOSPHERE, .radius = 1,
-                                                            .subdivisions = 4}, &sphere));
-    CHECK_OK(lucent_mesh_primitive(&(lucent_primitive_desc){.kind = LUCENT_PRIMITIVE_ELLIPSOID, .axes = {2, 1, 1},
-                                                            .u_count = 128, .v_count = 64}, &ellipsoid));
+    CHECK_OK(lucent_mesh_primitive(
+        &(lucent_primitive_desc){.kind = LUCENT_PRIMITIVE_ICOSPHERE, .radius = 1, .subdivisions = 4}, &sphere));
+    CHECK_OK(lucent_mesh_primitive(
+        &(lucent_primitive_desc){.kind = LUCENT_PRIMITIVE_ELLIPSOID, .axes = {2, 1, 1}, .u_count = 128, .v_count = 64},
+        &ellipsoid));
     if (!sphere || !ellipsoid) return;
     double coverage, width;
     lucent_image *img = paint_plain(sphere, 0, &coverage, &width);

@@ -182,7 +182,7 @@ TEST(fresnel_tends_to_one_at_grazing_incidence)
 
 TEST(fresnel_total_internal_reflection_beyond_the_critical_angle)
 {
-    const double eta = 1 / 1.5; /* glass to air */
+    const double eta = 1 / 1.5;            /* glass to air */
     double cos_crit = sqrt(1 - eta * eta); /* sin theta_c = n_t / n_i = eta */
     for (int k = 0; k < 100; k++) {
         double c = cos_crit * k / 100.0, ct = -1;
@@ -246,7 +246,7 @@ TEST(refraction_obeys_snell_and_reflection_mirrors)
         CHECK_NEAR(v3_length(t), 1.0, 1e-14);
         CHECK_NEAR(v3_length(v3_cross(t, m)), si / e, 1e-12); /* sin_t = sin_i / eta */
         CHECK_NEAR(v3_dot(v3_cross(d, m), t), 0.0, 1e-12);    /* in the plane of incidence */
-        CHECK(v3_dot(t, m) <= 0);                              /* on the far side */
+        CHECK(v3_dot(t, m) <= 0);                             /* on the far side */
         v3 r = lucent_reflect(d, m);
         CHECK_NEAR(v3_dot(r, m), -v3_dot(d, m), 1e-14);
         CHECK_NEAR(v3_length(v3_sub(v3_cross(d, m), v3_cross(r, m))), 0.0, 1e-12); /* tangent kept */
@@ -332,8 +332,7 @@ static void check_visible_sampler(double alpha, double theta_v, uint64_t seed)
             for (int a = 0; a < SUB; a++)
                 for (int c = 0; c < SUB; c++) {
                     double th = (it + (a + 0.5) / SUB) * dt, ph = (ip + (c + 0.5) / SUB) * dp;
-                    s += ggx_dv_ref(lucent_to_local(v, t, b, n), v3_make(0, 0, 1), spherical(th, ph), alpha) *
-                         sin(th);
+                    s += ggx_dv_ref(lucent_to_local(v, t, b, n), v3_make(0, 0, 1), spherical(th, ph), alpha) * sin(th);
                 }
             exp_[it * NP + ip] = s * dt * dp / (SUB * SUB);
             total += exp_[it * NP + ip];
@@ -385,7 +384,8 @@ static double walter_integral(v3 o, double alpha, bool transmit, double eta_o, d
             } else {
                 v3 m = lucent_ggx_half_transmit(o, i, eta_o, eta_i, n);
                 double om = v3_dot(o, m), im = v3_dot(i, m);
-                if (om > 0 && im < 0) f = ggx_dv_ref(o, n, m, alpha) * lucent_ggx_jacobian_transmit(om, im, eta_o, eta_i);
+                if (om > 0 && im < 0)
+                    f = ggx_dv_ref(o, n, m, alpha) * lucent_ggx_jacobian_transmit(om, im, eta_o, eta_i);
             }
             sum += f * sin(th);
         }
@@ -557,7 +557,8 @@ TEST(basis_is_orthonormal_and_right_handed)
         lucent_basis(n, &t, &b);
         float nf[3] = {(float)n.x, (float)n.y, (float)n.z}, tf[3], bf[3];
         lucent_basis_f(nf, tf, bf);
-        double e = fmax(v3_length(v3_sub(v3_make(tf[0], tf[1], tf[2]), t)), v3_length(v3_sub(v3_make(bf[0], bf[1], bf[2]), b)));
+        double e = fmax(v3_length(v3_sub(v3_make(tf[0], tf[1], tf[2]), t)),
+                        v3_length(v3_sub(v3_make(bf[0], bf[1], bf[2]), b)));
         CHECK_MSG(e <= 1e-6, "n = (%.9g, %.9g, %.9g): float basis off by %.3g", n.x, n.y, n.z, e);
     }
     /* lucent_around: the cosine to the axis is the one asked for */
@@ -571,13 +572,12 @@ TEST(basis_is_orthonormal_and_right_handed)
 
 TEST_MAIN(TEST_ENTRY(fresnel_normal_incidence_is_the_square_of_the_index_contrast),
           TEST_ENTRY(fresnel_tends_to_one_at_grazing_incidence),
-          TEST_ENTRY(fresnel_total_internal_reflection_beyond_the_critical_angle),
-          TEST_ENTRY(fresnel_is_reciprocal), TEST_ENTRY(fresnel_matches_a_hand_computation_and_the_cook_torrance_form),
+          TEST_ENTRY(fresnel_total_internal_reflection_beyond_the_critical_angle), TEST_ENTRY(fresnel_is_reciprocal),
+          TEST_ENTRY(fresnel_matches_a_hand_computation_and_the_cook_torrance_form),
           TEST_ENTRY(refraction_obeys_snell_and_reflection_mirrors), TEST_ENTRY(ggx_distribution_is_normalised),
           TEST_ENTRY(ggx_g1_matches_the_smith_closed_form_and_the_projected_area),
           TEST_ENTRY(ggx_visible_normals_follow_d_v), TEST_ENTRY(ggx_visible_pdf_is_d_v),
-          TEST_ENTRY(ggx_half_vectors_and_jacobians_change_variables),
-          TEST_ENTRY(hg_cosines_follow_the_phase_function),
+          TEST_ENTRY(ggx_half_vectors_and_jacobians_change_variables), TEST_ENTRY(hg_cosines_follow_the_phase_function),
           TEST_ENTRY(hg_phase_function_is_normalised_and_matches_its_cdf),
           TEST_ENTRY(hg_directions_have_mean_cosine_g_and_uniform_azimuth),
           TEST_ENTRY(hg_float_sampling_agrees_with_double), TEST_ENTRY(basis_is_orthonormal_and_right_handed))

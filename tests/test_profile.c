@@ -29,10 +29,8 @@ static lucent_material grey(double sigma_a, double sigma_s, double eta)
  * are harmless because the integrand 2 pi r f stays bounded. ---- */
 typedef double (*radial_fn)(const void *ctx, double r);
 
-static const double gx[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
-                             0.9602898564975363};
-static const double gw[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
-                             0.1012285362903763};
+static const double gx[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+static const double gw[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
 
 static double gl_panel(radial_fn f, const void *ctx, double a, double b)
 {
@@ -177,8 +175,7 @@ TEST(better_dipole_close_to_classical)
  *   R = alpha' cosh(s z_b(0)) sinh(s (L - u0)) / sinh(s L),
  *   T = alpha' cosh(s z_b(d)) sinh(s u0) / sinh(s L).
  * The multipole integrated over the plane is its method-of-images series. */
-static void slab_1d_faces(const lucent_medium *md, double d, double zb_top, double zb_bottom,
-                          double dest[2])
+static void slab_1d_faces(const lucent_medium *md, double d, double zb_top, double zb_bottom, double dest[2])
 {
     double stp = md->sigma_a + md->sigma_s_prime, l = 1.0 / stp;
     double s = sqrt(3.0 * md->sigma_a * stp), big_l = d + zb_top + zb_bottom, u0 = l + zb_top;
@@ -236,8 +233,7 @@ TEST(multipole_mismatched_faces_match_1d_solution)
         lucent_slab_desc slab = {.thickness = 1.2, .poles = 200, .eta_below = below[k]};
         double mp[2], ref[2];
         lucent_multipole_totals(&md, &slab, mp);
-        slab_1d_faces(&md, 1.2, zb_of(1.3, stp), zb_of(1.3 / (below[k] > 0 ? below[k] : 1.0), stp),
-                      ref);
+        slab_1d_faces(&md, 1.2, zb_of(1.3, stp), zb_of(1.3 / (below[k] > 0 ? below[k] : 1.0), stp), ref);
         CHECK_NEAR(mp[0], ref[0], 1e-9);
         CHECK_NEAR(mp[1], ref[1], 1e-9);
         t[k] = mp[1];
@@ -256,8 +252,7 @@ TEST(multipole_mismatched_faces_match_1d_solution)
      * the slab seen from below: eta_above = 1.5 gives the R and T of eta_below = 1.5 with the
      * source on the other side, checked against the 1-D solution with the ends exchanged. */
     double mp[2], ref[2];
-    lucent_multipole_totals(&md, &(lucent_slab_desc){.thickness = 1.2, .poles = 200, .eta_above = 1.5},
-                            mp);
+    lucent_multipole_totals(&md, &(lucent_slab_desc){.thickness = 1.2, .poles = 200, .eta_above = 1.5}, mp);
     slab_1d_faces(&md, 1.2, zb_of(1.3 / 1.5, stp), zb_of(1.3, stp), ref);
     CHECK_NEAR(mp[0], ref[0], 1e-9);
     CHECK_NEAR(mp[1], ref[1], 1e-9);
@@ -318,8 +313,7 @@ static double f_slab(const void *ctx, double r)
  * R + T = 1 with R = (L - u0)/L, T = u0/L (the sigma_a -> 0 limit of the 1-D solution). */
 TEST(multipole_conserves_energy_without_absorption)
 {
-    slab_ctx s = {.md = {.sigma_a = 0.0, .sigma_s_prime = 1.0, .eta = 1.0},
-                  .slab = {.thickness = 2.0, .poles = 400}};
+    slab_ctx s = {.md = {.sigma_a = 0.0, .sigma_s_prime = 1.0, .eta = 1.0}, .slab = {.thickness = 2.0, .poles = 400}};
     double fdr = lucent_fdr(1.0), a = (1.0 + fdr) / (1.0 - fdr), zb = 2.0 * a / 3.0;
     double big_l = 2.0 + 2.0 * zb, u0 = 1.0 + zb;
     s.which = 0;
@@ -343,8 +337,7 @@ TEST(layered_single_layer_matches_multipole)
     CHECK_OK(lucent_profile_multipole(&layer.material, &layer.slab, &grid, mp));
     for (int k = 0; k < 2 && lay[k] && mp[k]; k++) {
         double peak = mp[k]->value[0][0], worst = 0.0;
-        for (int j = 0; j < grid.count; j++)
-            worst = fmax(worst, fabs(lay[k]->value[1][j] - mp[k]->value[1][j]));
+        for (int j = 0; j < grid.count; j++) worst = fmax(worst, fabs(lay[k]->value[1][j] - mp[k]->value[1][j]));
         CHECK_MSG(worst < 1e-6 * peak, "%s: worst %g, peak %g", k ? "T" : "R", worst, peak);
     }
     for (int k = 0; k < 2; k++) lucent_profile_destroy(lay[k]), lucent_profile_destroy(mp[k]);
@@ -362,9 +355,8 @@ TEST(layered_single_layer_matches_multipole)
  * single layer with slab.eta_below = 1.4, and kills T. */
 TEST(layered_two_layers_adding_rule)
 {
-    lucent_layer layers[2] = {
-        {.material = grey(0.02, 1.5, 1.4), .slab = {.thickness = 1.0, .poles = 6}},
-        {.material = grey(0.2, 3.0, 1.4), .slab = {.thickness = 2.0, .poles = 6}}};
+    lucent_layer layers[2] = {{.material = grey(0.02, 1.5, 1.4), .slab = {.thickness = 1.0, .poles = 6}},
+                              {.material = grey(0.2, 3.0, 1.4), .slab = {.thickness = 2.0, .poles = 6}}};
     lucent_profile_grid grid = {.dr = 0.02, .count = 1500};
     lucent_profile *p[2] = {NULL, NULL};
     CHECK_OK(lucent_profile_layered(layers, 2, &grid, p));
@@ -372,12 +364,9 @@ TEST(layered_two_layers_adding_rule)
     lucent_medium m1, m2;
     lucent_medium_from_material(&layers[0].material, 0, &m1);
     lucent_medium_from_material(&layers[1].material, 0, &m2);
-    lucent_multipole_totals(&m1, &(lucent_slab_desc){.thickness = 1.0, .poles = 6, .eta_below = 1.4},
-                            t1);
-    lucent_multipole_totals(&m1, &(lucent_slab_desc){.thickness = 1.0, .poles = 6, .eta_above = 1.4},
-                            t1b);
-    lucent_multipole_totals(&m2, &(lucent_slab_desc){.thickness = 2.0, .poles = 6, .eta_above = 1.4},
-                            t2);
+    lucent_multipole_totals(&m1, &(lucent_slab_desc){.thickness = 1.0, .poles = 6, .eta_below = 1.4}, t1);
+    lucent_multipole_totals(&m1, &(lucent_slab_desc){.thickness = 1.0, .poles = 6, .eta_above = 1.4}, t1b);
+    lucent_multipole_totals(&m2, &(lucent_slab_desc){.thickness = 2.0, .poles = 6, .eta_above = 1.4}, t2);
     lucent_multipole_totals(&m1, &layers[0].slab, sym);
     CHECK(fabs(t1b[0] - t1[0]) > 0.01 && fabs(t1[0] - sym[0]) > 0.01); /* the faces matter */
     double den = 1.0 - t1b[0] * t2[0];
@@ -387,8 +376,7 @@ TEST(layered_two_layers_adding_rule)
     }
     for (int k = 0; k < 2; k++) lucent_profile_destroy(p[k]), p[k] = NULL;
     layers[1].material = grey(1.0, 0.0, 1.4); /* alpha' = 0: nothing comes back or through */
-    lucent_layer alone = {.material = layers[0].material,
-                          .slab = {.thickness = 1.0, .poles = 6, .eta_below = 1.4}};
+    lucent_layer alone = {.material = layers[0].material, .slab = {.thickness = 1.0, .poles = 6, .eta_below = 1.4}};
     lucent_profile *single[2] = {NULL, NULL};
     CHECK_OK(lucent_profile_layered(layers, 2, &grid, p));
     CHECK_OK(lucent_profile_layered(&alone, 1, &grid, single));
@@ -415,8 +403,7 @@ TEST(layered_two_layers_adding_rule)
 TEST(layered_matched_interface_approaches_one_slab)
 {
     lucent_material m = grey(0.05, 2.0, 1.3);
-    lucent_layer layers[2] = {{.material = m, .slab = {.thickness = 1.0}},
-                              {.material = m, .slab = {.thickness = 2.0}}};
+    lucent_layer layers[2] = {{.material = m, .slab = {.thickness = 1.0}}, {.material = m, .slab = {.thickness = 2.0}}};
     lucent_profile_grid grid = {.dr = 0.02, .count = 600};
     lucent_profile *lay[2] = {NULL, NULL}, *one[2] = {NULL, NULL};
     CHECK_OK(lucent_profile_layered(layers, 2, &grid, lay));
@@ -424,13 +411,11 @@ TEST(layered_matched_interface_approaches_one_slab)
     if (lay[0] && lay[1] && one[0] && one[1]) {
         double r_lay = lucent_profile_total(lay[0], 0), r_one = lucent_profile_total(one[0], 0);
         double t_lay = lucent_profile_total(lay[1], 0), t_one = lucent_profile_total(one[1], 0);
-        printf("  matched interface: R %.4f vs one slab %.4f, T %.4f vs %.4f\n", r_lay, r_one,
-               t_lay, t_one);
+        printf("  matched interface: R %.4f vs one slab %.4f, T %.4f vs %.4f\n", r_lay, r_one, t_lay, t_one);
         CHECK_NEAR(r_lay, r_one, 0.02 * r_one);
         CHECK_NEAR(t_lay, t_one, 0.10 * t_one);
         double peak = one[0]->value[0][0], worst = 0.0;
-        for (int j = 0; j < grid.count; j++)
-            worst = fmax(worst, fabs(lay[0]->value[0][j] - one[0]->value[0][j]));
+        for (int j = 0; j < grid.count; j++) worst = fmax(worst, fabs(lay[0]->value[0][j] - one[0]->value[0][j]));
         CHECK_MSG(worst < 0.01 * peak, "R: worst %g, peak %g", worst, peak);
         /* every face at 1.3 (what each layer alone would see): the adding rule on the totals */
         lucent_medium md;
@@ -459,9 +444,8 @@ TEST(layered_interface_index_changes_r)
     double r[2] = {0, 0}, t[2] = {0, 0};
     for (int k = 0; k < 2; k++) {
         double eta2 = k ? 1.0 : 1.3;
-        lucent_layer layers[2] = {
-            {.material = grey(0.05, 2.0, 1.3), .slab = {.thickness = 1.0}},
-            {.material = grey(0.05, 2.0, eta2), .slab = {.thickness = 2.0, .eta_below = eta2}}};
+        lucent_layer layers[2] = {{.material = grey(0.05, 2.0, 1.3), .slab = {.thickness = 1.0}},
+                                  {.material = grey(0.05, 2.0, eta2), .slab = {.thickness = 2.0, .eta_below = eta2}}};
         lucent_profile *p[2] = {NULL, NULL};
         CHECK_OK(lucent_profile_layered(layers, 2, &grid, p));
         if (p[0] && p[1]) r[k] = lucent_profile_total(p[0], 0), t[k] = lucent_profile_total(p[1], 0);
@@ -536,8 +520,8 @@ TEST(burley_integrates_to_albedo)
         burley_ctx b = {albedos[k], 2.7};
         CHECK_NEAR(integrate_radial(f_burley, &b, 0.0, 60.0), albedos[k], 1e-6);
     }
-    lucent_burley_params params = {.albedo = {0.3, 0.6, 0.9}, .length = {1.0, 0.5, 0.25},
-                                   .fit = LUCENT_BURLEY_DIFFUSE_MFP};
+    lucent_burley_params params = {
+        .albedo = {0.3, 0.6, 0.9}, .length = {1.0, 0.5, 0.25}, .fit = LUCENT_BURLEY_DIFFUSE_MFP};
     lucent_profile *p = NULL;
     CHECK_OK(lucent_profile_burley(&params, &(lucent_profile_grid){.dr = 0.002, .count = 40000}, &p));
     for (int c = 0; p && c < 3; c++) CHECK_NEAR(lucent_profile_total(p, c), params.albedo[c], 1e-4);
@@ -563,7 +547,7 @@ TEST(burley_scale_fits)
     lucent_material m = preset("Skin1");
     lucent_burley_params bp;
     CHECK_OK(lucent_burley_params_from_material(&m, LUCENT_BURLEY_SEARCHLIGHT_DMFP, &bp));
-    CHECK_NEAR(bp.albedo[0], 0.436, 1e-3); /* Jensen 2001's Rd of Skin1 */
+    CHECK_NEAR(bp.albedo[0], 0.436, 1e-3);    /* Jensen 2001's Rd of Skin1 */
     CHECK_NEAR(bp.length[0], 3.673294, 1e-5); /* 1 / sigma_tr, by hand in test_material */
 }
 
@@ -647,8 +631,8 @@ TEST(sog_fits_dipole)
                lucent_profile_total(p, c));
         CHECK(s.rms[c] < 0.02);
         CHECK_NEAR(mass, lucent_profile_total(p, c), 0.02);
-        CHECK(fabs(lucent_sog_eval(&s, c, 1.0) - lucent_dipole_eval(&(lucent_medium){
-              m.sigma_a[c], m.sigma_s[c], m.eta}, 1.0)) < 0.05 * lucent_sog_eval(&s, c, 1.0));
+        CHECK(fabs(lucent_sog_eval(&s, c, 1.0) - lucent_dipole_eval(&(lucent_medium){m.sigma_a[c], m.sigma_s[c], m.eta},
+                                                                    1.0)) < 0.05 * lucent_sog_eval(&s, c, 1.0));
     }
     lucent_profile_destroy(p);
 }
@@ -686,31 +670,26 @@ TEST(invalid_arguments)
               LUCENT_ERR_INVALID_ARGUMENT, "count");
     CHECK_ERR(lucent_profile_dipole(&m, &(lucent_profile_grid){.dr = -1.0, .count = 3}, &p),
               LUCENT_ERR_INVALID_ARGUMENT, "dr");
-    CHECK_ERR(lucent_profile_create(&(lucent_profile_grid){.dr = 0.1}, NULL, &p),
-              LUCENT_ERR_INVALID_ARGUMENT, "count");
+    CHECK_ERR(lucent_profile_create(&(lucent_profile_grid){.dr = 0.1}, NULL, &p), LUCENT_ERR_INVALID_ARGUMENT, "count");
     lucent_profile *pair[2];
     CHECK_ERR(lucent_profile_multipole(&m, &(lucent_slab_desc){.thickness = 0.0}, NULL, pair),
               LUCENT_ERR_INVALID_ARGUMENT, "thickness");
-    CHECK_ERR(lucent_profile_multipole(&m, &(lucent_slab_desc){.thickness = 1.0, .poles = -1}, NULL,
-                                       pair),
+    CHECK_ERR(lucent_profile_multipole(&m, &(lucent_slab_desc){.thickness = 1.0, .poles = -1}, NULL, pair),
               LUCENT_ERR_INVALID_ARGUMENT, "poles");
-    CHECK_ERR(lucent_profile_multipole(&m, &(lucent_slab_desc){.thickness = 1.0, .eta_above = 0.5},
-                                       NULL, pair),
+    CHECK_ERR(lucent_profile_multipole(&m, &(lucent_slab_desc){.thickness = 1.0, .eta_above = 0.5}, NULL, pair),
               LUCENT_ERR_INVALID_ARGUMENT, "eta_above");
     lucent_layer below = {.material = m, .slab = {.thickness = 1.0, .eta_below = NAN}};
-    CHECK_ERR(lucent_profile_layered(&below, 1, NULL, pair), LUCENT_ERR_INVALID_ARGUMENT,
-              "layers[0]", "eta_below");
+    CHECK_ERR(lucent_profile_layered(&below, 1, NULL, pair), LUCENT_ERR_INVALID_ARGUMENT, "layers[0]", "eta_below");
     CHECK_ERR(lucent_profile_layered(NULL, 0, NULL, pair), LUCENT_ERR_INVALID_ARGUMENT, "count");
     lucent_layer bad = {.material = grey(0.1, -1.0, 1.3), .slab = {.thickness = 1.0}};
-    CHECK_ERR(lucent_profile_layered(&bad, 1, NULL, pair), LUCENT_ERR_INVALID_ARGUMENT, "layers[0]",
-              "sigma_s");
+    CHECK_ERR(lucent_profile_layered(&bad, 1, NULL, pair), LUCENT_ERR_INVALID_ARGUMENT, "layers[0]", "sigma_s");
     lucent_burley_params bp = {.albedo = {0.5, 1.5, 0.5}, .length = {1, 1, 1}};
     CHECK_ERR(lucent_profile_burley(&bp, NULL, &p), LUCENT_ERR_INVALID_ARGUMENT, "albedo[1]");
     bp.albedo[1] = 0.5, bp.length[2] = 0.0;
     CHECK_ERR(lucent_profile_burley(&bp, NULL, &p), LUCENT_ERR_INVALID_ARGUMENT, "length[2]");
     m = grey(0.0, 1.0, 1.3); /* no absorption: the diffuse mean free path is infinite */
-    CHECK_ERR(lucent_burley_params_from_material(&m, LUCENT_BURLEY_SEARCHLIGHT_DMFP, &bp),
-              LUCENT_ERR_INVALID_ARGUMENT, "length");
+    CHECK_ERR(lucent_burley_params_from_material(&m, LUCENT_BURLEY_SEARCHLIGHT_DMFP, &bp), LUCENT_ERR_INVALID_ARGUMENT,
+              "length");
     lucent_medium md = {.sigma_a = 0.1, .sigma_s_prime = -1.0, .eta = 1.3};
     CHECK_ERR(lucent_medium_validate(&md), LUCENT_ERR_INVALID_ARGUMENT, "sigma_s_prime");
     CHECK(isnan(lucent_dipole_eval(&md, 1.0)));
@@ -720,26 +699,19 @@ TEST(invalid_arguments)
     m = grey(0.1, 1.0, 1.3);
     CHECK_OK(lucent_profile_dipole(&m, &(lucent_profile_grid){.dr = 0.1, .count = 10}, &p));
     lucent_sog s;
-    CHECK_ERR(lucent_sog_fit(p, &(lucent_sog_desc){.count = 0}, &s), LUCENT_ERR_INVALID_ARGUMENT,
-              "count (N)");
-    CHECK_ERR(lucent_sog_fit(p, &(lucent_sog_desc){.count = 17}, &s), LUCENT_ERR_INVALID_ARGUMENT,
-              "count (N)");
+    CHECK_ERR(lucent_sog_fit(p, &(lucent_sog_desc){.count = 0}, &s), LUCENT_ERR_INVALID_ARGUMENT, "count (N)");
+    CHECK_ERR(lucent_sog_fit(p, &(lucent_sog_desc){.count = 17}, &s), LUCENT_ERR_INVALID_ARGUMENT, "count (N)");
     lucent_profile_destroy(p);
 }
 
 TEST_MAIN(TEST_ENTRY(grid_default_skin1), TEST_ENTRY(dipole_integrates_to_jensen_rd),
-          TEST_ENTRY(dipole_bins_match_pointwise),
-          TEST_ENTRY(better_dipole_integral_matches_closed_form),
-          TEST_ENTRY(dipoles_conserve_energy_without_absorption),
-          TEST_ENTRY(better_dipole_close_to_classical),
-          TEST_ENTRY(multipole_totals_match_1d_solution),
-          TEST_ENTRY(multipole_mismatched_faces_match_1d_solution), TEST_ENTRY(multipole_converges_to_dipole),
-          TEST_ENTRY(multipole_profile_totals),
-          TEST_ENTRY(multipole_conserves_energy_without_absorption),
-          TEST_ENTRY(layered_single_layer_matches_multipole),
-          TEST_ENTRY(layered_two_layers_adding_rule),
-          TEST_ENTRY(layered_matched_interface_approaches_one_slab),
-          TEST_ENTRY(layered_interface_index_changes_r), TEST_ENTRY(layered_thin_layer_warns), TEST_ENTRY(burley_integrates_to_albedo),
-          TEST_ENTRY(burley_scale_fits), TEST_ENTRY(sog_recovers_deon_skin_red),
-          TEST_ENTRY(sog_recovers_deon_skin_shared), TEST_ENTRY(sog_fits_dipole),
-          TEST_ENTRY(sog_single_gaussian), TEST_ENTRY(invalid_arguments))
+          TEST_ENTRY(dipole_bins_match_pointwise), TEST_ENTRY(better_dipole_integral_matches_closed_form),
+          TEST_ENTRY(dipoles_conserve_energy_without_absorption), TEST_ENTRY(better_dipole_close_to_classical),
+          TEST_ENTRY(multipole_totals_match_1d_solution), TEST_ENTRY(multipole_mismatched_faces_match_1d_solution),
+          TEST_ENTRY(multipole_converges_to_dipole), TEST_ENTRY(multipole_profile_totals),
+          TEST_ENTRY(multipole_conserves_energy_without_absorption), TEST_ENTRY(layered_single_layer_matches_multipole),
+          TEST_ENTRY(layered_two_layers_adding_rule), TEST_ENTRY(layered_matched_interface_approaches_one_slab),
+          TEST_ENTRY(layered_interface_index_changes_r), TEST_ENTRY(layered_thin_layer_warns),
+          TEST_ENTRY(burley_integrates_to_albedo), TEST_ENTRY(burley_scale_fits),
+          TEST_ENTRY(sog_recovers_deon_skin_red), TEST_ENTRY(sog_recovers_deon_skin_shared),
+          TEST_ENTRY(sog_fits_dipole), TEST_ENTRY(sog_single_gaussian), TEST_ENTRY(invalid_arguments))

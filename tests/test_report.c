@@ -30,7 +30,7 @@ TEST(svg_has_a_curve_per_series_and_log_decades)
     double x[N], y[N], z[N], e[N];
     for (int i = 0; i < N; i++) {
         x[i] = 0.1 * (i + 1);
-        y[i] = exp(-x[i]) / x[i];  /* spans about 2.5 decades */
+        y[i] = exp(-x[i]) / x[i];         /* spans about 2.5 decades */
         z[i] = i == 20 ? -1 : y[i] * 0.5; /* one point that a log axis cannot show */
         e[i] = 0.1 * y[i];
     }
@@ -115,7 +115,7 @@ TEST(compare_html_has_every_scene_method_and_image)
     static const char want[] = "class=\"best\"><td>ssss:preint<";
     CHECK(best && strncmp(best, want, strlen(want)) == 0);
     CHECK(strstr(html, "x&lt;y&amp;&quot;z&quot;") != NULL && strstr(html, "x<y") == NULL);
-    CHECK(count_of(html, "<img src=") == 2 * (1 + 2 + 2)); /* reference, methods, error maps */
+    CHECK(count_of(html, "<img src=") == 2 * (1 + 2 + 2));                     /* reference, methods, error maps */
     CHECK(strstr(html, "<td>5.00%</td><td>4.90%</td><td>6.00%</td>") != NULL); /* net: sqrt(5^2 - 1^2) */
     CHECK(strstr(html, "256 samples per pixel in 12.5 s") != NULL);
     free(html);

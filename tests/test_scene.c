@@ -36,8 +36,8 @@ TEST(ray_through_a_pixel_projects_back_onto_it)
     /* A point on the primary ray of image point (px, py) must project, through view and
      * projection, to the NDC of that point: x_ndc = 2 px / w - 1, y_ndc = 1 - 2 py / h (top row
      * first). Two independent derivations of one pinhole camera. */
-    lucent_camera cam = {.position = {3, 4, 20}, .target = {-1, 2, 0}, .up = {0, 1, 0}, .fov_y = 35,
-                         .near_plane = 1, .far_plane = 100};
+    lucent_camera cam = {
+        .position = {3, 4, 20}, .target = {-1, 2, 0}, .up = {0, 1, 0}, .fov_y = 35, .near_plane = 1, .far_plane = 100};
     double view[16], proj[16];
     int w = 320, h = 200;
     lucent_camera_view(&cam, view);
@@ -77,8 +77,8 @@ TEST(view_matrix_maps_the_target_onto_the_negative_z_axis)
 TEST(projection_depth_range)
 {
     /* OpenGL clip space: the near plane maps to z_ndc = -1, the far plane to +1. */
-    lucent_camera cam = {.position = {0, 0, 0}, .target = {0, 0, -1}, .up = {0, 1, 0}, .fov_y = 60,
-                         .near_plane = 2, .far_plane = 50};
+    lucent_camera cam = {
+        .position = {0, 0, 0}, .target = {0, 0, -1}, .up = {0, 1, 0}, .fov_y = 60, .near_plane = 2, .far_plane = 50};
     double p[16], c[4];
     lucent_camera_projection(&cam, 1.5, p);
     transform_point(p, (double[3]){0, 0, -2}, c);
@@ -97,7 +97,8 @@ TEST(minimal_scene_gets_the_documented_defaults)
     CHECK(sc->render.view.method == LUCENT_METHOD_SSSS && sc->render.ssss.kernel == LUCENT_KERNEL_PREINT);
     CHECK(sc->render.ssss.taps == d.ssss.taps && d.ssss.taps == 17);
     CHECK(sc->render.translucency.curvature == 1 && d.translucency.curvature == 1);
-    CHECK(sc->render.translucency.transmittance == LUCENT_TRANSMIT_SLAB && d.translucency.transmittance == LUCENT_TRANSMIT_SLAB);
+    CHECK(sc->render.translucency.transmittance == LUCENT_TRANSMIT_SLAB &&
+          d.translucency.transmittance == LUCENT_TRANSMIT_SLAB);
     CHECK(sc->light_count == 1 && sc->lights[0].shadows && sc->lights[0].intensity == 1);
     CHECK_NEAR(sc->camera.up[1], 1, 0);
     CHECK(!strcmp(sc->name, "t"));
@@ -136,8 +137,8 @@ static void mesh_sphere(const lucent_mesh *m, double centre[3], double *rmin, do
 TEST(mm_per_unit_and_transform_place_the_mesh_in_world_mm)
 {
     lucent_scene *sc = NULL;
-    CHECK_OK(parse_with(", \"mm_per_unit\": 10, \"transform\": {\"translate\": [5, -2, 1], \"scale\": 2}", "",
-                        NULL, &sc));
+    CHECK_OK(
+        parse_with(", \"mm_per_unit\": 10, \"transform\": {\"translate\": [5, -2, 1], \"scale\": 2}", "", NULL, &sc));
     if (!sc) return;
     double c[3], rmin, rmax;
     mesh_sphere(sc->objects[0].mesh, c, &rmin, &rmax);
@@ -169,8 +170,8 @@ TEST(rotation_follows_the_right_hand_rule)
     /* Rotating by 90 degrees about z maps +x to +y; the matrix form must give the same mesh. */
     lucent_scene *a = NULL, *b = NULL;
     CHECK_OK(parse_with(", \"transform\": {\"rotate\": [0, 0, 90], \"translate\": [1, 2, 3]}", "", NULL, &a));
-    CHECK_OK(parse_with(", \"transform\": {\"matrix\": [0, -1, 0, 1,  1, 0, 0, 2,  0, 0, 1, 3,  0, 0, 0, 1]}", "",
-                        NULL, &b));
+    CHECK_OK(parse_with(", \"transform\": {\"matrix\": [0, -1, 0, 1,  1, 0, 0, 2,  0, 0, 1, 3,  0, 0, 0, 1]}", "", NULL,
+                        &b));
     if (!a || !b) goto done;
     const double *x = a->objects[0].to_world;
     CHECK_NEAR(x[0], 0, 1e-15); /* column 0 = image of +x = (0, 1, 0) */
@@ -202,9 +203,14 @@ TEST(mirroring_keeps_normals_outward)
 
 TEST(overrides_change_values_and_are_checked_like_the_file)
 {
-    const char *ov[] = {"render.method=ssss:svd3", "render.taps=33", "objects[0].material=marble",
-                        "camera.fov_y=20", "lights[0].intensity=2.5", "render.translucency=false",
-                        "objects[0].albedo=[0.5, 0.25, 0.125]", "render.translucency_curvature=0",
+    const char *ov[] = {"render.method=ssss:svd3",
+                        "render.taps=33",
+                        "objects[0].material=marble",
+                        "camera.fov_y=20",
+                        "lights[0].intensity=2.5",
+                        "render.translucency=false",
+                        "objects[0].albedo=[0.5, 0.25, 0.125]",
+                        "render.translucency_curvature=0",
                         "render.transmittance=profile"};
     lucent_scene *sc = NULL;
     CHECK_OK(parse_with("", "", &(lucent_scene_load_desc){.overrides = ov, .override_count = 9}, &sc));
@@ -285,23 +291,23 @@ static lucent_status parse_set(const char *override, lucent_scene **sc)
 TEST(bad_fields_are_named)
 {
     lucent_scene *sc = NULL;
-    CHECK_ERR(parse_set("objects[0].material=marbel", &sc), LUCENT_ERR_PARSE, "t.json",
-              "objects[0].material", "marbel");
+    CHECK_ERR(parse_set("objects[0].material=marbel", &sc), LUCENT_ERR_PARSE, "t.json", "objects[0].material",
+              "marbel");
     CHECK(sc == NULL);
     CHECK_ERR(parse_with(", \"roughness\": 2", "", NULL, &sc), LUCENT_ERR_PARSE, "objects[0].roughness", "[0, 1]");
-    CHECK_ERR(parse_set("objects[0].material={\"units\": \"mm^-1\", \"sigma_a\": -1, \"sigma_s\": 1, \"eta\": 1.3}",
-                        &sc),
-              LUCENT_ERR_PARSE, "objects[0].material.sigma_a", ">= 0");
-    CHECK_ERR(parse_with("", ", \"render\": {\"method\": \"phong\"}", NULL, &sc), LUCENT_ERR_PARSE,
-              "render.method", "phong");
+    CHECK_ERR(
+        parse_set("objects[0].material={\"units\": \"mm^-1\", \"sigma_a\": -1, \"sigma_s\": 1, \"eta\": 1.3}", &sc),
+        LUCENT_ERR_PARSE, "objects[0].material.sigma_a", ">= 0");
+    CHECK_ERR(parse_with("", ", \"render\": {\"method\": \"phong\"}", NULL, &sc), LUCENT_ERR_PARSE, "render.method",
+              "phong");
     CHECK_ERR(parse_with("", ", \"render\": {\"wdth\": 3}", NULL, &sc), LUCENT_ERR_PARSE, "render", "wdth");
     CHECK_ERR(parse_with("", ", \"render\": {\"width\": 0}", NULL, &sc), LUCENT_ERR_PARSE, "render.width");
     CHECK_ERR(parse_with("", ", \"render\": {\"transmittance\": \"beer\"}", NULL, &sc), LUCENT_ERR_PARSE,
               "render.transmittance", "beer");
-    CHECK_ERR(parse_with("", ", \"render\": {\"profile\": \"tripole\"}", NULL, &sc), LUCENT_ERR_PARSE,
-              "render.profile", "tripole");
-    CHECK_ERR(parse_set("objects[0].mesh=nowhere/none.ply", &sc), LUCENT_ERR_NOT_FOUND,
-              "objects[0].mesh", "nowhere/none.ply", "No such file");
+    CHECK_ERR(parse_with("", ", \"render\": {\"profile\": \"tripole\"}", NULL, &sc), LUCENT_ERR_PARSE, "render.profile",
+              "tripole");
+    CHECK_ERR(parse_set("objects[0].mesh=nowhere/none.ply", &sc), LUCENT_ERR_NOT_FOUND, "objects[0].mesh",
+              "nowhere/none.ply", "No such file");
     CHECK_ERR(parse_set("objects[0].mesh={\"primitive\": \"cube\"}", &sc), LUCENT_ERR_PARSE,
               "objects[0].mesh.primitive", "cube");
     CHECK_ERR(parse_with(", \"transform\": {\"scale\": 0}", "", NULL, &sc), LUCENT_ERR_PARSE, "transform.scale");

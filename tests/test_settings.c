@@ -28,7 +28,8 @@ static lucent_status round_trip(const lucent_render_settings *s, lucent_render_s
     text = malloc(n);
     snprintf(text, n, k_scene_fmt, json);
     lucent_scene *sc = NULL;
-    lucent_status st = lucent_scene_parse(text, "round.json", NULL, &(lucent_scene_load_desc){.skip_meshes = true}, &sc);
+    lucent_status st =
+        lucent_scene_parse(text, "round.json", NULL, &(lucent_scene_load_desc){.skip_meshes = true}, &sc);
     if (sc) *dest = sc->render;
     lucent_scene_destroy(sc);
     free(json), free(text);
@@ -42,9 +43,9 @@ static bool same(const lucent_render_settings *a, const lucent_render_settings *
     return k->type == LUCENT_SETTING_TEXT ? !strcmp(x, y) : !memcmp(x, y, k->size);
 }
 
-#define FOR_EACH_SETTING(k)                                                           \
-    for (int g_ = 0; g_ < lucent_settings_group_count(); g_++)                        \
-        for (const lucent_setting *k = lucent_settings_group_get(g_)->settings;       \
+#define FOR_EACH_SETTING(k)                                                                                            \
+    for (int g_ = 0; g_ < lucent_settings_group_count(); g_++)                                                         \
+        for (const lucent_setting *k = lucent_settings_group_get(g_)->settings;                                        \
              k < lucent_settings_group_get(g_)->settings + lucent_settings_group_get(g_)->count; k++)
 
 TEST(defaults_read_back_through_the_sidecar_and_the_scene_reader)
@@ -88,7 +89,7 @@ static void change(lucent_render_settings *s, const lucent_setting *k)
         break;
     }
     if (!strcmp(k->key, "method")) snprintf(text, sizeof text, "lambert"); /* "ssss:..." would reset the kernel */
-    if (!strcmp(k->key, "kernel")) snprintf(text, sizeof text, "svd"); /* a rank-taking model keeps "rank" */
+    if (!strcmp(k->key, "kernel")) snprintf(text, sizeof text, "svd");     /* a rank-taking model keeps "rank" */
     CHECK_OK(lucent_setting_set(s, k, text));
 }
 
@@ -148,12 +149,12 @@ TEST(bad_values_name_the_key_and_the_range)
               "render.taps", "odd");
     CHECK_ERR(lucent_setting_set(&s, lucent_setting_find("strength", NULL), "1.5"), LUCENT_ERR_INVALID_ARGUMENT,
               "render.strength", "[0, 1]");
-    CHECK_ERR(lucent_setting_set(&s, lucent_setting_find("depth_filter", NULL), "blurry"),
-              LUCENT_ERR_INVALID_ARGUMENT, "follow, gaussian, none");
+    CHECK_ERR(lucent_setting_set(&s, lucent_setting_find("depth_filter", NULL), "blurry"), LUCENT_ERR_INVALID_ARGUMENT,
+              "follow, gaussian, none");
     CHECK_ERR(lucent_setting_set(&s, lucent_setting_find("background", NULL), "1,2"), LUCENT_ERR_INVALID_ARGUMENT,
               "1 or 3 numbers");
-    CHECK_ERR(lucent_setting_set(&s, lucent_setting_find("translucency", NULL), "maybe"),
-              LUCENT_ERR_INVALID_ARGUMENT, "true or false");
+    CHECK_ERR(lucent_setting_set(&s, lucent_setting_find("translucency", NULL), "maybe"), LUCENT_ERR_INVALID_ARGUMENT,
+              "true or false");
     CHECK_ERR(lucent_setting_set(&s, lucent_setting_find("width", NULL), "12.5"), LUCENT_ERR_INVALID_ARGUMENT,
               "whole number");
     CHECK(s.ssss.taps == 17 && s.view.width == 512); /* nothing changed */

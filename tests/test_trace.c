@@ -42,8 +42,8 @@ static lucent_scene *sphere_scene(const char *mat, const char *lights, int size,
     return scene_from(json);
 }
 
-static lucent_status render(lucent_scene *sc, const lucent_tracer_desc *td, int spp, uint64_t seed,
-                            lucent_pool *pool, lucent_trace_result *r)
+static lucent_status render(lucent_scene *sc, const lucent_tracer_desc *td, int spp, uint64_t seed, lucent_pool *pool,
+                            lucent_trace_result *r)
 {
     lucent_tracer *tr = NULL;
     lucent_status s = lucent_tracer_create(sc, td, &tr);
@@ -125,8 +125,9 @@ TEST(furnace_index_matched_non_absorbing)
 TEST(furnace_adaptive)
 {
     furnace_stats f = {0};
-    furnace_case_desc("{\"units\": \"mm^-1\", \"sigma_a\": 0, \"sigma_s\": [1, 3, 8], \"g\": [0, 0.4, 0.8], \"eta\": 1}",
-                      NULL, &(lucent_tracer_desc){.adaptive = true}, 64 / SLOW, &f);
+    furnace_case_desc(
+        "{\"units\": \"mm^-1\", \"sigma_a\": 0, \"sigma_s\": [1, 3, 8], \"g\": [0, 0.4, 0.8], \"eta\": 1}", NULL,
+        &(lucent_tracer_desc){.adaptive = true}, 64 / SLOW, &f);
     check_equilibrium("adaptive, index matched", &f);
 }
 
@@ -192,7 +193,8 @@ static void equator_bins(const lucent_trace_result *r, double R, agree_bin *bins
                 v[c] += w * w * lucent_image_get(r->variance, x, 0, c);
             }
         }
-        for (int c = 0; c < 3; c++) bins[b].mean[c] = sw > 0 ? s[c] / sw : 0, bins[b].se[c] = sw > 0 ? sqrt(v[c]) / sw : 0;
+        for (int c = 0; c < 3; c++)
+            bins[b].mean[c] = sw > 0 ? s[c] / sw : 0, bins[b].se[c] = sw > 0 ? sqrt(v[c]) / sw : 0;
     }
 }
 
@@ -237,7 +239,8 @@ static agreement compare_bands(const agree_bin *bins, const lucent_cdrf_sphere_r
     return a;
 }
 
-static void check_agreement(const char *what, const lucent_trace_result *r, double R, const lucent_cdrf_sphere_result *m)
+static void check_agreement(const char *what, const lucent_trace_result *r, double R,
+                            const lucent_cdrf_sphere_result *m)
 {
     agree_bin bins[AGREE_BINS];
     if (!r->image) return;
@@ -263,11 +266,15 @@ TEST(agrees_with_the_light_traced_sphere)
     if (!sc) return;
     CHECK_OK(render(sc, &(lucent_tracer_desc){.subsurface_only = true}, 1200 / SLOW, 5, pool, &r));
     CHECK_OK(render(sc, &(lucent_tracer_desc){.subsurface_only = true, .adaptive = true}, 240 / SLOW, 6, pool, &ra));
-    CHECK_OK(lucent_cdrf_sphere_run(&(lucent_cdrf_sphere_desc){.material = &sc->objects[0].material, .radius = R,
-                                                                .roughness = 0.3, .photons = 4000000 / SLOW,
-                                                                .bins = AGREE_BINS, .cone = AGREE_CONE, .seed = 9,
-                                                                .pool = pool},
-                                     &m));
+    CHECK_OK(lucent_cdrf_sphere_run(&(lucent_cdrf_sphere_desc){.material = &sc->objects[0].material,
+                                                               .radius = R,
+                                                               .roughness = 0.3,
+                                                               .photons = 4000000 / SLOW,
+                                                               .bins = AGREE_BINS,
+                                                               .cone = AGREE_CONE,
+                                                               .seed = 9,
+                                                               .pool = pool},
+                                    &m));
     check_agreement("uniform", &r, R, &m);
     check_agreement("adaptive", &ra, R, &m);
     lucent_trace_result_free(&r), lucent_trace_result_free(&ra);
@@ -351,8 +358,8 @@ static double squared_error(const lucent_trace_result *a, const lucent_trace_res
 enum { PAIRS = 4 };
 TEST(error_falls_as_one_over_sqrt_spp)
 {
-    lucent_scene *sc = sphere_scene("\"skin1\"", "{\"type\": \"directional\", \"direction\": [0.2, -0.2, -1], \"intensity\": 2}",
-                                    24, NULL);
+    lucent_scene *sc = sphere_scene(
+        "\"skin1\"", "{\"type\": \"directional\", \"direction\": [0.2, -0.2, -1], \"intensity\": 2}", 24, NULL);
     lucent_pool *pool = lucent_pool_create(2);
     CHECK(sc != NULL);
     if (!sc) return;
@@ -373,8 +380,8 @@ TEST(error_falls_as_one_over_sqrt_spp)
     double mx = (lx[0] + lx[1] + lx[2]) / 3, my = (ly[0] + ly[1] + ly[2]) / 3, sxy = 0, sxx = 0;
     for (int i = 0; i < 3; i++) sxy += (lx[i] - mx) * (ly[i] - my), sxx += (lx[i] - mx) * (lx[i] - mx);
     double slope = sxy / sxx;
-    printf("  RMS errors %.4g, %.4g, %.4g at %d, %d, %d spp: slope %.3f\n", exp(ly[0]), exp(ly[1]), exp(ly[2]),
-           spp[0], spp[1], spp[2], slope);
+    printf("  RMS errors %.4g, %.4g, %.4g at %d, %d, %d spp: slope %.3f\n", exp(ly[0]), exp(ly[1]), exp(ly[2]), spp[0],
+           spp[1], spp[2], slope);
     CHECK_MSG(fabs(slope + 0.5) < 0.1, "slope %.3f, not -0.5", slope);
     lucent_pool_destroy(pool);
     lucent_scene_destroy(sc);
@@ -412,13 +419,13 @@ TEST(refuses_delta_lights_through_smooth_boundaries)
     lucent_tracer *tr = NULL;
     CHECK(sc != NULL);
     if (sc)
-        CHECK_ERR(lucent_tracer_create(sc, NULL, &tr), LUCENT_ERR_UNSUPPORTED, "lights[0]",
-                  "angular_radius 0", "objects[0] \"ball\"", "smooth boundary", "cannot converge");
+        CHECK_ERR(lucent_tracer_create(sc, NULL, &tr), LUCENT_ERR_UNSUPPORTED, "lights[0]", "angular_radius 0",
+                  "objects[0] \"ball\"", "smooth boundary", "cannot converge");
     CHECK(tr == NULL);
     lucent_scene_destroy(sc);
     sc = sphere_scene("\"skin1\"",
-                      "{\"type\": \"environment\"}, {\"type\": \"point\", \"position\": [0, 3, 3], \"intensity\": 5}", 8,
-                      smooth);
+                      "{\"type\": \"environment\"}, {\"type\": \"point\", \"position\": [0, 3, 3], \"intensity\": 5}",
+                      8, smooth);
     if (sc) CHECK_ERR(lucent_tracer_create(sc, NULL, &tr), LUCENT_ERR_UNSUPPORTED, "lights[1]", "a point light");
     lucent_scene_destroy(sc);
     /* What converges: a sun with a disc, a rough boundary, an index-matched one, no delta light. */
@@ -525,9 +532,8 @@ TEST(bad_input_is_named)
 }
 
 TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_adaptive),
-          TEST_ENTRY(furnace_smooth_dielectric_non_absorbing),
-          TEST_ENTRY(furnace_absorbing_or_rough_never_more), TEST_ENTRY(agrees_with_the_light_traced_sphere),
-          TEST_ENTRY(same_seed_same_image_on_one_and_two_threads), TEST_ENTRY(error_falls_as_one_over_sqrt_spp),
-          TEST_ENTRY(framing_matches_the_camera_projection),
+          TEST_ENTRY(furnace_smooth_dielectric_non_absorbing), TEST_ENTRY(furnace_absorbing_or_rough_never_more),
+          TEST_ENTRY(agrees_with_the_light_traced_sphere), TEST_ENTRY(same_seed_same_image_on_one_and_two_threads),
+          TEST_ENTRY(error_falls_as_one_over_sqrt_spp), TEST_ENTRY(framing_matches_the_camera_projection),
           TEST_ENTRY(refuses_delta_lights_through_smooth_boundaries), TEST_ENTRY(meshes_with_holes_terminate),
           TEST_ENTRY(bad_input_is_named))

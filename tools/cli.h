@@ -18,8 +18,8 @@ enum { CLI_OK = 0, CLI_FAIL = 1, CLI_USAGE = 2 };
 
 typedef struct cli_command {
     const char *name;
-    const char *summary;                /* one line for `lucent --help` */
-    int (*run)(int argc, char **argv);  /* argv[0] is the command name */
+    const char *summary;               /* one line for `lucent --help` */
+    int (*run)(int argc, char **argv); /* argv[0] is the command name */
 } cli_command;
 
 /* Options every command accepts, parsed and removed from argv by cli_common_options. */

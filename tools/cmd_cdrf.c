@@ -41,7 +41,8 @@ static const char k_fit_usage[] =
     "Carlo transport through a dielectric boundary; scores the radiance toward the camera against\n"
     "the angle theta between the normal and the light; fits sigma0 (mm) and the albedo scale k_d\n"
     "per channel by weighted least squares, and Lambert (sigma0 = 0) for comparison. Prints sigma0\n"
-    "and the RMS errors over the equator's pixels; writes PREFIX.json, PREFIX.csv (the data) and PREFIX.svg (data and fits).\n"
+    "and the RMS errors over the equator's pixels; writes PREFIX.json, PREFIX.csv (the data) and PREFIX.svg (data and "
+    "fits).\n"
     "\n"
     "options:\n"
     "  --radii LIST       sphere radii in mm (default 2,5,10,20)\n"
@@ -134,8 +135,8 @@ static void lut_summary(const lucent_image *lut, const lucent_cdrf_lut_desc *d)
         peak_falls &= row[w - 1] <= up[w - 1];
         for (int i = 0; i < w && -1.0 + 2.0 * i / (w - 1) <= 0; i++) shadow_rises &= row[i] >= up[i];
     }
-    cli_info("cdrf-lut: %s, %d x %d (cos theta in [-1, 1] x sigma in [0, %g])", lucent_cdrf_variant_name(d->variant),
-             w, h, d->sigma_max ? d->sigma_max : 3.0);
+    cli_info("cdrf-lut: %s, %d x %d (cos theta in [-1, 1] x sigma in [0, %g])", lucent_cdrf_variant_name(d->variant), w,
+             h, d->sigma_max ? d->sigma_max : 3.0);
     cli_info("  row sigma = 0: max |LUT - max(cos theta, 0)| = %.3g", dev);
     cli_info("  widening with sigma: peak falls monotonically: %s; shadow (cos <= 0) rises monotonically: %s",
              peak_falls ? "yes" : "no", shadow_rises ? "yes" : "no");
@@ -203,22 +204,27 @@ static int parse_fit_number(int argc, char **argv, int *i, fit_options *o)
 {
     const char *v;
     if (cli_option(argc, argv, i, "--photons", &v))
-        return parse_u64(v, &o->photons) && o->photons >= 100 ? CLI_OK
-               : cli_usage_error("cdrf-fit", "--photons needs a whole number >= 100");
+        return parse_u64(v, &o->photons) && o->photons >= 100
+                   ? CLI_OK
+                   : cli_usage_error("cdrf-fit", "--photons needs a whole number >= 100");
     if (cli_option(argc, argv, i, "--seed", &v))
         return parse_u64(v, &o->seed) ? CLI_OK : cli_usage_error("cdrf-fit", "--seed needs a whole number >= 0");
     if (cli_option(argc, argv, i, "--bins", &v))
         return cli_parse_int(v, &o->bins) && o->bins >= 2 && o->bins <= LUCENT_CDRF_MAX_BINS
-                   ? CLI_OK : cli_usage_error("cdrf-fit", "--bins needs a count from 2 to %d", LUCENT_CDRF_MAX_BINS);
+                   ? CLI_OK
+                   : cli_usage_error("cdrf-fit", "--bins needs a count from 2 to %d", LUCENT_CDRF_MAX_BINS);
     if (cli_option(argc, argv, i, "--cone", &v))
         return cli_parse_double(v, &o->cone_deg) && o->cone_deg > 0 && o->cone_deg <= 90
-                   ? CLI_OK : cli_usage_error("cdrf-fit", "--cone needs an angle in (0, 90] degrees");
+                   ? CLI_OK
+                   : cli_usage_error("cdrf-fit", "--cone needs an angle in (0, 90] degrees");
     if (cli_option(argc, argv, i, "--roughness", &v))
         return cli_parse_double(v, &o->roughness) && o->roughness >= 0 && o->roughness <= 1
-                   ? CLI_OK : cli_usage_error("cdrf-fit", "--roughness needs a GGX alpha in [0, 1]");
+                   ? CLI_OK
+                   : cli_usage_error("cdrf-fit", "--roughness needs a GGX alpha in [0, 1]");
     if (cli_option(argc, argv, i, "--sigma0-max", &v))
         return cli_parse_double(v, &o->sigma0_max) && o->sigma0_max > 0 && o->sigma0_max <= 1e4
-                   ? CLI_OK : cli_usage_error("cdrf-fit", "--sigma0-max needs a length > 0 (mm)");
+                   ? CLI_OK
+                   : cli_usage_error("cdrf-fit", "--sigma0-max needs a length > 0 (mm)");
     return -1;
 }
 
@@ -229,10 +235,12 @@ static int parse_fit_args(int argc, char **argv, fit_options *o)
         const char *v;
         if ((rc = parse_fit_number(argc, argv, &i, o)) != -1) continue;
         rc = CLI_OK;
-        if (cli_option(argc, argv, &i, "--radii", &v)) rc = parse_radii(v, o);
+        if (cli_option(argc, argv, &i, "--radii", &v))
+            rc = parse_radii(v, o);
         else if (cli_option(argc, argv, &i, "--variant", &v))
-            rc = lucent_cdrf_variant_parse(v, &o->variant) == LUCENT_OK ? CLI_OK
-                 : cli_usage_error("cdrf-fit", "--variant must be kubo or collomb");
+            rc = lucent_cdrf_variant_parse(v, &o->variant) == LUCENT_OK
+                     ? CLI_OK
+                     : cli_usage_error("cdrf-fit", "--variant must be kubo or collomb");
         else if (cli_option(argc, argv, &i, "--out", &v))
             rc = (o->out = v) ? CLI_OK : cli_usage_error("cdrf-fit", "--out needs a file prefix");
         else if (argv[i][0] == '-' && argv[i][1])
@@ -254,17 +262,30 @@ static lucent_status run_fit(fit_options *o)
     if (s != LUCENT_OK) return s;
     lucent_cdrf_sphere_result *sp = NULL;
     lucent_cdrf_fit fit;
-    lucent_cdrf_material_fit_desc fd = {.material = &o->material, .variant = o->variant, .radii = o->radii,
-                                        .radius_count = o->radius_count, .photons = o->photons, .bins = o->bins,
-                                        .roughness = o->roughness, .cone = o->cone_deg * M_PI / 180, .seed = o->seed,
-                                        .sigma0_max = o->sigma0_max, .pool = cli_pool()};
+    lucent_cdrf_material_fit_desc fd = {.material = &o->material,
+                                        .variant = o->variant,
+                                        .radii = o->radii,
+                                        .radius_count = o->radius_count,
+                                        .photons = o->photons,
+                                        .bins = o->bins,
+                                        .roughness = o->roughness,
+                                        .cone = o->cone_deg * M_PI / 180,
+                                        .seed = o->seed,
+                                        .sigma0_max = o->sigma0_max,
+                                        .pool = cli_pool()};
     s = lucent_cdrf_fit_material(&fd, &fit, &sp);
     char prefix[512], path[600];
-    if (o->out) snprintf(prefix, sizeof prefix, "%s", o->out);
-    else snprintf(prefix, sizeof prefix, "%s-cdrf", o->material.name);
+    if (o->out)
+        snprintf(prefix, sizeof prefix, "%s", o->out);
+    else
+        snprintf(prefix, sizeof prefix, "%s-cdrf", o->material.name);
     static const char *const exts[] = {"json", "csv", "svg"};
-    lucent_cdrf_fit_report report = {.material = &o->material, .spheres = sp, .sphere_count = o->radius_count,
-                                     .fit = &fit, .seed = o->seed, .cone = o->cone_deg * M_PI / 180,
+    lucent_cdrf_fit_report report = {.material = &o->material,
+                                     .spheres = sp,
+                                     .sphere_count = o->radius_count,
+                                     .fit = &fit,
+                                     .seed = o->seed,
+                                     .cone = o->cone_deg * M_PI / 180,
                                      .roughness = o->roughness};
     for (int k = 0; k < 3 && s == LUCENT_OK; k++) {
         snprintf(path, sizeof path, "%s.%s", prefix, exts[k]);
@@ -291,8 +312,12 @@ int cmd_cdrf_fit(int argc, char **argv)
         fputs(k_fit_usage, stdout);
         return CLI_OK;
     }
-    fit_options o = {.radii = LUCENT_CDRF_FIT_RADII, .radius_count = LUCENT_CDRF_FIT_RADIUS_COUNT, .photons = 400000,
-                     .seed = 1, .bins = 36, .cone_deg = 0.2 * 180 / M_PI};
+    fit_options o = {.radii = LUCENT_CDRF_FIT_RADII,
+                     .radius_count = LUCENT_CDRF_FIT_RADIUS_COUNT,
+                     .photons = 400000,
+                     .seed = 1,
+                     .bins = 36,
+                     .cone_deg = 0.2 * 180 / M_PI};
     int rc = parse_fit_args(argc, argv, &o);
     if (rc != CLI_OK) return rc;
     return run_fit(&o) == LUCENT_OK ? CLI_OK : cli_fail();

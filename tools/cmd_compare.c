@@ -67,7 +67,7 @@ static int parse_number_option(const char *name, const char *v, options *o)
 {
     if (!strcmp(name, "--spp"))
         return cli_parse_int(v, &o->spp) && o->spp >= 1 ? CLI_OK
-                                                         : cli_usage_error("compare", "--spp needs a whole number >= 1");
+                                                        : cli_usage_error("compare", "--spp needs a whole number >= 1");
     if (!strcmp(name, "--frames"))
         return cli_parse_int(v, &o->frames) && o->frames >= 1 && o->frames <= 1000
                    ? CLI_OK
@@ -99,7 +99,8 @@ static int parse_args(int argc, char **argv, options *o)
             if (o->set_count == MAX_SETS) return cli_usage_error("compare", "at most %d --set", MAX_SETS);
             o->sets[o->set_count++] = v;
         } else if (cli_option(argc, argv, &i, "--out", &v)) {
-            if (!v || strlen(v) > 512) return cli_usage_error("compare", "--out needs a folder (at most 512 characters)");
+            if (!v || strlen(v) > 512)
+                return cli_usage_error("compare", "--out needs a folder (at most 512 characters)");
             o->out = v;
         } else if (cli_option(argc, argv, &i, "--title", &v)) {
             if (!v) return cli_usage_error("compare", "--title needs a text");
@@ -143,10 +144,20 @@ int cmd_compare(int argc, char **argv)
     int rc = parse_args(argc, argv, &o);
     if (rc != CLI_OK) return rc;
     lucent_compare_result result;
-    lucent_compare_desc d = {.scenes = o.scenes, .scene_count = o.scene_count, .methods = o.methods,
-                             .method_count = o.method_count, .overrides = o.sets, .override_count = o.set_count,
-                             .spp = o.spp, .time_limit = o.time_limit, .frames = o.frames, .scale = o.scale,
-                             .out = o.out, .title = o.title, .pool = cli_pool(), .on_event = on_event,
+    lucent_compare_desc d = {.scenes = o.scenes,
+                             .scene_count = o.scene_count,
+                             .methods = o.methods,
+                             .method_count = o.method_count,
+                             .overrides = o.sets,
+                             .override_count = o.set_count,
+                             .spp = o.spp,
+                             .time_limit = o.time_limit,
+                             .frames = o.frames,
+                             .scale = o.scale,
+                             .out = o.out,
+                             .title = o.title,
+                             .pool = cli_pool(),
+                             .on_event = on_event,
                              .user = &result};
     lucent_status s = lucent_compare_run(&d, &result);
     if (s == LUCENT_OK) cli_info("wrote %s/report.html (and report.md, report.csv, results.json)", o.out);

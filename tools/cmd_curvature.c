@@ -128,8 +128,8 @@ static lucent_status write_csv(const char *path, const lucent_mesh *m, const luc
     fprintf(f, "vertex,x,y,z,k1,k2,mean,gauss,flags\n");
     for (size_t v = 0; v < m->vertex_count; v++) {
         const double *p = m->positions + 3 * v;
-        fprintf(f, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n", v, p[0], p[1], p[2], c->k1[v], c->k2[v],
-                c->mean[v], c->gauss[v], c->flags[v]);
+        fprintf(f, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n", v, p[0], p[1], p[2], c->k1[v], c->k2[v], c->mean[v],
+                c->gauss[v], c->flags[v]);
     }
     if (ferror(f)) {
         lucent_atomic_abort(af);
@@ -183,8 +183,12 @@ static lucent_status write_colours(const char *path, const options *o, const luc
     lucent_status s;
     if (strcasecmp(path + strlen(path) - 4, ".png") == 0) {
         lucent_image *img = NULL;
-        lucent_mesh_paint_desc d = {.width = o->size[0], .height = o->size[1], .azimuth = o->view[0],
-                                    .elevation = o->view[1], .colors = rgb, .background = {0.05f, 0.05f, 0.05f}};
+        lucent_mesh_paint_desc d = {.width = o->size[0],
+                                    .height = o->size[1],
+                                    .azimuth = o->view[0],
+                                    .elevation = o->view[1],
+                                    .colors = rgb,
+                                    .background = {0.05f, 0.05f, 0.05f}};
         s = lucent_mesh_paint(m, &d, &img);
         if (s == LUCENT_OK) s = lucent_image_write(path, img, NULL);
         lucent_image_destroy(img);
@@ -202,11 +206,11 @@ static void report(const options *o, const lucent_mesh *m, const lucent_curvatur
     lucent_mesh_stats st;
     if (lucent_mesh_stats_compute(m, &st) == LUCENT_OK)
         cli_info("%s: %zu vertices, %zu faces; %zu boundary edges, %zu non-manifold edges, %zu zero-area faces",
-                 o->mesh, m->vertex_count, m->face_count, st.boundary_edges, st.nonmanifold_edges,
-                 st.degenerate_faces);
+                 o->mesh, m->vertex_count, m->face_count, st.boundary_edges, st.nonmanifold_edges, st.degenerate_faces);
     cli_info("%s: %.3f s; %zu vertices without a usable neighbourhood (set to 0); |H| 50%% %.4g, 95%% %.4g "
-             "(colour range %.4g)", lucent_curvature_method_name(o->method), t, c->invalid_count,
-             abs_quantile(c, 0.5), abs_quantile(c, 0.95), range);
+             "(colour range %.4g)",
+             lucent_curvature_method_name(o->method), t, c->invalid_count, abs_quantile(c, 0.5), abs_quantile(c, 0.95),
+             range);
 }
 
 int cmd_curvature(int argc, char **argv)
@@ -218,8 +222,8 @@ int cmd_curvature(int argc, char **argv)
     lucent_mesh *m;
     if (lucent_mesh_load(o.mesh, NULL, &m) != LUCENT_OK) return cli_fail();
     lucent_curvature c = {0};
-    lucent_curvature_desc d = {.method = o.method, .smooth_rings = o.smooth, .mm_per_unit = o.mm_per_unit,
-                               .pool = cli_pool(), .fast = o.fast};
+    lucent_curvature_desc d = {
+        .method = o.method, .smooth_rings = o.smooth, .mm_per_unit = o.mm_per_unit, .pool = cli_pool(), .fast = o.fast};
     double t0 = lucent_clock_seconds();
     lucent_status s = lucent_mesh_curvature(m, &d, &c);
     double t = lucent_clock_seconds() - t0;

@@ -74,9 +74,12 @@ static void print_json_string(const char *s)
     putchar('"');
     for (; *s; s++) {
         unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\') printf("\\%c", c);
-        else if (c < 0x20) printf("\\u%04x", c);
-        else putchar(c);
+        if (c == '"' || c == '\\')
+            printf("\\%c", c);
+        else if (c < 0x20)
+            printf("\\u%04x", c);
+        else
+            putchar(c);
     }
     putchar('"');
 }
@@ -84,20 +87,21 @@ static void print_json_string(const char *s)
 /* A number for JSON: non-finite values become null. */
 static void print_json_number(double v)
 {
-    if (isfinite(v)) printf("%.9g", v);
-    else printf("null");
+    if (isfinite(v))
+        printf("%.9g", v);
+    else
+        printf("null");
 }
 
 /* ---- info ---- */
 
 static void print_info_text(const char *path, const lucent_image *img, const lucent_image_stats *st)
 {
-    printf("%s: %dx%d, %d channel%s\n", path, img->width, img->height, img->channels,
-           img->channels > 1 ? "s" : "");
+    printf("%s: %dx%d, %d channel%s\n", path, img->width, img->height, img->channels, img->channels > 1 ? "s" : "");
     printf("  channel %14s %14s %14s\n", "min", "max", "mean");
     for (int c = 0; c < img->channels; c++) {
-        printf("  %-7s %14.6g %14.6g %14.6g", k_channel_names[img->channels - 1][c], st->min[c],
-               st->max[c], st->mean[c]);
+        printf("  %-7s %14.6g %14.6g %14.6g", k_channel_names[img->channels - 1][c], st->min[c], st->max[c],
+               st->mean[c]);
         if (st->nonfinite[c]) printf("  (%llu NaN/inf)", (unsigned long long)st->nonfinite[c]);
         putchar('\n');
     }
@@ -127,8 +131,10 @@ static int run_info(int argc, char **argv)
     int npos = 0;
     bool json = false;
     for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--json") == 0) json = true;
-        else if (argv[i][0] == '-' && argv[i][1]) return cli_usage_error("image info", "unknown option '%s'", argv[i]);
+        if (strcmp(argv[i], "--json") == 0)
+            json = true;
+        else if (argv[i][0] == '-' && argv[i][1])
+            return cli_usage_error("image info", "unknown option '%s'", argv[i]);
         else if (!add_positional(pos, &npos, 1, argv[i]))
             return cli_usage_error("image info", "too many arguments ('%s')", argv[i]);
     }
@@ -137,8 +143,10 @@ static int run_info(int argc, char **argv)
     if (lucent_image_load(pos[0], &img) != LUCENT_OK) return cli_fail();
     lucent_image_stats st;
     lucent_image_stats_compute(img, &st);
-    if (json) print_info_json(pos[0], img, &st);
-    else print_info_text(pos[0], img, &st);
+    if (json)
+        print_info_json(pos[0], img, &st);
+    else
+        print_info_text(pos[0], img, &st);
     lucent_image_destroy(img);
     return CLI_OK;
 }
@@ -314,13 +322,12 @@ static lucent_status write_diff_output(const diff_args *d, const lucent_image *a
 
 static void print_diff_text(const diff_args *d, const lucent_image *a, const lucent_image_error_stats *e)
 {
-    printf("%s vs %s: %dx%d, %d channel%s, %llu pixels compared%s\n", d->a, d->b, a->width, a->height,
-           a->channels, a->channels > 1 ? "s" : "", (unsigned long long)e->pixel_count,
-           d->mask ? " (under the mask)" : "");
+    printf("%s vs %s: %dx%d, %d channel%s, %llu pixels compared%s\n", d->a, d->b, a->width, a->height, a->channels,
+           a->channels > 1 ? "s" : "", (unsigned long long)e->pixel_count, d->mask ? " (under the mask)" : "");
     printf("  channel %14s %14s %14s\n", "RMS", "relative RMS", "max |A-B|");
     for (int c = 0; c < e->channels; c++)
-        printf("  %-7s %14.6g %14.6g %14.6g\n", k_channel_names[e->channels - 1][c], e->rms[c],
-               e->rel_rms[c], e->max_abs[c]);
+        printf("  %-7s %14.6g %14.6g %14.6g\n", k_channel_names[e->channels - 1][c], e->rms[c], e->rel_rms[c],
+               e->max_abs[c]);
     printf("  %-7s %14.6g %14.6g\n", "all", e->rms_all, e->rel_rms_all);
 }
 
@@ -331,8 +338,10 @@ static void print_diff_json(const diff_args *d, const lucent_image *a, const luc
     printf(", \"b\": ");
     print_json_string(d->b);
     printf(", \"mask\": ");
-    if (d->mask) print_json_string(d->mask);
-    else printf("null");
+    if (d->mask)
+        print_json_string(d->mask);
+    else
+        printf("null");
     printf(", \"width\": %d, \"height\": %d, \"pixels\": %llu, \"channels\": [", a->width, a->height,
            (unsigned long long)e->pixel_count);
     for (int c = 0; c < e->channels; c++) {
@@ -366,8 +375,10 @@ static int run_diff(int argc, char **argv)
         lucent_error_context(s, "%s vs %s%s%s", d.a, d.b, d.mask ? " under " : "", d.mask ? d.mask : "");
     if (s == LUCENT_OK && d.out) s = write_diff_output(&d, im[0], im[1]);
     if (s == LUCENT_OK) {
-        if (d.json) print_diff_json(&d, im[0], &e);
-        else print_diff_text(&d, im[0], &e);
+        if (d.json)
+            print_diff_json(&d, im[0], &e);
+        else
+            print_diff_text(&d, im[0], &e);
         if (d.out && !d.json) cli_info("wrote %s", d.out);
     }
     for (int i = 0; i < 3; i++) lucent_image_destroy(im[i]);

@@ -59,10 +59,7 @@ static bool parse_triple(const char *text, double dest[3])
     return tok == NULL;
 }
 
-static int need(bool ok, const char *message)
-{
-    return ok ? CLI_OK : cli_usage_error("kernel", "%s", message);
-}
+static int need(bool ok, const char *message) { return ok ? CLI_OK : cli_usage_error("kernel", "%s", message); }
 
 /* Options that take a number or a triple. Returns CLI_OK, CLI_USAGE, or -1: not one of them. */
 static int parse_value(options *o, const char *name, const char *v)
@@ -74,19 +71,14 @@ static int parse_value(options *o, const char *name, const char *v)
     if (!strcmp(name, "--rank"))
         return need(cli_parse_int(v, &d->rank) && d->rank >= 1, "--rank needs a whole number >= 1");
     if (!strcmp(name, "--taps"))
-        return need(cli_parse_int(v, &o->taps.count) && o->taps.count >= 1,
-                    "--taps needs a whole number >= 1");
+        return need(cli_parse_int(v, &o->taps.count) && o->taps.count >= 1, "--taps needs a whole number >= 1");
     if (!strcmp(name, "--range"))
-        return need(cli_parse_double(v, &o->taps.range) && o->taps.range > 0,
-                    "--range needs a number > 0 (mm)");
+        return need(cli_parse_double(v, &o->taps.range) && o->taps.range > 0, "--range needs a number > 0 (mm)");
     if (!strcmp(name, "--k")) return need(o->have_k = cli_parse_double(v, &d->k), "--k needs a number");
     if (!strcmp(name, "--b")) return need(cli_parse_double(v, &d->b), "--b needs a number");
-    if (!strcmp(name, "--w"))
-        return need(d->use_manual = cli_parse_double(v, &d->manual.w), "--w needs a number");
-    if (!strcmp(name, "--near"))
-        return need(d->use_manual = parse_triple(v, d->manual.sd_near), "--near needs R,G,B");
-    if (!strcmp(name, "--far"))
-        return need(d->use_manual = parse_triple(v, d->manual.sd_far), "--far needs R,G,B");
+    if (!strcmp(name, "--w")) return need(d->use_manual = cli_parse_double(v, &d->manual.w), "--w needs a number");
+    if (!strcmp(name, "--near")) return need(d->use_manual = parse_triple(v, d->manual.sd_near), "--near needs R,G,B");
+    if (!strcmp(name, "--far")) return need(d->use_manual = parse_triple(v, d->manual.sd_far), "--far needs R,G,B");
     if (!strcmp(name, "--strength")) return need(parse_triple(v, d->strength), "--strength needs R,G,B");
     if (!strcmp(name, "--falloff")) return need(parse_triple(v, d->falloff), "--falloff needs R,G,B");
     return -1;
@@ -105,7 +97,8 @@ static int parse_named(options *o, const char *name, const char *v)
                    : cli_usage_error("kernel", "unknown export format '%s' (glsl, hlsl, c, json)", v);
     if (!strcmp(name, "--profile")) {
         o->profile = v;
-        return lucent_profile_source_known(v) ? CLI_OK
+        return lucent_profile_source_known(v)
+                   ? CLI_OK
                    : cli_usage_error("kernel", "--profile must be dipole, better-dipole, burley or mc");
     }
     if (!strcmp(name, "--out")) return (o->out = v), CLI_OK;
@@ -137,16 +130,14 @@ static int parse_args(int argc, char **argv, options *o)
         else
             o->spec = argv[i];
     }
-    if (!o->spec && o->desc.model != LUCENT_KERNEL_JIMENEZ)
-        return cli_usage_error("kernel", "expected a material");
+    if (!o->spec && o->desc.model != LUCENT_KERNEL_JIMENEZ) return cli_usage_error("kernel", "expected a material");
     if (!o->have_k) o->desc.k = 1;
     return CLI_OK;
 }
 
 static lucent_status write_out(const options *o, const char *text)
 {
-    if (!o->out)
-        return fputs(text, stdout) < 0 ? lucent_error(LUCENT_ERR_IO, "stdout: write failed") : LUCENT_OK;
+    if (!o->out) return fputs(text, stdout) < 0 ? lucent_error(LUCENT_ERR_IO, "stdout: write failed") : LUCENT_OK;
     lucent_status s = lucent_write_file(o->out, text, strlen(text));
     if (s == LUCENT_OK) cli_info("wrote %s", o->out);
     return s;
@@ -158,10 +149,9 @@ static void report(const options *o, const lucent_kernel *k, const lucent_kernel
     double rms[3];
     lucent_kernel_rms(k, gt, rms);
     cli_info("%s %s rank %d: grid %d x %d of %.4g mm, kernel-space RMS %.3g %.3g %.3g, taps to %.4g mm", name,
-             lucent_kernel_model_name(k->model), k->rank, 2 * gt->half + 1, 2 * gt->half + 1, gt->h, rms[0],
-             rms[1], rms[2], o->taps.range > 0 ? o->taps.range : k->range);
-    if (k->model == LUCENT_KERNEL_GUIDED)
-        cli_info("guided: 1-norm constraint error %.3g", k->constraint_error);
+             lucent_kernel_model_name(k->model), k->rank, 2 * gt->half + 1, 2 * gt->half + 1, gt->h, rms[0], rms[1],
+             rms[2], o->taps.range > 0 ? o->taps.range : k->range);
+    if (k->model == LUCENT_KERNEL_GUIDED) cli_info("guided: 1-norm constraint error %.3g", k->constraint_error);
 }
 
 static lucent_status run(options *o)
@@ -173,15 +163,16 @@ static lucent_status run(options *o)
     lucent_taps *t = NULL;
     char *text = NULL, label[160];
     lucent_status s = o->spec ? lucent_material_resolve(o->spec, &m) : LUCENT_OK;
-    if (s == LUCENT_OK && o->spec) s = lucent_profile_from_source(
-            &(lucent_profile_source_desc){.source = o->profile, .photons = (uint64_t)o->photons,
-                                          .seed = (uint64_t)o->seed, .pool = cli_pool()},
+    if (s == LUCENT_OK && o->spec)
+        s = lucent_profile_from_source(
+            &(lucent_profile_source_desc){
+                .source = o->profile, .photons = (uint64_t)o->photons, .seed = (uint64_t)o->seed, .pool = cli_pool()},
             &m, &p);
     if (s == LUCENT_OK && p) s = lucent_kernel2d_from_profile(p, NULL, &gt);
     if (s == LUCENT_OK) s = lucent_kernel_build(gt, p, o->spec ? m.name : NULL, &o->desc, &k);
     if (s == LUCENT_OK) s = lucent_kernel_taps(k, &o->taps, &t);
-    snprintf(label, sizeof label, "%s, %s rank %d", o->spec ? m.name : "skin",
-             lucent_kernel_model_name(o->desc.model), k ? k->rank : 1);
+    snprintf(label, sizeof label, "%s, %s rank %d", o->spec ? m.name : "skin", lucent_kernel_model_name(o->desc.model),
+             k ? k->rank : 1);
     if (s == LUCENT_OK) s = lucent_taps_export(t, o->format, label, &text);
     if (s == LUCENT_OK) s = write_out(o, text);
     if (s == LUCENT_OK) report(o, k, gt, o->spec ? m.name : "skin");

@@ -51,14 +51,11 @@ typedef struct options {
 
 /* ---- Arguments ---- */
 
-static int usage(const char *message, const char *arg)
-{
-    return cli_usage_error("kernel-eval", message, arg);
-}
+static int usage(const char *message, const char *arg) { return cli_usage_error("kernel-eval", message, arg); }
 
 static int parse_args(int argc, char **argv, options *o)
 {
-    static const char *const valued[] = {"--models", "--signal", "--out",  "--size",    "--mm-per-pixel",
+    static const char *const valued[] = {"--models", "--signal",  "--out",     "--size", "--mm-per-pixel",
                                          "--taps",   "--profile", "--photons", "--seed", "--heat-scale"};
     for (int i = 1; i < argc; i++) {
         const char *v = NULL;
@@ -91,9 +88,16 @@ static int parse_args(int argc, char **argv, options *o)
                 o->spec = argv[i];
         }
         if (!ok) {
-            static const char *const what[] = {
-                "", "", "", "a whole number in 8..16384", "a number > 0 (mm)", "0 or an odd number in 3..255",
-                "dipole, better-dipole, burley or mc", "a whole number > 0", "a whole number", "a number > 0"};
+            static const char *const what[] = {"",
+                                               "",
+                                               "",
+                                               "a whole number in 8..16384",
+                                               "a number > 0 (mm)",
+                                               "0 or an odd number in 3..255",
+                                               "dipole, better-dipole, burley or mc",
+                                               "a whole number > 0",
+                                               "a whole number",
+                                               "a number > 0"};
             return cli_usage_error("kernel-eval", "%s needs %s", valued[n], what[n]);
         }
     }
@@ -144,10 +148,20 @@ static lucent_status run(const options *o)
     else
         snprintf(dir, sizeof dir, "%s-eval", m.name);
     lucent_kernel_eval_desc d = {
-        .material = &m, .models = o->model_names, .model_count = o->model_count, .table65 = o->table65,
+        .material = &m,
+        .models = o->model_names,
+        .model_count = o->model_count,
+        .table65 = o->table65,
         .profile = {.source = o->profile, .photons = (uint64_t)o->photons, .seed = (uint64_t)o->seed},
-        .signal = o->signal, .size = o->size, .mm_per_pixel = o->mm_per_pixel, .taps = o->taps,
-        .no_taps = o->taps == 0, .heat_scale = o->heat_scale, .out = dir, .pool = cli_pool(), .on_event = on_event};
+        .signal = o->signal,
+        .size = o->size,
+        .mm_per_pixel = o->mm_per_pixel,
+        .taps = o->taps,
+        .no_taps = o->taps == 0,
+        .heat_scale = o->heat_scale,
+        .out = dir,
+        .pool = cli_pool(),
+        .on_event = on_event};
     lucent_kernel_eval_result res;
     s = lucent_kernel_eval_run(&d, &res);
     lucent_kernel_eval_result_free(&res);

@@ -56,8 +56,7 @@ static lucent_status append(options *o, const lucent_material *m, int n)
 static bool is_file_spec(const char *spec)
 {
     size_t len = strlen(spec);
-    return strchr(spec, '/') || strchr(spec, '#') ||
-           (len > 5 && strcasecmp(spec + len - 5, ".json") == 0);
+    return strchr(spec, '/') || strchr(spec, '#') || (len > 5 && strcasecmp(spec + len - 5, ".json") == 0);
 }
 
 /* Adds what spec names: one preset, one material of a file (FILE#NAME) or a whole file. */
@@ -125,18 +124,18 @@ static const table k_tables[] = {
       {"D = 1/(3 sigma_t')", offsetof(row, d.diffusion)}}},
 };
 
-static const double *at(const row *r, size_t offset)
-{
-    return (const double *)((const char *)r + offset);
-}
+static const double *at(const row *r, size_t offset) { return (const double *)((const char *)r + offset); }
 
 /* Prints v in exactly 8 columns (a space, then 7 characters), as many decimals as fit. */
 static void print_value(double v)
 {
     double a = fabs(v);
-    if (!isfinite(v) || a >= 1e5) printf(" %7.2g", v);
-    else if (a >= 100) printf(" %7.1f", v);
-    else printf(" %7.4f", v);
+    if (!isfinite(v) || a >= 1e5)
+        printf(" %7.2g", v);
+    else if (a >= 100)
+        printf(" %7.1f", v);
+    else
+        printf(" %7.4f", v);
 }
 
 static void print_header(const table *t, int name_width)
@@ -168,8 +167,8 @@ static void print_anisotropic(const row *rows, int count)
     for (int i = 0; i < count; i++) {
         const lucent_material *m = &rows[i].m;
         if (m->g[0] == 0 && m->g[1] == 0 && m->g[2] == 0) continue;
-        printf("%s: g = (%.4g, %.4g, %.4g), sigma_s = (%.4g, %.4g, %.4g) mm^-1\n", m->name, m->g[0],
-               m->g[1], m->g[2], m->sigma_s[0], m->sigma_s[1], m->sigma_s[2]);
+        printf("%s: g = (%.4g, %.4g, %.4g), sigma_s = (%.4g, %.4g, %.4g) mm^-1\n", m->name, m->g[0], m->g[1], m->g[2],
+               m->sigma_s[0], m->sigma_s[1], m->sigma_s[2]);
     }
 }
 
@@ -264,8 +263,7 @@ static int parse_args(int argc, char **argv, options *o, int *specs)
             o->json = true;
         } else if (strcmp(a, "--out") == 0 || strncmp(a, "--out=", 6) == 0) {
             o->out = a[5] == '=' ? a + 6 : (i + 1 < argc ? argv[++i] : NULL);
-            if (!o->out || !o->out[0])
-                return cli_usage_error("materials", "--out needs a file name");
+            if (!o->out || !o->out[0]) return cli_usage_error("materials", "--out needs a file name");
         } else if (strcmp(a, "--swatches") == 0 || strncmp(a, "--swatches=", 11) == 0) {
             o->swatches = a[10] == '=' ? a + 11 : (i + 1 < argc ? argv[++i] : NULL);
             if (!o->swatches || !o->swatches[0])

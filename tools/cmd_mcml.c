@@ -62,10 +62,8 @@ static bool parse_seed(const char *text, unsigned long long *dest)
 /* --seed, --photons: whole numbers (photons > 0). */
 static int parse_count(const char *name, const char *v, unsigned long long *dest, bool positive)
 {
-    if (!parse_seed(v, dest) || (positive && *dest == 0) ||
-        (positive && (double)*dest > LUCENT_MC_MAX_PHOTONS))
-        return cli_usage_error("mcml", "%s needs a whole number %s", name,
-                               positive ? "in [1, 1e12]" : ">= 0");
+    if (!parse_seed(v, dest) || (positive && *dest == 0) || (positive && (double)*dest > LUCENT_MC_MAX_PHOTONS))
+        return cli_usage_error("mcml", "%s needs a whole number %s", name, positive ? "in [1, 1e12]" : ">= 0");
     return CLI_OK;
 }
 
@@ -74,7 +72,11 @@ static int parse_option(int argc, char **argv, int *i, options *o)
     const char *v;
     if (cli_option(argc, argv, i, "--seed", &v)) return parse_count("--seed", v, &o->seed, false);
     if (cli_option(argc, argv, i, "--photons", &v)) return parse_count("--photons", v, &o->photons, true);
-    struct { const char *name; const char **dest; const char *what; } files[] = {
+    struct {
+        const char *name;
+        const char **dest;
+        const char *what;
+    } files[] = {
         {"--out-dir", &o->out_dir, "a directory"},
         {"--compare", &o->compare, "an MCML output file (.mco)"},
         {"--csv", &o->csv, "a file name"},
@@ -94,7 +96,9 @@ static int check_modes(const options *o)
     if (!o->compare) {
         if (o->photons || o->csv || o->json)
             return cli_usage_error("mcml", "--%s goes with --compare",
-                                   o->photons ? "photons" : o->csv ? "csv" : "json");
+                                   o->photons ? "photons"
+                                   : o->csv   ? "csv"
+                                              : "json");
         if (!o->input) return cli_usage_error("mcml", "missing the input file (FILE.mci)");
     } else if (o->out_dir) {
         return cli_usage_error("mcml", "--out-dir does not go with --compare (no .mco is written)");
@@ -108,10 +112,12 @@ static int parse_args(int argc, char **argv, options *o)
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int rc = CLI_OK;
-        if (a[0] == '-' && a[1]) rc = parse_option(argc, argv, &i, o);
+        if (a[0] == '-' && a[1])
+            rc = parse_option(argc, argv, &i, o);
         else if (o->input)
             rc = cli_usage_error("mcml", "one input file, please (got '%s' and '%s')", o->input, a);
-        else o->input = a;
+        else
+            o->input = a;
         if (rc != CLI_OK) return rc;
     }
     return check_modes(o);
@@ -126,8 +132,7 @@ static char *output_path(const options *o, const lucent_mcml_run *run)
     const char *base = slash ? slash + 1 : name;
     size_t n = strlen(o->out_dir) + strlen(base) + 2;
     char *p = malloc(n);
-    if (p) snprintf(p, n, "%s%s%s", o->out_dir,
-                    o->out_dir[strlen(o->out_dir) - 1] == '/' ? "" : "/", base);
+    if (p) snprintf(p, n, "%s%s%s", o->out_dir, o->out_dir[strlen(o->out_dir) - 1] == '/' ? "" : "/", base);
     return p;
 }
 
@@ -150,8 +155,7 @@ static lucent_status run_one(const options *o, lucent_mcml_run *run, int k, int 
         if (s == LUCENT_OK)
             cli_info("wrote %s (Rsp %.5f, Rd %.5f +- %.5f, A %.5f +- %.5f, Tt %.5f +- %.5f; "
                      "%.0f photons/s)",
-                     path, r.rsp, r.rd, r.rd_se, r.a, r.a_se, r.tt, r.tt_se,
-                     t > 0 ? (double)r.photons / t : 0.0);
+                     path, r.rsp, r.rd, r.rd_se, r.a, r.a_se, r.tt, r.tt_se, t > 0 ? (double)r.photons / t : 0.0);
         lucent_mc_result_free(&r);
     }
     free(path);
@@ -161,8 +165,7 @@ static lucent_status run_one(const options *o, lucent_mcml_run *run, int k, int 
 /* ---- --compare: Lucent against an existing MCML output ---- */
 
 /* The simulation to run: the .mco's InParm, or the run of the .mci that describes it. */
-static lucent_status compare_desc(const options *o, const lucent_mco *mco, lucent_mcml_file *mci,
-                                  lucent_mc_desc *dest)
+static lucent_status compare_desc(const options *o, const lucent_mco *mco, lucent_mcml_file *mci, lucent_mc_desc *dest)
 {
     *dest = mco->run.desc;
     if (!o->input) return LUCENT_OK;
@@ -177,15 +180,17 @@ static lucent_status compare_desc(const options *o, const lucent_mco *mco, lucen
         }
         if (k == 0) snprintf(first, sizeof first, "%s", lucent_last_error());
     }
-    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: no run describes the simulation of %s "
-                        "(run 1: %s)", o->input, o->compare, first);
+    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                        "%s: no run describes the simulation of %s "
+                        "(run 1: %s)",
+                        o->input, o->compare, first);
 }
 
 static const char *mark(const lucent_mco_bin *b)
 {
     return b->state != LUCENT_MCO_COMPARED ? lucent_mco_bin_state_name(b->state)
-           : fabs(b->z) > 3.0            ? "beyond 3 SE"
-                                         : "";
+           : fabs(b->z) > 3.0              ? "beyond 3 SE"
+                                           : "";
 }
 
 /* Lucent's mm-based densities in the .mco's cm-based units. */
@@ -200,12 +205,16 @@ static void print_values(const lucent_mco_section *sec)
     for (int i = 0; i < sec->count; i++) {
         const lucent_mco_bin *b = &sec->bins[i];
         char name[24];
-        if (sec->id == LUCENT_MCO_RAT) snprintf(name, sizeof name, "%s", lucent_mco_rat_name(i));
-        else snprintf(name, sizeof name, "layer %d", i + 1);
-        printf("%-6s %-8s Lucent %.6f +- %.6f   MCML %.6f +- %.6f   ", i ? "" : lucent_mco_section_name(sec->id),
-               name, b->lucent, b->lucent_se, b->mcml, b->mcml_se);
-        if (b->state == LUCENT_MCO_COMPARED) printf("%+6.2f SE  %s\n", b->z, mark(b));
-        else printf("%s\n", mark(b));
+        if (sec->id == LUCENT_MCO_RAT)
+            snprintf(name, sizeof name, "%s", lucent_mco_rat_name(i));
+        else
+            snprintf(name, sizeof name, "layer %d", i + 1);
+        printf("%-6s %-8s Lucent %.6f +- %.6f   MCML %.6f +- %.6f   ", i ? "" : lucent_mco_section_name(sec->id), name,
+               b->lucent, b->lucent_se, b->mcml, b->mcml_se);
+        if (b->state == LUCENT_MCO_COMPARED)
+            printf("%+6.2f SE  %s\n", b->z, mark(b));
+        else
+            printf("%s\n", mark(b));
     }
 }
 
@@ -213,23 +222,21 @@ static void print_values(const lucent_mco_section *sec)
 static void print_profile(const lucent_mco_section *sec)
 {
     double u = to_cm(sec->id);
-    printf("%-6s %d bins [%s]: %d compared, %d beyond 3 SE (%.1f expected by chance)",
-           lucent_mco_section_name(sec->id), sec->count, lucent_mco_section_unit(sec->id),
-           sec->compared, sec->beyond3, 0.0027 * sec->compared);
+    printf("%-6s %d bins [%s]: %d compared, %d beyond 3 SE (%.1f expected by chance)", lucent_mco_section_name(sec->id),
+           sec->count, lucent_mco_section_unit(sec->id), sec->compared, sec->beyond3, 0.0027 * sec->compared);
     if (sec->compared) printf(", chi2/bin %.2f", sec->chi2 / sec->compared);
     if (sec->worst >= 0)
-        printf(", largest %+.2f SE at %s %.4g", sec->bins[sec->worst].z,
-               lucent_mco_section_axis(sec->id), (sec->worst + 0.5) * sec->width);
-    if (sec->sparse || sec->unresolved)
-        printf("; not counted: %d sparse, %d unresolved", sec->sparse, sec->unresolved);
+        printf(", largest %+.2f SE at %s %.4g", sec->bins[sec->worst].z, lucent_mco_section_axis(sec->id),
+               (sec->worst + 0.5) * sec->width);
+    if (sec->sparse || sec->unresolved) printf("; not counted: %d sparse, %d unresolved", sec->sparse, sec->unresolved);
     putchar('\n');
     int shown = 0;
     for (int i = 0; i < sec->count && shown < 5; i++) {
         const lucent_mco_bin *b = &sec->bins[i];
         if (b->state != LUCENT_MCO_COMPARED || fabs(b->z) <= 3.0) continue;
         printf("         bin %d (%s %.4g): Lucent %.5G +- %.2G, MCML %.5G +- %.2G: %+.2f SE\n", i,
-               lucent_mco_section_axis(sec->id), (i + 0.5) * sec->width, b->lucent * u,
-               b->lucent_se * u, b->mcml * u, b->mcml_se * u, b->z);
+               lucent_mco_section_axis(sec->id), (i + 0.5) * sec->width, b->lucent * u, b->lucent_se * u, b->mcml * u,
+               b->mcml_se * u, b->z);
         shown++;
     }
     if (sec->beyond3 > shown) printf("         ... and %d more beyond 3 SE\n", sec->beyond3 - shown);
@@ -237,9 +244,8 @@ static void print_profile(const lucent_mco_section *sec)
 
 static void print_comparison(const options *o, const lucent_mc_desc *d, const lucent_mco_comparison *c)
 {
-    printf("Lucent (%llu photons, seed %llu) against %s (MCML, %llu photons)\n",
-           (unsigned long long)c->lucent_photons, (unsigned long long)d->seed, o->compare,
-           (unsigned long long)c->mcml_photons);
+    printf("Lucent (%llu photons, seed %llu) against %s (MCML, %llu photons)\n", (unsigned long long)c->lucent_photons,
+           (unsigned long long)d->seed, o->compare, (unsigned long long)c->mcml_photons);
     printf("MCML writes no standard errors: they are estimated as Lucent's x %.4g, the square root\n"
            "of the photon ratio (the same estimator per photon on both sides).\n",
            c->se_scale);
@@ -248,14 +254,16 @@ static void print_comparison(const options *o, const lucent_mc_desc *d, const lu
            c->rsp_equal ? "equal (exact on both sides)" : "DIFFERS (both are exact)");
     for (int k = 0; k < LUCENT_MCO_SECTION_COUNT; k++) {
         const lucent_mco_section *sec = &c->sections[k];
-        if (sec->id == LUCENT_MCO_RAT || sec->id == LUCENT_MCO_A_L) print_values(sec);
-        else print_profile(sec);
+        if (sec->id == LUCENT_MCO_RAT || sec->id == LUCENT_MCO_A_L)
+            print_values(sec);
+        else
+            print_profile(sec);
         if (sec->id == LUCENT_MCO_A_L && !c->a_l_on_grid)
             printf("         (not counted: MCML sums the depth bins by the layer of their centre, and a\n"
                    "          layer boundary is off the dz grid, so its A_l is not the absorption per layer)\n");
     }
-    printf("\nsummary: %d bins compared, %d beyond 3 SE (%.1f expected by chance)", c->compared,
-           c->beyond3, 0.0027 * c->compared);
+    printf("\nsummary: %d bins compared, %d beyond 3 SE (%.1f expected by chance)", c->compared, c->beyond3,
+           0.0027 * c->compared);
     if (c->compared) printf(", chi2/bin %.2f", c->chi2 / c->compared);
     printf("%s\n", c->rsp_equal ? "" : "; Rsp differs");
 }
@@ -263,8 +271,7 @@ static void print_comparison(const options *o, const lucent_mc_desc *d, const lu
 static lucent_status write_outputs(const options *o, const lucent_mco_comparison *c)
 {
     lucent_status s = LUCENT_OK;
-    if (o->csv && (s = lucent_mco_comparison_write_csv(o->csv, c)) == LUCENT_OK)
-        cli_info("wrote %s", o->csv);
+    if (o->csv && (s = lucent_mco_comparison_write_csv(o->csv, c)) == LUCENT_OK) cli_info("wrote %s", o->csv);
     if (s == LUCENT_OK && o->json && (s = lucent_mco_comparison_write_json(o->json, c)) == LUCENT_OK)
         cli_info("wrote %s", o->json);
     return s;
@@ -317,8 +324,7 @@ int cmd_mcml(int argc, char **argv)
     lucent_mcml_file file;
     if (lucent_mcml_load(o.input, &file) != LUCENT_OK) return cli_fail();
     lucent_status s = LUCENT_OK;
-    for (int k = 0; k < file.run_count && s == LUCENT_OK; k++)
-        s = run_one(&o, &file.runs[k], k, file.run_count);
+    for (int k = 0; k < file.run_count && s == LUCENT_OK; k++) s = run_one(&o, &file.runs[k], k, file.run_count);
     lucent_mcml_file_free(&file);
     return s == LUCENT_OK ? CLI_OK : cli_fail();
 }

@@ -84,8 +84,10 @@ static int parse_models(const char *list, options *o)
     for (char *save, *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
         int m = find_model(t);
         if (m < 0)
-            return cli_usage_error("profile", "unknown model '%s' (mc, dipole, better-dipole, "
-                                   "multipole, burley)", t);
+            return cli_usage_error("profile",
+                                   "unknown model '%s' (mc, dipole, better-dipole, "
+                                   "multipole, burley)",
+                                   t);
         if (o->model_count == MODEL_COUNT) return cli_usage_error("profile", "too many models");
         o->models[o->model_count++] = m;
     }
@@ -110,7 +112,8 @@ static lucent_status parse_layer(const char *text, lucent_layer *dest)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "--layers: '%s': expected MATERIAL:THICKNESS", text);
     memcpy(spec, text, (size_t)(colon - text));
     spec[colon - text] = '\0';
-    if (strcmp(colon + 1, "inf") == 0) d = INFINITY;
+    if (strcmp(colon + 1, "inf") == 0)
+        d = INFINITY;
     else if (!cli_parse_double(colon + 1, &d) || !(d > 0))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "--layers: '%s': thickness must be > 0 mm or 'inf'", text);
     *dest = (lucent_layer){.slab = {.thickness = d}};
@@ -137,10 +140,14 @@ static lucent_status parse_layers(const char *list, options *o)
 
 static int parse_burley_fit(const char *v, options *o)
 {
-    if (v && strcmp(v, "searchlight") == 0) o->burley_fit = LUCENT_BURLEY_SEARCHLIGHT_MFP;
-    else if (v && strcmp(v, "diffuse") == 0) o->burley_fit = LUCENT_BURLEY_DIFFUSE_MFP;
-    else if (v && strcmp(v, "dmfp") == 0) o->burley_fit = LUCENT_BURLEY_SEARCHLIGHT_DMFP;
-    else return cli_usage_error("profile", "--burley-fit must be searchlight, diffuse or dmfp");
+    if (v && strcmp(v, "searchlight") == 0)
+        o->burley_fit = LUCENT_BURLEY_SEARCHLIGHT_MFP;
+    else if (v && strcmp(v, "diffuse") == 0)
+        o->burley_fit = LUCENT_BURLEY_DIFFUSE_MFP;
+    else if (v && strcmp(v, "dmfp") == 0)
+        o->burley_fit = LUCENT_BURLEY_SEARCHLIGHT_DMFP;
+    else
+        return cli_usage_error("profile", "--burley-fit must be searchlight, diffuse or dmfp");
     return CLI_OK;
 }
 
@@ -151,13 +158,15 @@ static int parse_number_option(int argc, char **argv, int *i, options *o)
     double d;
     int n;
     if (cli_option(argc, argv, i, "--photons", &v))
-        return parse_u64(v, &o->photons) && o->photons > 0 ? CLI_OK
-               : cli_usage_error("profile", "--photons needs a whole number > 0");
+        return parse_u64(v, &o->photons) && o->photons > 0
+                   ? CLI_OK
+                   : cli_usage_error("profile", "--photons needs a whole number > 0");
     if (cli_option(argc, argv, i, "--seed", &v))
         return parse_u64(v, &o->seed) ? CLI_OK : cli_usage_error("profile", "--seed needs a whole number >= 0");
     if (cli_option(argc, argv, i, "--thickness", &v))
         return cli_parse_double(v, &o->thickness) && o->thickness > 0
-                   ? CLI_OK : cli_usage_error("profile", "--thickness needs a length > 0 (mm)");
+                   ? CLI_OK
+                   : cli_usage_error("profile", "--thickness needs a length > 0 (mm)");
     if (cli_option(argc, argv, i, "--dr", &v))
         return cli_parse_double(v, &d) && d > 0 ? (o->grid.dr = d, CLI_OK)
                                                 : cli_usage_error("profile", "--dr needs a length > 0 (mm)");
@@ -166,7 +175,8 @@ static int parse_number_option(int argc, char **argv, int *i, options *o)
                                              : cli_usage_error("profile", "--bins needs a whole number > 0");
     if (cli_option(argc, argv, i, "--sog", &v))
         return cli_parse_int(v, &o->sog) && o->sog >= 1 && o->sog <= LUCENT_SOG_MAX
-                   ? CLI_OK : cli_usage_error("profile", "--sog needs a count from 1 to %d", LUCENT_SOG_MAX);
+                   ? CLI_OK
+                   : cli_usage_error("profile", "--sog needs a count from 1 to %d", LUCENT_SOG_MAX);
     return -1;
 }
 
@@ -214,13 +224,17 @@ static lucent_status run_mc_channel(const options *o, int c, lucent_profile *p)
     for (int i = 0; i < o->layer_count; i++) {
         const lucent_material *m = &o->layers[i].material;
         double d = o->layers[i].slab.thickness;
-        layers[i] = (lucent_mc_layer){.n = m->eta, .sigma_a = m->sigma_a[c], .sigma_s = m->sigma_s[c],
-                                      .g = m->g[c], .thickness = d};
+        layers[i] = (lucent_mc_layer){
+            .n = m->eta, .sigma_a = m->sigma_a[c], .sigma_s = m->sigma_s[c], .g = m->g[c], .thickness = d};
     }
     static const char *const labels[] = {"Monte Carlo R", "Monte Carlo G", "Monte Carlo B"};
-    lucent_mc_desc desc = {.layers = layers, .layer_count = o->layer_count, .photons = o->photons,
-                           .seed = 4 * o->seed + (uint64_t)c, .grid = {.dr = p->dr, .nr = p->count},
-                           .pool = cli_pool(), .label = labels[c]};
+    lucent_mc_desc desc = {.layers = layers,
+                           .layer_count = o->layer_count,
+                           .photons = o->photons,
+                           .seed = 4 * o->seed + (uint64_t)c,
+                           .grid = {.dr = p->dr, .nr = p->count},
+                           .pool = cli_pool(),
+                           .label = labels[c]};
     lucent_mc_result r = {0};
     lucent_status s = lucent_mc_run(&desc, &r);
     if (s != LUCENT_OK) return s;
@@ -237,15 +251,15 @@ static lucent_status profile_mc(const options *o, const lucent_profile_grid *g, 
     return s;
 }
 
-static lucent_status profile_multipole(const options *o, const lucent_profile_grid *g,
-                                       lucent_profile **dest)
+static lucent_status profile_multipole(const options *o, const lucent_profile_grid *g, lucent_profile **dest)
 {
     lucent_profile *rt[2] = {NULL, NULL};
     lucent_status s;
     if (o->layer_count > 1 || isinf(o->layers[0].slab.thickness)) {
         for (int i = 0; i < o->layer_count; i++)
             if (isinf(o->layers[i].slab.thickness))
-                return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "multipole: every layer needs a finite "
+                return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                                    "multipole: every layer needs a finite "
                                     "thickness (--thickness, or MATERIAL:MM in --layers); use mc for a half-space");
         s = lucent_profile_layered(o->layers, o->layer_count, g, rt);
     } else {
@@ -258,8 +272,7 @@ static lucent_status profile_multipole(const options *o, const lucent_profile_gr
     return LUCENT_OK;
 }
 
-static lucent_status make_profile(const options *o, int model, const lucent_profile_grid *g,
-                                  lucent_profile **dest)
+static lucent_status make_profile(const options *o, int model, const lucent_profile_grid *g, lucent_profile **dest)
 {
     if (o->layer_count > 1 && model != MODEL_MC && model != MODEL_MULTIPOLE)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: a layered slab needs --model mc or multipole",
@@ -330,8 +343,8 @@ static lucent_status write_profile(const options *o, const char *prefix, const l
     lucent_sog sog;
     char path[600];
     lucent_status s = with_sog ? lucent_sog_fit(p, &(lucent_sog_desc){.count = o->sog}, &sog) : LUCENT_OK;
-    lucent_profile_report report = {.material = &o->material, .profile = p, .photons = o->photons,
-                                    .seed = o->seed, .sog = with_sog ? &sog : NULL};
+    lucent_profile_report report = {
+        .material = &o->material, .profile = p, .photons = o->photons, .seed = o->seed, .sog = with_sog ? &sog : NULL};
     path_for(o, prefix, p, "json", path, sizeof path);
     if (s == LUCENT_OK) s = wrote(lucent_profile_write_json(path, &report), path);
     path_for(o, prefix, p, "csv", path, sizeof path);
@@ -360,8 +373,10 @@ static lucent_status run(options *o)
     lucent_profile *profiles[MODEL_COUNT] = {NULL};
     lucent_status s = LUCENT_OK;
     char prefix[512];
-    if (o->out) snprintf(prefix, sizeof prefix, "%s", o->out);
-    else default_prefix(o, prefix, sizeof prefix);
+    if (o->out)
+        snprintf(prefix, sizeof prefix, "%s", o->out);
+    else
+        default_prefix(o, prefix, sizeof prefix);
     for (int i = 0; i < o->model_count && s == LUCENT_OK; i++)
         s = make_profile(o, o->models[i], &o->grid, &profiles[i]);
     if (s == LUCENT_OK) s = write_outputs(o, prefix, profiles);

@@ -88,21 +88,27 @@ static int parse_value(options *o, const char *name, const char *v)
     if (!strcmp(name, "--set")) return add_set(o, v);
     if (!strcmp(name, "--frames"))
         return cli_parse_int(v, &o->frames) && o->frames >= 1 && o->frames <= MAX_FRAMES
-                   ? CLI_OK : cli_usage_error("render", "--frames needs a whole number from 1 to %d", MAX_FRAMES);
+                   ? CLI_OK
+                   : cli_usage_error("render", "--frames needs a whole number from 1 to %d", MAX_FRAMES);
     if (!strcmp(name, "--gl-platform"))
         return lucent_gl_platform_parse(v, &o->gl.platform) == LUCENT_OK
-                   ? CLI_OK : cli_usage_error("render", "--gl-platform must be auto, surfaceless, device or window");
+                   ? CLI_OK
+                   : cli_usage_error("render", "--gl-platform must be auto, surfaceless, device or window");
     if (!strcmp(name, "--gl-device"))
         return cli_parse_int(v, &o->gl.device) && o->gl.device >= 1
-                   ? CLI_OK : cli_usage_error("render", "--gl-device needs a device number from 1");
-    const char **slot = !strcmp(name, "--out") ? &o->out : !strcmp(name, "--exr") ? &o->exr
-                      : !strcmp(name, "--mask") ? &o->mask : !strcmp(name, "--json") ? &o->json : &o->cache;
+                   ? CLI_OK
+                   : cli_usage_error("render", "--gl-device needs a device number from 1");
+    const char **slot = !strcmp(name, "--out")    ? &o->out
+                        : !strcmp(name, "--exr")  ? &o->exr
+                        : !strcmp(name, "--mask") ? &o->mask
+                        : !strcmp(name, "--json") ? &o->json
+                                                  : &o->cache;
     *slot = v;
     return CLI_OK;
 }
 
-static const char *const k_valued[] = {"--method", "--set", "--out", "--exr", "--mask", "--json", "--frames",
-                                       "--gl-platform", "--gl-device", "--cache", NULL};
+static const char *const k_valued[] = {"--method", "--set",         "--out",       "--exr",   "--mask", "--json",
+                                       "--frames", "--gl-platform", "--gl-device", "--cache", NULL};
 
 static int parse_args(int argc, char **argv, options *o)
 {
@@ -113,11 +119,16 @@ static int parse_args(int argc, char **argv, options *o)
             if (cli_option(argc, argv, &i, k_valued[k], &v)) rc = parse_value(o, k_valued[k], v);
         if (rc > 0) return rc;
         if (rc == CLI_OK) continue;
-        if (!strcmp(a, "--window")) o->window = true;
-        else if (!strcmp(a, "--no-cache")) o->no_cache = true;
-        else if (a[0] == '-' && a[1]) return cli_usage_error("render", "unknown option '%s'", a);
-        else if (!o->scene) o->scene = a;
-        else return cli_usage_error("render", "unexpected argument '%s'", a);
+        if (!strcmp(a, "--window"))
+            o->window = true;
+        else if (!strcmp(a, "--no-cache"))
+            o->no_cache = true;
+        else if (a[0] == '-' && a[1])
+            return cli_usage_error("render", "unknown option '%s'", a);
+        else if (!o->scene)
+            o->scene = a;
+        else
+            return cli_usage_error("render", "unexpected argument '%s'", a);
     }
     if (!o->scene) return cli_usage_error("render", "expected a scene file");
     if (!o->out && !o->window) return cli_usage_error("render", "--out is required (or --window)");
@@ -164,7 +175,8 @@ static lucent_status write_image(const char *path, const lucent_image *img, cons
 {
     lucent_image_format f;
     lucent_status st = lucent_image_format_from_path(path, &f);
-    if (st != LUCENT_OK || f != LUCENT_IMAGE_FORMAT_PNG) return st == LUCENT_OK ? lucent_image_write(path, img, NULL) : st;
+    if (st != LUCENT_OK || f != LUCENT_IMAGE_FORMAT_PNG)
+        return st == LUCENT_OK ? lucent_image_write(path, img, NULL) : st;
     lucent_image *tm = NULL;
     st = lucent_image_clone(img, &tm);
     if (st == LUCENT_OK) {
@@ -215,8 +227,10 @@ static lucent_status render(const options *o, lucent_renderer *r, const lucent_r
     lucent_status st = LUCENT_OK;
     for (int f = 1; f < o->frames && st == LUCENT_OK; f++) {
         st = lucent_render_frame(r, s, &t);
-        if (f == 1) setup = t.setup_ms;
-        else add_times(&mean, &t, k);
+        if (f == 1)
+            setup = t.setup_ms;
+        else
+            add_times(&mean, &t, k);
     }
     if (st == LUCENT_OK) st = lucent_render(r, s, res);
     if (st == LUCENT_OK && o->frames > 1) {
@@ -252,8 +266,8 @@ static void summary(const lucent_gl_context *ctx, const lucent_render_settings *
         snprintf(passes + strlen(passes), sizeof passes - strlen(passes), "%s%s %.3f", i ? ", " : "",
                  res->times.pass_name[i], res->times.pass_ms[i]);
     cli_info("render: %s %dx%d on %s (%s): GPU %.3f ms (%s), frame %.3f ms, setup %.0f ms",
-             lucent_render_method_name(s->view.method), s->view.width, s->view.height, info.renderer, info.platform, res->times.gpu_ms,
-             passes, res->times.cpu_ms, res->times.setup_ms);
+             lucent_render_method_name(s->view.method), s->view.width, s->view.height, info.renderer, info.platform,
+             res->times.gpu_ms, passes, res->times.cpu_ms, res->times.setup_ms);
 }
 
 static const char *cache_dir(const options *o, char *buf, size_t size)
@@ -262,9 +276,12 @@ static const char *cache_dir(const options *o, char *buf, size_t size)
     if (o->no_cache) return NULL;
     if (o->cache) return o->cache;
     if (env && *env) return env;
-    if (xdg && *xdg) snprintf(buf, size, "%s/lucent", xdg);
-    else if (home && *home) snprintf(buf, size, "%s/.cache/lucent", home);
-    else return NULL;
+    if (xdg && *xdg)
+        snprintf(buf, size, "%s/lucent", xdg);
+    else if (home && *home)
+        snprintf(buf, size, "%s/.cache/lucent", home);
+    else
+        return NULL;
     return buf;
 }
 
@@ -295,7 +312,8 @@ int cmd_render(int argc, char **argv)
 {
     if (cli_wants_help(argc, argv)) return fputs(k_usage, stdout), CLI_OK;
     for (int i = 1; i < argc; i++)
-        if (!strcmp(argv[i], "--settings") || !strcmp(argv[i], "--settings=markdown")) return list_settings(argv[i][10]);
+        if (!strcmp(argv[i], "--settings") || !strcmp(argv[i], "--settings=markdown"))
+            return list_settings(argv[i][10]);
     options o = {.frames = 1};
     int rc = parse_args(argc, argv, &o);
     if (rc == CLI_OK) rc = check_image_path("--out", o.out, true);

@@ -154,8 +154,8 @@ static char *sidecar_path(const trace_options *o)
 
 static lucent_tracer_desc tracer_options(const trace_options *o)
 {
-    return (lucent_tracer_desc){.subsurface_only = o->subsurface_only, .adaptive = o->adaptive,
-                                .boundary_nee_only = o->boundary_nee_only};
+    return (lucent_tracer_desc){
+        .subsurface_only = o->subsurface_only, .adaptive = o->adaptive, .boundary_nee_only = o->boundary_nee_only};
 }
 
 static lucent_status write_outputs(const trace_options *o, const lucent_scene *sc, const lucent_trace_result *r)
@@ -169,7 +169,10 @@ static lucent_status write_outputs(const trace_options *o, const lucent_scene *s
     if (s == LUCENT_OK && o->variance && (s = lucent_image_write(o->variance, r->variance, NULL)) == LUCENT_OK)
         cli_info("wrote %s", o->variance);
     lucent_tracer_desc tracer = tracer_options(o);
-    lucent_trace_sidecar_desc side = {.scene = sc, .scene_file = o->scene, .tracer = &tracer, .result = r,
+    lucent_trace_sidecar_desc side = {.scene = sc,
+                                      .scene_file = o->scene,
+                                      .tracer = &tracer,
+                                      .result = r,
                                       .threads = lucent_pool_threads(cli_pool())};
     if (s == LUCENT_OK && (s = lucent_trace_write_sidecar(json, &side)) == LUCENT_OK) cli_info("wrote %s", json);
     free(json);
@@ -180,10 +183,11 @@ static void summary(const lucent_trace_result *r)
 {
     cli_info("trace: %llu spp in %.2f s (%.0f samples/s); relative standard error over the object: median %.3g, "
              "p90 %.3g, rms %.3g (%llu pixels)",
-             (unsigned long long)r->spp, r->seconds, r->samples_per_second, r->error.median, r->error.p90,
-             r->error.rms, (unsigned long long)r->error.pixels);
+             (unsigned long long)r->spp, r->seconds, r->samples_per_second, r->error.median, r->error.p90, r->error.rms,
+             (unsigned long long)r->error.pixels);
     if (r->samples != r->spp * (uint64_t)r->image->width * (uint64_t)r->image->height)
-        cli_info("trace: adaptive: %.1f samples per pixel on average", (double)r->samples / r->image->width / r->image->height);
+        cli_info("trace: adaptive: %.1f samples per pixel on average",
+                 (double)r->samples / r->image->width / r->image->height);
     if (r->truncated || r->escaped || r->nonfinite)
         cli_info("trace: %llu paths truncated by max_bounces/max_scatter, %llu left a mesh through a hole, "
                  "%llu non-finite contributions dropped",
@@ -196,8 +200,8 @@ static lucent_status run(const trace_options *o)
     lucent_tracer *tr = NULL;
     lucent_trace_result r = {0};
     lucent_tracer_desc tracer = tracer_options(o);
-    lucent_status s = lucent_scene_load(o->scene, &(lucent_scene_load_desc){.overrides = o->sets,
-                                                                          .override_count = o->set_count}, &sc);
+    lucent_status s = lucent_scene_load(
+        o->scene, &(lucent_scene_load_desc){.overrides = o->sets, .override_count = o->set_count}, &sc);
     if (s == LUCENT_OK) s = lucent_tracer_create(sc, &tracer, &tr);
     lucent_trace_desc d = o->desc;
     d.pool = cli_pool();

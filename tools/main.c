@@ -34,13 +34,11 @@ static void print_help(FILE *out)
             "       lucent --version\n\n"
             "commands:\n",
             LUCENT_VERSION_STRING);
-    for (int i = 0; i < COMMAND_COUNT; i++)
-        fprintf(out, "  %-12s %s\n", k_commands[i].name, k_commands[i].summary);
-    fprintf(out,
-            "\noptions every command accepts:\n"
-            "  -q, --quiet      no progress bars or informational lines\n"
-            "  --threads N      worker threads (default: LUCENT_THREADS, else all cores)\n\n"
-            "exit status: 0 success, 1 failure (bad input, I/O), 2 bad usage.\n");
+    for (int i = 0; i < COMMAND_COUNT; i++) fprintf(out, "  %-12s %s\n", k_commands[i].name, k_commands[i].summary);
+    fprintf(out, "\noptions every command accepts:\n"
+                 "  -q, --quiet      no progress bars or informational lines\n"
+                 "  --threads N      worker threads (default: LUCENT_THREADS, else all cores)\n\n"
+                 "exit status: 0 success, 1 failure (bad input, I/O), 2 bad usage.\n");
 }
 
 int cli_fail(void)
@@ -56,8 +54,10 @@ int cli_usage_error(const char *command, const char *fmt, ...)
     fprintf(stderr, command ? "lucent %s: " : "lucent: ", command);
     vfprintf(stderr, fmt, ap);
     va_end(ap);
-    if (command) fprintf(stderr, "\nTry 'lucent %s --help'.\n", command);
-    else fprintf(stderr, "\nTry 'lucent --help'.\n");
+    if (command)
+        fprintf(stderr, "\nTry 'lucent %s --help'.\n", command);
+    else
+        fprintf(stderr, "\nTry 'lucent --help'.\n");
     return CLI_USAGE;
 }
 
@@ -103,8 +103,10 @@ bool cli_option(int argc, char **argv, int *i, const char *name, const char **va
     const char *a = argv[*i];
     size_t n = strlen(name);
     if (strncmp(a, name, n) != 0 || (a[n] != '\0' && a[n] != '=')) return false;
-    if (a[n] == '=') *value = a + n + 1;
-    else *value = *i + 1 < argc ? argv[++*i] : NULL;
+    if (a[n] == '=')
+        *value = a + n + 1;
+    else
+        *value = *i + 1 < argc ? argv[++*i] : NULL;
     if (*value && !**value) *value = NULL;
     return true;
 }
@@ -155,8 +157,7 @@ int main(int argc, char **argv)
 {
     /* The common options may stand anywhere: `lucent -q profile ...`, `lucent profile ... -q`. */
     if (cli_common_options(&argc, argv) != CLI_OK) return CLI_USAGE;
-    if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
-        strcmp(argv[1], "help") == 0) {
+    if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "help") == 0) {
         if (argc >= 3 && find_command(argv[2])) {
             char *sub[] = {argv[2], "--help", NULL};
             return find_command(argv[2])->run(2, sub);

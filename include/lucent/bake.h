@@ -60,16 +60,16 @@ enum { LUCENT_BAKE_KEY_SIZE = 160 };
 
 /* A material's baked parts. Zero-initialise before the first bake; free with lucent_baked_free. */
 typedef struct lucent_baked {
-    unsigned have;          /* LUCENT_BAKE_* parts present */
+    unsigned have; /* LUCENT_BAKE_* parts present */
     lucent_profile *profile;
     lucent_taps *taps;
     /* T(s) per channel at s = transmit_range j / (size - 1), [3 j + channel], the last entry 0: the
      * slab's own transmittance, or the profile's T(s) / T(0) (to be multiplied by the albedo). */
     float transmittance[LUCENT_BAKE_TRANSMIT_SIZE * 3];
-    double transmit_range;  /* mm */
-    double sigma0[3];       /* mm */
-    bool sigma0_cached;     /* read from the disk cache */
-    lucent_sog sog;         /* the profile as a sum of Gaussians with shared variances */
+    double transmit_range; /* mm */
+    double sigma0[3];      /* mm */
+    bool sigma0_cached;    /* read from the disk cache */
+    lucent_sog sog;        /* the profile as a sum of Gaussians with shared variances */
     /* What each part was built from ("dipole", "dipole/preint/1/17", ...): a part is rebuilt when its
      * key changes. */
     char profile_key[LUCENT_BAKE_KEY_SIZE], taps_key[LUCENT_BAKE_KEY_SIZE];
@@ -78,8 +78,8 @@ typedef struct lucent_baked {
 
 /* Bakes what desc asks for into baked, reusing the parts whose settings did not change. cache may
  * be NULL (nothing kept between runs). Errors name the material and the part. */
-lucent_status lucent_material_bake(const lucent_material *material, const lucent_bake_desc *desc,
-                                   lucent_cache *cache, lucent_baked *baked);
+lucent_status lucent_material_bake(const lucent_material *material, const lucent_bake_desc *desc, lucent_cache *cache,
+                                   lucent_baked *baked);
 
 /* Frees the parts and zeroes baked. */
 void lucent_baked_free(lucent_baked *baked);

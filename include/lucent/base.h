@@ -26,23 +26,23 @@ extern "C" {
 
 /* ---- Status codes ------------------------------------------------------
  * One table, so codes and their texts cannot drift apart. */
-#define LUCENT_STATUS_TABLE(X)                                     \
-    X(LUCENT_OK, "ok")                                             \
-    X(LUCENT_ERR_INVALID_ARGUMENT, "invalid argument")             \
-    X(LUCENT_ERR_OUT_OF_MEMORY, "out of memory")                   \
-    X(LUCENT_ERR_IO, "input/output error")                         \
-    X(LUCENT_ERR_PARSE, "malformed input")                         \
-    X(LUCENT_ERR_UNSUPPORTED, "unsupported")                       \
-    X(LUCENT_ERR_NOT_FOUND, "not found")                           \
-    X(LUCENT_ERR_NUMERIC, "numerical failure")                     \
-    X(LUCENT_ERR_GL, "OpenGL error")                               \
+#define LUCENT_STATUS_TABLE(X)                                                                                         \
+    X(LUCENT_OK, "ok")                                                                                                 \
+    X(LUCENT_ERR_INVALID_ARGUMENT, "invalid argument")                                                                 \
+    X(LUCENT_ERR_OUT_OF_MEMORY, "out of memory")                                                                       \
+    X(LUCENT_ERR_IO, "input/output error")                                                                             \
+    X(LUCENT_ERR_PARSE, "malformed input")                                                                             \
+    X(LUCENT_ERR_UNSUPPORTED, "unsupported")                                                                           \
+    X(LUCENT_ERR_NOT_FOUND, "not found")                                                                               \
+    X(LUCENT_ERR_NUMERIC, "numerical failure")                                                                         \
+    X(LUCENT_ERR_GL, "OpenGL error")                                                                                   \
     X(LUCENT_ERR_INTERNAL, "internal error")
 
 typedef enum lucent_status {
 #define LUCENT_X_ENUM(code, text) code,
     LUCENT_STATUS_TABLE(LUCENT_X_ENUM)
 #undef LUCENT_X_ENUM
-    LUCENT_STATUS_COUNT
+        LUCENT_STATUS_COUNT
 } lucent_status;
 
 /* Returns a short constant text for a status code. */
@@ -126,15 +126,14 @@ int lucent_cpu_count(void);
 
 /* Body of a parallel loop: process items [begin, end) of chunk `chunk` on thread `thread`
  * (0 <= thread < lucent_pool_threads). Returns LUCENT_OK or an error (set with lucent_error). */
-typedef lucent_status (*lucent_chunk_fn)(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end,
-                                         int thread);
+typedef lucent_status (*lucent_chunk_fn)(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread);
 
 /* Runs fn over [0, count) cut into chunks of chunk_size items (the last may be shorter).
  * Blocks until all chunks are done. If chunks fail, the error of the lowest failing chunk
  * is returned and its message is set on the calling thread; chunks not yet started are skipped.
  * pool may be NULL: then everything runs on the caller. */
-lucent_status lucent_parallel_for(lucent_pool *pool, uint64_t count, uint64_t chunk_size,
-                                  lucent_chunk_fn fn, void *ctx);
+lucent_status lucent_parallel_for(lucent_pool *pool, uint64_t count, uint64_t chunk_size, lucent_chunk_fn fn,
+                                  void *ctx);
 
 /* ---- Random numbers -------------------------------------------------------
  * xoshiro256** (Blackman & Vigna 2018). Each (seed, stream) pair gives an independent,

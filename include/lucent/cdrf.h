@@ -63,9 +63,9 @@ lucent_status lucent_cdrf_sigma0_map(const lucent_image *diffuse, lucent_image *
  * reads it at u = (0.5 + (cos + 1) / 2 (width - 1)) / width, v likewise. */
 typedef struct lucent_cdrf_lut_desc {
     lucent_cdrf_variant variant;
-    int width;        /* cos theta samples (0: 256), >= 2 */
-    int height;       /* sigma samples (0: 256), >= 2 */
-    double sigma_max; /* 0: 3 (radians) */
+    int width;         /* cos theta samples (0: 256), >= 2 */
+    int height;        /* sigma samples (0: 256), >= 2 */
+    double sigma_max;  /* 0: 3 (radians) */
     lucent_pool *pool; /* NULL: serial */
 } lucent_cdrf_lut_desc;
 
@@ -77,8 +77,7 @@ lucent_status lucent_cdrf_lut_build(const lucent_cdrf_lut_desc *desc, lucent_ima
 
 /* Writes the table by the path's extension: .exr, .pfm, or .c / .h (a C array
  * `static const float NAME[height][width]` with the axes in a comment; name NULL: lucent_cdrf_lut). */
-lucent_status lucent_cdrf_lut_write(const char *path, const lucent_image *lut, double sigma_max,
-                                    const char *name);
+lucent_status lucent_cdrf_lut_write(const char *path, const lucent_image *lut, double sigma_max, const char *name);
 
 /* ---- The sphere simulation (Kubo Figure 6) ----
  * A sphere of radius r of the material, lit by a directional light from +x (irradiance 1 on a
@@ -93,12 +92,12 @@ enum { LUCENT_CDRF_MAX_BINS = 720 };
 
 typedef struct lucent_cdrf_sphere_desc {
     const lucent_material *material;
-    double radius;     /* mm, > 0 */
-    double roughness;  /* GGX alpha of the boundary; 0: smooth (Fresnel) */
-    uint64_t photons;  /* per channel (0: 200000); rounded up to a multiple of the batch count */
-    int bins;          /* theta bins over [0, pi] (0: 36) */
-    double cone;       /* acceptance half-angle, radians (0: 0.2) */
-    int batches;       /* fixed chunks, one RNG stream each (0: 32), >= 2, for standard errors */
+    double radius;    /* mm, > 0 */
+    double roughness; /* GGX alpha of the boundary; 0: smooth (Fresnel) */
+    uint64_t photons; /* per channel (0: 200000); rounded up to a multiple of the batch count */
+    int bins;         /* theta bins over [0, pi] (0: 36) */
+    double cone;      /* acceptance half-angle, radians (0: 0.2) */
+    int batches;      /* fixed chunks, one RNG stream each (0: 32), >= 2, for standard errors */
     uint64_t seed;
     int max_order;     /* score only exits after at most this many scatterings (0: all) */
     lucent_pool *pool; /* NULL: serial */
@@ -111,15 +110,14 @@ typedef struct lucent_cdrf_sphere_result {
     double theta[LUCENT_CDRF_MAX_BINS];          /* bin centres, radians */
     double radiance[3][LUCENT_CDRF_MAX_BINS];    /* per channel, per unit irradiance */
     double radiance_se[3][LUCENT_CDRF_MAX_BINS]; /* standard errors from the batches */
-    double entered[3];   /* fraction of the light's power that entered the sphere */
-    double exited[3];    /* fraction that left it again (every direction) */
-    double absorbed[3];  /* fraction absorbed inside */
-    uint64_t photons;    /* per channel, after rounding */
+    double entered[3];                           /* fraction of the light's power that entered the sphere */
+    double exited[3];                            /* fraction that left it again (every direction) */
+    double absorbed[3];                          /* fraction absorbed inside */
+    uint64_t photons;                            /* per channel, after rounding */
 } lucent_cdrf_sphere_result;
 
 /* Runs the simulation for the three channels. Identical for any thread count. */
-lucent_status lucent_cdrf_sphere_run(const lucent_cdrf_sphere_desc *desc,
-                                     lucent_cdrf_sphere_result *dest);
+lucent_status lucent_cdrf_sphere_run(const lucent_cdrf_sphere_desc *desc, lucent_cdrf_sphere_result *dest);
 
 /* ---- The fit of sigma0 (and the albedo scale k_d) ----
  * Per channel, minimises sum over spheres and bins of w (k_d f(theta; sigma0 / r) - L)^2 with
@@ -130,38 +128,40 @@ lucent_status lucent_cdrf_sphere_run(const lucent_cdrf_sphere_desc *desc,
  * k_d fitted) is evaluated alike. The RMS errors are over the equator's pixels (weight sin theta). */
 typedef struct lucent_cdrf_fit {
     lucent_cdrf_variant variant;
-    double sigma0[3];      /* mm */
+    double sigma0[3]; /* mm */
     double kd[3];
-    double rms[3];         /* RMS of (model - L) over the equator pixels of all spheres */
-    double chi2[3];        /* weighted sum of squares at the optimum */
+    double rms[3];  /* RMS of (model - L) over the equator pixels of all spheres */
+    double chi2[3]; /* weighted sum of squares at the optimum */
     double lambert_kd[3];
     double lambert_rms[3];
     double lambert_chi2[3];
 } lucent_cdrf_fit;
 
 /* Fits count sphere results (count >= 1); sigma0_max 0 means 20 mm. */
-lucent_status lucent_cdrf_fit_spheres(const lucent_cdrf_sphere_result *spheres, int count,
-                                      lucent_cdrf_variant variant, double sigma0_max,
-                                      lucent_cdrf_fit *dest);
+lucent_status lucent_cdrf_fit_spheres(const lucent_cdrf_sphere_result *spheres, int count, lucent_cdrf_variant variant,
+                                      double sigma0_max, lucent_cdrf_fit *dest);
 
 /* ---- sigma0 of a material: Monte Carlo spheres and the fit together ----
  * Simulates spheres of the material of the given radii and fits them (lucent_cdrf_sphere_run, then
  * lucent_cdrf_fit_spheres): what `lucent cdrf-fit` and the renderer's sigma0 do. */
-#define LUCENT_CDRF_FIT_RADII {2.0, 5.0, 10.0, 20.0} /* mm: the default radii, Kubo Fig. 6 style */
+#define LUCENT_CDRF_FIT_RADII                                                                                          \
+    {                                                                                                                  \
+        2.0, 5.0, 10.0, 20.0                                                                                           \
+    } /* mm: the default radii, Kubo Fig. 6 style */
 enum { LUCENT_CDRF_FIT_RADIUS_COUNT = 4, LUCENT_CDRF_FIT_MAX_RADII = 16 };
 
 typedef struct lucent_cdrf_material_fit_desc {
     const lucent_material *material;
     lucent_cdrf_variant variant;
-    const double *radii;     /* mm (NULL: LUCENT_CDRF_FIT_RADII) */
-    int radius_count;        /* with radii: 1..LUCENT_CDRF_FIT_MAX_RADII */
-    uint64_t photons;        /* per channel and sphere (0: the sphere's default) */
-    int bins;                /* theta bins (0: the sphere's default) */
-    double roughness, cone;  /* as lucent_cdrf_sphere_desc */
-    uint64_t seed;           /* sphere i runs with seed 64 seed + i */
-    double sigma0_max;       /* mm (0: 20) */
+    const double *radii;    /* mm (NULL: LUCENT_CDRF_FIT_RADII) */
+    int radius_count;       /* with radii: 1..LUCENT_CDRF_FIT_MAX_RADII */
+    uint64_t photons;       /* per channel and sphere (0: the sphere's default) */
+    int bins;               /* theta bins (0: the sphere's default) */
+    double roughness, cone; /* as lucent_cdrf_sphere_desc */
+    uint64_t seed;          /* sphere i runs with seed 64 seed + i */
+    double sigma0_max;      /* mm (0: 20) */
     lucent_pool *pool;
-    const char *label;       /* progress label before "sphere r = R mm" (may be NULL) */
+    const char *label; /* progress label before "sphere r = R mm" (may be NULL) */
 } lucent_cdrf_material_fit_desc;
 
 /* Runs the spheres and the fit. spheres (may be NULL) receives the sphere results, radius_count of

@@ -74,27 +74,24 @@ lucent_status lucent_conv_kernel2d_check(const lucent_conv_kernel2d *kernel);
  * border-extended channel, double precision). Agrees with lucent_convolve_2d_direct to float
  * rounding. Size errors (dest, even kernel) give LUCENT_ERR_INVALID_ARGUMENT naming the
  * parameter; FFTW memory failure gives LUCENT_ERR_OUT_OF_MEMORY. */
-lucent_status lucent_convolve_2d(const lucent_image *src, const lucent_conv_kernel2d *kernel,
-                                 lucent_border border, lucent_pool *pool, lucent_image *dest);
+lucent_status lucent_convolve_2d(const lucent_image *src, const lucent_conv_kernel2d *kernel, lucent_border border,
+                                 lucent_pool *pool, lucent_image *dest);
 
 /* The same convolution by direct summation, O(width height size^2): the reference. */
 lucent_status lucent_convolve_2d_direct(const lucent_image *src, const lucent_conv_kernel2d *kernel,
-                                        lucent_border border, lucent_pool *pool,
-                                        lucent_image *dest);
+                                        lucent_border border, lucent_pool *pool, lucent_image *dest);
 
 /* Separable convolution: a horizontal pass with kx[c], then a vertical pass with ky[c]
  * (length odd; entry i is the weight of offset i - length/2). Equals lucent_convolve_2d with the
  * outer product K(i, j) = kx[i] ky[j], borders included. ky may be NULL: ky = kx. */
-lucent_status lucent_convolve_separable(const lucent_image *src, const float *const kx[3],
-                                        const float *const ky[3], int length, lucent_border border,
-                                        lucent_pool *pool, lucent_image *dest);
+lucent_status lucent_convolve_separable(const lucent_image *src, const float *const kx[3], const float *const ky[3],
+                                        int length, lucent_border border, lucent_pool *pool, lucent_image *dest);
 
 /* The rank-N sum: dest = sum_r (src * kx_r ky_r^T), for SVD rank-N kernel models (fold a term's
  * sign into its kx_r). kx and ky hold rank * 3 pointers, term r's channel c at [r * 3 + c]
  * (channels 1, 2 NULL: channel 0); ky may be NULL: ky = kx. */
-lucent_status lucent_convolve_separable_sum(const lucent_image *src, int rank,
-                                            const float *const *kx, const float *const *ky,
-                                            int length, lucent_border border, lucent_pool *pool,
+lucent_status lucent_convolve_separable_sum(const lucent_image *src, int rank, const float *const *kx,
+                                            const float *const *ky, int length, lucent_border border, lucent_pool *pool,
                                             lucent_image *dest);
 
 /* Two passes with taps, horizontal then vertical: dest(x) = sum_k w_k src(x - o_k), where a
@@ -103,8 +100,8 @@ lucent_status lucent_convolve_separable_sum(const lucent_image *src, int rank,
  * Integer offsets give the separable convolution with the equivalent sparse kernel. With rank > 1
  * the passes of every term are summed, term p scaled by sign[c][p]. Offsets in mm become pixels
  * by dividing by the image's mm per pixel (the GPU's per-pixel kernel scale is not applied). */
-lucent_status lucent_convolve_taps(const lucent_image *src, const lucent_conv_taps *taps,
-                                   lucent_border border, lucent_pool *pool, lucent_image *dest);
+lucent_status lucent_convolve_taps(const lucent_image *src, const lucent_conv_taps *taps, lucent_border border,
+                                   lucent_pool *pool, lucent_image *dest);
 
 /* ---- Test signals (Freude 2014, section 6.2) ----------------------------------------------
  * 3-channel (RGB) linear images, values in [0, 1], edges antialiased by 4 x 4 supersampling.

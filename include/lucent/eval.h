@@ -42,9 +42,9 @@ extern "C" {
 /* ---- Events ------------------------------------------------------------------------------------ */
 
 typedef enum lucent_eval_event_kind {
-    LUCENT_EVAL_WROTE = 1,  /* path: a file was written (complete, renamed into place) */
-    LUCENT_EVAL_SKIPPED,    /* name: a kernel model was left out; reason: why */
-    LUCENT_EVAL_SCENE_DONE  /* index: compare's scene index is measured and its files written */
+    LUCENT_EVAL_WROTE = 1, /* path: a file was written (complete, renamed into place) */
+    LUCENT_EVAL_SKIPPED,   /* name: a kernel model was left out; reason: why */
+    LUCENT_EVAL_SCENE_DONE /* index: compare's scene index is measured and its files written */
 } lucent_eval_event_kind;
 
 typedef struct lucent_eval_event {
@@ -62,14 +62,10 @@ typedef void (*lucent_eval_event_fn)(const lucent_eval_event *event, void *user)
  * Per scene: loads it (with the overrides), path-traces the reference, renders every method with
  * the GL renderer, measures each against the reference over the object mask, and times it. */
 
-enum {
-    LUCENT_COMPARE_MAX_SCENES = 16,
-    LUCENT_COMPARE_MAX_METHODS = 32,
-    LUCENT_COMPARE_MAX_FRAMES = 64
-};
+enum { LUCENT_COMPARE_MAX_SCENES = 16, LUCENT_COMPARE_MAX_METHODS = 32, LUCENT_COMPARE_MAX_FRAMES = 64 };
 
 /* The methods compared when a desc names none. */
-#define LUCENT_COMPARE_DEFAULT_METHODS \
+#define LUCENT_COMPARE_DEFAULT_METHODS                                                                                 \
     "lambert,cdrf,cdrf+translucency,ssss:preint,ssss:svd1,ssss:svd3,ssss:guided,ssss:manual,ssss:jimenez"
 /* The report's title when a desc gives none. */
 #define LUCENT_COMPARE_DEFAULT_TITLE "Lucent: real-time subsurface scattering against a path-traced reference"
@@ -78,26 +74,26 @@ enum {
 
 /* A compare run; a zero field means the default. */
 typedef struct lucent_compare_desc {
-    const char *const *scenes;         /* scene files (1..LUCENT_COMPARE_MAX_SCENES, required) */
+    const char *const *scenes; /* scene files (1..LUCENT_COMPARE_MAX_SCENES, required) */
     int scene_count;
-    const char *const *methods;        /* method names as lucent_render_method_parse reads them
+    const char *const *methods; /* method names as lucent_render_method_parse reads them
                                           (0 of them: LUCENT_COMPARE_DEFAULT_METHODS) */
     int method_count;
-    const char *const *overrides;      /* "key=value" for every scene (lucent_scene_load_desc) */
+    const char *const *overrides; /* "key=value" for every scene (lucent_scene_load_desc) */
     int override_count;
-    int spp;                           /* reference samples per pixel (0: the scene's render.spp) */
-    double time_limit;                 /* at most this many seconds per reference (0: the scene's
+    int spp;                       /* reference samples per pixel (0: the scene's render.spp) */
+    double time_limit;             /* at most this many seconds per reference (0: the scene's
                                           render.time_limit, where 0 means none) */
-    int frames;                        /* GL frames timed per method, the median kept (0: 5; more
+    int frames;                    /* GL frames timed per method, the median kept (0: 5; more
                                           than LUCENT_COMPARE_MAX_FRAMES count as that many) */
-    double scale;                      /* multiply every scene's width and height (0: keep them) */
-    const char *out;                   /* folder for every file (made if absent; NULL: no files, and
+    double scale;                  /* multiply every scene's width and height (0: keep them) */
+    const char *out;               /* folder for every file (made if absent; NULL: no files, and
                                           the renderer's default cache) */
-    const char *title;                 /* the report's title (NULL: LUCENT_COMPARE_DEFAULT_TITLE) */
-    lucent_gl_context *gl;             /* NULL: a headless context made for the run */
-    lucent_pool *pool;                 /* NULL: serial */
-    lucent_eval_event_fn on_event;     /* NULL: none */
-    void *user;                        /* passed to on_event */
+    const char *title;             /* the report's title (NULL: LUCENT_COMPARE_DEFAULT_TITLE) */
+    lucent_gl_context *gl;         /* NULL: a headless context made for the run */
+    lucent_pool *pool;             /* NULL: serial */
+    lucent_eval_event_fn on_event; /* NULL: none */
+    void *user;                    /* passed to on_event */
 } lucent_compare_desc;
 
 /* Returns what a zero lucent_compare_desc stands for (no scenes; the default methods are left to
@@ -117,9 +113,9 @@ typedef struct lucent_compare_scene_result {
 typedef struct lucent_compare_store lucent_compare_store;
 
 typedef struct lucent_compare_result {
-    int scene_count;                      /* scenes complete */
+    int scene_count; /* scenes complete */
     lucent_compare_scene_result *scenes;
-    lucent_compare_store *store;          /* what the pointers above point into */
+    lucent_compare_store *store; /* what the pointers above point into */
 } lucent_compare_result;
 
 /* Runs the comparison; with desc->out, writes per scene SCENE/reference.png|.exr,
@@ -175,23 +171,23 @@ enum { LUCENT_KERNEL_EVAL_MAX_MODELS = 40, LUCENT_KERNEL_EVAL_TABLE65 = 6, LUCEN
 
 /* A kernel-eval run; a zero field means the default. */
 typedef struct lucent_kernel_eval_desc {
-    const lucent_material *material;   /* required */
-    const char *const *models;         /* names of lucent_kernel_eval_model_parse (0 of them:
+    const lucent_material *material; /* required */
+    const char *const *models;       /* names of lucent_kernel_eval_model_parse (0 of them:
                                           LUCENT_KERNEL_EVAL_DEFAULT_MODELS) */
     int model_count;
-    bool table65;                      /* also SVD rank N against N Gaussians, N = 1..6 (Freude
+    bool table65;                       /* also SVD rank N against N Gaussians, N = 1..6 (Freude
                                           Table 6.5; always for Skin1) */
-    lucent_profile_source_desc profile;/* the profile (zero: the dipole; pool NULL: desc's pool) */
-    const char *signal;                /* "edge" (NULL), "shapes", or a PNG/EXR/PFM file */
-    int size;                          /* edge and shapes: side in pixels (0: LUCENT_SIGNAL_DEFAULT_SIZE) */
-    double mm_per_pixel;               /* the signal's scale (0: LUCENT_SIGNAL_MM_PER_PIXEL) */
-    int taps;                          /* taps per pass, odd, 3..255 (0: 17) */
-    bool no_taps;                      /* no tap convolutions */
-    double heat_scale;                 /* the error drawn white in the heat maps (0: 0.1) */
-    const char *out;                   /* folder for the files (made if absent; its parent must exist;
+    lucent_profile_source_desc profile; /* the profile (zero: the dipole; pool NULL: desc's pool) */
+    const char *signal;                 /* "edge" (NULL), "shapes", or a PNG/EXR/PFM file */
+    int size;                           /* edge and shapes: side in pixels (0: LUCENT_SIGNAL_DEFAULT_SIZE) */
+    double mm_per_pixel;                /* the signal's scale (0: LUCENT_SIGNAL_MM_PER_PIXEL) */
+    int taps;                           /* taps per pass, odd, 3..255 (0: 17) */
+    bool no_taps;                       /* no tap convolutions */
+    double heat_scale;                  /* the error drawn white in the heat maps (0: 0.1) */
+    const char *out;                    /* folder for the files (made if absent; its parent must exist;
                                           NULL: no files) */
-    lucent_pool *pool;                 /* NULL: serial */
-    lucent_eval_event_fn on_event;     /* NULL: none */
+    lucent_pool *pool;                  /* NULL: serial */
+    lucent_eval_event_fn on_event;      /* NULL: none */
     void *user;
 } lucent_kernel_eval_desc;
 
@@ -206,10 +202,10 @@ lucent_status lucent_kernel_eval_model_parse(const char *name, lucent_kernel_des
 typedef struct lucent_kernel_eval_model {
     char name[LUCENT_KERNEL_EVAL_NAME_SIZE]; /* as asked: "svd-norm", "sog-r3" */
     lucent_kernel_desc desc;
-    bool plotted;                /* asked for (in the slices, images and tables), not only Table 6.5 */
-    lucent_kernel *kernel;       /* NULL when skipped */
-    char skipped[200];           /* why it was left out ("" when built): manual without a preset */
-    double kernel_rms[3];        /* lucent_kernel_rms against the ground truth */
+    bool plotted;                       /* asked for (in the slices, images and tables), not only Table 6.5 */
+    lucent_kernel *kernel;              /* NULL when skipped */
+    char skipped[200];                  /* why it was left out ("" when built): manual without a preset */
+    double kernel_rms[3];               /* lucent_kernel_rms against the ground truth */
     lucent_image_error_stats separable; /* the rank-N convolution against the exact one */
     lucent_image_error_stats taps;      /* the taps' convolution (when have_taps) */
     bool have_taps;
@@ -217,12 +213,12 @@ typedef struct lucent_kernel_eval_model {
 
 typedef struct lucent_kernel_eval_result {
     lucent_material material;
-    char profile[32];            /* the profile's source name */
-    char signal[512];            /* the signal's name */
+    char profile[32]; /* the profile's source name */
+    char signal[512]; /* the signal's name */
     int signal_width, signal_height;
     double mm_per_pixel;
-    int kernel_pixels;           /* side of the pixel kernel, 2 h + 1 */
-    int taps;                    /* taps per pass (0: none) */
+    int kernel_pixels; /* side of the pixel kernel, 2 h + 1 */
+    int taps;          /* taps per pass (0: none) */
     lucent_kernel2d *ground_truth;
     lucent_kernel_eval_model *models;
     int model_count;
@@ -241,8 +237,7 @@ void lucent_kernel_eval_result_free(lucent_kernel_eval_result *result);
 
 /* The slices y = 0 (diagonal false) or x = y of the ground truth and the asked models, one panel
  * per channel (Freude Figure 6.2), as SVG. */
-lucent_status lucent_kernel_eval_write_slices(const char *path, const lucent_kernel_eval_result *result,
-                                              bool diagonal);
+lucent_status lucent_kernel_eval_write_slices(const char *path, const lucent_kernel_eval_result *result, bool diagonal);
 
 /* The tables (Freude 6.3, 6.4 and, when computed, 6.5) as Markdown. */
 lucent_status lucent_kernel_eval_write_tables(const char *path, const lucent_kernel_eval_result *result);
@@ -256,8 +251,8 @@ lucent_status lucent_kernel_eval_write_json(const char *path, const lucent_kerne
 typedef struct lucent_profile_report {
     const lucent_material *material;
     const lucent_profile *profile;
-    uint64_t photons, seed;     /* recorded when the profile's model is "mc" */
-    const lucent_sog *sog;      /* a sum-of-Gaussians fit to record (NULL: none) */
+    uint64_t photons, seed; /* recorded when the profile's model is "mc" */
+    const lucent_sog *sog;  /* a sum-of-Gaussians fit to record (NULL: none) */
 } lucent_profile_report;
 
 /* The profile as JSON: model, material, units, grid, totals, radii, values and errors per channel. */
@@ -269,8 +264,8 @@ lucent_status lucent_profile_write_csv(const char *path, const lucent_material *
 
 /* One profile as SVG: RGB curves, linear near zero and logarithmic over the range, with the
  * sum-of-Gaussians fit dashed when sog is not NULL. */
-lucent_status lucent_profile_write_svg(const char *path, const lucent_material *material,
-                                       const lucent_profile *profile, const lucent_sog *sog);
+lucent_status lucent_profile_write_svg(const char *path, const lucent_material *material, const lucent_profile *profile,
+                                       const lucent_sog *sog);
 
 /* Several models of one material as SVG: one logarithmic panel per channel, a curve per model (at
  * most 8). */
@@ -285,9 +280,9 @@ typedef struct lucent_cdrf_fit_report {
     const lucent_cdrf_sphere_result *spheres;
     int sphere_count;
     const lucent_cdrf_fit *fit;
-    uint64_t seed;         /* the simulations' seed */
-    double cone;           /* the camera's acceptance half-angle, radians */
-    double roughness;      /* the boundary's GGX alpha */
+    uint64_t seed;    /* the simulations' seed */
+    double cone;      /* the camera's acceptance half-angle, radians */
+    double roughness; /* the boundary's GGX alpha */
 } lucent_cdrf_fit_report;
 
 /* The fit and every sphere's data (radiance and standard errors per bin and channel) as JSON. */

@@ -41,8 +41,7 @@ lucent_status lucent_image_clone(const lucent_image *src, lucent_image **dest);
 
 /* Creates a copy of src with another channel count: 1 -> 3/4 replicates grey, 3 -> 4 adds
  * alpha 1, 4 -> 3 drops alpha, 3/4 -> 1 takes Rec. 709 luminance 0.2126 R + 0.7152 G + 0.0722 B. */
-lucent_status lucent_image_convert_channels(const lucent_image *src, int channels,
-                                            lucent_image **dest);
+lucent_status lucent_image_convert_channels(const lucent_image *src, int channels, lucent_image **dest);
 
 /* Returns the number of floats in the image (width * height * channels). */
 size_t lucent_image_value_count(const lucent_image *img);
@@ -129,16 +128,13 @@ lucent_status lucent_image_load_exr(const char *path, lucent_image **dest);
 lucent_status lucent_image_load_pfm(const char *path, lucent_image **dest);
 
 /* Writes img atomically (complete file or none) in the format of desc (NULL: defaults). */
-lucent_status lucent_image_write(const char *path, const lucent_image *img,
-                                 const lucent_image_write_desc *desc);
+lucent_status lucent_image_write(const char *path, const lucent_image *img, const lucent_image_write_desc *desc);
 
 /* Writes a PNG (grey, RGB or RGBA by channel count) as desc says. */
-lucent_status lucent_image_write_png(const char *path, const lucent_image *img,
-                                     const lucent_image_write_desc *desc);
+lucent_status lucent_image_write_png(const char *path, const lucent_image *img, const lucent_image_write_desc *desc);
 
 /* Writes a single-part scanline OpenEXR file with channels Y, or R, G, B [, A]. */
-lucent_status lucent_image_write_exr(const char *path, const lucent_image *img,
-                                     const lucent_image_write_desc *desc);
+lucent_status lucent_image_write_exr(const char *path, const lucent_image *img, const lucent_image_write_desc *desc);
 
 /* Writes a little-endian PFM ("Pf" for 1 channel, "PF" for 3; 4 channels are refused). */
 lucent_status lucent_image_write_pfm(const char *path, const lucent_image *img);
@@ -201,8 +197,8 @@ lucent_status lucent_image_compare(const lucent_image *a, const lucent_image *b,
                                    lucent_image_error_stats *dest);
 
 /* As lucent_image_compare, with the mask given as a 1-channel image of the same size (or NULL). */
-lucent_status lucent_image_compare_masked(const lucent_image *a, const lucent_image *b,
-                                          const lucent_image *mask, lucent_image_error_stats *dest);
+lucent_status lucent_image_compare_masked(const lucent_image *a, const lucent_image *b, const lucent_image *mask,
+                                          lucent_image_error_stats *dest);
 
 typedef enum lucent_diff_mode {
     LUCENT_DIFF_SIGNED = 0, /* a - b per channel */
@@ -210,14 +206,14 @@ typedef enum lucent_diff_mode {
 } lucent_diff_mode;
 
 /* Creates the per-channel difference image of a and b (same size and channels). */
-lucent_status lucent_image_difference(const lucent_image *a, const lucent_image *b,
-                                      lucent_diff_mode mode, lucent_image **dest);
+lucent_status lucent_image_difference(const lucent_image *a, const lucent_image *b, lucent_diff_mode mode,
+                                      lucent_image **dest);
 
 /* Creates a 1-channel map of the per-pixel error of a against the reference b, averaged over the
  * colour channels (alpha ignored): |a - b| when !relative, |a - b| / (|b| + epsilon) when relative
  * (epsilon <= 0: 0.01). Same size and channels required. */
-lucent_status lucent_image_error_map(const lucent_image *a, const lucent_image *b, bool relative,
-                                     float epsilon, lucent_image **dest);
+lucent_status lucent_image_error_map(const lucent_image *a, const lucent_image *b, bool relative, float epsilon,
+                                     lucent_image **dest);
 
 /* Returns the p-th percentile (0 <= p <= 100, nearest rank) of channel c's finite values in *dest
  * (0 when none). Allocates a scratch copy of the channel. */

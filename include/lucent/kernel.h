@@ -66,17 +66,17 @@ typedef enum lucent_kernel_model {
 
 typedef struct lucent_kernel {
     lucent_kernel_model model;
-    int rank;                                  /* passes, 1..LUCENT_KERNEL_MAX_RANK */
-    int half;                                  /* 1-D grid: n = 2 half + 1 samples */
-    double h;                                  /* sample spacing, mm */
-    double *a[3];                              /* rank * n samples per channel, pass-major */
-    double sign[3][LUCENT_KERNEL_MAX_RANK];    /* +1 or -1 per pass */
-    int gaussians;                             /* analytic Gaussians per pass; 0: sampled only */
+    int rank;                               /* passes, 1..LUCENT_KERNEL_MAX_RANK */
+    int half;                               /* 1-D grid: n = 2 half + 1 samples */
+    double h;                               /* sample spacing, mm */
+    double *a[3];                           /* rank * n samples per channel, pass-major */
+    double sign[3][LUCENT_KERNEL_MAX_RANK]; /* +1 or -1 per pass */
+    int gaussians;                          /* analytic Gaussians per pass; 0: sampled only */
     double gauss_weight[3][LUCENT_KERNEL_MAX_RANK][LUCENT_KERNEL_MAX_GAUSSIANS];
     double gauss_variance[3][LUCENT_KERNEL_MAX_RANK][LUCENT_KERNEL_MAX_GAUSSIANS]; /* mm^2 */
-    double strength[3];                        /* Jimenez's t (1: no delta) */
-    double range;                              /* the taps' default half-width, mm */
-    double constraint_error;                   /* guided: max_c | ||a||_1^2 - ||R_d||_1 | */
+    double strength[3];                                                            /* Jimenez's t (1: no delta) */
+    double range;            /* the taps' default half-width, mm */
+    double constraint_error; /* guided: max_c | ||a||_1^2 - ||R_d||_1 | */
 } lucent_kernel;
 
 /* The two-Gaussian parameters of Freude (5.21): a(x) = w G(x, tau_n) + (1 - w) G(x, tau_f),
@@ -90,15 +90,15 @@ typedef struct lucent_manual_params {
 
 typedef struct lucent_kernel_desc {
     lucent_kernel_model model;
-    int rank;              /* svd and sog: passes (0: 1); the others are rank 1 */
-    bool normalize;        /* svd: scale to the ground truth's 1-norm, Freude (5.12) */
-    double k;              /* guided: exponent of Gamma (5.20); 0 is a valid value */
-    double b;              /* guided: axis damping of Gamma on x, y in [-1, 1]; 0: none */
-    int max_evaluations;   /* guided: per level; 0: the default (400) */
-    bool use_manual;       /* manual: take `manual` instead of the material's preset */
+    int rank;            /* svd and sog: passes (0: 1); the others are rank 1 */
+    bool normalize;      /* svd: scale to the ground truth's 1-norm, Freude (5.12) */
+    double k;            /* guided: exponent of Gamma (5.20); 0 is a valid value */
+    double b;            /* guided: axis damping of Gamma on x, y in [-1, 1]; 0: none */
+    int max_evaluations; /* guided: per level; 0: the default (400) */
+    bool use_manual;     /* manual: take `manual` instead of the material's preset */
     lucent_manual_params manual;
-    double strength[3];    /* jimenez: t per channel; all 0: (0.48, 0.41, 0.28) */
-    double falloff[3];     /* jimenez: f per channel; all 0: (1.0, 0.37, 0.3) */
+    double strength[3]; /* jimenez: t per channel; all 0: (0.48, 0.41, 0.28) */
+    double falloff[3];  /* jimenez: f per channel; all 0: (1.0, 0.37, 0.3) */
 } lucent_kernel_desc;
 
 /* Returns the defaults a zero lucent_kernel_desc stands for with the given model: rank 1,
@@ -118,9 +118,8 @@ lucent_status lucent_manual_preset(const char *material, lucent_manual_params *d
 /* Builds a model of ground truth gt (profile p: needed by sog, may be NULL otherwise;
  * material_name: manual's preset unless desc->use_manual). The Jimenez model ignores gt's
  * values and samples on its grid. Free with lucent_kernel_destroy. */
-lucent_status lucent_kernel_build(const lucent_kernel2d *gt, const lucent_profile *p,
-                                  const char *material_name, const lucent_kernel_desc *desc,
-                                  lucent_kernel **dest);
+lucent_status lucent_kernel_build(const lucent_kernel2d *gt, const lucent_profile *p, const char *material_name,
+                                  const lucent_kernel_desc *desc, lucent_kernel **dest);
 
 /* Frees k (NULL is fine). */
 void lucent_kernel_destroy(lucent_kernel *k);
@@ -159,8 +158,7 @@ typedef struct lucent_taps_desc {
 lucent_taps_desc lucent_taps_defaults(void);
 
 /* Samples k into taps. Free with lucent_taps_destroy. */
-lucent_status lucent_kernel_taps(const lucent_kernel *k, const lucent_taps_desc *desc,
-                                 lucent_taps **dest);
+lucent_status lucent_kernel_taps(const lucent_kernel *k, const lucent_taps_desc *desc, lucent_taps **dest);
 
 /* Frees t (NULL is fine). */
 void lucent_taps_destroy(lucent_taps *t);
@@ -180,8 +178,7 @@ lucent_status lucent_kernel_format_parse(const char *name, lucent_kernel_format 
 /* Writes taps as text (ending in a newline): GLSL and HLSL declarations plus a one-pass blur
  * function (no #version, no entry point), a C header, or JSON. label names the kernel in
  * comments (may be NULL). Free *dest with free(). */
-lucent_status lucent_taps_export(const lucent_taps *t, lucent_kernel_format format, const char *label,
-                                 char **dest);
+lucent_status lucent_taps_export(const lucent_taps *t, lucent_kernel_format format, const char *label, char **dest);
 
 #ifdef __cplusplus
 }

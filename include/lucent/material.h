@@ -44,11 +44,10 @@ typedef struct lucent_material_derived {
     double diffusion[3];     /* diffusion constant D = 1 / (3 sigma_t'), mm */
     double mfp[3];           /* mean free path l = 1 / sigma_t, mm */
     double mfp_prime[3];     /* reduced (transport) mean free path l' = 1 / sigma_t', mm */
-    double
-        mfp_diffuse[3]; /* diffuse mean free path ld = 1 / sigma_tr, mm (+inf when sigma_a = 0) */
-    double rd[3];       /* classical-dipole total diffuse reflectance */
-    double fdr;         /* diffuse Fresnel reflectance of the boundary (one value: eta is grey) */
-    double a;           /* boundary term A = (1 + Fdr) / (1 - Fdr) */
+    double mfp_diffuse[3];   /* diffuse mean free path ld = 1 / sigma_tr, mm (+inf when sigma_a = 0) */
+    double rd[3];            /* classical-dipole total diffuse reflectance */
+    double fdr;              /* diffuse Fresnel reflectance of the boundary (one value: eta is grey) */
+    double a;                /* boundary term A = (1 + Fdr) / (1 - Fdr) */
 } lucent_material_derived;
 
 /* ---- Physics (pure functions) ---- */
@@ -82,13 +81,12 @@ typedef enum lucent_albedo_kind {
 } lucent_albedo_kind;
 
 /* From an albedo and the matching mean free path (> 0). */
-lucent_status lucent_material_set_albedo(lucent_albedo_kind kind, const double albedo[3],
-                                         const double mfp[3], lucent_material *dest);
+lucent_status lucent_material_set_albedo(lucent_albedo_kind kind, const double albedo[3], const double mfp[3],
+                                         lucent_material *dest);
 
 /* From a diffuse colour: the dipole total diffuse reflectance rd (0 <= rd < 1) and the
  * diffuse mean free path ld = 1 / sigma_tr (> 0), inverting Rd(alpha') numerically. */
-lucent_status lucent_material_set_diffuse(const double rd[3], const double mfp_diffuse[3],
-                                          lucent_material *dest);
+lucent_status lucent_material_set_diffuse(const double rd[3], const double mfp_diffuse[3], lucent_material *dest);
 
 /* ---- Presets: the measured table of Jensen et al. 2001 (data/materials.json, built in) ---- */
 
@@ -112,8 +110,7 @@ lucent_status lucent_material_load(const char *path, lucent_material **dest, int
 
 /* Reads materials from JSON text; `name` stands for the file in messages (and names a lone
  * material that has no "name"). Free *dest with free(). */
-lucent_status lucent_material_parse(const char *text, const char *name, lucent_material **dest,
-                                    int *count);
+lucent_status lucent_material_parse(const char *text, const char *name, lucent_material **dest, int *count);
 
 /* Resolves spec into one material: a preset name (case-insensitive), a file holding exactly one
  * material, or "FILE.json#NAME" for one material of a file. */
@@ -123,8 +120,7 @@ lucent_status lucent_material_resolve(const char *spec, lucent_material *dest);
  * ("units": "mm^-1"); with_derived adds each material's derived quantities under "derived"
  * (informational, ignored when read).
  * Free *dest with free(). */
-lucent_status lucent_material_to_json(const lucent_material *materials, int count,
-                                      bool with_derived, char **dest);
+lucent_status lucent_material_to_json(const lucent_material *materials, int count, bool with_derived, char **dest);
 
 #ifdef __cplusplus
 }

@@ -53,17 +53,17 @@ typedef struct lucent_mc_grid {
 typedef struct lucent_mc_desc {
     const lucent_mc_layer *layers; /* layer_count layers, top first */
     int layer_count;
-    double n_above;      /* index of refraction above the slab (0: 1) */
-    double n_below;      /* index below the slab (0: 1); unused when the last layer is semi-infinite */
-    uint64_t photons;    /* photon packets launched (0: 100000) */
-    uint64_t seed;       /* the result is a function of the seed, not of the thread count */
+    double n_above;   /* index of refraction above the slab (0: 1) */
+    double n_below;   /* index below the slab (0: 1); unused when the last layer is semi-infinite */
+    uint64_t photons; /* photon packets launched (0: 100000) */
+    uint64_t seed;    /* the result is a function of the seed, not of the thread count */
     lucent_mc_grid grid;
-    bool score_a_rz;     /* also score A(r, z) (the slow part; MCML always does) */
+    bool score_a_rz;        /* also score A(r, z) (the slow part; MCML always does) */
     bool last_bin_collects; /* MCML's convention: weight beyond the grid is scored in the last
                                radial / depth bin; otherwise it is counted only in *_beyond */
-    int batches;         /* independent batches for the standard errors (0: 32) */
-    lucent_pool *pool;   /* NULL: run on the calling thread */
-    const char *label;   /* progress bar label (NULL: "Monte Carlo") */
+    int batches;            /* independent batches for the standard errors (0: 32) */
+    lucent_pool *pool;      /* NULL: run on the calling thread */
+    const char *label;      /* progress bar label (NULL: "Monte Carlo") */
 } lucent_mc_desc;
 
 /* What a run measured. Fractions are of the launched photon weight (1 per photon).
@@ -78,12 +78,12 @@ typedef struct lucent_mc_result {
     uint64_t photons;
     int batches;
     int layer_count;
-    lucent_mc_grid grid; /* resolved (no zeros) */
-    double rsp;          /* specular reflectance at entry (exact, no error) */
-    double rd, rd_se;    /* total diffuse reflectance */
-    double a, a_se;      /* total absorption */
-    double tt, tt_se;    /* total transmittance (unscattered included) */
-    double balance, balance_se; /* rsp + rd + a + tt: 1 up to roulette noise */
+    lucent_mc_grid grid;                     /* resolved (no zeros) */
+    double rsp;                              /* specular reflectance at entry (exact, no error) */
+    double rd, rd_se;                        /* total diffuse reflectance */
+    double a, a_se;                          /* total absorption */
+    double tt, tt_se;                        /* total transmittance (unscattered included) */
+    double balance, balance_se;              /* rsp + rd + a + tt: 1 up to roulette noise */
     double rd_beyond, tt_beyond, a_z_beyond; /* fractions scored beyond the grid (0 when
                                                 last_bin_collects) */
     double *a_layer, *a_layer_se;            /* [layer_count] fractions */
@@ -115,10 +115,10 @@ double lucent_mc_specular(const lucent_mc_desc *desc);
 
 /* One run of an .mci file, converted to mm. */
 typedef struct lucent_mcml_run {
-    char *output;           /* output file name as written in the .mci */
-    int line;               /* line of the output file name (for messages) */
+    char *output; /* output file name as written in the .mci */
+    int line;     /* line of the output file name (for messages) */
     lucent_mc_layer *layers;
-    lucent_mc_desc desc;    /* photons, grid, layers, n_above/below; desc.layers == layers */
+    lucent_mc_desc desc; /* photons, grid, layers, n_above/below; desc.layers == layers */
 } lucent_mcml_run;
 
 typedef struct lucent_mcml_file {
@@ -139,8 +139,7 @@ void lucent_mcml_file_free(lucent_mcml_file *f);
 /* Writes an MCML .mco file (format A1, cm units, MCML's sections and normalisations; the last
  * radial and depth bins collect everything beyond the grid when the run did so) atomically.
  * The run's result must come from run->desc (A_rz is written as zeros when not scored). */
-lucent_status lucent_mcml_write(const char *path, const lucent_mcml_run *run,
-                                const lucent_mc_result *result);
+lucent_status lucent_mcml_write(const char *path, const lucent_mcml_run *run, const lucent_mc_result *result);
 
 #ifdef __cplusplus
 }

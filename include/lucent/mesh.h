@@ -37,7 +37,7 @@ void lucent_mesh_destroy(lucent_mesh *mesh);
 
 /* How to load a mesh; a zero field means the default. */
 typedef struct lucent_mesh_load_desc {
-    const char *format; /* "ply", "obj", "gltf", "glb"; default: from the extension (.gz inflated) */
+    const char *format;  /* "ply", "obj", "gltf", "glb"; default: from the extension (.gz inflated) */
     int keep_duplicates; /* non-zero: do not weld vertices at identical positions */
 } lucent_mesh_load_desc;
 
@@ -60,8 +60,7 @@ typedef struct lucent_mesh_ply_extra {
     const double *const *values;
 } lucent_mesh_ply_extra;
 
-lucent_status lucent_mesh_write_ply(const char *path, const lucent_mesh *mesh,
-                                    const lucent_mesh_ply_extra *extra);
+lucent_status lucent_mesh_write_ply(const char *path, const lucent_mesh *mesh, const lucent_mesh_ply_extra *extra);
 
 /* ---- A picture of a mesh (no GPU) ------------------------------------------ */
 
@@ -175,8 +174,7 @@ enum {
 
 /* Estimates curvature at every vertex. Never yields NaN or Inf: vertices without a usable
  * neighbourhood get 0 and the INVALID flag. Free dest with lucent_curvature_free. */
-lucent_status lucent_mesh_curvature(const lucent_mesh *mesh, const lucent_curvature_desc *desc,
-                                    lucent_curvature *dest);
+lucent_status lucent_mesh_curvature(const lucent_mesh *mesh, const lucent_curvature_desc *desc, lucent_curvature *dest);
 
 void lucent_curvature_free(lucent_curvature *curv);
 

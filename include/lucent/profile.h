@@ -51,8 +51,7 @@ lucent_status lucent_profile_grid_resolve(const lucent_profile_grid *grid, const
 
 /* Creates a zeroed profile on grid (dr > 0, 0 < count <= 10^8), with r filled in and model
  * set to model (may be NULL). Free with lucent_profile_destroy. */
-lucent_status lucent_profile_create(const lucent_profile_grid *grid, const char *model,
-                                    lucent_profile **dest);
+lucent_status lucent_profile_create(const lucent_profile_grid *grid, const char *model, lucent_profile **dest);
 
 /* Frees p (NULL is fine). */
 void lucent_profile_destroy(lucent_profile *p);
@@ -84,8 +83,7 @@ double lucent_dipole_eval(const lucent_medium *md, double r);
 
 /* Fills dest with the classical-dipole profile of m (bin averages, integrated exactly);
  * grid may be NULL (the default grid). */
-lucent_status lucent_profile_dipole(const lucent_material *m, const lucent_profile_grid *grid,
-                                    lucent_profile **dest);
+lucent_status lucent_profile_dipole(const lucent_material *m, const lucent_profile_grid *grid, lucent_profile **dest);
 
 /* ---- Better dipole (d'Eon 2012, "A Better Dipole") ---- */
 
@@ -98,8 +96,8 @@ double lucent_better_dipole_eval(const lucent_medium *md, double r);
 double lucent_better_dipole_total(const lucent_medium *md);
 
 /* Fills dest with the better-dipole profile of m; grid may be NULL. */
-lucent_status lucent_profile_better_dipole(const lucent_material *m,
-                                           const lucent_profile_grid *grid, lucent_profile **dest);
+lucent_status lucent_profile_better_dipole(const lucent_material *m, const lucent_profile_grid *grid,
+                                           lucent_profile **dest);
 
 /* ---- Multipole slabs (Donner & Jensen 2005) ----
  * Each face of a slab has its own boundary condition, from the relative index across it
@@ -119,13 +117,11 @@ typedef struct lucent_slab_desc {
  * the top and bottom faces; poles 0 means 10. NaN when invalid. A slab thinner than its
  * transport mean free path 1/sigma_t' is computed as is (T can be negative; no warning here,
  * the profile builders warn). */
-void lucent_multipole_eval(const lucent_medium *md, const lucent_slab_desc *slab, double r,
-                              double dest[2]);
+void lucent_multipole_eval(const lucent_medium *md, const lucent_slab_desc *slab, double r, double dest[2]);
 
 /* Fills dest[0] and dest[1] with the totals (integrals over the plane) of R and T of the same
  * truncated multipole, in closed form per pole. Requires sigma_a > 0 (otherwise NaN). */
-void lucent_multipole_totals(const lucent_medium *md, const lucent_slab_desc *slab,
-                             double dest[2]);
+void lucent_multipole_totals(const lucent_medium *md, const lucent_slab_desc *slab, double dest[2]);
 
 /* Creates dest[0] (reflectance, model "multipole-R") and dest[1] (transmittance,
  * "multipole-T") for a slab of material m; grid may be NULL. Logs a LUCENT_LOG_WARN line when
@@ -151,8 +147,8 @@ typedef struct lucent_layer {
  * Logs a LUCENT_LOG_WARN line for each layer thinner than its transport mean free path
  * 1/sigma_t' (the multipole's source then lies outside it and T can be negative); the values
  * are returned as computed. */
-lucent_status lucent_profile_layered(const lucent_layer *layers, int count,
-                                     const lucent_profile_grid *grid, lucent_profile *dest[2]);
+lucent_status lucent_profile_layered(const lucent_layer *layers, int count, const lucent_profile_grid *grid,
+                                     lucent_profile *dest[2]);
 
 /* ---- Burley normalized diffusion (Christensen & Burley 2015) ---- */
 typedef enum lucent_burley_fit {
@@ -182,8 +178,8 @@ lucent_status lucent_burley_params_from_material(const lucent_material *m, lucen
 
 /* Fills dest with Burley's profile (bin averages, integrated exactly); grid NULL or zero fields:
  * the Table 6.1 rule applied to the profile's lengths l / s. */
-lucent_status lucent_profile_burley(const lucent_burley_params *params,
-                                    const lucent_profile_grid *grid, lucent_profile **dest);
+lucent_status lucent_profile_burley(const lucent_burley_params *params, const lucent_profile_grid *grid,
+                                    lucent_profile **dest);
 
 /* ---- Sum of Gaussians (d'Eon & Luebke 2007, GPU Gems 3 ch. 14) ----
  * R(r) ~ sum_i w_i G(v_i, r), G(v, r) = exp(-r^2 / (2 v)) / (2 pi v) (integrates to 1). */
@@ -210,16 +206,14 @@ double lucent_sog_eval(const lucent_sog *s, int c, double r);
 /* Fits p with desc->count Gaussians per channel, minimising sum_j r_j dr (R_j - fit_j)^2
  * (fit_j: the bin average of the mixture) by variable projection: non-negative least squares
  * for the weights, Levenberg-Marquardt on log variances, multi-start. Deterministic. */
-lucent_status lucent_sog_fit(const lucent_profile *p, const lucent_sog_desc *desc,
-                             lucent_sog *dest);
+lucent_status lucent_sog_fit(const lucent_profile *p, const lucent_sog_desc *desc, lucent_sog *dest);
 
 /* d'Eon & Luebke 2007's six-Gaussian skin profile (GPU Gems 3, ch. 14, the table of Figure 14-13:
  * shared variances 0.0064 .. 7.41 mm^2 and RGB weights), as a lucent_sog (rms 0). */
 void lucent_sog_deon_skin(lucent_sog *dest);
 
 /* Creates a profile on grid holding the bin averages of the mixture s (model "sog"). */
-lucent_status lucent_profile_from_sog(const lucent_sog *s, const lucent_profile_grid *grid,
-                                      lucent_profile **dest);
+lucent_status lucent_profile_from_sog(const lucent_sog *s, const lucent_profile_grid *grid, lucent_profile **dest);
 
 /* ---- Profiles by name ----
  * The profile a kernel or a renderer builds from a material: "dipole" (the default),
@@ -255,10 +249,10 @@ const char *lucent_profile_source_name(int index);
 enum { LUCENT_SLAB_SAMPLES = 20 };
 
 typedef struct lucent_slab_transmittance {
-    double s_max;                                /* mm: the thickest sample */
-    double thickness[LUCENT_SLAB_SAMPLES];       /* mm */
-    double value[LUCENT_SLAB_SAMPLES][3];        /* T per sample and channel */
-    double sigma_tr[3];                          /* mm^-1: the tail's decay */
+    double s_max;                          /* mm: the thickest sample */
+    double thickness[LUCENT_SLAB_SAMPLES]; /* mm */
+    double value[LUCENT_SLAB_SAMPLES][3];  /* T per sample and channel */
+    double sigma_tr[3];                    /* mm^-1: the tail's decay */
 } lucent_slab_transmittance;
 
 /* The thicknesses of m's slab samples (dest->s_max, thickness, sigma_tr; values untouched). */

@@ -40,12 +40,12 @@ typedef enum lucent_gl_platform {
  * device number counted from 1) replace platform and device when those are zero. */
 typedef struct lucent_gl_desc {
     lucent_gl_platform platform;
-    int device;         /* EGL device number counted from 1; 0: the first hardware device, else the
+    int device;        /* EGL device number counted from 1; 0: the first hardware device, else the
                            first device */
-    int width, height;  /* window: client size (0: 512 x 512) */
-    const char *title;  /* window: NULL: "Lucent" */
-    bool debug;         /* a debug context: driver messages go to the log (lucent_log) */
-    bool ignore_env;    /* do not read LUCENT_GL_PLATFORM and LUCENT_GL_DEVICE */
+    int width, height; /* window: client size (0: 512 x 512) */
+    const char *title; /* window: NULL: "Lucent" */
+    bool debug;        /* a debug context: driver messages go to the log (lucent_log) */
+    bool ignore_env;   /* do not read LUCENT_GL_PLATFORM and LUCENT_GL_DEVICE */
 } lucent_gl_desc;
 
 /* What the context runs on. */
@@ -92,13 +92,13 @@ typedef struct lucent_renderer lucent_renderer;
 
 /* How to create a renderer; a zero field means the default. */
 typedef struct lucent_renderer_desc {
-    lucent_pool *pool;          /* CPU preparation: curvature, kernels, sigma0 fits (NULL: serial) */
-    const char *cache_dir;      /* where sigma0 fits and slab transmittances are kept between runs
+    lucent_pool *pool;         /* CPU preparation: curvature, kernels, sigma0 fits (NULL: serial) */
+    const char *cache_dir;     /* where sigma0 fits and slab transmittances are kept between runs
                                    (NULL: in memory only) */
-    uint64_t sigma0_photons;    /* sigma0 fit: photons per channel and sphere (0: 40000) */
-    uint64_t transmit_photons;  /* render.transmittance "slab": photons per channel and thickness
+    uint64_t sigma0_photons;   /* sigma0 fit: photons per channel and sphere (0: 40000) */
+    uint64_t transmit_photons; /* render.transmittance "slab": photons per channel and thickness
                                    (0: 20000) */
-    uint64_t profile_photons;   /* render.profile "mc": photons per channel (0: 200000) */
+    uint64_t profile_photons;  /* render.profile "mc": photons per channel (0: 200000) */
 } lucent_renderer_desc;
 
 /* Returns the defaults a zero lucent_renderer_desc stands for. */
@@ -121,7 +121,7 @@ typedef struct lucent_frame_times {
     int pass_count;
     char pass_name[LUCENT_RENDER_MAX_PASSES][LUCENT_RENDER_PASS_NAME_SIZE]; /* "shadow", "geometry",
                                                   "blur h1", "blur v1", ..., "compose" */
-    double pass_ms[LUCENT_RENDER_MAX_PASSES]; /* GPU milliseconds per pass */
+    double pass_ms[LUCENT_RENDER_MAX_PASSES];                               /* GPU milliseconds per pass */
     double gpu_ms;   /* GPU milliseconds from the first pass's start to the last pass's end */
     double cpu_ms;   /* wall-clock milliseconds from the frame's first command to its completion */
     double blur_ms;  /* the blur passes together (ssss; 0 otherwise) */
@@ -131,21 +131,19 @@ typedef struct lucent_frame_times {
 
 /* What lucent_render returns. */
 typedef struct lucent_render_result {
-    lucent_image *image;       /* RGB linear HDR radiance, settings->width x height */
-    lucent_image *mask;        /* 1 channel: 1 where an object covers the pixel's centre, else 0 */
-    lucent_frame_times times;  /* the frame that made the image, its setup included */
-    double readback_ms;        /* CPU milliseconds reading the images back */
+    lucent_image *image;      /* RGB linear HDR radiance, settings->width x height */
+    lucent_image *mask;       /* 1 channel: 1 where an object covers the pixel's centre, else 0 */
+    lucent_frame_times times; /* the frame that made the image, its setup included */
+    double readback_ms;       /* CPU milliseconds reading the images back */
 } lucent_render_result;
 
 /* Renders one frame with settings (NULL: the scene's) and reads it back. Settings may differ from
  * call to call (method, kernel, taps, size...); only what changed is rebuilt. Free the result with
  * lucent_render_result_free. */
-lucent_status lucent_render(lucent_renderer *r, const lucent_render_settings *settings,
-                            lucent_render_result *dest);
+lucent_status lucent_render(lucent_renderer *r, const lucent_render_settings *settings, lucent_render_result *dest);
 
 /* Renders one frame without reading it back (benchmarks, windows); dest may be NULL. */
-lucent_status lucent_render_frame(lucent_renderer *r, const lucent_render_settings *settings,
-                                  lucent_frame_times *dest);
+lucent_status lucent_render_frame(lucent_renderer *r, const lucent_render_settings *settings, lucent_frame_times *dest);
 
 /* Window contexts: shows the last frame, tonemapped with the settings' tonemap and exposure and
  * sRGB-encoded, and swaps buffers. Headless contexts: no-op. */
@@ -156,18 +154,17 @@ void lucent_render_result_free(lucent_render_result *res);
 
 /* Per-object values the last render used. */
 typedef struct lucent_render_object_info {
-    double albedo[3];         /* the diffuse colour */
-    double sigma0[3];         /* CDRF sigma0, mm (0 until a cdrf method was rendered) */
-    const char *sigma0_from;  /* "scene", "fit", "fit (cache)", "diffuse" or "" (not yet used) */
-    double curvature_range[2];/* the 5th and 95th percentiles of the vertex mean curvature, mm^-1
+    double albedo[3];          /* the diffuse colour */
+    double sigma0[3];          /* CDRF sigma0, mm (0 until a cdrf method was rendered) */
+    const char *sigma0_from;   /* "scene", "fit", "fit (cache)", "diffuse" or "" (not yet used) */
+    double curvature_range[2]; /* the 5th and 95th percentiles of the vertex mean curvature, mm^-1
                                  (0 until curvature was computed) */
-    double kernel_range;      /* ssss: the taps' half-width, mm (0 until ssss was rendered) */
-    double transmit_range;    /* translucency: thickness where the transmittance ends, mm */
+    double kernel_range;       /* ssss: the taps' half-width, mm (0 until ssss was rendered) */
+    double transmit_range;     /* translucency: thickness where the transmittance ends, mm */
 } lucent_render_object_info;
 
 /* Fills dest with object index's values (0 <= index < the scene's object_count). */
-lucent_status lucent_renderer_object_info(const lucent_renderer *r, int index,
-                                          lucent_render_object_info *dest);
+lucent_status lucent_renderer_object_info(const lucent_renderer *r, int index, lucent_render_object_info *dest);
 
 /* The JSON sidecar of a render (docs/render.md): the scene after overrides, the settings, the GL
  * strings, the timings, each object's albedo, sigma0 and curvature, each kernel's taps. Free *dest
@@ -193,14 +190,12 @@ typedef struct lucent_ssss_blur_desc {
 
 /* CPU reference. irradiance: RGB or RGBA (alpha ignored); depth: 1 channel, mm; material: one index
  * per pixel (NULL: all 0); dest: RGB, same size (created by the caller). */
-lucent_status lucent_ssss_blur_cpu(const lucent_image *irradiance, const lucent_image *depth,
-                                   const uint8_t *material, const lucent_ssss_blur_desc *desc,
-                                   lucent_pool *pool, lucent_image *dest);
+lucent_status lucent_ssss_blur_cpu(const lucent_image *irradiance, const lucent_image *depth, const uint8_t *material,
+                                   const lucent_ssss_blur_desc *desc, lucent_pool *pool, lucent_image *dest);
 
 /* The same with the renderer's blur shader on ctx (float32 targets). */
-lucent_status lucent_ssss_blur_gl(lucent_gl_context *ctx, const lucent_image *irradiance,
-                                  const lucent_image *depth, const uint8_t *material,
-                                  const lucent_ssss_blur_desc *desc, lucent_image *dest);
+lucent_status lucent_ssss_blur_gl(lucent_gl_context *ctx, const lucent_image *irradiance, const lucent_image *depth,
+                                  const uint8_t *material, const lucent_ssss_blur_desc *desc, lucent_image *dest);
 
 #ifdef __cplusplus
 }

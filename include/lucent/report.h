@@ -13,14 +13,14 @@ extern "C" {
 
 /* One curve: count points (x[i], y[i]); optional symmetric errors err[i] drawn as a band. */
 typedef struct lucent_plot_series {
-    const char *label;  /* legend text (NULL: not in the legend) */
+    const char *label; /* legend text (NULL: not in the legend) */
     const double *x;
     const double *y;
-    const double *err;  /* NULL: no band */
+    const double *err; /* NULL: no band */
     int count;
-    const char *color;  /* any SVG colour ("#c0392b", "red"); NULL: from the palette */
+    const char *color; /* any SVG colour ("#c0392b", "red"); NULL: from the palette */
     bool dashed;
-    bool markers;       /* draw a small circle at every point */
+    bool markers; /* draw a small circle at every point */
 } lucent_plot_series;
 
 /* One panel (a pair of axes). Zero fields mean "the default". */
@@ -28,7 +28,7 @@ typedef struct lucent_plot_panel {
     const char *title;
     const char *x_label;
     const char *y_label;
-    bool log_y;         /* logarithmic y axis (points with y <= 0 are skipped) */
+    bool log_y;          /* logarithmic y axis (points with y <= 0 are skipped) */
     double x_min, x_max; /* both 0: fit the data */
     double y_min, y_max; /* both 0: fit the data (points outside [x_min, x_max] do not count) */
     const lucent_plot_series *series;
@@ -37,9 +37,9 @@ typedef struct lucent_plot_panel {
 
 /* A figure: panels side by side. */
 typedef struct lucent_plot_desc {
-    const char *title;   /* above all panels (NULL: none) */
-    int panel_width;     /* pixels per panel (0: 480) */
-    int panel_height;    /* pixels (0: 360) */
+    const char *title; /* above all panels (NULL: none) */
+    int panel_width;   /* pixels per panel (0: 480) */
+    int panel_height;  /* pixels (0: 360) */
     const lucent_plot_panel *panels;
     int panel_count;
 } lucent_plot_desc;
@@ -76,11 +76,11 @@ typedef struct lucent_compare_scene {
     const char *reference_image; /* the path tracer's tonemapped PNG */
     int reference_spp;
     double reference_seconds;
-    double reference_noise;      /* the reference's own relative standard error over the object:
+    double reference_noise; /* the reference's own relative standard error over the object:
                                     differences below it are noise, not method error */
-    const char *device;          /* the GL renderer that ran the methods */
-    const char *chart;           /* an SVG of error against frame time (NULL: none) */
-    const char *scene_json;      /* the scene after overrides: what made the images */
+    const char *device;     /* the GL renderer that ran the methods */
+    const char *chart;      /* an SVG of error against frame time (NULL: none) */
+    const char *scene_json; /* the scene after overrides: what made the images */
     const lucent_compare_method *methods;
     int method_count;
 } lucent_compare_scene;

@@ -47,8 +47,8 @@ void lucent_camera_projection(const lucent_camera *cam, double aspect, double de
 /* The primary ray through image point (px, py) of a width x height image (see the image convention
  * above; (x + 0.5, y + 0.5) is the centre of pixel (x, y)): origin is the camera position, dir is
  * unit. The same projection as lucent_camera_projection, so both renderers see the same image. */
-void lucent_camera_ray(const lucent_camera *cam, int width, int height, double px, double py,
-                       double origin[3], double dir[3]);
+void lucent_camera_ray(const lucent_camera *cam, int width, int height, double px, double py, double origin[3],
+                       double dir[3]);
 
 /* ---- Lights -------------------------------------------------------------------------------- */
 
@@ -93,17 +93,17 @@ typedef struct lucent_scene_object {
     double to_world[16];                      /* column-major: mesh units to world mm (scale included) */
     lucent_material material;                 /* the medium inside the mesh */
     lucent_albedo_source albedo_source;
-    double albedo[3];       /* the diffuse colour in use: the material's Rd or the file's colour */
+    double albedo[3];             /* the diffuse colour in use: the material's Rd or the file's colour */
     lucent_image *albedo_texture; /* LUCENT_ALBEDO_TEXTURE: linear RGB; else NULL */
-    double *texcoords;      /* with a texture: 2 per vertex (u, v in [0, 1]), a latitude-longitude
+    double *texcoords;            /* with a texture: 2 per vertex (u, v in [0, 1]), a latitude-longitude
                                projection about the mesh's bounding-box centre in mesh units
                                (scanned meshes carry no UVs); else NULL */
-    double roughness;       /* specular roughness (microfacet alpha) of the boundary, default 0.3 */
-    double specular_f0;     /* normal-incidence Fresnel reflectance, default ((eta-1)/(eta+1))^2 */
-    bool sigma0_set;        /* the file gives sigma0 (CDRF) explicitly */
-    double sigma0[3];       /* mm; meaningful when sigma0_set */
-    double sss_strength;    /* ssss: this object's share of the blur, [0, 1], default 1 (per pixel) */
-    bool visible;           /* default true */
+    double roughness;             /* specular roughness (microfacet alpha) of the boundary, default 0.3 */
+    double specular_f0;           /* normal-incidence Fresnel reflectance, default ((eta-1)/(eta+1))^2 */
+    bool sigma0_set;              /* the file gives sigma0 (CDRF) explicitly */
+    double sigma0[3];             /* mm; meaningful when sigma0_set */
+    double sss_strength;          /* ssss: this object's share of the blur, [0, 1], default 1 (per pixel) */
+    bool visible;                 /* default true */
 } lucent_scene_object;
 
 /* ---- The scene --------------------------------------------------------------------------------- */
@@ -118,7 +118,7 @@ typedef struct lucent_scene {
     int object_count;
     lucent_scene_object *objects;
     lucent_render_settings render; /* the "render" object (lucent/settings.h) */
-    char *json; /* the scene after overrides, as JSON text: what made an image */
+    char *json;                    /* the scene after overrides, as JSON text: what made an image */
 } lucent_scene;
 
 /* How to load a scene; a zero field means the default. */

@@ -65,14 +65,14 @@ typedef struct lucent_view_settings {
 } lucent_view_settings;
 
 typedef struct lucent_ssss_settings {
-    int kernel;                       /* a lucent_kernel_model (lucent/kernel.h) */
-    int rank;                         /* passes of the separable model (svd, sog) */
-    int taps;                         /* per 1-D pass, odd */
-    char profile[32];                 /* the profile the kernel is built from: dipole, better-dipole,
+    int kernel;         /* a lucent_kernel_model (lucent/kernel.h) */
+    int rank;           /* passes of the separable model (svd, sog) */
+    int taps;           /* per 1-D pass, odd */
+    char profile[32];   /* the profile the kernel is built from: dipole, better-dipole,
                                          burley, mc */
-    double strength;                  /* blend of blurred and unblurred diffuse, times each object's
+    double strength;    /* blend of blurred and unblurred diffuse, times each object's
                                          sss_strength */
-    double width_scale;               /* an artist's multiplier on the physical kernel width */
+    double width_scale; /* an artist's multiplier on the physical kernel width */
     lucent_depth_filter depth_filter;
 } lucent_ssss_settings;
 
@@ -91,7 +91,7 @@ typedef struct lucent_cdrf_settings {
 } lucent_cdrf_settings;
 
 typedef struct lucent_trace_settings {
-    int spp;           /* samples per pixel */
+    int spp; /* samples per pixel */
     uint64_t seed;
     int max_bounces;   /* surface events per path */
     int max_scatter;   /* volume scattering events per path */
@@ -129,15 +129,15 @@ enum {
 typedef struct lucent_setting {
     const char *key; /* in scene files, under "render" */
     lucent_setting_type type;
-    size_t offset, size; /* of the member in lucent_render_settings */
-    double def, lo, hi;  /* numbers: default and inclusive range (COLOR: each channel) */
+    size_t offset, size;  /* of the member in lucent_render_settings */
+    double def, lo, hi;   /* numbers: default and inclusive range (COLOR: each channel) */
     const char *def_text; /* CHOICE, TEXT: the default's name */
     /* CHOICE, TEXT: the i-th name, NULL past the last. */
     const char *(*choice)(int index);
     /* Optional: reads text into the member (and related members, e.g. "ssss:svd3" sets the method,
      * the kernel and its rank); replaces the plain reader of the type. */
     lucent_status (*parse)(const char *text, lucent_render_settings *dest);
-    unsigned flags; /* LUCENT_SETTING_ODD */
+    unsigned flags;  /* LUCENT_SETTING_ODD */
     const char *doc; /* one line */
 } lucent_setting;
 
@@ -161,8 +161,7 @@ const lucent_setting *lucent_setting_find(const char *key, const lucent_settings
 lucent_status lucent_setting_set(lucent_render_settings *s, const lucent_setting *setting, const char *text);
 
 /* Writes the value of one setting as text (the form lucent_setting_set reads back). */
-void lucent_setting_format(const lucent_render_settings *s, const lucent_setting *setting, char *dest,
-                           size_t size);
+void lucent_setting_format(const lucent_render_settings *s, const lucent_setting *setting, char *dest, size_t size);
 
 /* Checks every setting of s against the table; the message names the first bad one:
  * "render settings: taps: must be odd (a centre tap and pairs), got 16". */
@@ -170,8 +169,8 @@ lucent_status lucent_render_settings_check(const lucent_render_settings *s);
 
 /* The settings of `group` as "key value, key value" text (compare's method descriptions); keys
  * listed in `skip` (NULL-terminated, may be NULL) are left out. */
-void lucent_settings_describe(const lucent_render_settings *s, const char *group, const char *const *skip,
-                              char *dest, size_t size);
+void lucent_settings_describe(const lucent_render_settings *s, const char *group, const char *const *skip, char *dest,
+                              size_t size);
 
 /* A listing of every group and setting (key, default, range or names, doc) for `--help`;
  * markdown: a Markdown table per group instead of plain text. Free *dest with free(). */
@@ -193,8 +192,7 @@ void lucent_render_method_describe(const lucent_render_settings *s, char *dest, 
  * one (e.g. "ssss:svd3" for the svd kernel of rank 3, "ssss:preint"); the variant sets the method's
  * own settings in s (s may be NULL to check only). Fails with LUCENT_ERR_INVALID_ARGUMENT listing
  * the methods. */
-lucent_status lucent_render_method_parse(const char *text, lucent_render_method *method,
-                                         lucent_render_settings *s);
+lucent_status lucent_render_method_parse(const char *text, lucent_render_method *method, lucent_render_settings *s);
 
 #ifdef __cplusplus
 }

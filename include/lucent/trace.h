@@ -58,8 +58,7 @@ typedef struct lucent_tracer_desc {
  * (directional with angular_radius 0, or point) could reach an object's medium only through a smooth
  * boundary (roughness 0, eta != 1): a path tracer cannot converge on that light's share. desc may be
  * NULL. On failure *dest is NULL. */
-lucent_status lucent_tracer_create(const lucent_scene *scene, const lucent_tracer_desc *desc,
-                                   lucent_tracer **dest);
+lucent_status lucent_tracer_create(const lucent_scene *scene, const lucent_tracer_desc *desc, lucent_tracer **dest);
 
 /* Destroys a tracer (NULL is accepted). */
 void lucent_tracer_destroy(lucent_tracer *tracer);
@@ -97,18 +96,17 @@ typedef struct lucent_trace_result {
     uint64_t spp;           /* passes in the estimate (all calls): samples per pixel, unless adaptive */
     uint64_t samples;       /* camera samples in the image (all pixels; adaptive: the pilot's not counted) */
     uint64_t seed;
-    double seconds;         /* rendering time of the estimate (all calls), wall clock */
+    double seconds;            /* rendering time of the estimate (all calls), wall clock */
     double samples_per_second; /* camera paths per second over the estimate */
     lucent_trace_error error;
-    uint64_t truncated;     /* paths ended by max_bounces / max_scatter */
-    uint64_t escaped;       /* paths that left a medium through a hole in its mesh */
-    uint64_t nonfinite;     /* contributions dropped because they were not finite (expect 0) */
+    uint64_t truncated; /* paths ended by max_bounces / max_scatter */
+    uint64_t escaped;   /* paths that left a medium through a hole in its mesh */
+    uint64_t nonfinite; /* contributions dropped because they were not finite (expect 0) */
 } lucent_trace_result;
 
 /* Adds samples to the tracer's estimate and returns the whole estimate so far (new images, freed
  * with lucent_trace_result_free). Progress goes to lucent_progress. */
-lucent_status lucent_tracer_render(lucent_tracer *tracer, const lucent_trace_desc *desc,
-                                   lucent_trace_result *dest);
+lucent_status lucent_tracer_render(lucent_tracer *tracer, const lucent_trace_desc *desc, lucent_trace_result *dest);
 
 /* Frees the images of a result (and zeroes it). */
 void lucent_trace_result_free(lucent_trace_result *result);

@@ -131,13 +131,15 @@ static lucent_status bake_transmittance(const lucent_material *m, const lucent_b
 {
     lucent_transmittance_model model = d->settings->translucency.transmittance;
     char key[LUCENT_BAKE_KEY_SIZE];
-    snprintf(key, sizeof key, "%s%s%.64s", lucent_transmittance_name(model), model == LUCENT_TRANSMIT_PROFILE ? " " : "",
-             model == LUCENT_TRANSMIT_PROFILE ? b->profile_key : "");
+    snprintf(key, sizeof key, "%s%s%.64s", lucent_transmittance_name(model),
+             model == LUCENT_TRANSMIT_PROFILE ? " " : "", model == LUCENT_TRANSMIT_PROFILE ? b->profile_key : "");
     if ((b->have & LUCENT_BAKE_TRANSMITTANCE) && !strcmp(key, b->transmit_key)) return LUCENT_OK;
     b->have &= ~(unsigned)LUCENT_BAKE_TRANSMITTANCE, b->transmit_key[0] = '\0', b->transmit_range = 0;
     lucent_status s = LUCENT_OK;
-    if (model == LUCENT_TRANSMIT_SLAB) s = table_from_slab(m, d, cache, b);
-    else table_from_profile(b->profile, b);
+    if (model == LUCENT_TRANSMIT_SLAB)
+        s = table_from_slab(m, d, cache, b);
+    else
+        table_from_profile(b->profile, b);
     if (s != LUCENT_OK) return s;
     snprintf(b->transmit_key, sizeof b->transmit_key, "%s", key);
     b->have |= LUCENT_BAKE_TRANSMITTANCE;
@@ -146,8 +148,7 @@ static lucent_status bake_transmittance(const lucent_material *m, const lucent_b
 
 /* ---- sigma0 (Kubo Fig. 6: Monte Carlo spheres of the material, fitted) ---- */
 
-static void sigma0_cache_key(const lucent_material *m, lucent_cdrf_variant v, uint64_t photons, char *dest,
-                             size_t size)
+static void sigma0_cache_key(const lucent_material *m, lucent_cdrf_variant v, uint64_t photons, char *dest, size_t size)
 {
     static const double radii[LUCENT_CDRF_FIT_RADIUS_COUNT] = LUCENT_CDRF_FIT_RADII;
     char mat[512], list[128] = "";
@@ -170,16 +171,20 @@ static lucent_status bake_sigma0(const lucent_material *m, const lucent_bake_des
     if (!b->sigma0_cached) {
         double t0 = lucent_clock_seconds();
         lucent_cdrf_fit fit;
-        lucent_cdrf_material_fit_desc fd = {.material = m, .variant = v, .photons = d->sigma0_photons,
-                                            .bins = LUCENT_BAKE_SIGMA0_BINS, .seed = 1, .pool = d->pool,
+        lucent_cdrf_material_fit_desc fd = {.material = m,
+                                            .variant = v,
+                                            .photons = d->sigma0_photons,
+                                            .bins = LUCENT_BAKE_SIGMA0_BINS,
+                                            .seed = 1,
+                                            .pool = d->pool,
                                             .label = "CDRF sigma0 fit"};
         lucent_status s = lucent_cdrf_fit_material(&fd, &fit, NULL);
         if (s != LUCENT_OK) return s;
         memcpy(b->sigma0, fit.sigma0, sizeof b->sigma0);
         lucent_log(LUCENT_LOG_INFO, "sigma0 of %s (%s): %.3g %.3g %.3g mm, fitted in %.1f s", m->name,
                    lucent_cdrf_variant_name(v), b->sigma0[0], b->sigma0[1], b->sigma0[2], lucent_clock_seconds() - t0);
-        lucent_cache_field f[4] = {{"sigma0_mm", fit.sigma0, 3}, {"kd", fit.kd, 3}, {"rms", fit.rms, 3},
-                                   {"lambert_rms", fit.lambert_rms, 3}};
+        lucent_cache_field f[4] = {
+            {"sigma0_mm", fit.sigma0, 3}, {"kd", fit.kd, 3}, {"rms", fit.rms, 3}, {"lambert_rms", fit.lambert_rms, 3}};
         lucent_cache_put(cache, "sigma0", key, f, 4);
     }
     snprintf(b->sigma0_key, sizeof b->sigma0_key, "%s", lucent_cdrf_variant_name(v));

@@ -23,10 +23,7 @@ lucent_status lucent_cache_create(const char *dir, lucent_cache **dest)
     return LUCENT_OK;
 }
 
-void lucent_cache_destroy(lucent_cache *cache)
-{
-    free(cache);
-}
+void lucent_cache_destroy(lucent_cache *cache) { free(cache); }
 
 /* FNV-1a, 64 bits: the cache file's name. */
 static uint64_t hash(const char *text)
@@ -76,10 +73,13 @@ void lucent_cache_put(lucent_cache *cache, const char *prefix, const char *key, 
     if (!cache) return;
     cJSON *json = cJSON_CreateObject();
     bool ok = json != NULL;
-    for (int i = 0; ok && i < count; i++) ok = lucent_json_add_numbers(json, fields[i].name, fields[i].values, fields[i].count);
+    for (int i = 0; ok && i < count; i++)
+        ok = lucent_json_add_numbers(json, fields[i].name, fields[i].values, fields[i].count);
     ok = ok && cJSON_AddStringToObject(json, "key", key);
     entry_path(cache, prefix, key, path, sizeof path);
-    if (ok) write_entry(cache, path, json);
-    else lucent_log(LUCENT_LOG_WARN, "cache: out of memory writing %s", path);
+    if (ok)
+        write_entry(cache, path, json);
+    else
+        lucent_log(LUCENT_LOG_WARN, "cache: out of memory writing %s", path);
     cJSON_Delete(json);
 }

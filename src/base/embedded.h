@@ -5,7 +5,7 @@
 #include <stddef.h>
 
 typedef struct lucent_embedded_file {
-    const char *name; /* path relative to the source tree: "data/materials.json" */
+    const char *name;          /* path relative to the source tree: "data/materials.json" */
     const unsigned char *data; /* NUL-terminated */
     size_t size;               /* without the terminating NUL */
 } lucent_embedded_file;

@@ -47,22 +47,16 @@ lucent_status lucent_error_context(lucent_status status, const char *fmt, ...)
     if (n < 0) n = 0;
     char old[ERROR_MESSAGE_MAX];
     memcpy(old, t_message, sizeof old);
-    if (snprintf(t_message, sizeof t_message, "%s: %s", prefix,
-                 old[0] ? old : lucent_status_string(status)) >= (int)sizeof t_message)
+    if (snprintf(t_message, sizeof t_message, "%s: %s", prefix, old[0] ? old : lucent_status_string(status)) >=
+        (int)sizeof t_message)
         strcpy(t_message + sizeof t_message - 4, "..."); /* truncated: say so */
     t_status = status;
     return status;
 }
 
-const char *lucent_last_error(void)
-{
-    return t_message;
-}
+const char *lucent_last_error(void) { return t_message; }
 
-lucent_status lucent_last_status(void)
-{
-    return t_status;
-}
+lucent_status lucent_last_status(void) { return t_status; }
 
 void lucent_clear_error(void)
 {

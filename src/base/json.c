@@ -10,8 +10,10 @@ static void location(const char *text, const char *at, int *line, int *column)
     *line = 1;
     *column = 1;
     for (const char *p = text; p < at && *p; p++) {
-        if (*p == '\n') (*line)++, *column = 1;
-        else (*column)++;
+        if (*p == '\n')
+            (*line)++, *column = 1;
+        else
+            (*column)++;
     }
 }
 
@@ -45,19 +47,17 @@ lucent_status lucent_json_parse_text(const char *text, const char *name, cJSON *
     char field[64], in_field[80] = "";
     field_before(text, end, field, sizeof field);
     if (field[0]) snprintf(in_field, sizeof in_field, " (in field \"%.60s\")", field);
-    if (!*end)
-        return lucent_error(LUCENT_ERR_PARSE, "%s: line %d: invalid JSON: unexpected end of file", name,
-                            line);
+    if (!*end) return lucent_error(LUCENT_ERR_PARSE, "%s: line %d: invalid JSON: unexpected end of file", name, line);
     char near[16];
     size_t n = 0;
     while (n < sizeof near - 1 && end[n] && end[n] != '\n' && end[n] != '\r') near[n] = end[n], n++;
     near[n] = '\0';
-    const char *why = (strncmp(end, "NaN", 3) == 0 || strncmp(end, "Inf", 3) == 0 ||
-                       strncmp(end, "-Inf", 4) == 0 || strncmp(end, "nan", 3) == 0)
+    const char *why = (strncmp(end, "NaN", 3) == 0 || strncmp(end, "Inf", 3) == 0 || strncmp(end, "-Inf", 4) == 0 ||
+                       strncmp(end, "nan", 3) == 0)
                           ? "not a number JSON allows"
                           : "invalid JSON";
-    return lucent_error(LUCENT_ERR_PARSE, "%s: line %d, column %d%s: %s near '%s'", name, line,
-                        column, in_field, why, near);
+    return lucent_error(LUCENT_ERR_PARSE, "%s: line %d, column %d%s: %s near '%s'", name, line, column, in_field, why,
+                        near);
 }
 
 lucent_status lucent_json_parse_file(const char *file, cJSON **dest)
@@ -67,8 +67,10 @@ lucent_status lucent_json_parse_file(const char *file, cJSON **dest)
     *dest = NULL;
     lucent_status s = lucent_read_file(file, &text, &size);
     if (s != LUCENT_OK) return s;
-    if (strlen(text) != size) s = lucent_error(LUCENT_ERR_PARSE, "%s: invalid JSON: contains a NUL byte", file);
-    else s = lucent_json_parse_text(text, file, dest);
+    if (strlen(text) != size)
+        s = lucent_error(LUCENT_ERR_PARSE, "%s: invalid JSON: contains a NUL byte", file);
+    else
+        s = lucent_json_parse_text(text, file, dest);
     free(text);
     return s;
 }
@@ -83,14 +85,16 @@ lucent_json_node lucent_json_root(const cJSON *json, const char *file, const cha
 static void child_path(const lucent_json_node *n, const char *key, char *dest, size_t size)
 {
     int len;
-    if (!key) len = snprintf(dest, size, "%s", n->path);
-    else if (n->path[0]) len = snprintf(dest, size, "%s.%s", n->path, key);
-    else len = snprintf(dest, size, "%s", key);
+    if (!key)
+        len = snprintf(dest, size, "%s", n->path);
+    else if (n->path[0])
+        len = snprintf(dest, size, "%s.%s", n->path, key);
+    else
+        len = snprintf(dest, size, "%s", key);
     if (len >= (int)size) memcpy(dest + size - 4, "...", 4); /* absurdly deep: shortened */
 }
 
-lucent_status lucent_json_fail(const lucent_json_node *n, const char *key, lucent_status status,
-                               const char *fmt, ...)
+lucent_status lucent_json_fail(const lucent_json_node *n, const char *key, lucent_status status, const char *fmt, ...)
 {
     char where[sizeof n->path + 64], what[1024];
     child_path(n, key, where, sizeof where);
@@ -119,12 +123,10 @@ bool lucent_json_has(const lucent_json_node *n, const char *key)
     return cJSON_IsObject(n->json) && cJSON_GetObjectItemCaseSensitive(n->json, key) != NULL;
 }
 
-lucent_status lucent_json_member(const lucent_json_node *n, const char *key, bool required,
-                                 lucent_json_node *dest)
+lucent_status lucent_json_member(const lucent_json_node *n, const char *key, bool required, lucent_json_node *dest)
 {
     if (!cJSON_IsObject(n->json))
-        return lucent_json_fail(n, NULL, LUCENT_ERR_PARSE, "expected an object, got %s",
-                                type_name(n->json));
+        return lucent_json_fail(n, NULL, LUCENT_ERR_PARSE, "expected an object, got %s", type_name(n->json));
     *dest = (lucent_json_node){.json = cJSON_GetObjectItemCaseSensitive(n->json, key), .file = n->file};
     child_path(n, key, dest->path, sizeof dest->path);
     if (!dest->json && required) return lucent_json_fail(n, key, LUCENT_ERR_PARSE, "missing field");
@@ -132,23 +134,20 @@ lucent_status lucent_json_member(const lucent_json_node *n, const char *key, boo
 }
 
 static lucent_status member_of_type(const lucent_json_node *n, const char *key, bool required,
-                                    cJSON_bool (*is)(const cJSON *), const char *want,
-                                    lucent_json_node *dest)
+                                    cJSON_bool (*is)(const cJSON *), const char *want, lucent_json_node *dest)
 {
     lucent_status s = lucent_json_member(n, key, required, dest);
     if (s != LUCENT_OK || !dest->json || is(dest->json)) return s;
-    return lucent_json_fail(dest, NULL, LUCENT_ERR_PARSE, "expected %s, got %s", want,
-                            type_name(dest->json));
+    return lucent_json_fail(dest, NULL, LUCENT_ERR_PARSE, "expected %s, got %s", want, type_name(dest->json));
 }
 
-lucent_status lucent_json_object(const lucent_json_node *n, const char *key, bool required,
-                                 lucent_json_node *dest)
+lucent_status lucent_json_object(const lucent_json_node *n, const char *key, bool required, lucent_json_node *dest)
 {
     return member_of_type(n, key, required, cJSON_IsObject, "an object", dest);
 }
 
-lucent_status lucent_json_array(const lucent_json_node *n, const char *key, bool required,
-                                lucent_json_node *dest, int *count)
+lucent_status lucent_json_array(const lucent_json_node *n, const char *key, bool required, lucent_json_node *dest,
+                                int *count)
 {
     lucent_status s = member_of_type(n, key, required, cJSON_IsArray, "an array", dest);
     *count = (s == LUCENT_OK && dest->json) ? cJSON_GetArraySize(dest->json) : 0;
@@ -168,8 +167,7 @@ lucent_status lucent_json_element(const lucent_json_node *n, int index, lucent_j
 static lucent_status finite_number(const lucent_json_node *n, double *dest)
 {
     if (!cJSON_IsNumber(n->json))
-        return lucent_json_fail(n, NULL, LUCENT_ERR_PARSE, "expected a number, got %s",
-                                type_name(n->json));
+        return lucent_json_fail(n, NULL, LUCENT_ERR_PARSE, "expected a number, got %s", type_name(n->json));
     double v = n->json->valuedouble;
     if (!isfinite(v)) return lucent_json_fail(n, NULL, LUCENT_ERR_PARSE, "expected a finite number");
     *dest = v;
@@ -183,8 +181,7 @@ lucent_status lucent_json_number(const lucent_json_node *n, const char *key, dou
     return s != LUCENT_OK ? s : finite_number(&m, dest);
 }
 
-lucent_status lucent_json_number_or(const lucent_json_node *n, const char *key, double def,
-                                    double *dest)
+lucent_status lucent_json_number_or(const lucent_json_node *n, const char *key, double def, double *dest)
 {
     lucent_json_node m;
     lucent_status s = lucent_json_member(n, key, false, &m);
@@ -196,8 +193,8 @@ lucent_status lucent_json_number_or(const lucent_json_node *n, const char *key, 
     return finite_number(&m, dest);
 }
 
-lucent_status lucent_json_numbers(const lucent_json_node *n, const char *key, int count,
-                                  bool allow_scalar, double *dest)
+lucent_status lucent_json_numbers(const lucent_json_node *n, const char *key, int count, bool allow_scalar,
+                                  double *dest)
 {
     lucent_json_node m;
     lucent_status s = lucent_json_member(n, key, true, &m);
@@ -220,8 +217,7 @@ lucent_status lucent_json_numbers(const lucent_json_node *n, const char *key, in
     return LUCENT_OK;
 }
 
-lucent_status lucent_json_string_or(const lucent_json_node *n, const char *key, const char *def,
-                                    const char **dest)
+lucent_status lucent_json_string_or(const lucent_json_node *n, const char *key, const char *def, const char **dest)
 {
     lucent_json_node m;
     lucent_status s = member_of_type(n, key, def == NULL, cJSON_IsString, "a string", &m);
@@ -254,8 +250,7 @@ static bool in_list(const char *name, const char *const *list)
 lucent_status lucent_json_check_keys(const lucent_json_node *n, const char *const *known)
 {
     if (!cJSON_IsObject(n->json))
-        return lucent_json_fail(n, NULL, LUCENT_ERR_PARSE, "expected an object, got %s",
-                                type_name(n->json));
+        return lucent_json_fail(n, NULL, LUCENT_ERR_PARSE, "expected an object, got %s", type_name(n->json));
     for (const cJSON *c = n->json->child; c; c = c->next) {
         if (!in_list(c->string, known)) {
             char list[512] = "";

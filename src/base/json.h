@@ -26,23 +26,21 @@ lucent_json_node lucent_json_root(const cJSON *json, const char *file, const cha
 
 /* Sets an error at n's path (or at n's path + "." + key when key is non-NULL):
  * "<file>: <path>: <message>". Returns status. */
-lucent_status lucent_json_fail(const lucent_json_node *n, const char *key, lucent_status status,
-                               const char *fmt, ...) LUCENT_PRINTF(4, 5);
+lucent_status lucent_json_fail(const lucent_json_node *n, const char *key, lucent_status status, const char *fmt, ...)
+    LUCENT_PRINTF(4, 5);
 
 /* True when n is an object that has member key. */
 bool lucent_json_has(const lucent_json_node *n, const char *key);
 
 /* Fills dest with member key of object n (dest->json is NULL when absent and not required). */
-lucent_status lucent_json_member(const lucent_json_node *n, const char *key, bool required,
-                                 lucent_json_node *dest);
+lucent_status lucent_json_member(const lucent_json_node *n, const char *key, bool required, lucent_json_node *dest);
 
 /* Fills dest with member key, which must be an object (absent is an error when required). */
-lucent_status lucent_json_object(const lucent_json_node *n, const char *key, bool required,
-                                 lucent_json_node *dest);
+lucent_status lucent_json_object(const lucent_json_node *n, const char *key, bool required, lucent_json_node *dest);
 
 /* Fills dest with member key, which must be an array; *count receives its length (0 if absent). */
-lucent_status lucent_json_array(const lucent_json_node *n, const char *key, bool required,
-                                lucent_json_node *dest, int *count);
+lucent_status lucent_json_array(const lucent_json_node *n, const char *key, bool required, lucent_json_node *dest,
+                                int *count);
 
 /* Fills dest with element index of array n. */
 lucent_status lucent_json_element(const lucent_json_node *n, int index, lucent_json_node *dest);
@@ -51,19 +49,17 @@ lucent_status lucent_json_element(const lucent_json_node *n, int index, lucent_j
 lucent_status lucent_json_number(const lucent_json_node *n, const char *key, double *dest);
 
 /* Reads an optional finite number; *dest = def when absent. */
-lucent_status lucent_json_number_or(const lucent_json_node *n, const char *key, double def,
-                                    double *dest);
+lucent_status lucent_json_number_or(const lucent_json_node *n, const char *key, double def, double *dest);
 
 /* Reads exactly `count` finite numbers (an array), or, when allow_scalar, one number repeated. */
-lucent_status lucent_json_numbers(const lucent_json_node *n, const char *key, int count,
-                                  bool allow_scalar, double *dest);
+lucent_status lucent_json_numbers(const lucent_json_node *n, const char *key, int count, bool allow_scalar,
+                                  double *dest);
 
 /* Reads a required string (pointer into the document). */
 lucent_status lucent_json_string(const lucent_json_node *n, const char *key, const char **dest);
 
 /* Reads an optional string; *dest = def when absent. */
-lucent_status lucent_json_string_or(const lucent_json_node *n, const char *key, const char *def,
-                                    const char **dest);
+lucent_status lucent_json_string_or(const lucent_json_node *n, const char *key, const char *def, const char **dest);
 
 /* Reads an optional boolean; *dest = def when absent. */
 lucent_status lucent_json_bool_or(const lucent_json_node *n, const char *key, bool def, bool *dest);

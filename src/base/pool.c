@@ -149,10 +149,7 @@ void lucent_pool_destroy(lucent_pool *pool)
     free(pool);
 }
 
-int lucent_pool_threads(const lucent_pool *pool)
-{
-    return pool ? pool->threads : 1;
-}
+int lucent_pool_threads(const lucent_pool *pool) { return pool ? pool->threads : 1; }
 
 /* Hands the job to the workers, works on it too, and waits for them. */
 static void run_on_pool(lucent_pool *pool, pool_job *job)
@@ -172,8 +169,7 @@ static void run_on_pool(lucent_pool *pool, pool_job *job)
     pthread_mutex_unlock(&pool->call_lock);
 }
 
-lucent_status lucent_parallel_for(lucent_pool *pool, uint64_t count, uint64_t chunk_size,
-                                  lucent_chunk_fn fn, void *ctx)
+lucent_status lucent_parallel_for(lucent_pool *pool, uint64_t count, uint64_t chunk_size, lucent_chunk_fn fn, void *ctx)
 {
     if (!fn || chunk_size == 0)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "parallel_for: no function or zero chunk size");

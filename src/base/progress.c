@@ -18,10 +18,7 @@ struct lucent_progress {
 
 static FILE *_Atomic g_progress_out;
 
-void lucent_progress_set_output(FILE *out)
-{
-    atomic_store(&g_progress_out, out);
-}
+void lucent_progress_set_output(FILE *out) { atomic_store(&g_progress_out, out); }
 
 lucent_progress *lucent_progress_begin(const char *label, uint64_t total)
 {
@@ -68,10 +65,9 @@ static void draw(lucent_progress *p, FILE *out, bool final)
     for (int i = 0; i < 30; i++) bar[i] = i < fill ? '#' : '.';
     bar[30] = '\0';
     format_rate(rate, rate_s, sizeof rate_s);
-    format_duration(final ? elapsed : (rate > 0 ? (double)(p->total - done) / rate : -1), time_s,
-                    sizeof time_s);
-    fprintf(out, "\r%-20s [%s] %5.1f%% %8s/s %s %s%s", p->label, bar, 100 * frac, rate_s,
-            final ? "took" : "ETA", time_s, final ? "\n" : "   ");
+    format_duration(final ? elapsed : (rate > 0 ? (double)(p->total - done) / rate : -1), time_s, sizeof time_s);
+    fprintf(out, "\r%-20s [%s] %5.1f%% %8s/s %s %s%s", p->label, bar, 100 * frac, rate_s, final ? "took" : "ETA",
+            time_s, final ? "\n" : "   ");
     fflush(out);
 }
 
@@ -83,17 +79,13 @@ void lucent_progress_add(lucent_progress *p, uint64_t n)
     if (!out) return;
     long long t = (long long)(lucent_clock_seconds() * 1e9);
     long long next = atomic_load(&p->next_draw_ns);
-    if (t < next || !atomic_compare_exchange_strong(&p->next_draw_ns, &next, t + 100000000LL))
-        return;
+    if (t < next || !atomic_compare_exchange_strong(&p->next_draw_ns, &next, t + 100000000LL)) return;
     if (pthread_mutex_trylock(&p->draw_lock) != 0) return;
     draw(p, out, false);
     pthread_mutex_unlock(&p->draw_lock);
 }
 
-uint64_t lucent_progress_done(const lucent_progress *p)
-{
-    return p ? atomic_load(&((lucent_progress *)p)->done) : 0;
-}
+uint64_t lucent_progress_done(const lucent_progress *p) { return p ? atomic_load(&((lucent_progress *)p)->done) : 0; }
 
 void lucent_progress_end(lucent_progress *p)
 {

@@ -28,8 +28,8 @@ void lucent_rng_init(uint64_t seed, uint64_t stream, lucent_rng *dest)
 void lucent_rng_jump(lucent_rng *r)
 {
     /* The jump polynomial for 2^128 steps, as published with xoshiro256. */
-    static const uint64_t jump[4] = {0x180ec6d33cfd0abau, 0xd5a61266f0c9392cu,
-                                     0xa9582618e03fc9aau, 0x39abdc4529b1661cu};
+    static const uint64_t jump[4] = {0x180ec6d33cfd0abau, 0xd5a61266f0c9392cu, 0xa9582618e03fc9aau,
+                                     0x39abdc4529b1661cu};
     uint64_t t[4] = {0, 0, 0, 0};
     for (int i = 0; i < 4; i++) {
         for (int b = 0; b < 64; b++) {

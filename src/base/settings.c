@@ -10,10 +10,7 @@
 
 /* ---- members ---- */
 
-static void *member(lucent_render_settings *s, const lucent_setting *k)
-{
-    return (char *)s + k->offset;
-}
+static void *member(lucent_render_settings *s, const lucent_setting *k) { return (char *)s + k->offset; }
 
 static const void *cmember(const lucent_render_settings *s, const lucent_setting *k)
 {
@@ -41,7 +38,9 @@ static void set_default(lucent_render_settings *s, const lucent_setting *k)
     case LUCENT_SETTING_BOOL: *(bool *)m = k->def != 0; break;
     case LUCENT_SETTING_INT: *(int *)m = (int)k->def; break;
     case LUCENT_SETTING_REAL: *(double *)m = k->def; break;
-    case LUCENT_SETTING_COLOR: for (int c = 0; c < 3; c++) ((double *)m)[c] = k->def; break;
+    case LUCENT_SETTING_COLOR:
+        for (int c = 0; c < 3; c++) ((double *)m)[c] = k->def;
+        break;
     case LUCENT_SETTING_SEED: *(uint64_t *)m = (uint64_t)k->def; break;
     case LUCENT_SETTING_CHOICE: *(int *)m = lucent_settings_choice_index(k->choice, k->def_text); break;
     case LUCENT_SETTING_TEXT: snprintf((char *)m, k->size, "%s", k->def_text); break;
@@ -77,8 +76,10 @@ const lucent_setting *lucent_setting_find(const char *key, const lucent_settings
 
 static void range_text(const lucent_setting *k, char *dest, size_t size)
 {
-    if (isinf(k->hi)) snprintf(dest, size, "must be >= %g", k->lo);
-    else snprintf(dest, size, "must be in [%g, %g]", k->lo, k->hi);
+    if (isinf(k->hi))
+        snprintf(dest, size, "must be >= %g", k->lo);
+    else
+        snprintf(dest, size, "must be in [%g, %g]", k->lo, k->hi);
 }
 
 /* Checks a number read for k; fills why (empty when fine). */
@@ -107,16 +108,20 @@ static void check_name(const lucent_setting *k, const char *text, char *why, siz
 
 /* ---- text in ---- */
 
-static lucent_status set_number(lucent_render_settings *s, const lucent_setting *k, const double *v, int n,
-                                char *why, size_t size)
+static lucent_status set_number(lucent_render_settings *s, const lucent_setting *k, const double *v, int n, char *why,
+                                size_t size)
 {
     void *m = member(s, k);
     for (int i = 0; i < n && !why[0]; i++) check_number(k, v[i], why, size);
     if (why[0]) return LUCENT_ERR_PARSE;
-    if (k->type == LUCENT_SETTING_INT) *(int *)m = (int)v[0];
-    else if (k->type == LUCENT_SETTING_REAL) *(double *)m = v[0];
-    else if (k->type == LUCENT_SETTING_SEED) *(uint64_t *)m = (uint64_t)v[0];
-    else for (int c = 0; c < 3; c++) ((double *)m)[c] = v[n == 3 ? c : 0];
+    if (k->type == LUCENT_SETTING_INT)
+        *(int *)m = (int)v[0];
+    else if (k->type == LUCENT_SETTING_REAL)
+        *(double *)m = v[0];
+    else if (k->type == LUCENT_SETTING_SEED)
+        *(uint64_t *)m = (uint64_t)v[0];
+    else
+        for (int c = 0; c < 3; c++) ((double *)m)[c] = v[n == 3 ? c : 0];
     return LUCENT_OK;
 }
 
@@ -136,8 +141,10 @@ static lucent_status set_text(lucent_render_settings *s, const lucent_setting *k
         if (!why[0] && k->type == LUCENT_SETTING_TEXT && strlen(text) >= k->size)
             snprintf(why, size, "at most %zu characters", k->size - 1);
         if (why[0]) return LUCENT_ERR_PARSE;
-        if (k->type == LUCENT_SETTING_CHOICE) *(int *)m = lucent_settings_choice_index(k->choice, text);
-        else snprintf((char *)m, k->size, "%s", text);
+        if (k->type == LUCENT_SETTING_CHOICE)
+            *(int *)m = lucent_settings_choice_index(k->choice, text);
+        else
+            snprintf((char *)m, k->size, "%s", text);
         return LUCENT_OK;
     }
     if (k->type == LUCENT_SETTING_BOOL) {
@@ -151,14 +158,16 @@ static lucent_status set_text(lucent_render_settings *s, const lucent_setting *k
     for (const char *p = text; n < 3;) {
         char *end;
         v[n++] = strtod(p, &end);
-        if (end == p || !isfinite(v[n - 1])) return snprintf(why, size, "expected a number, got \"%s\"", text), LUCENT_ERR_PARSE;
+        if (end == p || !isfinite(v[n - 1]))
+            return snprintf(why, size, "expected a number, got \"%s\"", text), LUCENT_ERR_PARSE;
         p = end + strspn(end, " ");
         if (*p != ',') break;
         p++;
     }
     if (n != 1 && !(n == 3 && k->type == LUCENT_SETTING_COLOR))
-        return snprintf(why, size, "expected %s, got \"%s\"", k->type == LUCENT_SETTING_COLOR ? "1 or 3 numbers" : "a number",
-                        text), LUCENT_ERR_PARSE;
+        return snprintf(why, size, "expected %s, got \"%s\"",
+                        k->type == LUCENT_SETTING_COLOR ? "1 or 3 numbers" : "a number", text),
+               LUCENT_ERR_PARSE;
     return set_number(s, k, v, n, why, size);
 }
 
@@ -208,9 +217,12 @@ static void check_member(const lucent_render_settings *s, const lucent_setting *
 {
     const void *m = cmember(s, k);
     why[0] = '\0';
-    if (k->type == LUCENT_SETTING_INT) check_number(k, *(const int *)m, why, size);
-    else if (k->type == LUCENT_SETTING_REAL) check_number(k, *(const double *)m, why, size);
-    else if (k->type == LUCENT_SETTING_SEED) check_number(k, (double)*(const uint64_t *)m, why, size);
+    if (k->type == LUCENT_SETTING_INT)
+        check_number(k, *(const int *)m, why, size);
+    else if (k->type == LUCENT_SETTING_REAL)
+        check_number(k, *(const double *)m, why, size);
+    else if (k->type == LUCENT_SETTING_SEED)
+        check_number(k, (double)*(const uint64_t *)m, why, size);
     else if (k->type == LUCENT_SETTING_COLOR)
         for (int c = 0; c < 3 && !why[0]; c++) check_number(k, ((const double *)m)[c], why, size);
     else if (k->type == LUCENT_SETTING_CHOICE && !k->choice(*(const int *)m))
@@ -320,8 +332,8 @@ static bool listed(const char *key, const char *const *skip)
     return false;
 }
 
-void lucent_settings_describe(const lucent_render_settings *s, const char *group, const char *const *skip,
-                              char *dest, size_t size)
+void lucent_settings_describe(const lucent_render_settings *s, const char *group, const char *const *skip, char *dest,
+                              size_t size)
 {
     dest[0] = '\0';
     for (int g = 0; g < lucent_settings_group_count(); g++) {
@@ -353,7 +365,8 @@ static void default_and_range(const lucent_setting *k, char *dest, size_t size)
         if (k->type == LUCENT_SETTING_TEXT) snprintf(dest, size, "%s | text", value);
     } else {
         char range[96];
-        isinf(k->hi) ? snprintf(range, sizeof range, ">= %g", k->lo) : snprintf(range, sizeof range, "%g .. %g", k->lo, k->hi);
+        isinf(k->hi) ? snprintf(range, sizeof range, ">= %g", k->lo)
+                     : snprintf(range, sizeof range, "%g .. %g", k->lo, k->hi);
         snprintf(dest, size, "%s | %s%s", value, range, (k->flags & LUCENT_SETTING_ODD) ? ", odd" : "");
     }
 }
@@ -363,16 +376,21 @@ lucent_status lucent_settings_help(bool markdown, char **dest)
     lucent_strbuf b = {0};
     for (int g = 0; g < lucent_settings_group_count(); g++) {
         const lucent_settings_group *grp = lucent_settings_group_get(g);
-        if (markdown) lucent_strbuf_printf(&b, "%s**%s**: %s\n\n| key | default | values | meaning |\n|---|---|---|---|\n", g ? "\n" : "", grp->name, grp->doc);
-        else lucent_strbuf_printf(&b, "%s%s: %s\n", g ? "\n" : "", grp->name, grp->doc);
+        if (markdown)
+            lucent_strbuf_printf(&b, "%s**%s**: %s\n\n| key | default | values | meaning |\n|---|---|---|---|\n",
+                                 g ? "\n" : "", grp->name, grp->doc);
+        else
+            lucent_strbuf_printf(&b, "%s%s: %s\n", g ? "\n" : "", grp->name, grp->doc);
         for (int i = 0; i < grp->count; i++) {
             const lucent_setting *k = &grp->settings[i];
             char dr[400];
             default_and_range(k, dr, sizeof dr);
             char *bar = strstr(dr, " | ");
             *bar = '\0';
-            if (markdown) lucent_strbuf_printf(&b, "| `%s` | %s | %s | %s |\n", k->key, dr, bar + 3, k->doc);
-            else lucent_strbuf_printf(&b, "  %-24s %s\n  %-24s default %s; %s\n", k->key, k->doc, "", dr, bar + 3);
+            if (markdown)
+                lucent_strbuf_printf(&b, "| `%s` | %s | %s | %s |\n", k->key, dr, bar + 3, k->doc);
+            else
+                lucent_strbuf_printf(&b, "  %-24s %s\n  %-24s default %s; %s\n", k->key, k->doc, "", dr, bar + 3);
         }
     }
     return lucent_strbuf_finish(&b, dest);

@@ -20,48 +20,66 @@
 #define SETTING_MEMBER_(member) (((lucent_render_settings *)0)->member)
 /* 0, or a compile error when cond is false. */
 #define SETTING_ASSERT_(cond) (0 * sizeof(char[(cond) ? 1 : -1]))
-#define SETTING_AT_(member, cond) \
+#define SETTING_AT_(member, cond)                                                                                      \
     .offset = offsetof(lucent_render_settings, member) + SETTING_ASSERT_(cond), .size = sizeof SETTING_MEMBER_(member)
 
-#define SETTING_BOOL(key_, member, def_, doc_)                                                                 \
-    {.key = key_, .type = LUCENT_SETTING_BOOL, SETTING_AT_(member, _Generic(SETTING_MEMBER_(member), bool : 1, \
-                                                                             default : 0)),                   \
-     .def = (def_) ? 1 : 0, .doc = doc_}
-#define SETTING_INT(key_, member, def_, lo_, hi_, flags_, doc_)                                                      \
-    {.key = key_, .type = LUCENT_SETTING_INT, SETTING_AT_(member, _Generic(SETTING_MEMBER_(member), int : 1, default \
-                                                                            : 0)),                                   \
-     .def = def_, .lo = lo_, .hi = hi_, .flags = flags_, .doc = doc_}
-#define SETTING_REAL(key_, member, def_, lo_, hi_, doc_)                                                            \
-    {.key = key_, .type = LUCENT_SETTING_REAL, SETTING_AT_(member, _Generic(SETTING_MEMBER_(member), double : 1, \
-                                                                             default : 0)),                     \
-     .def = def_, .lo = lo_, .hi = hi_, .doc = doc_}
-#define SETTING_COLOR(key_, member, def_, lo_, hi_, doc_)                                                             \
-    {.key = key_, .type = LUCENT_SETTING_COLOR,                                                                       \
-     SETTING_AT_(member, _Generic(SETTING_MEMBER_(member), double * : 1, default : 0) &&                             \
-                             sizeof SETTING_MEMBER_(member) == 3 * sizeof(double)),                                   \
-     .def = def_, .lo = lo_, .hi = hi_, .doc = doc_}
-#define SETTING_SEED(key_, member, def_, lo_, hi_, doc_)                                                              \
-    {.key = key_, .type = LUCENT_SETTING_SEED, SETTING_AT_(member, _Generic(SETTING_MEMBER_(member), uint64_t : 1, \
-                                                                             default : 0)),                           \
-     .def = def_, .lo = lo_, .hi = hi_, .doc = doc_}
+#define SETTING_BOOL(key_, member, def_, doc_)                                                                         \
+    {                                                                                                                  \
+        .key = key_, .type = LUCENT_SETTING_BOOL,                                                                      \
+        SETTING_AT_(member, _Generic(SETTING_MEMBER_(member), bool : 1, default : 0)), .def = (def_) ? 1 : 0,          \
+        .doc = doc_                                                                                                    \
+    }
+#define SETTING_INT(key_, member, def_, lo_, hi_, flags_, doc_)                                                        \
+    {                                                                                                                  \
+        .key = key_, .type = LUCENT_SETTING_INT,                                                                       \
+        SETTING_AT_(member, _Generic(SETTING_MEMBER_(member), int : 1, default : 0)), .def = def_, .lo = lo_,          \
+        .hi = hi_, .flags = flags_, .doc = doc_                                                                        \
+    }
+#define SETTING_REAL(key_, member, def_, lo_, hi_, doc_)                                                               \
+    {                                                                                                                  \
+        .key = key_, .type = LUCENT_SETTING_REAL,                                                                      \
+        SETTING_AT_(member, _Generic(SETTING_MEMBER_(member), double : 1, default : 0)), .def = def_, .lo = lo_,       \
+        .hi = hi_, .doc = doc_                                                                                         \
+    }
+#define SETTING_COLOR(key_, member, def_, lo_, hi_, doc_)                                                              \
+    {                                                                                                                  \
+        .key = key_, .type = LUCENT_SETTING_COLOR,                                                                     \
+        SETTING_AT_(member, _Generic(SETTING_MEMBER_(member), double * : 1, default : 0) &&                            \
+                                sizeof SETTING_MEMBER_(member) == 3 * sizeof(double)),                                 \
+        .def = def_, .lo = lo_, .hi = hi_, .doc = doc_                                                                 \
+    }
+#define SETTING_SEED(key_, member, def_, lo_, hi_, doc_)                                                               \
+    {                                                                                                                  \
+        .key = key_, .type = LUCENT_SETTING_SEED,                                                                      \
+        SETTING_AT_(member, _Generic(SETTING_MEMBER_(member), uint64_t : 1, default : 0)), .def = def_, .lo = lo_,     \
+        .hi = hi_, .doc = doc_                                                                                         \
+    }
 /* An enum member (stored as int): its names from choice(i). */
-#define SETTING_CHOICE(key_, member, def_, choice_, doc_)                                                 \
-    {.key = key_, .type = LUCENT_SETTING_CHOICE, SETTING_AT_(member, sizeof SETTING_MEMBER_(member) == sizeof(int)), \
-     .def_text = def_, .choice = choice_, .doc = doc_}
+#define SETTING_CHOICE(key_, member, def_, choice_, doc_)                                                              \
+    {                                                                                                                  \
+        .key = key_, .type = LUCENT_SETTING_CHOICE,                                                                    \
+        SETTING_AT_(member, sizeof SETTING_MEMBER_(member) == sizeof(int)), .def_text = def_, .choice = choice_,       \
+        .doc = doc_                                                                                                    \
+    }
 /* A char[] member; choice_ (may be NULL) lists the values it may take. */
-#define SETTING_TEXT(key_, member, def_, choice_, doc_)                                                          \
-    {.key = key_, .type = LUCENT_SETTING_TEXT, SETTING_AT_(member, _Generic(SETTING_MEMBER_(member), char * : 1, \
-                                                                             default : 0)),                     \
-     .def_text = def_, .choice = choice_, .doc = doc_}
+#define SETTING_TEXT(key_, member, def_, choice_, doc_)                                                                \
+    {                                                                                                                  \
+        .key = key_, .type = LUCENT_SETTING_TEXT,                                                                      \
+        SETTING_AT_(member, _Generic(SETTING_MEMBER_(member), char * : 1, default : 0)), .def_text = def_,             \
+        .choice = choice_, .doc = doc_                                                                                 \
+    }
 
-#define SETTINGS_GROUP(name_, doc_, table) {.name = name_, .doc = doc_, .settings = table, .count = (int)(sizeof table / sizeof table[0])}
+#define SETTINGS_GROUP(name_, doc_, table)                                                                             \
+    {                                                                                                                  \
+        .name = name_, .doc = doc_, .settings = table, .count = (int)(sizeof table / sizeof table[0])                  \
+    }
 
 /* The name function of a NULL-terminated list of names. */
-#define SETTINGS_NAMES(fn, ...)                                                   \
-    static const char *fn(int i)                                                  \
-    {                                                                             \
-        static const char *const names[] = {__VA_ARGS__, NULL};                   \
-        return i >= 0 && i < (int)(sizeof names / sizeof names[0]) ? names[i] : NULL; \
+#define SETTINGS_NAMES(fn, ...)                                                                                        \
+    static const char *fn(int i)                                                                                       \
+    {                                                                                                                  \
+        static const char *const names[] = {__VA_ARGS__, NULL};                                                        \
+        return i >= 0 && i < (int)(sizeof names / sizeof names[0]) ? names[i] : NULL;                                  \
     }
 
 /* Reads the members of `render` (a scene's "render" object; absent: the defaults) into dest, checking

@@ -15,18 +15,19 @@
 #define MAX_STEP 1.0
 
 /* 12-point Gauss-Legendre nodes and weights on [-1, 1] (positive half; symmetric). */
-static const double k_gl_x[6] = {0.1252334085114689154724414, 0.3678314989981801937526915,
-                                 0.5873179542866174472967024, 0.7699026741943046870368938,
-                                 0.9041172563704748566784659, 0.9815606342467192506905491};
-static const double k_gl_w[6] = {0.2491470458134027850005624, 0.2334925365383548087608499,
-                                 0.2031674267230659217490645, 0.1600783285433462263346525,
-                                 0.1069393259953184309602547, 0.0471753363865118271946160};
+static const double k_gl_x[6] = {0.1252334085114689154724414, 0.3678314989981801937526915, 0.5873179542866174472967024,
+                                 0.7699026741943046870368938, 0.9041172563704748566784659, 0.9815606342467192506905491};
+static const double k_gl_w[6] = {0.2491470458134027850005624, 0.2334925365383548087608499, 0.2031674267230659217490645,
+                                 0.1600783285433462263346525, 0.1069393259953184309602547, 0.0471753363865118271946160};
 
 lucent_status lucent_cdrf_variant_parse(const char *name, lucent_cdrf_variant *dest)
 {
-    if (name && strcmp(name, "kubo") == 0) *dest = LUCENT_CDRF_KUBO;
-    else if (name && strcmp(name, "collomb") == 0) *dest = LUCENT_CDRF_COLLOMB;
-    else return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "unknown CDRF variant '%s' (kubo, collomb)", name ? name : "");
+    if (name && strcmp(name, "kubo") == 0)
+        *dest = LUCENT_CDRF_KUBO;
+    else if (name && strcmp(name, "collomb") == 0)
+        *dest = LUCENT_CDRF_COLLOMB;
+    else
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "unknown CDRF variant '%s' (kubo, collomb)", name ? name : "");
     return LUCENT_OK;
 }
 
@@ -53,8 +54,7 @@ static double piece(double theta, double sigma, double a, double b)
         double mid = a + (k + 0.5) * h, half = 0.5 * h, part = 0;
         for (int i = 0; i < 6; i++) {
             double t1 = mid - half * k_gl_x[i], t2 = mid + half * k_gl_x[i];
-            part += k_gl_w[i] * (exp(-t1 * t1 * inv2s2) * cos(theta - t1) +
-                                 exp(-t2 * t2 * inv2s2) * cos(theta - t2));
+            part += k_gl_w[i] * (exp(-t1 * t1 * inv2s2) * cos(theta - t1) + exp(-t2 * t2 * inv2s2) * cos(theta - t2));
         }
         sum += part * half;
     }
@@ -93,19 +93,12 @@ double lucent_cdrf_collomb(double theta, double sigma)
 
 double lucent_cdrf_eval(lucent_cdrf_variant variant, double theta, double sigma)
 {
-    return variant == LUCENT_CDRF_COLLOMB ? lucent_cdrf_collomb(theta, sigma)
-                                          : lucent_cdrf_kubo(theta, sigma);
+    return variant == LUCENT_CDRF_COLLOMB ? lucent_cdrf_collomb(theta, sigma) : lucent_cdrf_kubo(theta, sigma);
 }
 
-double lucent_cdrf_sigma(double sigma0, double kappa)
-{
-    return sigma0 * kappa; /* Kubo Eq. 4 */
-}
+double lucent_cdrf_sigma(double sigma0, double kappa) { return sigma0 * kappa; /* Kubo Eq. 4 */ }
 
-double lucent_cdrf_sigma0_from_diffuse(double diffuse)
-{
-    return diffuse > 0 ? diffuse * diffuse : 0; /* Kubo Eq. 6 */
-}
+double lucent_cdrf_sigma0_from_diffuse(double diffuse) { return diffuse > 0 ? diffuse * diffuse : 0; /* Kubo Eq. 6 */ }
 
 lucent_status lucent_cdrf_sigma0_map(const lucent_image *diffuse, lucent_image **dest)
 {

@@ -70,15 +70,17 @@ static double search(const fit_data *fd, double hi)
     double x1 = b - phi * (b - a), x2 = a + phi * (b - a);
     double f1 = evaluate(fd, x1).chi2, f2 = evaluate(fd, x2).chi2;
     for (int k = 0; k < GOLDEN_STEPS; k++) {
-        if (f1 < f2) b = x2, x2 = x1, f2 = f1, x1 = b - phi * (b - a), f1 = evaluate(fd, x1).chi2;
-        else a = x1, x1 = x2, f1 = f2, x2 = a + phi * (b - a), f2 = evaluate(fd, x2).chi2;
+        if (f1 < f2)
+            b = x2, x2 = x1, f2 = f1, x1 = b - phi * (b - a), f1 = evaluate(fd, x1).chi2;
+        else
+            a = x1, x1 = x2, f1 = f2, x2 = a + phi * (b - a), f2 = evaluate(fd, x2).chi2;
     }
     double x = 0.5 * (a + b);
     return evaluate(fd, x).chi2 < best_chi2 ? x : best;
 }
 
-lucent_status lucent_cdrf_fit_spheres(const lucent_cdrf_sphere_result *spheres, int count,
-                                      lucent_cdrf_variant variant, double sigma0_max, lucent_cdrf_fit *dest)
+lucent_status lucent_cdrf_fit_spheres(const lucent_cdrf_sphere_result *spheres, int count, lucent_cdrf_variant variant,
+                                      double sigma0_max, lucent_cdrf_fit *dest)
 {
     if (!spheres || count < 1) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "CDRF fit: no spheres");
     if (sigma0_max == 0) sigma0_max = 20.0;
@@ -93,7 +95,10 @@ lucent_status lucent_cdrf_fit_spheres(const lucent_cdrf_sphere_result *spheres, 
         double peak = 0;
         for (int i = 0; i < count; i++)
             for (int j = 0; j < spheres[i].bins; j++) peak = fmax(peak, fabs(spheres[i].radiance[c][j]));
-        fit_data fd = {.spheres = spheres, .count = count, .channel = c, .variant = variant,
+        fit_data fd = {.spheres = spheres,
+                       .count = count,
+                       .channel = c,
+                       .variant = variant,
                        .se_floor = peak > 0 ? SE_FLOOR * peak : 1e-30};
         double s0 = search(&fd, sigma0_max);
         fit_eval e = evaluate(&fd, s0);

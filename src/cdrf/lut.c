@@ -30,8 +30,9 @@ static lucent_status lut_rows(void *ctx, uint64_t chunk, uint64_t begin, uint64_
         for (int i = 0; i < w; i++) {
             double c = -1.0 + 2.0 * i / (w - 1);
             if (c > 1) c = 1;
-            double v = sigma == 0 && job->d.variant == LUCENT_CDRF_KUBO ? fmax(c, 0.0) /* Eq. 2 exactly */
-                                                                         : lucent_cdrf_eval(job->d.variant, acos(c), sigma);
+            double v = sigma == 0 && job->d.variant == LUCENT_CDRF_KUBO
+                           ? fmax(c, 0.0) /* Eq. 2 exactly */
+                           : lucent_cdrf_eval(job->d.variant, acos(c), sigma);
             job->img->data[j * (uint64_t)w + (uint64_t)i] = (float)v;
         }
     }
@@ -91,8 +92,8 @@ static lucent_status write_c(const char *path, const lucent_image *lut, double s
                          "/* The curvature-dependent reflectance LUT (Kubo, Dobashi & Morishima), written by lucent.\n"
                          " * %s[j][i]: cos theta = -1 + 2 i / %d, sigma = %.9g j / %d (radians). */\n",
                          nm, lut->width - 1, sigma_max, lut->height - 1);
-    lucent_strbuf_printf(&b, "#define %s_WIDTH %d\n#define %s_HEIGHT %d\n#define %s_SIGMA_MAX %.9g\n", nm,
-                         lut->width, nm, lut->height, nm, sigma_max);
+    lucent_strbuf_printf(&b, "#define %s_WIDTH %d\n#define %s_HEIGHT %d\n#define %s_SIGMA_MAX %.9g\n", nm, lut->width,
+                         nm, lut->height, nm, sigma_max);
     lucent_strbuf_printf(&b, "static const float %s[%d][%d] = {\n", nm, lut->height, lut->width);
     for (int j = 0; j < lut->height; j++) {
         lucent_strbuf_printf(&b, "    {");

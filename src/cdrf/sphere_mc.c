@@ -46,8 +46,8 @@ static v3 ggx_sample(v3 wi, v3 n, double alpha, lucent_rng *rng)
 typedef struct sphere_job {
     lucent_cdrf_sphere_desc d;
     uint64_t per_batch;
-    int stride;     /* doubles per (channel, batch): bins + 3 */
-    double *tally;  /* [3 * batches][stride]: bins, then entered, exited, absorbed */
+    int stride;    /* doubles per (channel, batch): bins + 3 */
+    double *tally; /* [3 * batches][stride]: bins, then entered, exited, absorbed */
     double cos_cone;
     lucent_progress *progress;
 } sphere_job;
@@ -237,7 +237,8 @@ static void reduce(const sphere_job *job, lucent_cdrf_sphere_result *dest)
     for (int c = 0; c < 3; c++) {
         double e[3] = {0, 0, 0};
         for (int b = 0; b < B; b++)
-            for (int k = 0; k < 3; k++) e[k] += job->tally[(size_t)(c * B + b) * (size_t)job->stride + (size_t)(bins + k)];
+            for (int k = 0; k < 3; k++)
+                e[k] += job->tally[(size_t)(c * B + b) * (size_t)job->stride + (size_t)(bins + k)];
         dest->entered[c] = e[0] / (n * B);
         dest->exited[c] = e[1] / (n * B);
         dest->absorbed[c] = e[2] / (n * B);

@@ -12,11 +12,11 @@ typedef struct method_store {
 
 typedef struct scene_store {
     lucent_scene *scene;
-    char stem[EVAL_NAME_SIZE];  /* the scene's folder under out */
-    char dir[EVAL_PATH_SIZE];   /* out/stem ("" without out) */
+    char stem[EVAL_NAME_SIZE]; /* the scene's folder under out */
+    char dir[EVAL_PATH_SIZE];  /* out/stem ("" without out) */
     char reference[EVAL_PATH_SIZE], chart[EVAL_PATH_SIZE], device[300];
     lucent_trace_result ref;
-    float *mask;                /* object pixels counted in the errors */
+    float *mask; /* object pixels counted in the errors */
     uint64_t mask_pixels;
     int method_count;
     method_store methods[LUCENT_COMPARE_MAX_METHODS];
@@ -235,8 +235,8 @@ static void fill_report(scene_store *ss, lucent_compare_scene *dest)
                                    .reference_image = ss->reference,
                                    .reference_spp = (int)ss->ref.spp,
                                    .reference_seconds = ss->ref.seconds,
-                                   .reference_noise = lucent_compare_reference_noise(ss->ref.image, ss->ref.variance,
-                                                                                     ss->mask),
+                                   .reference_noise =
+                                       lucent_compare_reference_noise(ss->ref.image, ss->ref.variance, ss->mask),
                                    .device = ss->device,
                                    .chart = ss->chart,
                                    .scene_json = ss->scene->json,

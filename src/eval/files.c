@@ -17,10 +17,7 @@ lucent_status eval_path_printf(char *dest, size_t size, const char *fmt, ...)
     return LUCENT_OK;
 }
 
-lucent_status eval_make_dirs(const char *path)
-{
-    return lucent_mkdir_p(path);
-}
+lucent_status eval_make_dirs(const char *path) { return lucent_mkdir_p(path); }
 
 lucent_status eval_make_dir(const char *dir)
 {
@@ -34,8 +31,7 @@ void eval_file_stem(const char *name, char *dest, size_t size)
 {
     snprintf(dest, size, "%s", name);
     for (char *p = dest; *p; p++)
-        if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') || *p == '-'))
-            *p = '-';
+        if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') || *p == '-')) *p = '-';
 }
 
 lucent_status eval_wrote(lucent_eval_event_fn on_event, void *user, lucent_status s, const char *path)

@@ -77,7 +77,8 @@ lucent_status lucent_kernel_eval_model_parse(const char *name, lucent_kernel_des
     return LUCENT_OK;
 unknown:
     return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                        "unknown model '%s' (svd, svd-norm, preint, guided, manual, sog, jimenez, svd-rN, sog-rN)", name);
+                        "unknown model '%s' (svd, svd-norm, preint, guided, manual, sog, jimenez, svd-rN, sog-rN)",
+                        name);
 }
 
 static lucent_status add(ke_run *ev, const char *name, bool plotted)
@@ -182,9 +183,10 @@ static lucent_status evaluate(ke_run *ev, int index)
         snprintf(e->skipped, sizeof e->skipped, "%s", lucent_last_error()); /* no Table A.1 preset */
         lucent_clear_error();
         if (ev->d.on_event)
-            ev->d.on_event(&(lucent_eval_event){.kind = LUCENT_EVAL_SKIPPED, .name = e->name, .reason = e->skipped,
-                                                .index = index},
-                           ev->d.user);
+            ev->d.on_event(
+                &(lucent_eval_event){
+                    .kind = LUCENT_EVAL_SKIPPED, .name = e->name, .reason = e->skipped, .index = index},
+                ev->d.user);
         return LUCENT_OK;
     }
     lucent_kernel_rms(e->kernel, ev->res->ground_truth, e->kernel_rms);

@@ -10,9 +10,9 @@ typedef struct ke_run {
     lucent_kernel_eval_result *res; /* filled as the run goes */
     lucent_profile *profile;
     lucent_image *signal, *exact;
-    int hp;                         /* pixel kernel half-width */
-    double *w;                      /* resampling matrix, (2 hp + 1) x (2 gt->half + 1) */
-    int *wlo, *whi;                 /* non-zero column range per row */
+    int hp;         /* pixel kernel half-width */
+    double *w;      /* resampling matrix, (2 hp + 1) x (2 gt->half + 1) */
+    int *wlo, *whi; /* non-zero column range per row */
 } ke_run;
 
 /* The resampling of the ground truth's cells onto pixels (sets hp, w, wlo, whi and

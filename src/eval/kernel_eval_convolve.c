@@ -85,7 +85,8 @@ lucent_status ke_convolve_exact(ke_run *ev)
         s = w[c] ? resample_2d(ev, c, w[c]) : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "kernel-eval: kernel");
     }
     lucent_conv_kernel2d k = {np, {w[0], w[1], w[2]}};
-    if (s == LUCENT_OK) s = lucent_image_create(ev->signal->width, ev->signal->height, ev->signal->channels, &ev->exact);
+    if (s == LUCENT_OK)
+        s = lucent_image_create(ev->signal->width, ev->signal->height, ev->signal->channels, &ev->exact);
     if (s == LUCENT_OK) s = lucent_convolve_2d(ev->signal, &k, LUCENT_BORDER_CLAMP, ev->d.pool, ev->exact);
     for (int c = 0; c < 3; c++) free(w[c]);
     return s;
@@ -108,7 +109,8 @@ lucent_status ke_convolve_separable(const ke_run *ev, const lucent_kernel *k, lu
             for (int i = 0; i < np; i++) x[i] = (float)k->sign[c][r] * y[i];
             kx[r * 3 + c] = x, ky[r * 3 + c] = y;
         }
-    lucent_status s = lucent_convolve_separable_sum(ev->signal, rank, kx, ky, np, LUCENT_BORDER_CLAMP, ev->d.pool, dest);
+    lucent_status s =
+        lucent_convolve_separable_sum(ev->signal, rank, kx, ky, np, LUCENT_BORDER_CLAMP, ev->d.pool, dest);
     free(buf);
     free(kx);
     return s;

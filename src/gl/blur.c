@@ -10,8 +10,8 @@
 lucent_status gl_blur_init(gl_blur *b)
 {
     memset(b, 0, sizeof *b);
-    lucent_status s = gl_program_build(gl_embedded_source, NULL, "fullscreen.vert.glsl", "blur.frag.glsl", NULL,
-                                       &b->program);
+    lucent_status s =
+        gl_program_build(gl_embedded_source, NULL, "fullscreen.vert.glsl", "blur.frag.glsl", NULL, &b->program);
     if (s != LUCENT_OK) return s;
     b->loc_axis = glGetUniformLocation(b->program, "u_axis");
     b->loc_pass = glGetUniformLocation(b->program, "u_pass");

@@ -31,7 +31,8 @@ static void method_list(char *dest, size_t size, bool variants_only)
 {
     dest[0] = '\0';
     for (int m = 0; m < LUCENT_METHOD_COUNT; m++)
-        if (!variants_only) snprintf(dest + strlen(dest), size - strlen(dest), "%s%s", m ? ", " : "", gl_methods[m]->name);
+        if (!variants_only)
+            snprintf(dest + strlen(dest), size - strlen(dest), "%s%s", m ? ", " : "", gl_methods[m]->name);
     for (int m = 0; m < LUCENT_METHOD_COUNT; m++)
         if (gl_methods[m]->variant)
             snprintf(dest + strlen(dest), size - strlen(dest), "%s%s:%s", dest[0] ? ", " : "", gl_methods[m]->name,
@@ -69,8 +70,8 @@ lucent_status lucent_render_method_parse(const char *text, lucent_render_method 
         if (colon && !g->variant) {
             char list[512];
             method_list(list, sizeof list, true);
-            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "method '%s': %s takes no variant (only %s)", text, g->name,
-                                list);
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "method '%s': %s takes no variant (only %s)", text,
+                                g->name, list);
         }
         lucent_render_settings scratch;
         if (colon && g->variant(colon + 1, s ? s : &scratch) != LUCENT_OK)

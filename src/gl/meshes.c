@@ -31,7 +31,8 @@ static lucent_status upload_vertices(const lucent_mesh *m, gl_mesh *g)
     float *v = malloc(m->vertex_count * 6 * sizeof *v);
     if (!v) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory uploading a mesh");
     for (size_t i = 0; i < m->vertex_count; i++)
-        for (int c = 0; c < 3; c++) v[6 * i + c] = (float)m->positions[3 * i + c], v[6 * i + 3 + c] = (float)m->normals[3 * i + c];
+        for (int c = 0; c < 3; c++)
+            v[6 * i + c] = (float)m->positions[3 * i + c], v[6 * i + 3 + c] = (float)m->normals[3 * i + c];
     g->vertices = buffer(v, m->vertex_count * 6 * sizeof *v);
     free(v);
     g->indices = buffer(m->faces, m->face_count * 3 * sizeof *m->faces);

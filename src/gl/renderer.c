@@ -44,8 +44,8 @@ static lucent_status create_objects(lucent_renderer *r)
 
 static lucent_status create(lucent_renderer *r)
 {
-    lucent_status s = r->desc.cache_dir && r->desc.cache_dir[0] ? lucent_cache_create(r->desc.cache_dir, &r->cache)
-                                                                  : LUCENT_OK;
+    lucent_status s =
+        r->desc.cache_dir && r->desc.cache_dir[0] ? lucent_cache_create(r->desc.cache_dir, &r->cache) : LUCENT_OK;
     if (s == LUCENT_OK) s = gl_meshes_upload(&r->meshes, r->scene);
     if (s == LUCENT_OK) s = gl_tables_collect(&r->tables, r->scene);
     if (s == LUCENT_OK) s = gl_shadows_setup(&r->shadows, r->scene);
@@ -63,8 +63,8 @@ static lucent_renderer_desc resolve(const lucent_renderer_desc *d)
     return r;
 }
 
-lucent_status lucent_renderer_create(lucent_gl_context *ctx, const lucent_scene *scene, const lucent_renderer_desc *desc,
-                                     lucent_renderer **dest)
+lucent_status lucent_renderer_create(lucent_gl_context *ctx, const lucent_scene *scene,
+                                     const lucent_renderer_desc *desc, lucent_renderer **dest)
 {
     *dest = NULL;
     lucent_status s = lucent_gl_make_current(ctx);

@@ -33,7 +33,7 @@ struct lucent_renderer {
     lucent_gl_context *ctx;
     const lucent_scene *scene;
     lucent_renderer_desc desc;
-    lucent_cache *cache;            /* NULL without desc.cache_dir */
+    lucent_cache *cache; /* NULL without desc.cache_dir */
     gl_targets targets;
     gl_shadows shadows;
     gl_meshes meshes;
@@ -41,9 +41,9 @@ struct lucent_renderer {
     gl_programs programs;
     gl_timer timer;
     GLuint frame_ubo, empty_vao, dummy_tex, compose_program, present_program;
-    bool aov;                       /* tests: the scene pass's auxiliary outputs */
+    bool aov;                         /* tests: the scene pass's auxiliary outputs */
     void *state[LUCENT_METHOD_COUNT]; /* each method's own, created by its first frame */
-    lucent_render_settings last;    /* the settings of the last frame */
+    lucent_render_settings last;      /* the settings of the last frame */
     bool have_frame;
     lucent_frame_times last_times;
 };

@@ -64,8 +64,8 @@ static bool point(const gl_shadows *r, const lucent_light *l, gl_light *g)
 lucent_status gl_shadows_setup(gl_shadows *r, const lucent_scene *scene)
 {
     scene_sphere(r, scene);
-    lucent_status s = gl_program_build(gl_embedded_source, NULL, "shadow.vert.glsl", "shadow.frag.glsl", NULL,
-                                       &r->program);
+    lucent_status s =
+        gl_program_build(gl_embedded_source, NULL, "shadow.vert.glsl", "shadow.frag.glsl", NULL, &r->program);
     for (int i = 0; i < scene->light_count && s == LUCENT_OK; i++) {
         const lucent_light *l = &scene->lights[i];
         if (l->type == LUCENT_LIGHT_ENVIRONMENT) {
@@ -79,7 +79,8 @@ lucent_status gl_shadows_setup(gl_shadows *r, const lucent_scene *scene)
         memset(g, 0, sizeof *g);
         g->scene_index = i, g->layer = -1;
         if (!l->shadows) continue;
-        if (l->type == LUCENT_LIGHT_DIRECTIONAL) directional(r, l, g);
+        if (l->type == LUCENT_LIGHT_DIRECTIONAL)
+            directional(r, l, g);
         else if (!point(r, l, g)) {
             lucent_log(LUCENT_LOG_WARN, "%s: lights[%d] stands inside the scene's bounds: drawn without shadows",
                        scene->name, i);
@@ -134,10 +135,7 @@ bool gl_shadows_begin(gl_shadows *r, int i)
     return true;
 }
 
-void gl_shadows_end(void)
-{
-    glDisable(GL_POLYGON_OFFSET_FILL);
-}
+void gl_shadows_end(void) { glDisable(GL_POLYGON_OFFSET_FILL); }
 
 void gl_shadows_bind(const gl_shadows *r)
 {

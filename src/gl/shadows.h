@@ -23,7 +23,7 @@ typedef struct gl_light {
 typedef struct gl_shadows {
     gl_light lights[GLR_MAX_LIGHTS];
     int light_count, layers, size;
-    double ambient[3];            /* environment lights' radiance, summed */
+    double ambient[3]; /* environment lights' radiance, summed */
     double bound_centre[3], bound_radius;
     GLuint tex, fbo, sampler_compare, sampler_raw, program;
 } gl_shadows;

@@ -34,7 +34,8 @@ lucent_status gl_tables_collect(gl_tables *t, const lucent_scene *scene)
 lucent_status gl_tables_bake(gl_tables *t, const lucent_bake_desc *desc, lucent_cache *cache)
 {
     lucent_status s = LUCENT_OK;
-    for (int i = 0; i < t->count && s == LUCENT_OK; i++) s = lucent_material_bake(&t->material[i], desc, cache, &t->baked[i]);
+    for (int i = 0; i < t->count && s == LUCENT_OK; i++)
+        s = lucent_material_bake(&t->material[i], desc, cache, &t->baked[i]);
     return s;
 }
 
@@ -54,10 +55,7 @@ lucent_status gl_tables_upload_transmittance(gl_tables *t)
     return gl_check("uploading the transmittance tables");
 }
 
-const lucent_baked *gl_tables_of(const gl_tables *t, int object)
-{
-    return &t->baked[t->object_material[object]];
-}
+const lucent_baked *gl_tables_of(const gl_tables *t, int object) { return &t->baked[t->object_material[object]]; }
 
 void gl_tables_free(gl_tables *t)
 {

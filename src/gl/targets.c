@@ -5,17 +5,15 @@
 
 void gl_targets_free(gl_targets *t)
 {
-    GLuint tex[8] = {t->diffuse, t->specular, t->depth, t->zbuffer, t->final, t->aov_tex[0], t->aov_tex[1], t->aov_tex[2]};
+    GLuint tex[8] = {t->diffuse, t->specular,   t->depth,      t->zbuffer,
+                     t->final,   t->aov_tex[0], t->aov_tex[1], t->aov_tex[2]};
     glDeleteTextures(8, tex);
     GLuint fbo[2] = {t->fbo_scene, t->fbo_final};
     glDeleteFramebuffers(2, fbo);
     memset(t, 0, sizeof *t);
 }
 
-int gl_targets_scene_outputs(const gl_targets *t)
-{
-    return t->aov ? 6 : 3;
-}
+int gl_targets_scene_outputs(const gl_targets *t) { return t->aov ? 6 : 3; }
 
 lucent_status gl_targets_resize(gl_targets *t, int width, int height, bool aov)
 {
@@ -29,7 +27,8 @@ lucent_status gl_targets_resize(gl_targets *t, int width, int height, bool aov)
     t->final = gl_texture(GL_RGBA32F, width, height, GL_LINEAR);
     for (int i = 0; aov && i < 3; i++) t->aov_tex[i] = gl_texture(GL_RGBA32F, width, height, GL_NEAREST);
     GLuint colors[6] = {t->diffuse, t->specular, t->depth, t->aov_tex[0], t->aov_tex[1], t->aov_tex[2]};
-    lucent_status s = gl_framebuffer(gl_targets_scene_outputs(t), colors, t->zbuffer, "the scene targets", &t->fbo_scene);
+    lucent_status s =
+        gl_framebuffer(gl_targets_scene_outputs(t), colors, t->zbuffer, "the scene targets", &t->fbo_scene);
     if (s == LUCENT_OK) s = gl_framebuffer(1, &t->final, 0, "the final target", &t->fbo_final);
     return s;
 }

@@ -22,10 +22,7 @@ float lucent_srgb_decode(float encoded)
 
 static const char *const k_tonemap_names[] = {"none", "clamp", "reinhard", "filmic"};
 
-const char *lucent_tonemap_op_name(lucent_tonemap_op op)
-{
-    return op >= 0 && op < 4 ? k_tonemap_names[op] : "unknown";
-}
+const char *lucent_tonemap_op_name(lucent_tonemap_op op) { return op >= 0 && op < 4 ? k_tonemap_names[op] : "unknown"; }
 
 lucent_status lucent_tonemap_op_parse(const char *name, lucent_tonemap_op *dest)
 {
@@ -39,16 +36,12 @@ lucent_status lucent_tonemap_op_parse(const char *name, lucent_tonemap_op *dest)
                         name ? name : "");
 }
 
-static float clamp01(float x)
-{
-    return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; /* NaN -> 0 */
-}
+static float clamp01(float x) { return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; /* NaN -> 0 */ }
 
 float lucent_tonemap_value(lucent_tonemap_op op, float x)
 {
     switch (op) {
-    case LUCENT_TONEMAP_CLAMP:
-        return clamp01(x);
+    case LUCENT_TONEMAP_CLAMP: return clamp01(x);
     case LUCENT_TONEMAP_REINHARD: /* Reinhard, Stark, Shirley, Ferwerda 2002, eq. 3: L / (1 + L) */
         if (!(x > 0.0f)) return 0.0f;
         return isinf(x) ? 1.0f : x / (1.0f + x);
@@ -58,8 +51,7 @@ float lucent_tonemap_value(lucent_tonemap_op op, float x)
         double d = x;
         return clamp01((float)((d * (2.51 * d + 0.03)) / (d * (2.43 * d + 0.59) + 0.14)));
     }
-    default:
-        return x;
+    default: return x;
     }
 }
 

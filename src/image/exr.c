@@ -18,10 +18,7 @@ static void on_exr_error(exr_const_context_t ctxt, exr_result_t code, const char
     snprintf(t_exr_msg, sizeof t_exr_msg, "%s", msg ? msg : exr_get_default_error_message(code));
 }
 
-static const char *exr_message(exr_result_t rv)
-{
-    return t_exr_msg[0] ? t_exr_msg : exr_get_default_error_message(rv);
-}
+static const char *exr_message(exr_result_t rv) { return t_exr_msg[0] ? t_exr_msg : exr_get_default_error_message(rv); }
 
 static exr_context_initializer_t exr_init(void)
 {
@@ -42,7 +39,7 @@ typedef struct exr_reader {
     exr_decode_pipeline_t dec;
     bool dec_ready;
     exr_attr_box2i_t dw;
-    int target[64]; /* file channel index -> image channel, -1: skipped */
+    int target[64];  /* file channel index -> image channel, -1: skipped */
     bool grey_alpha; /* Y and A: replicate Y into G and B afterwards */
     lucent_image *img;
     float *scratch; /* one decoded chunk, a plane per image channel */
@@ -51,8 +48,7 @@ typedef struct exr_reader {
 
 static lucent_status corrupt(exr_reader *r, exr_result_t rv)
 {
-    return lucent_error(LUCENT_ERR_PARSE, "%s: truncated or corrupt OpenEXR data (%s)", r->path,
-                        exr_message(rv));
+    return lucent_error(LUCENT_ERR_PARSE, "%s: truncated or corrupt OpenEXR data (%s)", r->path, exr_message(rv));
 }
 
 static int find_channel(const exr_attr_chlist_t *cl, const char *name)
@@ -77,8 +73,8 @@ static lucent_status map_channels(exr_reader *r, const exr_attr_chlist_t *cl, in
         *channels = 1;
     } else {
         return lucent_error(LUCENT_ERR_UNSUPPORTED,
-                            "%s: no R, G, B or Y channels (%d channels, the first named \"%s\")",
-                            r->path, cl->num_channels, cl->num_channels ? cl->entries[0].name.str : "");
+                            "%s: no R, G, B or Y channels (%d channels, the first named \"%s\")", r->path,
+                            cl->num_channels, cl->num_channels ? cl->entries[0].name.str : "");
     }
     if (A >= 0 && *channels != 4 && (*channels == 3 || Y >= 0)) {
         r->grey_alpha = *channels == 1;
@@ -137,10 +133,9 @@ static lucent_status decode_chunk(exr_reader *r, const exr_chunk_info_t *ci, int
 {
     if (x0 < 0 || y0 < 0 || ci->width < 1 || ci->height < 1 || x0 + ci->width > r->img->width ||
         y0 + ci->height > r->img->height)
-        return lucent_error(LUCENT_ERR_PARSE, "%s: corrupt OpenEXR data (chunk outside the image)",
-                            r->path);
-    exr_result_t rv = r->dec_ready ? exr_decoding_update(r->ctx, 0, ci, &r->dec)
-                                   : exr_decoding_initialize(r->ctx, 0, ci, &r->dec);
+        return lucent_error(LUCENT_ERR_PARSE, "%s: corrupt OpenEXR data (chunk outside the image)", r->path);
+    exr_result_t rv =
+        r->dec_ready ? exr_decoding_update(r->ctx, 0, ci, &r->dec) : exr_decoding_initialize(r->ctx, 0, ci, &r->dec);
     if (rv != EXR_ERR_SUCCESS) return corrupt(r, rv);
     r->dec_ready = true;
     lucent_status s = point_channels(r, ci);
@@ -196,8 +191,7 @@ static lucent_status prepare(exr_reader *r, exr_storage_t *storage)
     if (rv == EXR_ERR_SUCCESS) rv = exr_get_channels(r->ctx, 0, &cl);
     if (rv != EXR_ERR_SUCCESS) return corrupt(r, rv);
     if (*storage != EXR_STORAGE_SCANLINE && *storage != EXR_STORAGE_TILED)
-        return lucent_error(LUCENT_ERR_UNSUPPORTED, "%s: deep OpenEXR images are not supported",
-                            r->path);
+        return lucent_error(LUCENT_ERR_UNSUPPORTED, "%s: deep OpenEXR images are not supported", r->path);
     int channels = 0;
     lucent_status s = map_channels(r, cl, &channels);
     int64_t w = (int64_t)r->dw.max.x - r->dw.min.x + 1, h = (int64_t)r->dw.max.y - r->dw.min.y + 1;
@@ -237,8 +231,7 @@ lucent_status lucent_image_load_exr(const char *path, lucent_image **dest)
     exr_result_t rv = exr_start_read(&r.ctx, path, &init);
     if (rv != EXR_ERR_SUCCESS) {
         exr_finish(&r.ctx);
-        return lucent_error(LUCENT_ERR_PARSE, "%s: truncated or corrupt OpenEXR header (%s)", path,
-                            exr_message(rv));
+        return lucent_error(LUCENT_ERR_PARSE, "%s: truncated or corrupt OpenEXR header (%s)", path, exr_message(rv));
     }
     exr_storage_t storage;
     s = prepare(&r, &storage);
@@ -257,8 +250,8 @@ lucent_status lucent_image_load_exr(const char *path, lucent_image **dest)
 
 /* ---- writing ---- */
 
-static int64_t write_to_fd(exr_const_context_t ctxt, void *user, const void *buf, uint64_t size,
-                           uint64_t offset, exr_stream_error_func_ptr_t error_cb)
+static int64_t write_to_fd(exr_const_context_t ctxt, void *user, const void *buf, uint64_t size, uint64_t offset,
+                           exr_stream_error_func_ptr_t error_cb)
 {
     int fd = *(const int *)user;
     uint64_t done = 0;
@@ -319,8 +312,7 @@ static exr_result_t encode_chunk(exr_context_t ctx, exr_encode_pipeline_t *enc, 
     if (rv != EXR_ERR_SUCCESS) return rv;
     for (int i = 0; i < enc->channel_count; i++) {
         exr_coding_channel_info_t *ch = &enc->channels[i];
-        ch->encode_from_ptr = (const uint8_t *)(lucent_image_pixel(img, 0, y) +
-                                                channel_index(img, ch->channel_name));
+        ch->encode_from_ptr = (const uint8_t *)(lucent_image_pixel(img, 0, y) + channel_index(img, ch->channel_name));
         ch->user_pixel_stride = img->channels * (int32_t)sizeof(float);
         ch->user_line_stride = img->width * img->channels * (int32_t)sizeof(float);
         ch->user_data_type = EXR_PIXEL_FLOAT;
@@ -343,12 +335,10 @@ static exr_result_t write_parts(exr_context_t ctx, const lucent_image *img, cons
     return rv;
 }
 
-lucent_status lucent_image_write_exr(const char *path, const lucent_image *img,
-                                     const lucent_image_write_desc *desc)
+lucent_status lucent_image_write_exr(const char *path, const lucent_image *img, const lucent_image_write_desc *desc)
 {
     lucent_image_write_desc d = image_resolve_desc(desc);
-    lucent_status s = image_check_size(path, img->width, img->height, img->channels,
-                                       LUCENT_ERR_INVALID_ARGUMENT);
+    lucent_status s = image_check_size(path, img->width, img->height, img->channels, LUCENT_ERR_INVALID_ARGUMENT);
     if (s != LUCENT_OK) return s;
     lucent_atomic_file *af;
     FILE *fp;

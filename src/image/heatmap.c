@@ -17,8 +17,7 @@ static void ramp(float t, float *rgb)
     int i = (int)x;
     if (i > 4) i = 4;
     float f = x - (float)i;
-    for (int c = 0; c < 3; c++)
-        rgb[c] = lucent_srgb_decode(k_ramp[i][c] + f * (k_ramp[i + 1][c] - k_ramp[i][c]));
+    for (int c = 0; c < 3; c++) rgb[c] = lucent_srgb_decode(k_ramp[i][c] + f * (k_ramp[i + 1][c] - k_ramp[i][c]));
 }
 
 lucent_status lucent_image_heatmap(const lucent_image *values, float scale, lucent_image **dest)

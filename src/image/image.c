@@ -5,20 +5,16 @@
 
 #include "image/internal.h"
 
-lucent_status image_check_size(const char *what, int64_t width, int64_t height, int channels,
-                               lucent_status bad)
+lucent_status image_check_size(const char *what, int64_t width, int64_t height, int channels, lucent_status bad)
 {
     if (channels != 1 && channels != 3 && channels != 4)
-        return lucent_error(bad, "%s: %d channels (expected 1, 3 or 4)",
-                            what, channels);
+        return lucent_error(bad, "%s: %d channels (expected 1, 3 or 4)", what, channels);
     if (width < 1 || height < 1)
-        return lucent_error(bad, "%s: empty image (%lldx%lld)", what,
-                            (long long)width, (long long)height);
+        return lucent_error(bad, "%s: empty image (%lldx%lld)", what, (long long)width, (long long)height);
     if (width > LUCENT_IMAGE_MAX_SIDE || height > LUCENT_IMAGE_MAX_SIDE ||
         (uint64_t)width * (uint64_t)height > LUCENT_IMAGE_MAX_PIXELS)
-        return lucent_error(bad,
-                            "%s: image too large (%lldx%lld; the limit is 2^28 pixels and 2^20 a side)",
-                            what, (long long)width, (long long)height);
+        return lucent_error(bad, "%s: image too large (%lldx%lld; the limit is 2^28 pixels and 2^20 a side)", what,
+                            (long long)width, (long long)height);
     return LUCENT_OK;
 }
 
@@ -33,8 +29,7 @@ lucent_status lucent_image_create(int width, int height, int channels, lucent_im
     if (!img || !data) {
         free(img);
         free(data);
-        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for a %dx%dx%d image", width,
-                            height, channels);
+        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for a %dx%dx%d image", width, height, channels);
     }
     *img = (lucent_image){width, height, channels, data};
     *dest = img;
@@ -73,15 +68,14 @@ static void convert_pixel(const float *in, int sc, float *out, int dc)
     }
 }
 
-lucent_status lucent_image_convert_channels(const lucent_image *src, int channels,
-                                            lucent_image **dest)
+lucent_status lucent_image_convert_channels(const lucent_image *src, int channels, lucent_image **dest)
 {
     lucent_status s = lucent_image_create(src->width, src->height, channels, dest);
     if (s != LUCENT_OK) return s;
     size_t n = (size_t)src->width * (size_t)src->height;
     for (size_t i = 0; i < n; i++)
-        convert_pixel(src->data + i * (size_t)src->channels, src->channels,
-                      (*dest)->data + i * (size_t)channels, channels);
+        convert_pixel(src->data + i * (size_t)src->channels, src->channels, (*dest)->data + i * (size_t)channels,
+                      channels);
     return LUCENT_OK;
 }
 
@@ -113,9 +107,8 @@ void lucent_image_fill(lucent_image *img, int c, float value)
 
 lucent_status image_check_same(const lucent_image *a, const lucent_image *b)
 {
-    if (a->width == b->width && a->height == b->height && a->channels == b->channels)
-        return LUCENT_OK;
+    if (a->width == b->width && a->height == b->height && a->channels == b->channels) return LUCENT_OK;
     return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                        "images differ in size: %dx%d with %d channels vs %dx%d with %d channels",
-                        a->width, a->height, a->channels, b->width, b->height, b->channels);
+                        "images differ in size: %dx%d with %d channels vs %dx%d with %d channels", a->width, a->height,
+                        a->channels, b->width, b->height, b->channels);
 }

@@ -6,8 +6,7 @@
 
 /* Checks a size read from a file or asked for by a caller against the limits in image.h.
  * what names the source in the message ("x.pfm", or "image"); bad is the status to fail with. */
-lucent_status image_check_size(const char *what, int64_t width, int64_t height, int channels,
-                               lucent_status bad);
+lucent_status image_check_size(const char *what, int64_t width, int64_t height, int channels, lucent_status bad);
 
 /* Resolves the zero fields of desc (NULL: all defaults). */
 lucent_image_write_desc image_resolve_desc(const lucent_image_write_desc *desc);

@@ -37,8 +37,8 @@ lucent_status lucent_image_format_from_path(const char *path, lucent_image_forma
         if (strcasecmp(dot, ".pfm") == 0) *dest = LUCENT_IMAGE_FORMAT_PFM;
     }
     if (*dest != LUCENT_IMAGE_FORMAT_AUTO) return LUCENT_OK;
-    return lucent_error(LUCENT_ERR_UNSUPPORTED,
-                        "%s: unknown image format (expected a .png, .exr or .pfm file name)", path);
+    return lucent_error(LUCENT_ERR_UNSUPPORTED, "%s: unknown image format (expected a .png, .exr or .pfm file name)",
+                        path);
 }
 
 lucent_status lucent_image_load(const char *path, lucent_image **dest)
@@ -52,8 +52,7 @@ lucent_status lucent_image_load(const char *path, lucent_image **dest)
     return lucent_image_load_pfm(path, dest);
 }
 
-lucent_status lucent_image_write(const char *path, const lucent_image *img,
-                                 const lucent_image_write_desc *desc)
+lucent_status lucent_image_write(const char *path, const lucent_image *img, const lucent_image_write_desc *desc)
 {
     lucent_image_format f = desc ? desc->format : LUCENT_IMAGE_FORMAT_AUTO;
     if (f == LUCENT_IMAGE_FORMAT_AUTO) {

@@ -55,8 +55,7 @@ lucent_status lucent_image_compare(const lucent_image *a, const lucent_image *b,
             if (fabs(d) > r.max_abs[c] || isnan(d)) r.max_abs[c] = fabs(d);
         }
     }
-    if (r.pixel_count == 0)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "the mask selects no pixel (none > 0.5)");
+    if (r.pixel_count == 0) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "the mask selects no pixel (none > 0.5)");
     for (size_t c = 0; c < ch; c++) {
         r.rms[c] = sqrt(err[c] / (double)r.pixel_count);
         r.rel_rms[c] = relative(err[c], ref[c]);
@@ -68,18 +67,18 @@ lucent_status lucent_image_compare(const lucent_image *a, const lucent_image *b,
     return LUCENT_OK;
 }
 
-lucent_status lucent_image_compare_masked(const lucent_image *a, const lucent_image *b,
-                                          const lucent_image *mask, lucent_image_error_stats *dest)
+lucent_status lucent_image_compare_masked(const lucent_image *a, const lucent_image *b, const lucent_image *mask,
+                                          lucent_image_error_stats *dest)
 {
     if (mask && (mask->channels != 1 || mask->width != a->width || mask->height != a->height))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "mask is %dx%d with %d channels; expected %dx%d with 1 channel",
-                            mask->width, mask->height, mask->channels, a->width, a->height);
+                            "mask is %dx%d with %d channels; expected %dx%d with 1 channel", mask->width, mask->height,
+                            mask->channels, a->width, a->height);
     return lucent_image_compare(a, b, mask ? mask->data : NULL, dest);
 }
 
-lucent_status lucent_image_difference(const lucent_image *a, const lucent_image *b,
-                                      lucent_diff_mode mode, lucent_image **dest)
+lucent_status lucent_image_difference(const lucent_image *a, const lucent_image *b, lucent_diff_mode mode,
+                                      lucent_image **dest)
 {
     *dest = NULL;
     lucent_status s = image_check_same(a, b);
@@ -93,8 +92,8 @@ lucent_status lucent_image_difference(const lucent_image *a, const lucent_image 
     return LUCENT_OK;
 }
 
-lucent_status lucent_image_error_map(const lucent_image *a, const lucent_image *b, bool relative,
-                                     float epsilon, lucent_image **dest)
+lucent_status lucent_image_error_map(const lucent_image *a, const lucent_image *b, bool relative, float epsilon,
+                                     lucent_image **dest)
 {
     *dest = NULL;
     lucent_status s = image_check_same(a, b);

@@ -46,14 +46,13 @@ static lucent_status read_header(const char *path, FILE *fp, pfm_header *h)
     if (!read_token(fp, tok, sizeof tok) || (strcmp(tok, "PF") != 0 && strcmp(tok, "Pf") != 0))
         return lucent_error(LUCENT_ERR_PARSE, "%s: not a PFM file (expected \"PF\" or \"Pf\")", path);
     h->channels = tok[1] == 'F' ? 3 : 1;
-    if (!read_token(fp, w, sizeof w) || !read_token(fp, hh, sizeof hh) ||
-        !parse_int(w, &h->width) || !parse_int(hh, &h->height))
+    if (!read_token(fp, w, sizeof w) || !read_token(fp, hh, sizeof hh) || !parse_int(w, &h->width) ||
+        !parse_int(hh, &h->height))
         return lucent_error(LUCENT_ERR_PARSE, "%s: PFM header: bad width or height", path);
     char *end;
-    if (!read_token(fp, tok, sizeof tok) || (h->scale = strtod(tok, &end), *end) ||
-        !isfinite(h->scale) || h->scale == 0.0)
-        return lucent_error(LUCENT_ERR_PARSE,
-                            "%s: PFM header: bad scale (a non-zero number; negative: little endian)",
+    if (!read_token(fp, tok, sizeof tok) || (h->scale = strtod(tok, &end), *end) || !isfinite(h->scale) ||
+        h->scale == 0.0)
+        return lucent_error(LUCENT_ERR_PARSE, "%s: PFM header: bad scale (a non-zero number; negative: little endian)",
                             path);
     return image_check_size(path, h->width, h->height, h->channels, LUCENT_ERR_PARSE);
 }
@@ -67,8 +66,7 @@ static lucent_status check_length(const char *path, FILE *fp, const pfm_header *
     uint64_t need = (uint64_t)h->width * (uint64_t)h->height * (uint64_t)h->channels * 4u;
     uint64_t have = (uint64_t)st.st_size - (uint64_t)pos;
     if (have >= need) return LUCENT_OK;
-    return lucent_error(LUCENT_ERR_PARSE,
-                        "%s: truncated PFM data (%lldx%lld needs %llu bytes of pixels, found %llu)",
+    return lucent_error(LUCENT_ERR_PARSE, "%s: truncated PFM data (%lldx%lld needs %llu bytes of pixels, found %llu)",
                         path, h->width, h->height, (unsigned long long)need, (unsigned long long)have);
 }
 
@@ -81,8 +79,8 @@ static lucent_status read_pixels(const char *path, FILE *fp, const pfm_header *h
     for (int y = img->height - 1; y >= 0; y--) { /* bottom row first */
         if (fread(row, 4, row_values, fp) != row_values) {
             free(row);
-            return lucent_error(LUCENT_ERR_PARSE, "%s: truncated PFM data (row %d of %d missing)",
-                                path, img->height - y, img->height);
+            return lucent_error(LUCENT_ERR_PARSE, "%s: truncated PFM data (row %d of %d missing)", path,
+                                img->height - y, img->height);
         }
         float *p = lucent_image_pixel(img, 0, y);
         for (size_t i = 0; i < row_values; i++) p[i] = image_get_f32(row + 4 * i, le);
@@ -127,8 +125,7 @@ static bool write_pixels(FILE *fp, const lucent_image *img)
 
 lucent_status lucent_image_write_pfm(const char *path, const lucent_image *img)
 {
-    lucent_status s = image_check_size(path, img->width, img->height, img->channels,
-                                       LUCENT_ERR_INVALID_ARGUMENT);
+    lucent_status s = image_check_size(path, img->width, img->height, img->channels, LUCENT_ERR_INVALID_ARGUMENT);
     if (s != LUCENT_OK) return s;
     if (img->channels == 4)
         return lucent_error(LUCENT_ERR_UNSUPPORTED,

@@ -16,9 +16,9 @@ typedef struct png_job {
     png_infop info;
     unsigned char *buf; /* decoded rows (read) or one row (write) */
     png_bytep *rows;
-    float *lut;         /* sample code -> linear value (read) */
+    float *lut; /* sample code -> linear value (read) */
     lucent_image *img;
-    char msg[200];      /* libpng's error text */
+    char msg[200]; /* libpng's error text */
 } png_job;
 
 static void on_png_error(png_structp png, png_const_charp msg)
@@ -101,8 +101,10 @@ static void rows_to_image(png_job *job, int in_ch, int bits)
                 v[c] = job->lut[(alpha ? n : 0) + code];
             }
             float *p = lucent_image_pixel(img, x, y);
-            if (in_ch == 2) p[0] = p[1] = p[2] = v[0], p[3] = v[1];
-            else memcpy(p, v, (size_t)in_ch * sizeof(float));
+            if (in_ch == 2)
+                p[0] = p[1] = p[2] = v[0], p[3] = v[1];
+            else
+                memcpy(p, v, (size_t)in_ch * sizeof(float));
         }
     }
 }
@@ -110,8 +112,7 @@ static void rows_to_image(png_job *job, int in_ch, int bits)
 static lucent_status read_body(png_job *job)
 {
     if (setjmp(png_jmpbuf(job->png)))
-        return lucent_error(LUCENT_ERR_PARSE, "%s: truncated or corrupt PNG data (%s)", job->path,
-                            job->msg);
+        return lucent_error(LUCENT_ERR_PARSE, "%s: truncated or corrupt PNG data (%s)", job->path, job->msg);
     png_set_read_fn(job->png, job, on_png_read);
     png_set_sig_bytes(job->png, 8);
     png_set_user_limits(job->png, LUCENT_IMAGE_MAX_SIDE, LUCENT_IMAGE_MAX_SIDE);
@@ -121,8 +122,7 @@ static lucent_status read_body(png_job *job)
     png_uint_32 h = png_get_image_height(job->png, job->info);
     int in_ch = png_get_channels(job->png, job->info);
     int bits = png_get_bit_depth(job->png, job->info);
-    lucent_status s = image_check_size(job->path, w, h, in_ch == 1 ? 1 : in_ch == 3 ? 3 : 4,
-                                       LUCENT_ERR_PARSE);
+    lucent_status s = image_check_size(job->path, w, h, in_ch == 1 ? 1 : in_ch == 3 ? 3 : 4, LUCENT_ERR_PARSE);
     if (s != LUCENT_OK) return s;
     size_t rowbytes = png_get_rowbytes(job->png, job->info);
     job->buf = malloc(rowbytes * h);
@@ -147,9 +147,7 @@ static lucent_status check_signature(png_job *job)
     if (got == 0) return lucent_error(LUCENT_ERR_PARSE, "%s: not a PNG file (empty file)", job->path);
     if (png_sig_cmp(sig, 0, got) != 0)
         return lucent_error(LUCENT_ERR_PARSE, "%s: not a PNG file (bad signature)", job->path);
-    if (got < 8)
-        return lucent_error(LUCENT_ERR_PARSE, "%s: truncated or corrupt PNG data (%zu bytes)",
-                            job->path, got);
+    if (got < 8) return lucent_error(LUCENT_ERR_PARSE, "%s: truncated or corrupt PNG data (%zu bytes)", job->path, got);
     return LUCENT_OK;
 }
 
@@ -167,8 +165,10 @@ lucent_status lucent_image_load_png(const char *path, lucent_image **dest)
     }
     fclose(job.fp);
     job_free(&job, true);
-    if (s == LUCENT_OK) *dest = job.img;
-    else lucent_image_destroy(job.img);
+    if (s == LUCENT_OK)
+        *dest = job.img;
+    else
+        lucent_image_destroy(job.img);
     return s;
 }
 
@@ -188,8 +188,10 @@ static void fill_row(png_job *job, const lucent_image *img, int y, const lucent_
     for (size_t i = 0; i < n; i++) {
         bool alpha = img->channels == 4 && i % 4 == 3;
         unsigned q = quantise(alpha || d->png_linear ? p[i] : lucent_srgb_encode(p[i]), max);
-        if (max == 255u) job->buf[i] = (unsigned char)q;
-        else job->buf[2 * i] = (unsigned char)(q >> 8), job->buf[2 * i + 1] = (unsigned char)q;
+        if (max == 255u)
+            job->buf[i] = (unsigned char)q;
+        else
+            job->buf[2 * i] = (unsigned char)(q >> 8), job->buf[2 * i + 1] = (unsigned char)q;
     }
 }
 
@@ -198,13 +200,15 @@ static lucent_status write_body(png_job *job, const lucent_image *img, const luc
     if (setjmp(png_jmpbuf(job->png)))
         return lucent_error(LUCENT_ERR_IO, "%s: cannot write PNG (%s)", job->path, job->msg);
     png_init_io(job->png, job->fp);
-    int type = img->channels == 1 ? PNG_COLOR_TYPE_GRAY
-               : img->channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGB_ALPHA;
-    png_set_IHDR(job->png, job->info, (png_uint_32)img->width, (png_uint_32)img->height,
-                 d->png_bits, type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-                 PNG_FILTER_TYPE_DEFAULT);
-    if (d->png_linear) png_set_gAMA_fixed(job->png, job->info, PNG_GAMMA_LINEAR);
-    else png_set_sRGB_gAMA_and_cHRM(job->png, job->info, PNG_sRGB_INTENT_PERCEPTUAL);
+    int type = img->channels == 1   ? PNG_COLOR_TYPE_GRAY
+               : img->channels == 3 ? PNG_COLOR_TYPE_RGB
+                                    : PNG_COLOR_TYPE_RGB_ALPHA;
+    png_set_IHDR(job->png, job->info, (png_uint_32)img->width, (png_uint_32)img->height, d->png_bits, type,
+                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    if (d->png_linear)
+        png_set_gAMA_fixed(job->png, job->info, PNG_GAMMA_LINEAR);
+    else
+        png_set_sRGB_gAMA_and_cHRM(job->png, job->info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_write_info(job->png, job->info);
     for (int y = 0; y < img->height; y++) {
         fill_row(job, img, y, d);
@@ -214,15 +218,12 @@ static lucent_status write_body(png_job *job, const lucent_image *img, const luc
     return LUCENT_OK;
 }
 
-lucent_status lucent_image_write_png(const char *path, const lucent_image *img,
-                                     const lucent_image_write_desc *desc)
+lucent_status lucent_image_write_png(const char *path, const lucent_image *img, const lucent_image_write_desc *desc)
 {
     lucent_image_write_desc d = image_resolve_desc(desc);
     if (d.png_bits != 8 && d.png_bits != 16)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: PNG bit depth %d (expected 8 or 16)",
-                            path, d.png_bits);
-    lucent_status s = image_check_size(path, img->width, img->height, img->channels,
-                                       LUCENT_ERR_INVALID_ARGUMENT);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: PNG bit depth %d (expected 8 or 16)", path, d.png_bits);
+    lucent_status s = image_check_size(path, img->width, img->height, img->channels, LUCENT_ERR_INVALID_ARGUMENT);
     if (s != LUCENT_OK) return s;
     png_job job = {.path = path};
     lucent_atomic_file *af;
@@ -231,8 +232,10 @@ lucent_status lucent_image_write_png(const char *path, const lucent_image *img,
     job.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &job, on_png_error, on_png_warning);
     job.info = job.png ? png_create_info_struct(job.png) : NULL;
     job.buf = malloc((size_t)img->width * (size_t)img->channels * 2);
-    if (!job.info || !job.buf) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
-    else s = write_body(&job, img, &d);
+    if (!job.info || !job.buf)
+        s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
+    else
+        s = write_body(&job, img, &d);
     job_free(&job, false);
     if (s != LUCENT_OK) {
         lucent_atomic_abort(af);

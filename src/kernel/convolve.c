@@ -21,16 +21,16 @@
 /* FFTW's planner is not thread-safe; executing a plan is. */
 static pthread_mutex_t fftw_planner_lock = PTHREAD_MUTEX_INITIALIZER;
 
-const char *lucent_border_name(lucent_border border)
-{
-    return border == LUCENT_BORDER_ZERO ? "zero" : "clamp";
-}
+const char *lucent_border_name(lucent_border border) { return border == LUCENT_BORDER_ZERO ? "zero" : "clamp"; }
 
 lucent_status lucent_border_parse(const char *name, lucent_border *dest)
 {
-    if (name && strcmp(name, "clamp") == 0) *dest = LUCENT_BORDER_CLAMP;
-    else if (name && strcmp(name, "zero") == 0) *dest = LUCENT_BORDER_ZERO;
-    else return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "unknown border '%s' (clamp, zero)", name ? name : "");
+    if (name && strcmp(name, "clamp") == 0)
+        *dest = LUCENT_BORDER_CLAMP;
+    else if (name && strcmp(name, "zero") == 0)
+        *dest = LUCENT_BORDER_ZERO;
+    else
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "unknown border '%s' (clamp, zero)", name ? name : "");
     return LUCENT_OK;
 }
 
@@ -38,16 +38,12 @@ lucent_status lucent_border_parse(const char *name, lucent_border *dest)
 lucent_status conv_check_images(const char *fn, const lucent_image *src, const lucent_image *dest)
 {
     if (!src || !src->data) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: src is NULL", fn);
-    if (!dest || !dest->data)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: dest is NULL", fn);
+    if (!dest || !dest->data) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: dest is NULL", fn);
     if (src->channels != 1 && src->channels != 3 && src->channels != 4)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: src has %d channels (1, 3 or 4)", fn,
-                            src->channels);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: src has %d channels (1, 3 or 4)", fn, src->channels);
     if (dest->width != src->width || dest->height != src->height || dest->channels != src->channels)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "%s: dest is %dx%dx%d but src is %dx%dx%d (sizes must match)", fn,
-                            dest->width, dest->height, dest->channels, src->width, src->height,
-                            src->channels);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: dest is %dx%dx%d but src is %dx%dx%d (sizes must match)",
+                            fn, dest->width, dest->height, dest->channels, src->width, src->height, src->channels);
     return LUCENT_OK;
 }
 
@@ -57,29 +53,22 @@ lucent_status lucent_conv_kernel2d_check(const lucent_conv_kernel2d *kernel)
     int n = kernel->size;
     if (n < 1 || n > LUCENT_CONVOLVE_MAX_SIZE || n % 2 == 0)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "kernel size is %d: it must be odd, 1 to %d, so the centre is a pixel",
-                            n, LUCENT_CONVOLVE_MAX_SIZE);
+                            "kernel size is %d: it must be odd, 1 to %d, so the centre is a pixel", n,
+                            LUCENT_CONVOLVE_MAX_SIZE);
     if (!kernel->w[0]) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel w[0] is NULL");
     for (int c = 0; c < 3; c++) {
         if (!kernel->w[c]) continue;
         for (size_t k = 0; k < (size_t)n * (size_t)n; k++)
             if (!isfinite(kernel->w[c][k]))
-                return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                                    "kernel w[%d][%zu] is not a finite number", c, k);
+                return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel w[%d][%zu] is not a finite number", c, k);
     }
     return LUCENT_OK;
 }
 
 /* Number of convolved channels (alpha excluded). */
-static int colour_channels(const lucent_image *img)
-{
-    return img->channels == 4 ? 3 : img->channels;
-}
+static int colour_channels(const lucent_image *img) { return img->channels == 4 ? 3 : img->channels; }
 
-static const float *kernel_weights(const lucent_conv_kernel2d *k, int c)
-{
-    return k->w[c] ? k->w[c] : k->w[0];
-}
+static const float *kernel_weights(const lucent_conv_kernel2d *k, int c) { return k->w[c] ? k->w[c] : k->w[0]; }
 
 /* Copies alpha from src to dest (no-op for images without alpha or when they alias). */
 static void copy_alpha(const lucent_image *src, lucent_image *dest)
@@ -106,8 +95,7 @@ typedef struct direct_ctx {
     lucent_image *dest;
 } direct_ctx;
 
-static lucent_status direct_rows(void *vctx, uint64_t chunk, uint64_t begin, uint64_t end,
-                                 int thread)
+static lucent_status direct_rows(void *vctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
 {
     (void)chunk;
     (void)thread;
@@ -126,13 +114,10 @@ static lucent_status direct_rows(void *vctx, uint64_t chunk, uint64_t begin, uin
                     const float *wr = w + (size_t)(j + r) * (size_t)n + (size_t)r;
                     for (int i = -r; i <= r; i++) {
                         int sx = border_index(x - i, s->width, ctx->border);
-                        if (sx >= 0)
-                            acc += (double)wr[i] * (double)row[(size_t)sx * (size_t)ch + (size_t)c];
+                        if (sx >= 0) acc += (double)wr[i] * (double)row[(size_t)sx * (size_t)ch + (size_t)c];
                     }
                 }
-                ctx->dest
-                    ->data[((size_t)y * (size_t)s->width + (size_t)x) * (size_t)ch + (size_t)c] =
-                    (float)acc;
+                ctx->dest->data[((size_t)y * (size_t)s->width + (size_t)x) * (size_t)ch + (size_t)c] = (float)acc;
             }
         }
     }
@@ -205,13 +190,11 @@ static void fft_load_kernel(const fft_ctx *ctx, int c, double *buf)
     const float *w = kernel_weights(ctx->kernel, c);
     memset(buf, 0, (size_t)ctx->nx * (size_t)ctx->ny * sizeof *buf);
     for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++)
-            buf[(size_t)j * (size_t)ctx->nx + (size_t)i] = w[(size_t)j * (size_t)n + (size_t)i];
+        for (int i = 0; i < n; i++) buf[(size_t)j * (size_t)ctx->nx + (size_t)i] = w[(size_t)j * (size_t)n + (size_t)i];
 }
 
 /* One colour channel per chunk: K^ = FFT(kernel), I^ = FFT(image), dest = IFFT(K^ I^) / N. */
-static lucent_status fft_channel(void *vctx, uint64_t chunk, uint64_t begin, uint64_t end,
-                                 int thread)
+static lucent_status fft_channel(void *vctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
 {
     (void)chunk;
     (void)end;
@@ -225,8 +208,8 @@ static lucent_status fft_channel(void *vctx, uint64_t chunk, uint64_t begin, uin
     fftw_complex *ispec = fftw_malloc(ncplx * sizeof *ispec);
     lucent_status s = LUCENT_OK;
     if (!buf || !kspec || !ispec) {
-        s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY,
-                         "lucent_convolve_2d: out of memory for %dx%d FFTs", ctx->nx, ctx->ny);
+        s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "lucent_convolve_2d: out of memory for %dx%d FFTs", ctx->nx,
+                         ctx->ny);
         goto done;
     }
     fft_load_kernel(ctx, c, buf);
@@ -272,11 +255,11 @@ static lucent_status fft_plan(fft_ctx *ctx)
     fftw_free(spec);
     pthread_mutex_unlock(&fftw_planner_lock);
     if (!buf || !spec)
-        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY,
-                            "lucent_convolve_2d: out of memory for %dx%d FFTs", ctx->nx, ctx->ny);
+        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "lucent_convolve_2d: out of memory for %dx%d FFTs", ctx->nx,
+                            ctx->ny);
     if (!ctx->forward || !ctx->inverse)
-        return lucent_error(LUCENT_ERR_INTERNAL,
-                            "lucent_convolve_2d: FFTW could not plan %dx%d FFTs", ctx->nx, ctx->ny);
+        return lucent_error(LUCENT_ERR_INTERNAL, "lucent_convolve_2d: FFTW could not plan %dx%d FFTs", ctx->nx,
+                            ctx->ny);
     return LUCENT_OK;
 }
 
@@ -288,8 +271,8 @@ static void fft_unplan(fft_ctx *ctx)
     pthread_mutex_unlock(&fftw_planner_lock);
 }
 
-lucent_status lucent_convolve_2d(const lucent_image *src, const lucent_conv_kernel2d *kernel,
-                                 lucent_border border, lucent_pool *pool, lucent_image *dest)
+lucent_status lucent_convolve_2d(const lucent_image *src, const lucent_conv_kernel2d *kernel, lucent_border border,
+                                 lucent_pool *pool, lucent_image *dest)
 {
     lucent_status s = conv_check_images("lucent_convolve_2d", src, dest);
     if (s == LUCENT_OK) s = lucent_conv_kernel2d_check(kernel);
@@ -303,8 +286,7 @@ lucent_status lucent_convolve_2d(const lucent_image *src, const lucent_conv_kern
                    .ny = fft_size(src->height + 2 * r)};
     s = fft_plan(&ctx);
     /* Each chunk reads channel c of src before writing channel c of dest, so dest may be src. */
-    if (s == LUCENT_OK)
-        s = lucent_parallel_for(pool, (uint64_t)colour_channels(src), 1, fft_channel, &ctx);
+    if (s == LUCENT_OK) s = lucent_parallel_for(pool, (uint64_t)colour_channels(src), 1, fft_channel, &ctx);
     fft_unplan(&ctx);
     if (s == LUCENT_OK) copy_alpha(src, dest);
     return s;

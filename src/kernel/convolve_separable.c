@@ -13,10 +13,7 @@
 #include "kernel/convolve_internal.h"
 #include "lucent/convolve.h"
 
-static int colour_channels(const lucent_image *img)
-{
-    return img->channels == 4 ? 3 : img->channels;
-}
+static int colour_channels(const lucent_image *img) { return img->channels == 4 ? 3 : img->channels; }
 
 /* One tap, ready for a pass: read at x + d0 and x + d0 + 1 with weights (1 - f) and f. */
 typedef struct pass_tap {
@@ -64,8 +61,7 @@ static lucent_status pass_rows(void *vctx, uint64_t chunk, uint64_t begin, uint6
                 for (int k = 0; k < p->count; k++) {
                     const pass_tap *t = &p->taps[k];
                     double v = fetch(p, line, stride, n, pos + t->d0, c);
-                    if (t->f != 0.0f)
-                        v += (double)t->f * (fetch(p, line, stride, n, pos + t->d0 + 1, c) - v);
+                    if (t->f != 0.0f) v += (double)t->f * (fetch(p, line, stride, n, pos + t->d0 + 1, c) - v);
                     acc += (double)t->w[c] * v;
                 }
                 o[c] = p->accumulate ? o[c] + (float)acc : (float)acc;
@@ -96,15 +92,15 @@ static lucent_status check_kernel1d(const char *name, int term, const float *con
 {
     if (!k[0])
         return term < 0 ? lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s[0] is NULL", name)
-                        : lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                                       "%s[%d] (term %d, channel 0) is NULL", name, term * 3, term);
+                        : lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s[%d] (term %d, channel 0) is NULL", name,
+                                       term * 3, term);
     for (int c = 0; c < 3; c++) {
         if (!k[c]) continue;
         for (int i = 0; i < length; i++)
             if (!isfinite(k[c][i]))
                 return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                                    "%s: term %d, channel %d, weight %d is not a finite number",
-                                    name, term < 0 ? 0 : term, c, i);
+                                    "%s: term %d, channel %d, weight %d is not a finite number", name,
+                                    term < 0 ? 0 : term, c, i);
     }
     return LUCENT_OK;
 }
@@ -137,9 +133,8 @@ static void copy_alpha(const lucent_image *src, lucent_image *dest)
 
 /* Runs sum over terms of (horizontal taps hx[t], then vertical taps vy[t]) from src into dest.
  * tmp holds the horizontal result; with several terms, acc collects the sum. */
-static lucent_status two_passes(const lucent_image *src, int terms, const pass_tap *hx, int hcount,
-                                const pass_tap *vy, int vcount, lucent_border border,
-                                lucent_pool *pool, lucent_image *dest, const char *fn)
+static lucent_status two_passes(const lucent_image *src, int terms, const pass_tap *hx, int hcount, const pass_tap *vy,
+                                int vcount, lucent_border border, lucent_pool *pool, lucent_image *dest, const char *fn)
 {
     size_t nvalues = lucent_image_value_count(src);
     float *tmp = malloc(nvalues * sizeof *tmp);
@@ -147,8 +142,8 @@ static lucent_status two_passes(const lucent_image *src, int terms, const pass_t
     if (!tmp || (terms > 1 && !acc)) {
         free(tmp);
         free(acc);
-        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory for a %dx%d image", fn,
-                            src->width, src->height);
+        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory for a %dx%d image", fn, src->width,
+                            src->height);
     }
     lucent_status s = LUCENT_OK;
     pass_ctx p = {.width = src->width,
@@ -181,9 +176,8 @@ static lucent_status two_passes(const lucent_image *src, int terms, const pass_t
     return s;
 }
 
-lucent_status lucent_convolve_separable_sum(const lucent_image *src, int rank,
-                                            const float *const *kx, const float *const *ky,
-                                            int length, lucent_border border, lucent_pool *pool,
+lucent_status lucent_convolve_separable_sum(const lucent_image *src, int rank, const float *const *kx,
+                                            const float *const *ky, int length, lucent_border border, lucent_pool *pool,
                                             lucent_image *dest)
 {
     static const char fn[] = "lucent_convolve_separable";
@@ -216,25 +210,22 @@ lucent_status lucent_convolve_separable_sum(const lucent_image *src, int rank,
     return s;
 }
 
-lucent_status lucent_convolve_separable(const lucent_image *src, const float *const kx[3],
-                                        const float *const ky[3], int length, lucent_border border,
-                                        lucent_pool *pool, lucent_image *dest)
+lucent_status lucent_convolve_separable(const lucent_image *src, const float *const kx[3], const float *const ky[3],
+                                        int length, lucent_border border, lucent_pool *pool, lucent_image *dest)
 {
     return lucent_convolve_separable_sum(src, 1, kx, ky, length, border, pool, dest);
 }
 
 /* Checks the taps and turns pass p of them into hx (weights times the sign, horizontal) and
  * vy (vertical). */
-static lucent_status prepare_taps(const char *fn, const lucent_conv_taps *taps, int rank,
-                                  pass_tap *hx, pass_tap *vy)
+static lucent_status prepare_taps(const char *fn, const lucent_conv_taps *taps, int rank, pass_tap *hx, pass_tap *vy)
 {
     int n = taps->count;
     for (int k = 0; k < n; k++) {
         float o = taps->offsets[k];
         if (!isfinite(o) || fabsf(o) > (float)LUCENT_CONVOLVE_MAX_SIZE)
-            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                                "%s: taps offsets[%d] is %g (finite, at most %d pixels)", fn, k,
-                                (double)o, LUCENT_CONVOLVE_MAX_SIZE);
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: taps offsets[%d] is %g (finite, at most %d pixels)",
+                                fn, k, (double)o, LUCENT_CONVOLVE_MAX_SIZE);
         double d = -(double)o, d0 = floor(d); /* read at x - o */
         for (int p = 0; p < rank; p++) {
             pass_tap *h = &hx[p * n + k], *v = &vy[p * n + k];
@@ -245,12 +236,11 @@ static lucent_status prepare_taps(const char *fn, const lucent_conv_taps *taps, 
                 const float *sg = taps->sign[c] ? taps->sign[c] : taps->sign[0];
                 float wk = w[p * n + k], sk = sg ? sg[p] : 1.0f;
                 if (!isfinite(wk))
-                    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                                        "%s: taps weights[%d][%d] is not a finite number", fn, c,
-                                        p * n + k);
+                    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: taps weights[%d][%d] is not a finite number",
+                                        fn, c, p * n + k);
                 if (!isfinite(sk))
-                    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                                        "%s: taps sign[%d][%d] is not a finite number", fn, c, p);
+                    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: taps sign[%d][%d] is not a finite number", fn,
+                                        c, p);
                 h->w[c] = wk * sk;
                 v->w[c] = wk;
             }
@@ -259,24 +249,21 @@ static lucent_status prepare_taps(const char *fn, const lucent_conv_taps *taps, 
     return LUCENT_OK;
 }
 
-lucent_status lucent_convolve_taps(const lucent_image *src, const lucent_conv_taps *taps,
-                                   lucent_border border, lucent_pool *pool, lucent_image *dest)
+lucent_status lucent_convolve_taps(const lucent_image *src, const lucent_conv_taps *taps, lucent_border border,
+                                   lucent_pool *pool, lucent_image *dest)
 {
     static const char fn[] = "lucent_convolve_taps";
     lucent_status s = conv_check_images(fn, src, dest);
     if (s != LUCENT_OK) return s;
     if (!taps) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: taps is NULL", fn);
     if (taps->count < 1 || taps->count > LUCENT_CONVOLVE_MAX_SIZE)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: taps count is %d (1 to %d)", fn,
-                            taps->count, LUCENT_CONVOLVE_MAX_SIZE);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: taps count is %d (1 to %d)", fn, taps->count,
+                            LUCENT_CONVOLVE_MAX_SIZE);
     int rank = taps->rank == 0 ? 1 : taps->rank;
     if (rank < 1 || rank > 1024)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: taps rank is %d (0 to 1024)", fn,
-                            taps->rank);
-    if (!taps->offsets)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: taps offsets is NULL", fn);
-    if (!taps->weights[0])
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: taps weights[0] is NULL", fn);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: taps rank is %d (0 to 1024)", fn, taps->rank);
+    if (!taps->offsets) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: taps offsets is NULL", fn);
+    if (!taps->weights[0]) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: taps weights[0] is NULL", fn);
     if (!taps->sign[0] && (taps->sign[1] || taps->sign[2]))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: taps sign[0] is NULL", fn);
     size_t n = (size_t)rank * (size_t)taps->count;
@@ -287,8 +274,7 @@ lucent_status lucent_convolve_taps(const lucent_image *src, const lucent_conv_ta
         return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", fn);
     }
     s = prepare_taps(fn, taps, rank, hx, vy);
-    if (s == LUCENT_OK)
-        s = two_passes(src, rank, hx, taps->count, vy, taps->count, border, pool, dest, fn);
+    if (s == LUCENT_OK) s = two_passes(src, rank, hx, taps->count, vy, taps->count, border, pool, dest, fn);
     free(hx);
     free(vy);
     return s;

@@ -42,8 +42,7 @@ static void header_comment(lucent_strbuf *b, const lucent_taps *t, const char *l
 }
 
 /* Writes the taps as "TYPE(r, g, b, o)" items, separated by commas. */
-static void tap_items(lucent_strbuf *b, const lucent_taps *t, const char *type, const char *open,
-                      const char *close)
+static void tap_items(lucent_strbuf *b, const lucent_taps *t, const char *type, const char *open, const char *close)
 {
     for (int p = 0; p < t->rank; p++)
         for (int i = 0; i < t->count; i++) {
@@ -54,12 +53,11 @@ static void tap_items(lucent_strbuf *b, const lucent_taps *t, const char *type, 
         }
 }
 
-static void sign_items(lucent_strbuf *b, const lucent_taps *t, const char *type, const char *open,
-                       const char *close)
+static void sign_items(lucent_strbuf *b, const lucent_taps *t, const char *type, const char *open, const char *close)
 {
     for (int p = 0; p < t->rank; p++)
-        lucent_strbuf_printf(b, "%s%s%.1f, %.1f, %.1f%s%s", type, open, t->sign[0][p], t->sign[1][p],
-                             t->sign[2][p], close, p == t->rank - 1 ? "" : ", ");
+        lucent_strbuf_printf(b, "%s%s%.1f, %.1f, %.1f%s%s", type, open, t->sign[0][p], t->sign[1][p], t->sign[2][p],
+                             close, p == t->rank - 1 ? "" : ", ");
 }
 
 static void write_glsl(lucent_strbuf *b, const lucent_taps *t, const char *label)
@@ -73,14 +71,13 @@ static void write_glsl(lucent_strbuf *b, const lucent_taps *t, const char *label
     tap_items(b, t, "vec4", "(", ")");
     lucent_strbuf_printf(b, ");\nconst vec3 LUCENT_SSS_SIGN[%d] = vec3[%d](", t->rank, t->rank);
     sign_items(b, t, "vec3", "(", ")");
-    lucent_strbuf_printf(b,
-                         ");\n\n// One 1-D pass of kernel pass `pass`; dir: texture-coordinate step per mm.\n"
-                         "vec3 lucent_sss_pass(sampler2D tex, vec2 uv, vec2 dir, int pass)\n{\n"
-                         "    vec3 sum = vec3(0.0);\n"
-                         "    for (int i = 0; i < LUCENT_SSS_TAPS; i++) {\n"
-                         "        vec4 k = LUCENT_SSS_KERNEL[pass * LUCENT_SSS_TAPS + i];\n"
-                         "        sum += k.rgb * texture(tex, uv + k.a * dir).rgb;\n"
-                         "    }\n    return sum;\n}\n");
+    lucent_strbuf_printf(b, ");\n\n// One 1-D pass of kernel pass `pass`; dir: texture-coordinate step per mm.\n"
+                            "vec3 lucent_sss_pass(sampler2D tex, vec2 uv, vec2 dir, int pass)\n{\n"
+                            "    vec3 sum = vec3(0.0);\n"
+                            "    for (int i = 0; i < LUCENT_SSS_TAPS; i++) {\n"
+                            "        vec4 k = LUCENT_SSS_KERNEL[pass * LUCENT_SSS_TAPS + i];\n"
+                            "        sum += k.rgb * texture(tex, uv + k.a * dir).rgb;\n"
+                            "    }\n    return sum;\n}\n");
 }
 
 static void write_hlsl(lucent_strbuf *b, const lucent_taps *t, const char *label)
@@ -94,14 +91,14 @@ static void write_hlsl(lucent_strbuf *b, const lucent_taps *t, const char *label
     tap_items(b, t, "float4", "(", ")");
     lucent_strbuf_printf(b, "};\nstatic const float3 LUCENT_SSS_SIGN[%d] = {", t->rank);
     sign_items(b, t, "float3", "(", ")");
-    lucent_strbuf_printf(
-        b, "};\n\n// One 1-D pass of kernel pass `pass`; dir: texture-coordinate step per mm.\n"
-           "float3 lucent_sss_pass(Texture2D tex, SamplerState smp, float2 uv, float2 dir, int pass)\n{\n"
-           "    float3 sum = float3(0.0, 0.0, 0.0);\n"
-           "    for (int i = 0; i < LUCENT_SSS_TAPS; i++) {\n"
-           "        float4 k = LUCENT_SSS_KERNEL[pass * LUCENT_SSS_TAPS + i];\n"
-           "        sum += k.rgb * tex.SampleLevel(smp, uv + k.a * dir, 0).rgb;\n"
-           "    }\n    return sum;\n}\n");
+    lucent_strbuf_printf(b,
+                         "};\n\n// One 1-D pass of kernel pass `pass`; dir: texture-coordinate step per mm.\n"
+                         "float3 lucent_sss_pass(Texture2D tex, SamplerState smp, float2 uv, float2 dir, int pass)\n{\n"
+                         "    float3 sum = float3(0.0, 0.0, 0.0);\n"
+                         "    for (int i = 0; i < LUCENT_SSS_TAPS; i++) {\n"
+                         "        float4 k = LUCENT_SSS_KERNEL[pass * LUCENT_SSS_TAPS + i];\n"
+                         "        sum += k.rgb * tex.SampleLevel(smp, uv + k.a * dir, 0).rgb;\n"
+                         "    }\n    return sum;\n}\n");
 }
 
 static void write_c(lucent_strbuf *b, const lucent_taps *t, const char *label)
@@ -128,44 +125,33 @@ static void write_json(lucent_strbuf *b, const lucent_taps *t, const char *label
                          "  \"label\": \"%s\",\n  \"units\": \"mm\",\n  \"taps\": %d,\n  \"rank\": %d,\n"
                          "  \"offsets\": [",
                          label, t->count, t->rank);
-    for (int i = 0; i < t->count; i++)
-        lucent_strbuf_printf(b, "%.17g%s", t->offset[i], i + 1 < t->count ? ", " : "]");
+    for (int i = 0; i < t->count; i++) lucent_strbuf_printf(b, "%.17g%s", t->offset[i], i + 1 < t->count ? ", " : "]");
     lucent_strbuf_printf(b, ",\n  \"passes\": [");
     for (int p = 0; p < t->rank; p++) {
-        lucent_strbuf_printf(b, "%s\n    {\"sign\": [%g, %g, %g], \"weights\": [", p ? "," : "",
-                             t->sign[0][p], t->sign[1][p], t->sign[2][p]);
+        lucent_strbuf_printf(b, "%s\n    {\"sign\": [%g, %g, %g], \"weights\": [", p ? "," : "", t->sign[0][p],
+                             t->sign[1][p], t->sign[2][p]);
         for (int i = 0; i < t->count; i++) {
             int k = p * t->count + i;
-            lucent_strbuf_printf(b, "%s[%.17g, %.17g, %.17g]", i ? ", " : "", t->weight[0][k],
-                                 t->weight[1][k], t->weight[2][k]);
+            lucent_strbuf_printf(b, "%s[%.17g, %.17g, %.17g]", i ? ", " : "", t->weight[0][k], t->weight[1][k],
+                                 t->weight[2][k]);
         }
         lucent_strbuf_printf(b, "]}");
     }
     lucent_strbuf_printf(b, "\n  ]\n}\n");
 }
 
-lucent_status lucent_taps_export(const lucent_taps *t, lucent_kernel_format format, const char *label,
-                                 char **dest)
+lucent_status lucent_taps_export(const lucent_taps *t, lucent_kernel_format format, const char *label, char **dest)
 {
     *dest = NULL;
     char safe[256];
     safe_label(label ? label : "kernel", safe, sizeof safe);
     lucent_strbuf b = {0};
     switch (format) {
-    case LUCENT_KERNEL_GLSL:
-        write_glsl(&b, t, safe);
-        break;
-    case LUCENT_KERNEL_HLSL:
-        write_hlsl(&b, t, safe);
-        break;
-    case LUCENT_KERNEL_C:
-        write_c(&b, t, safe);
-        break;
-    case LUCENT_KERNEL_JSON:
-        write_json(&b, t, safe);
-        break;
-    default:
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "taps export: unknown format %d", (int)format);
+    case LUCENT_KERNEL_GLSL: write_glsl(&b, t, safe); break;
+    case LUCENT_KERNEL_HLSL: write_hlsl(&b, t, safe); break;
+    case LUCENT_KERNEL_C: write_c(&b, t, safe); break;
+    case LUCENT_KERNEL_JSON: write_json(&b, t, safe); break;
+    default: return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "taps export: unknown format %d", (int)format);
     }
     return lucent_strbuf_finish(&b, dest);
 }

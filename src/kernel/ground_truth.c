@@ -35,8 +35,8 @@ static lucent_status check_profile(const lucent_profile *p)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel: profile needs at least 2 bins");
     for (int c = 0; c < 3; c++)
         if (!(lucent_profile_total(p, c) > 0))
-            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                                "kernel: profile channel %d has no positive reflectance", c);
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel: profile channel %d has no positive reflectance",
+                                c);
     return LUCENT_OK;
 }
 
@@ -67,10 +67,7 @@ static void fill_channel(const lucent_profile *p, int c, lucent_kernel2d *k, int
     for (int i = 0; i < n * n; i++) v[i] /= total;
 }
 
-lucent_kernel2d_desc lucent_kernel2d_defaults(void)
-{
-    return (lucent_kernel2d_desc){.energy = 0.999, .max_half = 100};
-}
+lucent_kernel2d_desc lucent_kernel2d_defaults(void) { return (lucent_kernel2d_desc){.energy = 0.999, .max_half = 100}; }
 
 lucent_status lucent_kernel2d_from_profile(const lucent_profile *p, const lucent_kernel2d_desc *desc,
                                            lucent_kernel2d **dest)

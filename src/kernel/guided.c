@@ -46,8 +46,7 @@ static void expand(guided_problem *g, const double *x)
 /* grad_x = P^T grad_b (each fine sample counted once). */
 static void reduce(const guided_problem *g, double *grad_x)
 {
-    for (int k = 0; k < g->knots; k++)
-        grad_x[k] = 0;
+    for (int k = 0; k < g->knots; k++) grad_x[k] = 0;
     for (int k = 0; k + 1 < g->knots; k++) {
         int i0 = knot_index(g, k), i1 = knot_index(g, k + 1);
         for (int i = i0; i < i1 || (i == i1 && k + 2 == g->knots); i++) {
@@ -67,11 +66,9 @@ static double objective(unsigned n, const double *x, double *grad, void *ctx)
     guided_problem *g = ctx;
     expand(g, x);
     double s = 0, f = 0, gb = 0;
-    for (int i = 0; i < g->m; i++)
-        s += (i ? 2 : 1) * g->b[i];
+    for (int i = 0; i < g->m; i++) s += (i ? 2 : 1) * g->b[i];
     if (!(s > 0)) return HUGE_VAL;
-    for (int i = 0; i < g->m; i++)
-        g->b[i] *= g->target / s;
+    for (int i = 0; i < g->m; i++) g->b[i] *= g->target / s;
     for (int p = 0; p < g->m; p++) {
         double gp = 0;
         for (int q = 0; q < g->m; q++) {
@@ -82,8 +79,7 @@ static double objective(unsigned n, const double *x, double *grad, void *ctx)
         g->grad_b[p] = -4 * gp;
         gb += g->grad_b[p] * g->b[p];
     }
-    for (int i = 0; i < g->m; i++)
-        g->grad_b[i] = (g->target / s) * (g->grad_b[i] - gb / g->target * (i ? 2 : 1));
+    for (int i = 0; i < g->m; i++) g->grad_b[i] = (g->target / s) * (g->grad_b[i] - gb / g->target * (i ? 2 : 1));
     if (grad) reduce(g, grad);
     return f;
 }
@@ -119,37 +115,30 @@ static void weights(const lucent_kernel2d *gt, int c, const lucent_kernel_desc *
             w[p * m + q] = gamma * (p ? 2 : 1) * (q ? 2 : 1);
             scale += w[p * m + q] * r[p * m + q] * r[p * m + q];
         }
-    for (int i = 0; i < m * m; i++)
-        w[i] /= scale > 0 ? scale : 1;
+    for (int i = 0; i < m * m; i++) w[i] /= scale > 0 ? scale : 1;
 }
 
-static lucent_status guided_channel(const lucent_kernel2d *gt, int c, const lucent_kernel_desc *d, double *w,
-                                    double *r, double *work, lucent_kernel *k)
+static lucent_status guided_channel(const lucent_kernel2d *gt, int c, const lucent_kernel_desc *d, double *w, double *r,
+                                    double *work, lucent_kernel *k)
 {
     int m = gt->half + 1, n = kernel_n(gt->half);
     guided_problem g = {.m = m, .w = w, .r = r, .b = work, .grad_b = work + m};
     double *x = work + 2 * m, norm = 0;
     weights(gt, c, d, w, r);
-    for (int i = 0; i < n * n; i++)
-        norm += fabs(gt->value[c][i]);
+    for (int i = 0; i < n * n; i++) norm += fabs(gt->value[c][i]);
     g.target = sqrt(norm);
-    int max_eval = d->max_evaluations > 0 ? d->max_evaluations
-                                          : lucent_kernel_defaults(d->model).max_evaluations;
+    int max_eval = d->max_evaluations > 0 ? d->max_evaluations : lucent_kernel_defaults(d->model).max_evaluations;
     int stride = 1;
-    while (stride * 8 < m)
-        stride *= 2;
-    for (int i = 0; i < m; i++)
-        g.b[i] = k->a[c][gt->half + i]; /* pre-integration start */
+    while (stride * 8 < m) stride *= 2;
+    for (int i = 0; i < m; i++) g.b[i] = k->a[c][gt->half + i]; /* pre-integration start */
     lucent_status st = LUCENT_OK;
     for (; stride >= 1 && st == LUCENT_OK; stride /= 2) {
         g.stride = stride;
         g.knots = (m - 1 + stride - 1) / stride + 1;
-        for (int kk = 0; kk < g.knots; kk++)
-            x[kk] = fmax(g.b[knot_index(&g, kk)], 0);
+        for (int kk = 0; kk < g.knots; kk++) x[kk] = fmax(g.b[knot_index(&g, kk)], 0);
         st = solve_level(&g, max_eval, x);
     }
-    for (int i = 0; i < m; i++)
-        k->a[c][gt->half + i] = k->a[c][gt->half - i] = g.b[i];
+    for (int i = 0; i < m; i++) k->a[c][gt->half + i] = k->a[c][gt->half - i] = g.b[i];
     return st;
 }
 
@@ -164,8 +153,7 @@ lucent_status kernel_guided(const lucent_kernel2d *gt, const lucent_kernel_desc 
            *work = malloc((size_t)3 * m * sizeof *work);
     if (st == LUCENT_OK && (!w || !r || !work))
         st = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "kernel guided: out of memory");
-    for (int c = 0; c < 3 && st == LUCENT_OK; c++)
-        st = guided_channel(gt, c, d, w, r, work, k);
+    for (int c = 0; c < 3 && st == LUCENT_OK; c++) st = guided_channel(gt, c, d, w, r, work, k);
     free(w);
     free(r);
     free(work);
@@ -173,7 +161,6 @@ lucent_status kernel_guided(const lucent_kernel2d *gt, const lucent_kernel_desc 
     double norm[3];
     lucent_kernel_norm1(k, norm);
     k->constraint_error = 0;
-    for (int c = 0; c < 3; c++)
-        k->constraint_error = fmax(k->constraint_error, fabs(norm[c] - 1));
+    for (int c = 0; c < 3; c++) k->constraint_error = fmax(k->constraint_error, fabs(norm[c] - 1));
     return LUCENT_OK;
 }

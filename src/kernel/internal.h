@@ -23,10 +23,10 @@ void kernel_default_range(lucent_kernel *k);
 lucent_status kernel_svd(const lucent_kernel2d *gt, const lucent_kernel_desc *d, lucent_kernel *k);
 lucent_status kernel_preint(const lucent_kernel2d *gt, lucent_kernel *k);
 lucent_status kernel_guided(const lucent_kernel2d *gt, const lucent_kernel_desc *d, lucent_kernel *k);
-lucent_status kernel_manual(const lucent_kernel2d *gt, const char *material,
-                            const lucent_kernel_desc *d, lucent_kernel *k);
-lucent_status kernel_sog(const lucent_kernel2d *gt, const lucent_profile *p,
-                         const lucent_kernel_desc *d, lucent_kernel *k);
+lucent_status kernel_manual(const lucent_kernel2d *gt, const char *material, const lucent_kernel_desc *d,
+                            lucent_kernel *k);
+lucent_status kernel_sog(const lucent_kernel2d *gt, const lucent_profile *p, const lucent_kernel_desc *d,
+                         lucent_kernel *k);
 lucent_status kernel_jimenez(const lucent_kernel2d *gt, const lucent_kernel_desc *d, lucent_kernel *k);
 
 #endif

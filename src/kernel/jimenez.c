@@ -6,7 +6,6 @@
 
 #include "kernel/internal.h"
 
-
 static void defaults(const lucent_kernel_desc *d, double t[3], double f[3])
 {
     lucent_kernel_desc def = lucent_kernel_defaults(LUCENT_KERNEL_JIMENEZ);
@@ -26,7 +25,8 @@ lucent_status kernel_jimenez(const lucent_kernel2d *gt, const lucent_kernel_desc
         if (!(t[c] >= 0 && t[c] <= 1) || !(f[c] >= 0) || !isfinite(f[c]))
             return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
                                 "jimenez kernel: strength must be in [0, 1] and falloff >= 0 "
-                                "(channel %d)", c);
+                                "(channel %d)",
+                                c);
     lucent_status st = kernel_alloc(k, 1, gt ? gt->half : 200, gt ? gt->h : 0.025);
     if (st != LUCENT_OK) return st;
     /* d'Eon & Luebke's skin, red channel, without its narrowest Gaussian (Jimenez's implementation). */

@@ -5,8 +5,8 @@
 
 #include "kernel/internal.h"
 
-static const char *const k_model_names[LUCENT_KERNEL_MODEL_COUNT] = {
-    "svd", "preint", "guided", "manual", "sog", "jimenez"};
+static const char *const k_model_names[LUCENT_KERNEL_MODEL_COUNT] = {"svd",    "preint", "guided",
+                                                                     "manual", "sog",    "jimenez"};
 
 const char *lucent_kernel_model_name(lucent_kernel_model model)
 {
@@ -21,8 +21,7 @@ lucent_status lucent_kernel_model_parse(const char *name, lucent_kernel_model *d
             return LUCENT_OK;
         }
     return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                        "unknown kernel model '%s' (svd, preint, guided, manual, sog, jimenez)",
-                        name ? name : "");
+                        "unknown kernel model '%s' (svd, preint, guided, manual, sog, jimenez)", name ? name : "");
 }
 
 lucent_kernel_desc lucent_kernel_defaults(lucent_kernel_model model)
@@ -65,8 +64,7 @@ void kernel_sample_gaussians(lucent_kernel *k)
             for (int j = 0; j < n; j++) {
                 double x0 = (j - k->half - 0.5) * k->h, sum = 0;
                 for (int g = 0; g < k->gaussians; g++)
-                    sum += gauss_mass(k->gauss_weight[c][p][g], k->gauss_variance[c][p][g], x0,
-                                      x0 + k->h);
+                    sum += gauss_mass(k->gauss_weight[c][p][g], k->gauss_variance[c][p][g], x0, x0 + k->h);
                 k->a[c][p * n + j] = sum;
             }
 }
@@ -113,12 +111,11 @@ static lucent_status check_desc(const lucent_kernel2d *gt, const lucent_kernel_d
                             lucent_kernel_model_name(d->model));
     bool ranked = d->model == LUCENT_KERNEL_SVD || d->model == LUCENT_KERNEL_SOG;
     if (d->rank < 0 || d->rank > LUCENT_KERNEL_MAX_RANK || (!ranked && d->rank > 1))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "kernel %s: rank must be %s", lucent_kernel_model_name(d->model),
-                            ranked ? "1..16" : "1 (a separable model)");
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel %s: rank must be %s",
+                            lucent_kernel_model_name(d->model), ranked ? "1..16" : "1 (a separable model)");
     if (gt && d->rank > kernel_n(gt->half))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel: rank %d exceeds the grid size %d",
-                            d->rank, kernel_n(gt->half));
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel: rank %d exceeds the grid size %d", d->rank,
+                            kernel_n(gt->half));
     return LUCENT_OK;
 }
 
@@ -135,9 +132,8 @@ static lucent_status dispatch(const lucent_kernel2d *gt, const lucent_profile *p
     }
 }
 
-lucent_status lucent_kernel_build(const lucent_kernel2d *gt, const lucent_profile *p,
-                                  const char *material_name, const lucent_kernel_desc *desc,
-                                  lucent_kernel **dest)
+lucent_status lucent_kernel_build(const lucent_kernel2d *gt, const lucent_profile *p, const char *material_name,
+                                  const lucent_kernel_desc *desc, lucent_kernel **dest)
 {
     *dest = NULL;
     lucent_kernel_desc d = desc ? *desc : (lucent_kernel_desc){0};

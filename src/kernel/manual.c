@@ -43,8 +43,8 @@ static lucent_status check_params(const lucent_manual_params *m)
     return LUCENT_OK;
 }
 
-lucent_status kernel_manual(const lucent_kernel2d *gt, const char *material,
-                            const lucent_kernel_desc *d, lucent_kernel *k)
+lucent_status kernel_manual(const lucent_kernel2d *gt, const char *material, const lucent_kernel_desc *d,
+                            lucent_kernel *k)
 {
     lucent_manual_params m = d->manual;
     lucent_status st = d->use_manual ? LUCENT_OK : lucent_manual_preset(material, &m);

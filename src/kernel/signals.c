@@ -69,8 +69,7 @@ lucent_status lucent_signal_load(const char *spec, int width, int height, lucent
 {
     *dest = NULL;
     if (!spec || !*spec)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "signal: expected \"edge\", \"shapes\" or an image path");
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "signal: expected \"edge\", \"shapes\" or an image path");
     if (width <= 0) width = LUCENT_SIGNAL_DEFAULT_SIZE;
     if (height <= 0) height = LUCENT_SIGNAL_DEFAULT_SIZE;
     if (strcmp(spec, "edge") == 0) return lucent_signal_edge(width, height, dest);

@@ -38,11 +38,10 @@ static void unit_sum(lucent_kernel *k, int c)
     for (int p = 0; p < k->rank; p++) k->gauss_weight[c][p][0] *= f;
 }
 
-lucent_status kernel_sog(const lucent_kernel2d *gt, const lucent_profile *p,
-                         const lucent_kernel_desc *d, lucent_kernel *k)
+lucent_status kernel_sog(const lucent_kernel2d *gt, const lucent_profile *p, const lucent_kernel_desc *d,
+                         lucent_kernel *k)
 {
-    if (!p)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel sog: needs the material's profile");
+    if (!p) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "kernel sog: needs the material's profile");
     int rank = d->rank > 0 ? d->rank : 1;
     lucent_sog fit;
     lucent_status st = lucent_sog_fit(p, &(lucent_sog_desc){.count = rank, .starts = SOG_STARTS}, &fit);

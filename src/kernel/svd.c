@@ -14,16 +14,13 @@ static lucent_status decompose(const double *m, int n, double *s, double *u, dou
     memcpy(copy, m, (size_t)n * n * sizeof *copy);
     lapack_int info = LAPACKE_dgesdd(LAPACK_ROW_MAJOR, 'A', n, n, copy, n, s, u, n, vt, n);
     free(copy);
-    if (info != 0)
-        return lucent_error(LUCENT_ERR_NUMERIC, "kernel svd: LAPACKE_dgesdd failed (info %d)",
-                            (int)info);
+    if (info != 0) return lucent_error(LUCENT_ERR_NUMERIC, "kernel svd: LAPACKE_dgesdd failed (info %d)", (int)info);
     return LUCENT_OK;
 }
 
 /* a_i = u^(i) sqrt(sigma_i) (5.10); sign_i = sign(u^(i) . v^(i)) (-1 where the symmetric kernel
  * has a negative eigenvalue); each pass oriented to a non-negative sum. */
-static void take_passes(lucent_kernel *k, int c, int n, const double *s, const double *u,
-                        const double *vt)
+static void take_passes(lucent_kernel *k, int c, int n, const double *s, const double *u, const double *vt)
 {
     for (int p = 0; p < k->rank; p++) {
         double dot = 0, sum = 0;
@@ -43,8 +40,7 @@ lucent_status kernel_svd(const lucent_kernel2d *gt, const lucent_kernel_desc *d,
     lucent_status st = kernel_alloc(k, d->rank > 0 ? d->rank : 1, gt->half, gt->h);
     double *s = malloc((size_t)n * sizeof *s), *u = malloc((size_t)n * n * sizeof *u),
            *vt = malloc((size_t)n * n * sizeof *vt);
-    if (st == LUCENT_OK && (!s || !u || !vt))
-        st = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "kernel svd: out of memory");
+    if (st == LUCENT_OK && (!s || !u || !vt)) st = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "kernel svd: out of memory");
     for (int c = 0; c < 3 && st == LUCENT_OK; c++) {
         st = decompose(gt->value[c], n, s, u, vt);
         if (st == LUCENT_OK) take_passes(k, c, n, s, u, vt);

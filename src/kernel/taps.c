@@ -27,10 +27,7 @@ static double interval(const double *o, int count, int i)
 }
 
 /* Listing order: centre first, then the ascending offsets without it. */
-static int listed(int count, int i)
-{
-    return i == count / 2 ? 0 : i < count / 2 ? i + 1 : i;
-}
+static int listed(int count, int i) { return i == count / 2 ? 0 : i < count / 2 ? i + 1 : i; }
 
 static lucent_taps *taps_alloc(int count, int rank)
 {
@@ -83,20 +80,15 @@ static double default_range(const lucent_kernel *k, int count)
     return k->range;
 }
 
-lucent_taps_desc lucent_taps_defaults(void)
-{
-    return (lucent_taps_desc){.count = 17};
-}
+lucent_taps_desc lucent_taps_defaults(void) { return (lucent_taps_desc){.count = 17}; }
 
-lucent_status lucent_kernel_taps(const lucent_kernel *k, const lucent_taps_desc *desc,
-                                 lucent_taps **dest)
+lucent_status lucent_kernel_taps(const lucent_kernel *k, const lucent_taps_desc *desc, lucent_taps **dest)
 {
     *dest = NULL;
     int count = desc && desc->count ? desc->count : lucent_taps_defaults().count;
     double range = desc && desc->range != 0 ? desc->range : default_range(k, count);
     if (count < 3 || count > LUCENT_KERNEL_MAX_TAPS || count % 2 == 0)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "taps: count must be odd, 3..255 (got %d)",
-                            count);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "taps: count must be odd, 3..255 (got %d)", count);
     if (!(range > 0) || !isfinite(range))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "taps: range must be > 0 mm");
     lucent_taps *t = taps_alloc(count, k->rank);

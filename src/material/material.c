@@ -9,10 +9,7 @@
 
 /* Jensen 2001: Fdr = -1.440/eta^2 + 0.710/eta + 0.668 + 0.0636 eta (fit of the diffuse
  * Fresnel reflectance, for eta > 1). */
-double lucent_fdr(double eta)
-{
-    return -1.440 / (eta * eta) + 0.710 / eta + 0.668 + 0.0636 * eta;
-}
+double lucent_fdr(double eta) { return -1.440 / (eta * eta) + 0.710 / eta + 0.668 + 0.0636 * eta; }
 
 /* Jensen 2001, total diffuse reflectance of the dipole:
  *   Rd = (alpha'/2) (1 + exp(-(4/3) A sqrt(3 (1 - alpha')))) exp(-sqrt(3 (1 - alpha'))),
@@ -66,16 +63,11 @@ void lucent_material_derive(const lucent_material *m, lucent_material_derived *d
     for (int c = 0; c < 3; c++) derive_channel(m, c, dest);
 }
 
-static const char *name_or(const lucent_material *m)
-{
-    return m->name[0] ? m->name : "material";
-}
+static const char *name_or(const lucent_material *m) { return m->name[0] ? m->name : "material"; }
 
-static lucent_status bad(const lucent_material *m, const char *field, int c, double v,
-                         const char *rule)
+static lucent_status bad(const lucent_material *m, const char *field, int c, double v, const char *rule)
 {
-    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: %s[%d]: must be %s, got %g", name_or(m),
-                        field, c, rule, v);
+    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: %s[%d]: must be %s, got %g", name_or(m), field, c, rule, v);
 }
 
 static lucent_status validate_channel(const lucent_material *m, int c)
@@ -97,8 +89,8 @@ lucent_status lucent_material_validate(const lucent_material *m)
         if (s != LUCENT_OK) return s;
     }
     if (!(m->eta >= LUCENT_MATERIAL_ETA_MIN && m->eta <= LUCENT_MATERIAL_ETA_MAX))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: eta: must be in [%g, %g], got %g",
-                            name_or(m), LUCENT_MATERIAL_ETA_MIN, LUCENT_MATERIAL_ETA_MAX, m->eta);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: eta: must be in [%g, %g], got %g", name_or(m),
+                            LUCENT_MATERIAL_ETA_MIN, LUCENT_MATERIAL_ETA_MAX, m->eta);
     return LUCENT_OK;
 }
 
@@ -112,8 +104,8 @@ static lucent_status check_g(const lucent_material *m)
 /* Single:  sigma_t = 1/l,   sigma_s = alpha sigma_t,   sigma_a = (1 - alpha) sigma_t.
  * Reduced: sigma_t' = 1/l', sigma_s' = alpha' sigma_t', sigma_a = (1 - alpha') sigma_t',
  *          sigma_s = sigma_s' / (1 - g). */
-lucent_status lucent_material_set_albedo(lucent_albedo_kind kind, const double albedo[3],
-                                         const double mfp[3], lucent_material *dest)
+lucent_status lucent_material_set_albedo(lucent_albedo_kind kind, const double albedo[3], const double mfp[3],
+                                         lucent_material *dest)
 {
     lucent_status s = check_g(dest);
     for (int c = 0; c < 3 && s == LUCENT_OK; c++) {
@@ -134,15 +126,12 @@ lucent_status lucent_material_set_albedo(lucent_albedo_kind kind, const double a
 
 /* Rd -> alpha' by inverting the dipole; then sigma_tr = sigma_t' sqrt(3 (1 - alpha')) gives
  * sigma_t' = sigma_tr / sqrt(3 (1 - alpha')), with sigma_tr = 1 / ld. */
-lucent_status lucent_material_set_diffuse(const double rd[3], const double mfp_diffuse[3],
-                                          lucent_material *dest)
+lucent_status lucent_material_set_diffuse(const double rd[3], const double mfp_diffuse[3], lucent_material *dest)
 {
     lucent_status s = check_g(dest);
-    if (s == LUCENT_OK &&
-        !(dest->eta >= LUCENT_MATERIAL_ETA_MIN && dest->eta <= LUCENT_MATERIAL_ETA_MAX))
-        s = lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: eta: must be in [%g, %g], got %g",
-                         name_or(dest), LUCENT_MATERIAL_ETA_MIN, LUCENT_MATERIAL_ETA_MAX,
-                         dest->eta);
+    if (s == LUCENT_OK && !(dest->eta >= LUCENT_MATERIAL_ETA_MIN && dest->eta <= LUCENT_MATERIAL_ETA_MAX))
+        s = lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: eta: must be in [%g, %g], got %g", name_or(dest),
+                         LUCENT_MATERIAL_ETA_MIN, LUCENT_MATERIAL_ETA_MAX, dest->eta);
     for (int c = 0; c < 3 && s == LUCENT_OK; c++) {
         if (!(rd[c] >= 0.0 && rd[c] < 1.0))
             s = bad(dest, "diffuse reflectance", c, rd[c], "in [0, 1)");

@@ -19,8 +19,7 @@ static const range k_positive = {0.0, INFINITY, true, true, "> 0"};
 static const range k_unit = {0.0, 1.0, false, false, "in [0, 1]"};
 static const range k_unit_open = {0.0, 1.0, false, true, "in [0, 1)"};
 static const range k_g = {-1.0, 1.0, true, true, "in (-1, 1)"};
-static const range k_eta = {LUCENT_MATERIAL_ETA_MIN, LUCENT_MATERIAL_ETA_MAX, false, false,
-                            "in [1, 3]"};
+static const range k_eta = {LUCENT_MATERIAL_ETA_MIN, LUCENT_MATERIAL_ETA_MAX, false, false, "in [1, 3]"};
 
 static bool in_range(double v, const range *r)
 {
@@ -31,8 +30,7 @@ static bool in_range(double v, const range *r)
 
 /* Reads key as 3 numbers (or one, repeated) within r; out-of-range values are named
  * with their index: "sigma_a[1]: must be >= 0, got -0.1". */
-static lucent_status read_channels(const lucent_json_node *n, const char *key, const range *r,
-                                   double dest[3])
+static lucent_status read_channels(const lucent_json_node *n, const char *key, const range *r, double dest[3])
 {
     lucent_status s = lucent_json_numbers(n, key, 3, true, dest);
     if (s != LUCENT_OK) return s;
@@ -55,11 +53,9 @@ typedef struct unit {
 
 static const unit k_coefficient_units[] = {
     {{"mm^-1", "1/mm"}, 1.0}, {{"cm^-1", "1/cm"}, 0.1}, {{"m^-1", "1/m"}, 0.001}};
-static const unit k_length_units[] = {
-    {{"mm", NULL}, 1.0}, {{"cm", NULL}, 10.0}, {{"m", NULL}, 1000.0}};
+static const unit k_length_units[] = {{{"mm", NULL}, 1.0}, {{"cm", NULL}, 10.0}, {{"m", NULL}, 1000.0}};
 
-static lucent_status read_units(const lucent_json_node *n, bool length, const char *with,
-                                double *scale)
+static lucent_status read_units(const lucent_json_node *n, bool length, const char *with, double *scale)
 {
     const char *text;
     lucent_status s = lucent_json_string(n, "units", &text);
@@ -72,8 +68,7 @@ static lucent_status read_units(const lucent_json_node *n, bool length, const ch
                 return LUCENT_OK;
             }
     return lucent_json_fail(n, "units", LUCENT_ERR_PARSE, "expected %s with %s, got \"%s\"",
-                            length ? "\"mm\", \"cm\" or \"m\"" : "\"mm^-1\", \"cm^-1\" or \"m^-1\"",
-                            with, text);
+                            length ? "\"mm\", \"cm\" or \"m\"" : "\"mm^-1\", \"cm^-1\" or \"m^-1\"", with, text);
 }
 
 static void scale3(double v[3], double k)
@@ -83,13 +78,7 @@ static void scale3(double v[3], double k)
 
 /* ---- the four ways to give a medium ---- */
 
-typedef enum form {
-    FORM_COEFFICIENTS,
-    FORM_ALBEDO,
-    FORM_REDUCED_ALBEDO,
-    FORM_DIFFUSE,
-    FORM_COUNT
-} form;
+typedef enum form { FORM_COEFFICIENTS, FORM_ALBEDO, FORM_REDUCED_ALBEDO, FORM_DIFFUSE, FORM_COUNT } form;
 
 /* The keys of each form; the first one selects it. */
 static const char *const k_form_keys[FORM_COUNT][3] = {
@@ -105,8 +94,7 @@ static lucent_status foreign_key(const lucent_json_node *n, form f)
         for (int k = 0; k < 3; k++) {
             const char *key = k_form_keys[o][k];
             if (o == (int)f || !key || !lucent_json_has(n, key)) continue;
-            return lucent_json_fail(n, key, LUCENT_ERR_PARSE, "cannot be combined with \"%s\"",
-                                    k_form_keys[f][0]);
+            return lucent_json_fail(n, key, LUCENT_ERR_PARSE, "cannot be combined with \"%s\"", k_form_keys[f][0]);
         }
     return LUCENT_OK;
 }
@@ -131,19 +119,16 @@ static lucent_status read_coefficients(const lucent_json_node *n, lucent_materia
     if (s != LUCENT_OK) return s;
     bool reduced = lucent_json_has(n, "sigma_s_prime");
     if (reduced && lucent_json_has(n, "sigma_s"))
-        return lucent_json_fail(n, "sigma_s_prime", LUCENT_ERR_PARSE,
-                                "give either sigma_s or sigma_s_prime, not both");
+        return lucent_json_fail(n, "sigma_s_prime", LUCENT_ERR_PARSE, "give either sigma_s or sigma_s_prime, not both");
     s = read_channels(n, reduced ? "sigma_s_prime" : "sigma_s", &k_nonneg, m->sigma_s);
     if (s != LUCENT_OK) return s;
-    for (int c = 0; reduced && c < 3; c++)
-        m->sigma_s[c] /= 1.0 - m->g[c]; /* sigma_s' = sigma_s (1-g) */
+    for (int c = 0; reduced && c < 3; c++) m->sigma_s[c] /= 1.0 - m->g[c]; /* sigma_s' = sigma_s (1-g) */
     scale3(m->sigma_a, scale);
     scale3(m->sigma_s, scale);
     return LUCENT_OK;
 }
 
-static lucent_status read_pair(const lucent_json_node *n, form f, const range *first, double a[3],
-                               double mfp[3])
+static lucent_status read_pair(const lucent_json_node *n, form f, const range *first, double a[3], double mfp[3])
 {
     const char *const *keys = k_form_keys[f];
     double scale;
@@ -164,10 +149,8 @@ static lucent_status read_medium(const lucent_json_node *n, form f, lucent_mater
     if (f == FORM_DIFFUSE)
         s = lucent_material_set_diffuse(a, mfp, m);
     else
-        s = lucent_material_set_albedo(
-            f == FORM_ALBEDO ? LUCENT_ALBEDO_SINGLE : LUCENT_ALBEDO_REDUCED, a, mfp, m);
-    return s == LUCENT_OK ? s
-                          : lucent_json_fail(n, k_form_keys[f][0], s, "%s", lucent_last_error());
+        s = lucent_material_set_albedo(f == FORM_ALBEDO ? LUCENT_ALBEDO_SINGLE : LUCENT_ALBEDO_REDUCED, a, mfp, m);
+    return s == LUCENT_OK ? s : lucent_json_fail(n, k_form_keys[f][0], s, "%s", lucent_last_error());
 }
 
 /* ---- one material ---- */
@@ -185,8 +168,7 @@ static lucent_status read_name(const lucent_json_node *n, const char *def, lucen
     lucent_status s = lucent_json_string_or(n, "name", def, &name);
     if (s != LUCENT_OK) return s;
     if (!name[0] || strlen(name) >= sizeof m->name)
-        return lucent_json_fail(n, "name", LUCENT_ERR_PARSE, "must have 1 to %d characters",
-                                (int)sizeof m->name - 1);
+        return lucent_json_fail(n, "name", LUCENT_ERR_PARSE, "must have 1 to %d characters", (int)sizeof m->name - 1);
     memcpy(m->name, name, strlen(name) + 1);
     return LUCENT_OK;
 }
@@ -198,8 +180,7 @@ static lucent_status read_informational(const lucent_json_node *n)
     const char *text;
     lucent_json_node derived;
     lucent_status s = lucent_json_string_or(n, "source", "", &text);
-    if (s == LUCENT_OK && lucent_json_has(n, "rd_published"))
-        s = read_channels(n, "rd_published", &k_unit, rd);
+    if (s == LUCENT_OK && lucent_json_has(n, "rd_published")) s = read_channels(n, "rd_published", &k_unit, rd);
     if (s == LUCENT_OK) s = lucent_json_object(n, "derived", false, &derived);
     return s;
 }
@@ -232,8 +213,8 @@ static lucent_status check_unique(const lucent_json_node *list, const lucent_mat
             if (strcasecmp(m[i].name, m[j].name) == 0) {
                 lucent_json_node e;
                 lucent_json_element(list, i, &e);
-                return lucent_json_fail(&e, "name", LUCENT_ERR_PARSE,
-                                        "\"%s\" is also the name of materials[%d]", m[i].name, j);
+                return lucent_json_fail(&e, "name", LUCENT_ERR_PARSE, "\"%s\" is also the name of materials[%d]",
+                                        m[i].name, j);
             }
     return LUCENT_OK;
 }
@@ -248,8 +229,7 @@ static lucent_status read_list(const lucent_json_node *root, lucent_material **d
     lucent_status s = lucent_json_check_keys(root, k_file_keys);
     if (s == LUCENT_OK) s = lucent_json_string_or(root, "source", "", &source);
     if (s == LUCENT_OK) s = lucent_json_array(root, "materials", true, &list, &n);
-    if (s == LUCENT_OK && n == 0)
-        s = lucent_json_fail(&list, NULL, LUCENT_ERR_PARSE, "expected at least one material");
+    if (s == LUCENT_OK && n == 0) s = lucent_json_fail(&list, NULL, LUCENT_ERR_PARSE, "expected at least one material");
     if (s != LUCENT_OK) return s;
     lucent_material *m = calloc((size_t)n, sizeof *m);
     if (!m) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", root->file);
@@ -279,8 +259,7 @@ static void stem(const char *file, char *dest, size_t size)
     dest[len] = '\0';
 }
 
-static lucent_status read_root(const cJSON *json, const char *file, lucent_material **dest,
-                               int *count)
+static lucent_status read_root(const cJSON *json, const char *file, lucent_material **dest, int *count)
 {
     lucent_json_node root = lucent_json_root(json, file, "");
     if (!cJSON_IsObject(json))
@@ -301,8 +280,7 @@ static lucent_status read_root(const cJSON *json, const char *file, lucent_mater
     return LUCENT_OK;
 }
 
-lucent_status lucent_material_parse(const char *text, const char *name, lucent_material **dest,
-                                    int *count)
+lucent_status lucent_material_parse(const char *text, const char *name, lucent_material **dest, int *count)
 {
     cJSON *json;
     *dest = NULL;
@@ -343,8 +321,7 @@ static lucent_status pick_from_file(const char *file, const char *name, lucent_m
     else if (name)
         s = lucent_error(LUCENT_ERR_NOT_FOUND, "%s: no material named \"%s\"", file, name);
     else
-        s = lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: holds %d materials; name one as %s#NAME",
-                         file, n, file);
+        s = lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: holds %d materials; name one as %s#NAME", file, n, file);
     free(m);
     return s;
 }
@@ -376,8 +353,7 @@ static bool add_derived(cJSON *obj, const lucent_material *m)
     lucent_material_derived d;
     lucent_material_derive(m, &d);
     cJSON *o = cJSON_AddObjectToObject(obj, "derived");
-    if (!o || !cJSON_AddStringToObject(o, "units", "coefficients in mm^-1, lengths in mm"))
-        return false;
+    if (!o || !cJSON_AddStringToObject(o, "units", "coefficients in mm^-1, lengths in mm")) return false;
     bool ok = lucent_json_add_numbers(o, "sigma_s_prime", d.sigma_s_prime, 3) &&
               lucent_json_add_numbers(o, "sigma_t", d.sigma_t, 3) &&
               lucent_json_add_numbers(o, "sigma_t_prime", d.sigma_t_prime, 3) &&
@@ -399,16 +375,14 @@ static bool add_material(cJSON *list, const lucent_material *m, bool with_derive
         cJSON_Delete(o);
         return false;
     }
-    bool ok = cJSON_AddStringToObject(o, "name", m->name) &&
-              cJSON_AddStringToObject(o, "units", "mm^-1") &&
+    bool ok = cJSON_AddStringToObject(o, "name", m->name) && cJSON_AddStringToObject(o, "units", "mm^-1") &&
               lucent_json_add_numbers(o, "sigma_a", m->sigma_a, 3) &&
-              lucent_json_add_numbers(o, "sigma_s", m->sigma_s, 3) &&
-              lucent_json_add_numbers(o, "g", m->g, 3) && cJSON_AddNumberToObject(o, "eta", m->eta);
+              lucent_json_add_numbers(o, "sigma_s", m->sigma_s, 3) && lucent_json_add_numbers(o, "g", m->g, 3) &&
+              cJSON_AddNumberToObject(o, "eta", m->eta);
     return ok && (!with_derived || add_derived(o, m));
 }
 
-lucent_status lucent_material_to_json(const lucent_material *materials, int count,
-                                      bool with_derived, char **dest)
+lucent_status lucent_material_to_json(const lucent_material *materials, int count, bool with_derived, char **dest)
 {
     *dest = NULL;
     cJSON *root = cJSON_CreateObject();

@@ -23,8 +23,7 @@ static void load_presets(void)
         snprintf(g_failure, sizeof g_failure, "%s is not built into this binary", PRESETS_FILE);
         return;
     }
-    if (lucent_material_parse((const char *)f->data, PRESETS_FILE " (built in)", &g_presets,
-                              &g_count) != LUCENT_OK)
+    if (lucent_material_parse((const char *)f->data, PRESETS_FILE " (built in)", &g_presets, &g_count) != LUCENT_OK)
         snprintf(g_failure, sizeof g_failure, "%s", lucent_last_error());
     lucent_clear_error();
 }
@@ -36,18 +35,14 @@ static lucent_status presets_ready(void)
     return LUCENT_OK;
 }
 
-int lucent_material_preset_count(void)
-{
-    return presets_ready() == LUCENT_OK ? g_count : 0;
-}
+int lucent_material_preset_count(void) { return presets_ready() == LUCENT_OK ? g_count : 0; }
 
 lucent_status lucent_material_preset(int index, lucent_material *dest)
 {
     lucent_status s = presets_ready();
     if (s != LUCENT_OK) return s;
     if (index < 0 || index >= g_count)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "preset index %d out of range [0, %d)",
-                            index, g_count);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "preset index %d out of range [0, %d)", index, g_count);
     *dest = g_presets[index];
     return LUCENT_OK;
 }

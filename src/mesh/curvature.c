@@ -19,8 +19,10 @@ lucent_status lucent_curvature_method_parse(const char *name, lucent_curvature_m
             *dest = (lucent_curvature_method)i;
             return LUCENT_OK;
         }
-    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "unknown curvature method '%s' "
-                        "(rusinkiewicz, meyer, garimella)", name ? name : "");
+    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                        "unknown curvature method '%s' "
+                        "(rusinkiewicz, meyer, garimella)",
+                        name ? name : "");
 }
 
 void lucent_curvature_free(lucent_curvature *c)
@@ -97,9 +99,8 @@ static lucent_status per_vertex_chunk(void *ctx, uint64_t chunk, uint64_t begin,
     return LUCENT_OK;
 }
 
-lucent_status mesh_curvature_per_vertex(const lucent_mesh *mesh, const mesh_adjacency *adj,
-                                        const mesh_fan *fan, lucent_pool *pool, mesh_vertex_fn fn,
-                                        lucent_curvature *dest)
+lucent_status mesh_curvature_per_vertex(const lucent_mesh *mesh, const mesh_adjacency *adj, const mesh_fan *fan,
+                                        lucent_pool *pool, mesh_vertex_fn fn, lucent_curvature *dest)
 {
     mesh_face_geometry *geometry = mesh_alloc_large((mesh->face_count + 1) * sizeof *geometry);
     if (!geometry) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "curvature: out of memory");
@@ -125,9 +126,10 @@ static lucent_status estimate(const lucent_mesh *mesh, const lucent_curvature_de
         if (d->method == LUCENT_CURVATURE_RUSINKIEWICZ) /* scaled here unless smoothed after */
             s = mesh_curvature_rusinkiewicz(mesh, &adj, &fan, d->pool, d->fast,
                                             d->smooth_rings > 0 ? 1 : 1 / d->mm_per_unit, dest);
-        else s = mesh_curvature_per_vertex(mesh, &adj, &fan, d->pool,
-                                           d->method == LUCENT_CURVATURE_MEYER ? mesh_meyer_vertex
-                                                                               : mesh_garimella_vertex, dest);
+        else
+            s = mesh_curvature_per_vertex(
+                mesh, &adj, &fan, d->pool,
+                d->method == LUCENT_CURVATURE_MEYER ? mesh_meyer_vertex : mesh_garimella_vertex, dest);
     }
     if (s == LUCENT_OK && d->smooth_rings > 0) s = mesh_smooth(mesh, &adj, d->smooth_rings, dest);
     free(fan.normals), free(fan.pair);
@@ -135,14 +137,13 @@ static lucent_status estimate(const lucent_mesh *mesh, const lucent_curvature_de
     return s;
 }
 
-lucent_status lucent_mesh_curvature(const lucent_mesh *mesh, const lucent_curvature_desc *desc,
-                                    lucent_curvature *dest)
+lucent_status lucent_mesh_curvature(const lucent_mesh *mesh, const lucent_curvature_desc *desc, lucent_curvature *dest)
 {
     lucent_curvature_desc d = desc ? *desc : (lucent_curvature_desc){0};
     if (!(d.mm_per_unit > 0)) d.mm_per_unit = 1;
     if (!isfinite(d.mm_per_unit) || d.smooth_rings < 0 || d.smooth_rings > 1000 || (unsigned)d.method > 2)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "curvature: method 0..2, smooth_rings 0..1000, "
-                            "finite mm_per_unit");
+                                                         "finite mm_per_unit");
     lucent_status s = alloc_curvature(mesh->vertex_count, dest);
     if (s == LUCENT_OK) s = estimate(mesh, &d, dest);
     int scaled = d.method == LUCENT_CURVATURE_RUSINKIEWICZ && d.smooth_rings == 0;

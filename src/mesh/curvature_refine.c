@@ -50,7 +50,7 @@ static inline void lift(const refine_job *j, uint32_t v, uint32_t u, lifted *L, 
     float du = dotf(p->d1, ex, ey, ez), dv = dotf(p->d2, ex, ey, ez), r2 = du * du + dv * dv;
     float kn2 = p->k1 * du * du + p->k2 * dv * dv; /* kn r2 */
     float a = dotf(q->d1, ex, ey, ez), b = dotf(q->d2, ex, ey, ez), s = a * a + b * b;
-    float kb = q->k1 * a * a + q->k2 * b * b;      /* kb s */
+    float kb = q->k1 * a * a + q->k2 * b * b;                     /* kb s */
     int own = (j->fan->flags[u] & LUCENT_CURVATURE_INVALID) != 0; /* no kb: kb = kn */
     float num = own ? kn2 : s > 0 ? 2 * kn2 * s + kb * r2 : 2 * kn2;
     float den = own ? r2 : s > 0 ? 3 * r2 * s : 3 * r2;
@@ -104,9 +104,11 @@ static void lift4(const refine_job *j, const frame4 *F, uint32_t v, const uint32
     _MM_TRANSPOSE4_PS(q[0], q[1], q[2], q[3]);
     _MM_TRANSPOSE4_PS(q[4], q[5], q[6], q[7]);
     const uint8_t *flags = j->fan->flags;
-    __m128 own = _mm_castsi128_ps(_mm_setr_epi32( /* all ones where the neighbour is invalid */
-        -((flags[nb[0]] & LUCENT_CURVATURE_INVALID) != 0), -((flags[nb[1]] & LUCENT_CURVATURE_INVALID) != 0),
-        -((flags[nb[2]] & LUCENT_CURVATURE_INVALID) != 0), -((flags[nb[3]] & LUCENT_CURVATURE_INVALID) != 0)));
+    __m128 own = _mm_castsi128_ps(_mm_setr_epi32(/* all ones where the neighbour is invalid */
+                                                 -((flags[nb[0]] & LUCENT_CURVATURE_INVALID) != 0),
+                                                 -((flags[nb[1]] & LUCENT_CURVATURE_INVALID) != 0),
+                                                 -((flags[nb[2]] & LUCENT_CURVATURE_INVALID) != 0),
+                                                 -((flags[nb[3]] & LUCENT_CURVATURE_INVALID) != 0)));
     __m128 du = dot4(F->d1, ex, ey, ez), dv = dot4(F->d2, ex, ey, ez);
     __m128 r2 = _mm_add_ps(_mm_mul_ps(du, du), _mm_mul_ps(dv, dv));
     __m128 kn2 = _mm_add_ps(_mm_mul_ps(_mm_mul_ps(F->k1, du), du), _mm_mul_ps(_mm_mul_ps(F->k2, dv), dv));
@@ -158,8 +160,10 @@ static void lifted_max_normal(const refine_job *j, uint32_t v, double m[3])
         uint32_t next = mesh_prefetch_slot(j->adj, j->mesh->faces, j->adj->start[v] + a, PREFETCH_SLOTS);
         __builtin_prefetch(j->mesh->positions + 3 * (size_t)next), __builtin_prefetch(j->principal + next);
         mesh_slot_others(j->mesh->faces, slot[a], nb + a, &prev);
-        if (pair[a] != MESH_UNPAIRED) other[a] = pair[a];
-        else other[a] = count + extra, nb[count + extra++] = prev;
+        if (pair[a] != MESH_UNPAIRED)
+            other[a] = pair[a];
+        else
+            other[a] = count + extra, nb[count + extra++] = prev;
     }
 #if LIFT_SSE2
     frame4 F = frame4_of(j->principal + v);

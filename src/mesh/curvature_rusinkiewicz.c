@@ -25,11 +25,11 @@ enum { PREFETCH_SLOTS = 48 }; /* about 8 vertices ahead; at most MESH_SLOT_PAD *
 typedef struct rus_job {
     const lucent_mesh *mesh;
     const mesh_adjacency *adj;
-    const float *normals;       /* this pass's vertex normals, 3 per vertex */
+    const float *normals; /* this pass's vertex normals, 3 per vertex */
     face_rec *faces;
-    slot_turn *turns;           /* two passes only */
-    float *tensors;             /* the second pass's face tensors (mean, diff, off) */
-    mesh_principal *principal;  /* the first of two passes writes here, the last to out */
+    slot_turn *turns;          /* two passes only */
+    float *tensors;            /* the second pass's face tensors (mean, diff, off) */
+    mesh_principal *principal; /* the first of two passes writes here, the last to out */
     lucent_curvature *out;
     const float *frame_normals; /* the second pass: the first pass's normals, for the frames */
     double scale;               /* 1/mm_per_unit */
@@ -69,9 +69,11 @@ static lucent_status faces_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint
     const rus_job *j = ctx;
     for (uint64_t f = begin; j->second == 0 && f < end; f++)
         face_frame(j->mesh->positions, j->mesh->faces + 3 * f, j->faces + f);
-    if (j->second) mesh_rus_fit_faces(j->mesh->faces, j->normals, j->faces, begin, end, j->tensors, 3);
-    else mesh_rus_fit_faces(j->mesh->faces, j->normals, j->faces, begin, end,
-                            (float *)j->faces + offsetof(face_rec, mean) / sizeof(float), 16);
+    if (j->second)
+        mesh_rus_fit_faces(j->mesh->faces, j->normals, j->faces, begin, end, j->tensors, 3);
+    else
+        mesh_rus_fit_faces(j->mesh->faces, j->normals, j->faces, begin, end,
+                           (float *)j->faces + offsetof(face_rec, mean) / sizeof(float), 16);
     return LUCENT_OK;
 }
 
@@ -104,7 +106,7 @@ static void gather(const rus_job *j, uint32_t v, const float *u, const float *w,
         float nd = dotf(n, f->n), su = dotf(u, f->n), sv = dotf(w, f->n);
         float tn = dotf(n, f->t), tu = dotf(u, f->t), tv = dotf(w, f->t);
         float den = 1 + nd, k = den > 1e-6f ? tn / den : 0; /* opposite normals: no turn */
-        float c = tu - su * k, s = tv - sv * k;              /* cos phi, sin phi */
+        float c = tu - su * k, s = tv - sv * k;             /* cos phi, sin phi */
         float wc = area * (c * c - s * s), ws = area * 2 * c * s;
         sa += area, sm += area * f->mean, sx += f->diff * wc - f->off * ws, sy += f->diff * ws + f->off * wc;
         if (j->turns) j->turns[a] = (slot_turn){area, wc, ws};
@@ -140,7 +142,7 @@ static void store_vertex(const rus_job *j, uint32_t v, const double *pu, const d
         c = sqrt(0.5 * (1 + h)), s = copysign(sqrt(0.5 * (1 - h)), y);
     }
     double k1 = (mean + r) * j->scale, k2 = (mean - r) * j->scale, gauss = k1 * k2; /* in mm^-1 */
-    valid = valid && isfinite(k1) && isfinite(k2) && isfinite(gauss); /* as lucent_mesh_curvature's */
+    valid = valid && isfinite(k1) && isfinite(k2) && isfinite(gauss);               /* as lucent_mesh_curvature's */
     for (int k = 0; k < 3; k++) d1[k] = valid ? c * pu[k] + s * pv[k] : 0, d2[k] = valid ? c * pv[k] - s * pu[k] : 0;
     lucent_curvature *o = j->out;
     o->k1[v] = valid ? k1 : 0, o->k2[v] = valid ? k2 : 0;
@@ -241,15 +243,14 @@ static void *scratch(size_t nv, size_t nf, int fast, rus_scratch *d)
     return block;
 }
 
-lucent_status mesh_curvature_rusinkiewicz(const lucent_mesh *mesh, const mesh_adjacency *adj,
-                                          const mesh_fan *fan, lucent_pool *pool, int fast, double scale,
-                                          lucent_curvature *dest)
+lucent_status mesh_curvature_rusinkiewicz(const lucent_mesh *mesh, const mesh_adjacency *adj, const mesh_fan *fan,
+                                          lucent_pool *pool, int fast, double scale, lucent_curvature *dest)
 {
     rus_scratch sc;
     void *block = scratch(mesh->vertex_count, mesh->face_count, fast, &sc);
     if (!block) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "curvature: out of memory");
-    rus_job job = {mesh, adj, fan->normals, sc.faces, sc.turns, sc.tensors, fast ? NULL : sc.principal, dest,
-                   fan->normals, scale, 0};
+    rus_job job = {mesh, adj,          fan->normals, sc.faces, sc.turns, sc.tensors, fast ? NULL : sc.principal,
+                   dest, fan->normals, scale,        0};
     lucent_status s = pass(&job, pool);
     /* Second pass (Lucent's): Max's normals corrected for their tilt, then the same fit. */
     if (s == LUCENT_OK && !fast) s = mesh_refine_normals(mesh, adj, fan, sc.principal, pool, sc.normals);

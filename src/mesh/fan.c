@@ -35,7 +35,7 @@ static void largest_face_normal(const lucent_mesh *m, const uint32_t *slot, uint
  * (slot + 1; 0 empty). The second pairs each slot's previous vertex with an unused slot's next
  * vertex, one to one, through the table, and adds the slot's term of Max's sum, its second edge
  * being its partner's. Few loops: each loop's exit costs a misprediction per vertex. */
-enum { PREFETCH_SLOTS = 16 }; /* about 3 vertices ahead */
+enum { PREFETCH_SLOTS = 16 };                          /* about 3 vertices ahead */
 enum { TABLE_BITS = 6, TABLE_SIZE = 1 << TABLE_BITS }; /* at most half full */
 typedef struct fan_local {
     uint32_t next[MESH_FAN_MAX], prev[MESH_FAN_MAX];

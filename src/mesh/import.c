@@ -29,8 +29,10 @@ static lucent_status format_from_path(const char *path, char *dest, size_t size)
             snprintf(dest, size, "%s", known[i]);
             return LUCENT_OK;
         }
-    return lucent_error(LUCENT_ERR_UNSUPPORTED, "%s: unknown mesh format (expected .ply, .ply.gz, "
-                        ".obj, .gltf or .glb)", path);
+    return lucent_error(LUCENT_ERR_UNSUPPORTED,
+                        "%s: unknown mesh format (expected .ply, .ply.gz, "
+                        ".obj, .gltf or .glb)",
+                        path);
 }
 
 /* Reads a file, inflating it when gzip-compressed (gzread passes plain files through). */
@@ -53,7 +55,7 @@ static lucent_status read_maybe_gz(const char *path, char **dest, size_t *size)
     }
     int err = 0;
     const char *msg = buf ? gzerror(gz, &err) : "";
-    lucent_status s = !buf ? lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path)
+    lucent_status s = !buf      ? lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path)
                       : got < 0 ? lucent_error(LUCENT_ERR_PARSE, "%s: truncated or corrupt gzip data (%s)", path, msg)
                                 : LUCENT_OK;
     gzclose(gz);
@@ -128,8 +130,10 @@ lucent_status lucent_mesh_load_memory(const void *data, size_t size, const char 
     const struct aiScene *sc = aiImportFileFromMemory(data, (unsigned)size, 0, format);
     if (sc && sc->mNumMeshes && !scene_indices_valid(sc)) {
         aiReleaseImport(sc);
-        return lucent_error(LUCENT_ERR_PARSE, "%s: truncated or malformed %s mesh (a face refers to a "
-                            "missing vertex)", name, format);
+        return lucent_error(LUCENT_ERR_PARSE,
+                            "%s: truncated or malformed %s mesh (a face refers to a "
+                            "missing vertex)",
+                            name, format);
     }
     if (sc && sc->mNumMeshes) sc = aiApplyPostProcessing(sc, flags);
     if (!sc || !sc->mNumMeshes) {
@@ -140,8 +144,10 @@ lucent_status lucent_mesh_load_memory(const void *data, size_t size, const char 
     }
     lucent_status s = copy_scene(sc, name, dest);
     aiReleaseImport(sc);
-    if (s == LUCENT_OK && !(desc && desc->keep_duplicates)) s = lucent_mesh_weld(*dest);
-    else if (s == LUCENT_OK) lucent_mesh_compute_normals(*dest);
+    if (s == LUCENT_OK && !(desc && desc->keep_duplicates))
+        s = lucent_mesh_weld(*dest);
+    else if (s == LUCENT_OK)
+        lucent_mesh_compute_normals(*dest);
     if (s == LUCENT_OK && (*dest)->face_count == 0)
         s = lucent_error(LUCENT_ERR_PARSE, "%s: every face is degenerate", name);
     if (s != LUCENT_OK) lucent_mesh_destroy(*dest), *dest = NULL;

@@ -19,7 +19,6 @@ typedef struct mesh_adjacency {
 
 enum { MESH_SLOT_PAD = 64 };
 
-
 lucent_status mesh_adjacency_build(const lucent_mesh *mesh, lucent_pool *pool, mesh_adjacency *dest);
 void mesh_adjacency_free(mesh_adjacency *adj);
 
@@ -99,9 +98,8 @@ lucent_status mesh_fan_compute(const lucent_mesh *mesh, const mesh_adjacency *ad
 /* Per-method estimators: fill k1, k2, mean, gauss (and dir1/dir2 for Rusinkiewicz).
  * Rusinkiewicz writes values already scaled (curvature times scale, K times scale^2) and
  * flags non-finite ones invalid, as lucent_mesh_curvature's last pass would. */
-lucent_status mesh_curvature_rusinkiewicz(const lucent_mesh *mesh, const mesh_adjacency *adj,
-                                          const mesh_fan *fan, lucent_pool *pool, int fast, double scale,
-                                          lucent_curvature *dest);
+lucent_status mesh_curvature_rusinkiewicz(const lucent_mesh *mesh, const mesh_adjacency *adj, const mesh_fan *fan,
+                                          lucent_pool *pool, int fast, double scale, lucent_curvature *dest);
 
 /* The first Rusinkiewicz pass at one vertex: principal directions and curvatures (floats,
  * 32 bytes), read by the normal correction. */
@@ -126,9 +124,8 @@ typedef struct mesh_vertex_job {
 typedef void (*mesh_vertex_fn)(const mesh_vertex_job *job, uint32_t v);
 
 /* Runs fn for every vertex in fixed chunks. */
-lucent_status mesh_curvature_per_vertex(const lucent_mesh *mesh, const mesh_adjacency *adj,
-                                        const mesh_fan *fan, lucent_pool *pool, mesh_vertex_fn fn,
-                                        lucent_curvature *dest);
+lucent_status mesh_curvature_per_vertex(const lucent_mesh *mesh, const mesh_adjacency *adj, const mesh_fan *fan,
+                                        lucent_pool *pool, mesh_vertex_fn fn, lucent_curvature *dest);
 
 /* The per-vertex estimators: Meyer et al. 2003 and Garimella & Swartz 2003. */
 void mesh_meyer_vertex(const mesh_vertex_job *job, uint32_t v);
@@ -142,7 +139,6 @@ double mesh_angle_deficit_gauss(const mesh_vertex_job *job, uint32_t v, int boun
 lucent_status mesh_icosphere(const lucent_primitive_desc *d, lucent_mesh **dest);
 
 /* Averages values over the 1-ring, `rings` times, weighted by vertex area. */
-lucent_status mesh_smooth(const lucent_mesh *mesh, const mesh_adjacency *adj, int rings,
-                          lucent_curvature *curv);
+lucent_status mesh_smooth(const lucent_mesh *mesh, const mesh_adjacency *adj, int rings, lucent_curvature *curv);
 
 #endif

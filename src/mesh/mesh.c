@@ -8,8 +8,8 @@ lucent_status lucent_mesh_create(size_t vertex_count, size_t face_count, lucent_
 {
     *dest = NULL;
     if (vertex_count > UINT32_MAX || face_count > UINT32_MAX / 3)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "mesh too large (%zu vertices, %zu faces)",
-                            vertex_count, face_count);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "mesh too large (%zu vertices, %zu faces)", vertex_count,
+                            face_count);
     lucent_mesh *m = calloc(1, sizeof *m);
     if (!m) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for a mesh");
     m->vertex_count = vertex_count, m->face_count = face_count;
@@ -18,8 +18,7 @@ lucent_status lucent_mesh_create(size_t vertex_count, size_t face_count, lucent_
     m->faces = calloc(face_count * 3 + 1, sizeof *m->faces);
     if (!m->positions || !m->normals || !m->faces) {
         lucent_mesh_destroy(m);
-        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for a mesh of %zu vertices",
-                            vertex_count);
+        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for a mesh of %zu vertices", vertex_count);
     }
     *dest = m;
     return LUCENT_OK;

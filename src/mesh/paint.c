@@ -22,16 +22,16 @@ static void view_basis(double azimuth_deg, double elevation_deg, double dest[3][
 {
     double a = azimuth_deg * M_PI / 180, e = elevation_deg * M_PI / 180;
     double z[3] = {sin(a) * cos(e), sin(e), cos(a) * cos(e)}; /* toward the eye */
-    double x[3] = {cos(a), 0, -sin(a)};                          /* right, horizontal */
+    double x[3] = {cos(a), 0, -sin(a)};                       /* right, horizontal */
     double y[3] = {z[1] * x[2] - z[2] * x[1], z[2] * x[0] - z[0] * x[2], z[0] * x[1] - z[1] * x[0]};
     memcpy(dest[0], x, sizeof x), memcpy(dest[1], y, sizeof y), memcpy(dest[2], z, sizeof z);
 }
 
 typedef struct paint_job {
-    int w, h;            /* supersampled size */
-    float *depth, *rgb;  /* w * h; w * h * 3 */
-    double (*p)[3];      /* camera-space vertex positions, pixels for x and y */
-    float (*c)[3];       /* linear vertex colours times shading */
+    int w, h;           /* supersampled size */
+    float *depth, *rgb; /* w * h; w * h * 3 */
+    double (*p)[3];     /* camera-space vertex positions, pixels for x and y */
+    float (*c)[3];      /* linear vertex colours times shading */
 } paint_job;
 
 static double edge(const double *a, const double *b, double x, double y)
@@ -44,8 +44,10 @@ static void triangle(paint_job *j, const uint32_t *f)
     const double *a = j->p[f[0]], *b = j->p[f[1]], *c = j->p[f[2]];
     double area = edge(a, b, c[0], c[1]);
     if (!(fabs(area) > 1e-12)) return; /* degenerate or NaN */
-    int x0 = (int)fmax(0, floor(fmin(a[0], fmin(b[0], c[0])))), x1 = (int)fmin(j->w - 1, ceil(fmax(a[0], fmax(b[0], c[0]))));
-    int y0 = (int)fmax(0, floor(fmin(a[1], fmin(b[1], c[1])))), y1 = (int)fmin(j->h - 1, ceil(fmax(a[1], fmax(b[1], c[1]))));
+    int x0 = (int)fmax(0, floor(fmin(a[0], fmin(b[0], c[0])))),
+        x1 = (int)fmin(j->w - 1, ceil(fmax(a[0], fmax(b[0], c[0]))));
+    int y0 = (int)fmax(0, floor(fmin(a[1], fmin(b[1], c[1])))),
+        y1 = (int)fmin(j->h - 1, ceil(fmax(a[1], fmax(b[1], c[1]))));
     for (int y = y0; y <= y1; y++)
         for (int x = x0; x <= x1; x++) {
             double px = x + 0.5, py = y + 0.5;
@@ -65,7 +67,8 @@ static void project(const lucent_mesh *m, const lucent_mesh_paint_desc *d, paint
 {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, r = 0, v[3][3];
     for (size_t i = 0; i < m->vertex_count; i++)
-        for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], m->positions[3 * i + k]), hi[k] = fmax(hi[k], m->positions[3 * i + k]);
+        for (int k = 0; k < 3; k++)
+            lo[k] = fmin(lo[k], m->positions[3 * i + k]), hi[k] = fmax(hi[k], m->positions[3 * i + k]);
     double centre[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
     for (size_t i = 0; i < m->vertex_count; i++) {
         double dx = m->positions[3 * i] - centre[0], dy = m->positions[3 * i + 1] - centre[1];
@@ -111,7 +114,7 @@ lucent_status lucent_mesh_paint(const lucent_mesh *m, const lucent_mesh_paint_de
     if (!m || !d.colors || w < 1 || h < 1 || w > 16384 || h > 16384 || s < 1 || s > 8 || !isfinite(d.azimuth) ||
         !isfinite(d.elevation))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "mesh paint: a mesh, colours, 1..16384 pixels a side, "
-                            "supersampling 1..8 and finite angles");
+                                                         "supersampling 1..8 and finite angles");
     lucent_status st = lucent_image_create(w, h, 3, dest);
     if (st != LUCENT_OK) return st;
     paint_job j = {.w = w * s, .h = h * s};

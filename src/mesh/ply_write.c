@@ -45,8 +45,7 @@ static void write_body(FILE *f, const lucent_mesh *m, const lucent_mesh_ply_extr
     }
 }
 
-lucent_status lucent_mesh_write_ply(const char *path, const lucent_mesh *mesh,
-                                    const lucent_mesh_ply_extra *extra)
+lucent_status lucent_mesh_write_ply(const char *path, const lucent_mesh *mesh, const lucent_mesh_ply_extra *extra)
 {
     lucent_atomic_file *af;
     FILE *f;

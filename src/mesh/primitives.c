@@ -6,7 +6,6 @@
 
 #include "mesh/internal.h"
 
-
 static lucent_primitive_desc resolve(const lucent_primitive_desc *d)
 {
     lucent_primitive_desc r = *d;
@@ -46,7 +45,8 @@ static lucent_status make_ellipsoid(const lucent_primitive_desc *d, lucent_mesh 
             size_t v = 1 + j * (size_t)nu + (size_t)i;
             lucent_rng rng;
             lucent_rng_init(d->seed, v, &rng);
-            double phi = i * du + jitter(&rng, d->jitter * du), th = (double)(j + 1) * dv + jitter(&rng, d->jitter * dv);
+            double phi = i * du + jitter(&rng, d->jitter * du),
+                   th = (double)(j + 1) * dv + jitter(&rng, d->jitter * dv);
             double *p = m->positions + 3 * v;
             p[0] = d->axes[0] * sin(th) * cos(phi), p[1] = d->axes[1] * sin(th) * sin(phi), p[2] = d->axes[2] * cos(th);
         }
@@ -98,14 +98,15 @@ lucent_status lucent_mesh_primitive(const lucent_primitive_desc *desc, lucent_me
     if (d.u_count < 3 || d.v_count < 2 || d.u_count > 1 << 14 || d.v_count > 1 << 14 || d.subdivisions > 9 ||
         !(d.jitter >= 0 && d.jitter < 0.5))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "primitive: grid 3..16384 x 2..16384, "
-                            "subdivisions <= 9, jitter in [0, 0.5)");
+                                                         "subdivisions <= 9, jitter in [0, 0.5)");
     switch (d.kind) {
     case LUCENT_PRIMITIVE_UV_SPHERE:
     case LUCENT_PRIMITIVE_ELLIPSOID: return make_ellipsoid(&d, dest);
     case LUCENT_PRIMITIVE_TORUS:
         if (d.v_count < 3) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "torus: v_count >= 3");
-        return d.major_radius > d.radius ? make_torus(&d, dest)
-               : lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "torus: major radius must exceed the tube radius");
+        return d.major_radius > d.radius
+                   ? make_torus(&d, dest)
+                   : lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "torus: major radius must exceed the tube radius");
     case LUCENT_PRIMITIVE_ICOSPHERE: return mesh_icosphere(&d, dest);
     }
     return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "unknown primitive kind %d", (int)d.kind);

@@ -20,7 +20,7 @@ typedef struct face_rec {
 /* Fits the tensors of faces begin .. end - 1 to the vertex normals (3 floats per vertex, read
  * four at a time: the array holds one float more) and writes face f's (mean, diff, off) to
  * dest + stride f; zeros for a degenerate face (no corner area, or a singular fit). */
-void mesh_rus_fit_faces(const uint32_t *faces, const float *normals, const face_rec *recs, uint64_t begin,
-                        uint64_t end, float *dest, uint64_t stride);
+void mesh_rus_fit_faces(const uint32_t *faces, const float *normals, const face_rec *recs, uint64_t begin, uint64_t end,
+                        float *dest, uint64_t stride);
 
 #endif

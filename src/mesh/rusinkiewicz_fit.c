@@ -50,7 +50,8 @@ static void fit_face(const uint32_t *v, const float *N, const face_rec *r, float
 
 #if FIT_SSE2
 _Static_assert(sizeof(face_rec) == 64 && offsetof(face_rec, n) == 12 && offsetof(face_rec, off) == 32 &&
-                   offsetof(face_rec, u1) == 48, "fit4 reads face_rec as 16 floats");
+                   offsetof(face_rec, u1) == 48,
+               "fit4 reads face_rec as 16 floats");
 
 /* Four rows of four floats, transposed: lane i of dest[k] is row i's float k. */
 static inline void load4(const float *r0, const float *r1, const float *r2, const float *r3, __m128 dest[4])
@@ -82,11 +83,11 @@ static void corner_normals4(const uint32_t *v, const float *N, __m128 dest[3][4]
 static void fit4(const uint32_t *v, const float *N, const face_rec *r, float *dest, uint64_t stride)
 {
     __m128 A[4], B[4], C[4], D[4], nv[3][4], t[3], n[3], b[3], one = _mm_set1_ps(1), zero = _mm_setzero_ps();
-    const float *p = (const float *)r; /* the records as rows of 16 floats, read in quarters */
-    load4(p, p + 16, p + 32, p + 48, A);         /* t0 t1 t2 n0 */
-    load4(p + 4, p + 20, p + 36, p + 52, B);     /* n1 n2 mean diff */
-    load4(p + 8, p + 24, p + 40, p + 56, C);     /* off c0 c1 c2 */
-    load4(p + 12, p + 28, p + 44, p + 60, D);    /* u1 w1 inv_len unused */
+    const float *p = (const float *)r;        /* the records as rows of 16 floats, read in quarters */
+    load4(p, p + 16, p + 32, p + 48, A);      /* t0 t1 t2 n0 */
+    load4(p + 4, p + 20, p + 36, p + 52, B);  /* n1 n2 mean diff */
+    load4(p + 8, p + 24, p + 40, p + 56, C);  /* off c0 c1 c2 */
+    load4(p + 12, p + 28, p + 44, p + 60, D); /* u1 w1 inv_len unused */
     corner_normals4(v, N, nv);
     t[0] = A[0], t[1] = A[1], t[2] = A[2], n[0] = A[3], n[1] = B[0], n[2] = B[1];
     b[0] = _mm_sub_ps(_mm_mul_ps(n[1], t[2]), _mm_mul_ps(n[2], t[1]));
@@ -105,24 +106,27 @@ static void fit4(const uint32_t *v, const float *N, const face_rec *r, float *de
     __m128 m2 = _mm_mul_ps(w1, _mm_sub_ps(dw1, dw2));
     __m128 q = _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(3), w1), w1), s = _mm_add_ps(a, c);
     __m128 csum = _mm_add_ps(_mm_add_ps(C[1], C[2]), C[3]);
-    __m128 ok = _mm_and_ps(_mm_cmpneq_ps(csum, zero), _mm_and_ps(
-        _mm_cmpgt_ps(q, _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(1e-12f), s), s)), _mm_cmplt_ps(q, _mm_set1_ps(1e30f))));
+    __m128 ok = _mm_and_ps(_mm_cmpneq_ps(csum, zero),
+                           _mm_and_ps(_mm_cmpgt_ps(q, _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(1e-12f), s), s)),
+                                      _mm_cmplt_ps(q, _mm_set1_ps(1e30f))));
     __m128 neg = _mm_set1_ps(-0.0f), nab = _mm_xor_ps(ab, neg);
     __m128 i00 = _mm_add_ps(q, _mm_mul_ps(c, c)), i01 = _mm_mul_ps(nab, c), i02 = _mm_mul_ps(ab, ab);
     __m128 i11 = _mm_mul_ps(a, c), i12 = _mm_mul_ps(_mm_xor_ps(a, neg), ab), i22 = _mm_add_ps(q, _mm_mul_ps(a, a));
     __m128 inv = _mm_div_ps(D[2], _mm_mul_ps(s, q));
-    __m128 x0 = _mm_mul_ps(comb3(i00, m0, i01, m1, i02, m2), inv), x1 = _mm_mul_ps(comb3(i01, m0, i11, m1, i12, m2), inv);
+    __m128 x0 = _mm_mul_ps(comb3(i00, m0, i01, m1, i02, m2), inv),
+           x1 = _mm_mul_ps(comb3(i01, m0, i11, m1, i12, m2), inv);
     __m128 x2 = _mm_mul_ps(comb3(i02, m0, i12, m1, i22, m2), inv), half = _mm_set1_ps(0.5f);
     float out[3][4];
     _mm_storeu_ps(out[0], _mm_and_ps(ok, _mm_mul_ps(half, _mm_add_ps(x0, x2))));
     _mm_storeu_ps(out[1], _mm_and_ps(ok, _mm_mul_ps(half, _mm_sub_ps(x0, x2))));
     _mm_storeu_ps(out[2], _mm_and_ps(ok, x1));
-    for (int i = 0; i < 4; i++) dest[stride * i] = out[0][i], dest[stride * i + 1] = out[1][i], dest[stride * i + 2] = out[2][i];
+    for (int i = 0; i < 4; i++)
+        dest[stride * i] = out[0][i], dest[stride * i + 1] = out[1][i], dest[stride * i + 2] = out[2][i];
 }
 #endif
 
-void mesh_rus_fit_faces(const uint32_t *faces, const float *normals, const face_rec *recs, uint64_t begin,
-                        uint64_t end, float *dest, uint64_t stride)
+void mesh_rus_fit_faces(const uint32_t *faces, const float *normals, const face_rec *recs, uint64_t begin, uint64_t end,
+                        float *dest, uint64_t stride)
 {
     uint64_t f = begin;
 #if FIT_SSE2

@@ -18,8 +18,8 @@ static void vertex_areas(const lucent_mesh *m, double *area)
 }
 
 /* One pass over values src -> dst. Neighbours are counted once per incident face. */
-static void smooth_pass(const lucent_mesh *m, const mesh_adjacency *adj, const double *area,
-                        const uint8_t *flags, const double *src, double *dst)
+static void smooth_pass(const lucent_mesh *m, const mesh_adjacency *adj, const double *area, const uint8_t *flags,
+                        const double *src, double *dst)
 {
     for (size_t v = 0; v < m->vertex_count; v++) {
         if (flags[v] & LUCENT_CURVATURE_INVALID) {
@@ -37,8 +37,7 @@ static void smooth_pass(const lucent_mesh *m, const mesh_adjacency *adj, const d
     }
 }
 
-lucent_status mesh_smooth(const lucent_mesh *mesh, const mesh_adjacency *adj, int rings,
-                          lucent_curvature *curv)
+lucent_status mesh_smooth(const lucent_mesh *mesh, const mesh_adjacency *adj, int rings, lucent_curvature *curv)
 {
     size_t n = mesh->vertex_count;
     double *area = malloc((n + 1) * sizeof *area), *tmp = malloc((n + 1) * sizeof *tmp);

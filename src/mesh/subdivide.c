@@ -14,10 +14,10 @@ typedef struct half_edge {
 } half_edge;
 
 typedef struct edge_table {
-    half_edge *h;     /* 3F half-edges sorted by key */
-    uint32_t *edge;   /* 3F: the edge id of each half-edge (indexed by he) */
-    uint32_t *first;  /* E + 1: the edge's half-edges are h[first[e] .. first[e + 1]) */
-    size_t count;     /* E */
+    half_edge *h;    /* 3F half-edges sorted by key */
+    uint32_t *edge;  /* 3F: the edge id of each half-edge (indexed by he) */
+    uint32_t *first; /* E + 1: the edge's half-edges are h[first[e] .. first[e + 1]) */
+    size_t count;    /* E */
 } edge_table;
 
 static int cmp_half_edge(const void *a, const void *b)
@@ -39,7 +39,8 @@ static lucent_status edge_table_build(const lucent_mesh *m, edge_table *t)
     t->h = malloc((n + 1) * sizeof *t->h);
     t->edge = malloc((n + 1) * sizeof *t->edge);
     t->first = malloc((n + 2) * sizeof *t->first);
-    if (!t->h || !t->edge || !t->first) return edge_table_free(t), lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    if (!t->h || !t->edge || !t->first)
+        return edge_table_free(t), lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
     for (size_t i = 0; i < n; i++) {
         uint64_t a = m->faces[i], b = m->faces[i - i % 3 + (i % 3 + 1) % 3];
         t->h[i] = (half_edge){a < b ? a << 32 | b : b << 32 | a, (uint32_t)i};
@@ -55,10 +56,7 @@ static lucent_status edge_table_build(const lucent_mesh *m, edge_table *t)
 }
 
 /* The vertex of face f opposite its corner-k edge. */
-static uint32_t opposite(const lucent_mesh *m, uint32_t he)
-{
-    return m->faces[he - he % 3 + (he % 3 + 2) % 3];
-}
+static uint32_t opposite(const lucent_mesh *m, uint32_t he) { return m->faces[he - he % 3 + (he % 3 + 2) % 3]; }
 
 /* Odd (edge) vertices: 3/8 (a + b) + 1/8 (c + d) inside, the midpoint on boundaries and
  * non-manifold edges. */

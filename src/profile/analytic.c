@@ -40,8 +40,8 @@ static double fresnel_c2(double eta)
 {
     double e2 = eta * eta, e3 = e2 * eta, e4 = e3 * eta, e5 = e4 * eta;
     double r = 1.0 / eta, r2 = r * r, r3 = r2 * r;
-    return -547.033 + 45.3087 * r3 - 218.725 * r2 + 458.843 * r + 404.557 * eta - 189.519 * e2 +
-           54.9327 * e3 - 9.00603 * e4 + 0.63942 * e5;
+    return -547.033 + 45.3087 * r3 - 218.725 * r2 + 458.843 * r + 404.557 * eta - 189.519 * e2 + 54.9327 * e3 -
+           9.00603 * e4 + 0.63942 * e5;
 }
 
 /* d'Eon 2012: D = (2 sigma_a + sigma_s') / (3 sigma_t'^2) (Grosjean), A = (1 + 3 C2) / (1 - 2 C1),
@@ -115,8 +115,8 @@ double lucent_better_dipole_total(const lucent_medium *md)
 
 typedef void (*dipole_setup_fn)(const lucent_medium *md, dipole *d);
 
-static lucent_status build_dipole(const lucent_material *m, const lucent_profile_grid *grid,
-                                  const char *model, dipole_setup_fn setup, lucent_profile **dest)
+static lucent_status build_dipole(const lucent_material *m, const lucent_profile_grid *grid, const char *model,
+                                  dipole_setup_fn setup, lucent_profile **dest)
 {
     *dest = NULL;
     lucent_profile_grid g;
@@ -137,14 +137,13 @@ static lucent_status build_dipole(const lucent_material *m, const lucent_profile
     return LUCENT_OK;
 }
 
-lucent_status lucent_profile_dipole(const lucent_material *m, const lucent_profile_grid *grid,
-                                    lucent_profile **dest)
+lucent_status lucent_profile_dipole(const lucent_material *m, const lucent_profile_grid *grid, lucent_profile **dest)
 {
     return build_dipole(m, grid, "dipole", dipole_classical, dest);
 }
 
-lucent_status lucent_profile_better_dipole(const lucent_material *m,
-                                           const lucent_profile_grid *grid, lucent_profile **dest)
+lucent_status lucent_profile_better_dipole(const lucent_material *m, const lucent_profile_grid *grid,
+                                           lucent_profile **dest)
 {
     return build_dipole(m, grid, "better-dipole", dipole_better, dest);
 }
@@ -187,15 +186,13 @@ static lucent_status burley_validate(const lucent_burley_params *p)
 {
     if (!(p->fit == LUCENT_BURLEY_SEARCHLIGHT_MFP || p->fit == LUCENT_BURLEY_DIFFUSE_MFP ||
           p->fit == LUCENT_BURLEY_SEARCHLIGHT_DMFP))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "burley: fit: unknown value %d",
-                            (int)p->fit);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "burley: fit: unknown value %d", (int)p->fit);
     for (int c = 0; c < 3; c++) {
         if (!(p->albedo[c] >= 0.0 && p->albedo[c] <= 1.0))
-            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                                "burley: albedo[%d] must be in [0, 1], got %g", c, p->albedo[c]);
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "burley: albedo[%d] must be in [0, 1], got %g", c,
+                                p->albedo[c]);
         if (!(p->length[c] > 0.0) || !isfinite(p->length[c]))
-            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                                "burley: length[%d] must be finite and > 0, got %g", c,
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "burley: length[%d] must be finite and > 0, got %g", c,
                                 p->length[c]);
     }
     return LUCENT_OK;
@@ -220,8 +217,7 @@ lucent_status lucent_burley_params_from_material(const lucent_material *m, lucen
 }
 
 /* Table 6.1 of Freude 2014 with MFP replaced by the profile's length d = l / s. */
-static void burley_grid(const lucent_burley_params *p, const lucent_profile_grid *grid,
-                        lucent_profile_grid *dest)
+static void burley_grid(const lucent_burley_params *p, const lucent_profile_grid *grid, lucent_profile_grid *dest)
 {
     double lo = INFINITY, hi = 0.0;
     for (int c = 0; c < 3; c++) {
@@ -234,8 +230,8 @@ static void burley_grid(const lucent_burley_params *p, const lucent_profile_grid
     if (dest->count == 0) dest->count = (int)ceil(32.0 * hi / dest->dr - 1e-9);
 }
 
-lucent_status lucent_profile_burley(const lucent_burley_params *params,
-                                    const lucent_profile_grid *grid, lucent_profile **dest)
+lucent_status lucent_profile_burley(const lucent_burley_params *params, const lucent_profile_grid *grid,
+                                    lucent_profile **dest)
 {
     *dest = NULL;
     lucent_status st = burley_validate(params);

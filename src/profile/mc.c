@@ -40,10 +40,7 @@ void lucent_mc_defaults(const lucent_mc_desc *desc, lucent_mc_desc *dest)
     *dest = d;
 }
 
-static bool semi_infinite(const lucent_mc_layer *l)
-{
-    return !(l->thickness > 0.0) || isinf(l->thickness);
-}
+static bool semi_infinite(const lucent_mc_layer *l) { return !(l->thickness > 0.0) || isinf(l->thickness); }
 
 static lucent_status check_index(const char *field, double n)
 {
@@ -59,22 +56,19 @@ static lucent_status check_layer(const lucent_mc_layer *l, int i, int count)
     lucent_status s = check_index(f, def(l->n, 1.0));
     if (s != LUCENT_OK) return s;
     if (!(l->sigma_a >= 0.0 && isfinite(l->sigma_a)))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "layers[%d].sigma_a: must be finite and >= 0, got %g", i, l->sigma_a);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "layers[%d].sigma_a: must be finite and >= 0, got %g", i,
+                            l->sigma_a);
     if (!(l->sigma_s >= 0.0 && isfinite(l->sigma_s)))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "layers[%d].sigma_s: must be finite and >= 0, got %g", i, l->sigma_s);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "layers[%d].sigma_s: must be finite and >= 0, got %g", i,
+                            l->sigma_s);
     if (!(l->g >= -1.0 && l->g <= 1.0))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "layers[%d].g: must be in [-1, 1], got %g",
-                            i, l->g);
-    if (isnan(l->thickness))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "layers[%d].thickness: not a number", i);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "layers[%d].g: must be in [-1, 1], got %g", i, l->g);
+    if (isnan(l->thickness)) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "layers[%d].thickness: not a number", i);
     if (semi_infinite(l) && i != count - 1)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
                             "layers[%d].thickness: only the last layer may be semi-infinite", i);
     if (semi_infinite(l) && l->sigma_a + l->sigma_s == 0.0)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "layers[%d]: a semi-infinite layer must absorb or scatter", i);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "layers[%d]: a semi-infinite layer must absorb or scatter", i);
     return LUCENT_OK;
 }
 
@@ -82,16 +76,14 @@ static lucent_status check_grid(const lucent_mc_grid *g, bool a_rz)
 {
     if (!(g->dr > 0.0 && isfinite(g->dr)) || !(g->dz > 0.0 && isfinite(g->dz)))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "grid: dr and dz must be finite and > 0");
-    if (g->nr < 1 || g->nr > LUCENT_MC_MAX_RADIAL_BINS || g->nz < 1 ||
-        g->nz > LUCENT_MC_MAX_RADIAL_BINS || g->na < 1 || g->na > LUCENT_MC_MAX_ANGLE_BINS)
+    if (g->nr < 1 || g->nr > LUCENT_MC_MAX_RADIAL_BINS || g->nz < 1 || g->nz > LUCENT_MC_MAX_RADIAL_BINS || g->na < 1 ||
+        g->na > LUCENT_MC_MAX_ANGLE_BINS)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "grid: too many bins (nr %d, nz %d, na %d; at most %d, %d, %d)", g->nr,
-                            g->nz, g->na, LUCENT_MC_MAX_RADIAL_BINS, LUCENT_MC_MAX_RADIAL_BINS,
-                            LUCENT_MC_MAX_ANGLE_BINS);
+                            "grid: too many bins (nr %d, nz %d, na %d; at most %d, %d, %d)", g->nr, g->nz, g->na,
+                            LUCENT_MC_MAX_RADIAL_BINS, LUCENT_MC_MAX_RADIAL_BINS, LUCENT_MC_MAX_ANGLE_BINS);
     double cells = (double)g->nr * (double)(a_rz ? (g->nz > g->na ? g->nz : g->na) : g->na);
     if (cells > LUCENT_MC_MAX_GRID_CELLS)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "grid: too many bins (%.0f cells, at most %d)", cells,
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "grid: too many bins (%.0f cells, at most %d)", cells,
                             LUCENT_MC_MAX_GRID_CELLS);
     return LUCENT_OK;
 }
@@ -101,8 +93,8 @@ lucent_status lucent_mc_validate(const lucent_mc_desc *desc)
     lucent_mc_desc d;
     lucent_mc_defaults(desc, &d);
     if (!d.layers || d.layer_count < 1 || d.layer_count > LUCENT_MC_MAX_LAYERS)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "layers: need 1 to %d layers, got %d",
-                            LUCENT_MC_MAX_LAYERS, d.layer_count);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "layers: need 1 to %d layers, got %d", LUCENT_MC_MAX_LAYERS,
+                            d.layer_count);
     for (int i = 0; i < d.layer_count; i++) {
         lucent_status s = check_layer(&d.layers[i], i, d.layer_count);
         if (s != LUCENT_OK) return s;
@@ -114,8 +106,8 @@ lucent_status lucent_mc_validate(const lucent_mc_desc *desc)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "photons: at most 1e12, got %llu",
                             (unsigned long long)d.photons);
     if (d.batches < 1 || d.batches > LUCENT_MC_MAX_BATCHES)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "batches: must be in [1, %d], got %d",
-                            LUCENT_MC_MAX_BATCHES, d.batches);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "batches: must be in [1, %d], got %d", LUCENT_MC_MAX_BATCHES,
+                            d.batches);
     return check_grid(&d.grid, d.score_a_rz);
 }
 
@@ -301,8 +293,8 @@ static void batch_stat(const reducer *r, size_t off, size_t count, double *mean,
 }
 
 /* One 1-D score: bins [0, count) at off, each divided by norm(i). */
-static void reduce_1d(const reducer *r, size_t off, int count, double (*norm)(const mc_plan *, int),
-                      double *dest, double *dest_se)
+static void reduce_1d(const reducer *r, size_t off, int count, double (*norm)(const mc_plan *, int), double *dest,
+                      double *dest_se)
 {
     for (int i = 0; i < count; i++) {
         double m, se, k = norm(r->plan, i);
@@ -338,10 +330,14 @@ static double norm_one(const mc_plan *p, int k)
 static lucent_status alloc_result(lucent_mc_result *r, int nl, const lucent_mc_grid *g, bool rz)
 {
     size_t nr = (size_t)g->nr, nz = (size_t)g->nz, na = (size_t)g->na;
-    struct { double **p; size_t n; } a[] = {
-        {&r->a_layer, nl}, {&r->a_layer_se, nl}, {&r->rd_r, nr}, {&r->rd_r_se, nr},
-        {&r->tt_r, nr},    {&r->tt_r_se, nr},    {&r->rd_a, na}, {&r->rd_a_se, na},
-        {&r->tt_a, na},    {&r->tt_a_se, na},    {&r->a_z, nz},  {&r->a_z_se, nz},
+    struct {
+        double **p;
+        size_t n;
+    } a[] = {
+        {&r->a_layer, nl},    {&r->a_layer_se, nl}, {&r->rd_r, nr},
+        {&r->rd_r_se, nr},    {&r->tt_r, nr},       {&r->tt_r_se, nr},
+        {&r->rd_a, na},       {&r->rd_a_se, na},    {&r->tt_a, na},
+        {&r->tt_a_se, na},    {&r->a_z, nz},        {&r->a_z_se, nz},
         {&r->rd_ra, nr * na}, {&r->tt_ra, nr * na}, {&r->a_rz, rz ? nr * nz : 0},
     };
     for (size_t i = 0; i < sizeof a / sizeof a[0]; i++) {
@@ -352,8 +348,7 @@ static lucent_status alloc_result(lucent_mc_result *r, int nl, const lucent_mc_g
     return LUCENT_OK;
 }
 
-static void reduce_grids(const mc_plan *p, const int64_t *grid, const lucent_mc_grid *g,
-                         lucent_mc_result *r)
+static void reduce_grids(const mc_plan *p, const int64_t *grid, const lucent_mc_grid *g, lucent_mc_result *r)
 {
     double n = (double)p->photons * p->scale;
     for (int i = 0; i < p->nr; i++)
@@ -371,8 +366,8 @@ static void reduce_grids(const mc_plan *p, const int64_t *grid, const lucent_mc_
         }
 }
 
-static lucent_status reduce(const lucent_mc_desc *d, const mc_plan *p, const int64_t *batch,
-                            const int64_t *grid, lucent_mc_result *r)
+static lucent_status reduce(const lucent_mc_desc *d, const mc_plan *p, const int64_t *batch, const int64_t *grid,
+                            lucent_mc_result *r)
 {
     memset(r, 0, sizeof *r);
     r->photons = p->photons;
@@ -390,8 +385,7 @@ static lucent_status reduce(const lucent_mc_desc *d, const mc_plan *p, const int
     }
     for (int b = 0; b < p->batches; b++) { /* batch b holds photons i with floor(i B / N) = b */
         uint64_t lo = ((uint64_t)b * p->photons + (uint64_t)p->batches - 1) / (uint64_t)p->batches;
-        uint64_t hi = ((uint64_t)(b + 1) * p->photons + (uint64_t)p->batches - 1) /
-                      (uint64_t)p->batches;
+        uint64_t hi = ((uint64_t)(b + 1) * p->photons + (uint64_t)p->batches - 1) / (uint64_t)p->batches;
         nb[b] = (double)(hi - lo);
     }
     reducer rd = {p, batch, nb};
@@ -440,8 +434,7 @@ lucent_status lucent_mc_run(const lucent_mc_desc *desc, lucent_mc_result *dest)
     make_plan(&d, plan);
     int threads = d.pool ? lucent_pool_threads(d.pool) : 1;
     size_t bsize = plan->lay.batch_size * (size_t)plan->batches;
-    run_ctx ctx = {plan, alloc_counters(threads, bsize), alloc_counters(threads, plan->lay.grid_size),
-                   NULL};
+    run_ctx ctx = {plan, alloc_counters(threads, bsize), alloc_counters(threads, plan->lay.grid_size), NULL};
     if (!ctx.batch || !ctx.grid) {
         s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "Monte Carlo: out of memory for the scores");
     } else {
@@ -462,9 +455,8 @@ lucent_status lucent_mc_run(const lucent_mc_desc *desc, lucent_mc_result *dest)
 
 void lucent_mc_result_free(lucent_mc_result *r)
 {
-    double **a[] = {&r->a_layer, &r->a_layer_se, &r->rd_r, &r->rd_r_se, &r->tt_r,
-                    &r->tt_r_se, &r->rd_a,    &r->rd_a_se, &r->tt_a, &r->tt_a_se,
-                    &r->a_z,     &r->a_z_se,  &r->rd_ra, &r->tt_ra, &r->a_rz};
+    double **a[] = {&r->a_layer, &r->a_layer_se, &r->rd_r, &r->rd_r_se, &r->tt_r,  &r->tt_r_se, &r->rd_a, &r->rd_a_se,
+                    &r->tt_a,    &r->tt_a_se,    &r->a_z,  &r->a_z_se,  &r->rd_ra, &r->tt_ra,   &r->a_rz};
     for (size_t i = 0; i < sizeof a / sizeof a[0]; i++) free(*a[i]);
     memset(r, 0, sizeof *r);
 }

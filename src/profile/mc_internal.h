@@ -10,16 +10,16 @@
 
 /* Per-layer constants, precomputed in float for the kernel. */
 typedef struct mc_layer_k {
-    float z0, z1;          /* top and bottom, mm (z1 = +inf for a semi-infinite layer) */
-    float mut, inv_mut;    /* extinction sigma_a + sigma_s and its inverse */
-    float absorb;          /* sigma_a / sigma_t: the fraction of weight dropped per interaction */
-    float g;               /* HG anisotropy */
-    lucent_hg_f hg;        /* the float Henyey-Greenstein sampler's constants (base/optics.h) */
-    int hg_kind;           /* 0: isotropic, 1: float HG, 2: double HG (|g| small), 3: |g| = 1 */
-    float n;               /* index of refraction */
-    float n_up, n_down;    /* the indices beyond the top and the bottom boundary */
+    float z0, z1;                     /* top and bottom, mm (z1 = +inf for a semi-infinite layer) */
+    float mut, inv_mut;               /* extinction sigma_a + sigma_s and its inverse */
+    float absorb;                     /* sigma_a / sigma_t: the fraction of weight dropped per interaction */
+    float g;                          /* HG anisotropy */
+    lucent_hg_f hg;                   /* the float Henyey-Greenstein sampler's constants (base/optics.h) */
+    int hg_kind;                      /* 0: isotropic, 1: float HG, 2: double HG (|g| small), 3: |g| = 1 */
+    float n;                          /* index of refraction */
+    float n_up, n_down;               /* the indices beyond the top and the bottom boundary */
     float cos_crit_up, cos_crit_down; /* total internal reflection when |uz| <= these */
-    int clear;             /* sigma_t == 0: photons fly to the boundary */
+    int clear;                        /* sigma_t == 0: photons fly to the boundary */
 } mc_layer_k;
 
 /* Offsets (in int64 counters) of the per-batch 1-D scores. Radial and depth arrays hold one
@@ -33,14 +33,14 @@ typedef struct mc_plan {
     int layer_count;
     mc_layer_k layers[LUCENT_MC_MAX_LAYERS];
     int nr, nz, na;
-    int r_lim, z_lim;        /* clamp for bin indices: n - 1 (MCML) or n (beyond bin) */
+    int r_lim, z_lim; /* clamp for bin indices: n - 1 (MCML) or n (beyond bin) */
     double dr, dz;
     float inv_dr, inv_dz;
     double inv_da;
-    double scale;            /* fixed-point: counters hold weight * scale */
+    double scale; /* fixed-point: counters hold weight * scale */
     uint64_t photons;
     int batches;
-    float w_launch;          /* 1 - Rsp */
+    float w_launch; /* 1 - Rsp */
     int launch_layer;
     float launch_z;
     int score_a_rz;
@@ -50,7 +50,6 @@ typedef struct mc_plan {
 
 /* Traces photons [begin, end) with rng, adding to batch counters `batch` (batches * batch_size)
  * and grid counters `grid` (grid_size). */
-void mc_trace(const mc_plan *plan, lucent_rng *rng, uint64_t begin, uint64_t end,
-              int64_t *batch, int64_t *grid);
+void mc_trace(const mc_plan *plan, lucent_rng *rng, uint64_t begin, uint64_t end, int64_t *batch, int64_t *grid);
 
 #endif

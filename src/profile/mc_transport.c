@@ -14,8 +14,8 @@
 
 #include "profile/mc_internal.h"
 
-#define MC_WEIGHT 1e-4f  /* roulette threshold (MCML's WEIGHT) */
-#define MC_CHANCE 0.1f   /* roulette survival chance (MCML's CHANCE) */
+#define MC_WEIGHT 1e-4f /* roulette threshold (MCML's WEIGHT) */
+#define MC_CHANCE 0.1f  /* roulette survival chance (MCML's CHANCE) */
 
 /* -ln(m 2^-24) for m in [1, 2^24]: the step length in mean free paths (MCML manual eq. 3.19)
  * without a libm call. m = 2^e f with f in [sqrt(1/2), sqrt(2)) (from the float's bits), and
@@ -27,7 +27,7 @@ static inline float neg_log_u24(uint32_t m)
     float x = (float)m;
     uint32_t ix;
     memcpy(&ix, &x, sizeof ix);
-    ix -= 0x3F3504F3u; /* the bits of sqrt(1/2) */
+    ix -= 0x3F3504F3u;       /* the bits of sqrt(1/2) */
     int e = (int)(ix >> 23); /* m >= 1: ix stays positive; e = floor(log2(m / sqrt(1/2))) */
     uint32_t fb = (ix & 0x7FFFFFu) + 0x3F3504F3u;
     float f;
@@ -72,9 +72,9 @@ typedef struct photon {
 
 typedef struct rbuf {
     int next;
-    float u[MC_RB];      /* uniform in [0, 1), 24 bits */
-    float step[MC_RB];   /* -ln(1 - u) in (0, 16.7], mean free paths */
-    float v[MC_RB];      /* uniform in (0, 1), 20 bits */
+    float u[MC_RB];             /* uniform in [0, 1), 24 bits */
+    float step[MC_RB];          /* -ln(1 - u) in (0, 16.7], mean free paths */
+    float v[MC_RB];             /* uniform in (0, 1), 20 bits */
     float ct[MC_RB], st[MC_RB]; /* 1 - 2v and sqrt(1 - ct^2) = 2 sqrt(v (1 - v)) */
     float cp[MC_RB], sp[MC_RB]; /* cos phi, sin phi, phi uniform in [0, 2 pi) */
 } rbuf;
@@ -88,7 +88,7 @@ static void rbuf_fill(rbuf *b, lucent_rng *rng)
         b->u[i] = (float)hi * 5.9604644775390625e-8f; /* 2^-24 */
         b->step[i] = neg_log_u24((uint32_t)(hi + 1));
         float v = ((float)(int32_t)((raw[i] >> 20) & 0xFFFFFu) + 0.5f) * 9.5367431640625e-7f;
-        b->v[i] = v;                                  /* 2^-20, midpoints: never 0 or 1 */
+        b->v[i] = v; /* 2^-20, midpoints: never 0 or 1 */
         b->ct[i] = 1.0f - 2.0f * v;
         /* phi = quadrant pi/2 + t, t uniform in [-pi/4, pi/4): covers [-pi/4, 7 pi/4) evenly.
          * Taylor series of cos and sin at 0 to degree 8 and 9: errors below 3e-8 and 2e-9. */
@@ -97,8 +97,7 @@ static void rbuf_fill(rbuf *b, lucent_rng *rng)
         float t = ((float)(ph & 0x3FFFF) + 0.5f) * 5.9921124e-6f - 0.78539816f; /* pi/2^19 */
         float t2 = t * t;
         float c = 1.0f + t2 * (-0.5f + t2 * (1.0f / 24 + t2 * (-1.0f / 720 + t2 * (1.0f / 40320))));
-        float sn = t * (1.0f + t2 * (-1.0f / 6 + t2 * (1.0f / 120 + t2 * (-1.0f / 5040 +
-                                                                      t2 * (1.0f / 362880)))));
+        float sn = t * (1.0f + t2 * (-1.0f / 6 + t2 * (1.0f / 120 + t2 * (-1.0f / 5040 + t2 * (1.0f / 362880)))));
         /* rotate (c, sn) by quadrant * 90 degrees */
         float c1 = (quad & 1) ? -sn : c, s1 = (quad & 1) ? c : sn;
         float sign = (quad & 2) ? -1.0f : 1.0f;
@@ -140,10 +139,7 @@ static inline void spin(photon *p, float c, float st, float cp, float sp)
     p->uz = nz * f;
 }
 
-static inline int64_t fixed(const mc_plan *plan, float w)
-{
-    return (int64_t)((double)w * plan->scale + 0.5);
-}
+static inline int64_t fixed(const mc_plan *plan, float w) { return (int64_t)((double)w * plan->scale + 0.5); }
 
 static inline int radial_bin(const mc_plan *plan, float x, float y)
 {
@@ -152,8 +148,7 @@ static inline int radial_bin(const mc_plan *plan, float x, float y)
 }
 
 /* Scores a photon leaving through the top (up) or the bottom with exit cosine ca (outside). */
-static void score_exit(const mc_plan *plan, const photon *p, float ca, int up, int64_t *batch,
-                       int64_t *grid)
+static void score_exit(const mc_plan *plan, const photon *p, float ca, int up, int64_t *batch, int64_t *grid)
 {
     const mc_layout *l = &plan->lay;
     int64_t w = fixed(plan, p->w);
@@ -168,15 +163,14 @@ static void score_exit(const mc_plan *plan, const photon *p, float ca, int up, i
 
 /* The photon sits on the top (up) or bottom boundary of its layer: reflect, refract into the
  * neighbour, or escape (MCML's CrossUpOrNot / CrossDnOrNot). Returns 1 when it escaped. */
-static int cross(const mc_plan *plan, photon *p, int up, rbuf *rb, lucent_rng *rng,
-                 int64_t *batch, int64_t *grid)
+static int cross(const mc_plan *plan, photon *p, int up, rbuf *rb, lucent_rng *rng, int64_t *batch, int64_t *grid)
 {
     const mc_layer_k *L = &plan->layers[p->layer];
     float ca1 = fabsf(p->uz), ca2 = ca1, r;
     float nt = up ? L->n_up : L->n_down;
     if (ca1 <= (up ? L->cos_crit_up : L->cos_crit_down)) {
         r = 1.0f; /* total internal reflection */
-    } else { /* MCML manual eqs. 3.35, 3.36 (base/optics.h, in double: crossings are rare) */
+    } else {      /* MCML manual eqs. 3.35, 3.36 (base/optics.h, in double: crossings are rare) */
         double ct;
         r = (float)lucent_fresnel_dielectric(ca1, (double)nt / L->n, &ct);
         ca2 = (float)ct;
@@ -252,8 +246,7 @@ static inline void drop(drop_ctx *c, photon *p, const mc_layer_k *L)
 }
 
 /* One photon packet from launch to escape or death. */
-static void trace_one(const mc_plan *plan, rbuf *rb, lucent_rng *rng, int64_t *batch,
-                      int64_t *grid, drop_ctx *dc_out)
+static void trace_one(const mc_plan *plan, rbuf *rb, lucent_rng *rng, int64_t *batch, int64_t *grid, drop_ctx *dc_out)
 {
     drop_ctx dc = *dc_out;
     dc.a_z = batch + plan->lay.a_z;
@@ -276,7 +269,7 @@ static void trace_one(const mc_plan *plan, rbuf *rb, lucent_rng *rng, int64_t *b
         int k = rbuf_take(rb, rng); /* this step's draw (the deflection uses it too) */
         /* MCML manual eq. 3.19: s = -ln(xi) / mu_t; after a boundary, the rest of the step */
         float s = (sleft > 0.0f ? sleft : rb->step[k]) * L->inv_mut;
-        float zn = p.z + s * p.uz; /* tested without a division; db only on a hit */
+        float zn = p.z + s * p.uz;      /* tested without a division; db only on a hit */
         if (zn > L->z1 || zn < L->z0) { /* hits a boundary (MCML manual section 3.6) */
             int up = p.uz < 0.0f;
             float db = ((up ? L->z0 : L->z1) - p.z) / p.uz;
@@ -316,16 +309,25 @@ static void trace_one(const mc_plan *plan, rbuf *rb, lucent_rng *rng, int64_t *b
     dc_out->n_log = dc.n_log;
 }
 
-void mc_trace(const mc_plan *plan, lucent_rng *rng, uint64_t begin, uint64_t end,
-              int64_t *batch, int64_t *grid)
+void mc_trace(const mc_plan *plan, lucent_rng *rng, uint64_t begin, uint64_t end, int64_t *batch, int64_t *grid)
 {
     uint64_t n = plan->photons, b = (uint64_t)plan->batches;
     rz_log log; /* 24 KB on the stack */
     rbuf rb;
     rb.next = MC_RB;
     int64_t *a_rz = plan->score_a_rz ? grid + plan->lay.a_rz : NULL;
-    drop_ctx dc = {NULL, NULL, a_rz, &log, 0, plan->nz + 1, plan->inv_dz, plan->inv_dr,
-                   (float)plan->z_lim, (float)plan->r_lim, plan->z_lim, plan->r_lim,
+    drop_ctx dc = {NULL,
+                   NULL,
+                   a_rz,
+                   &log,
+                   0,
+                   plan->nz + 1,
+                   plan->inv_dz,
+                   plan->inv_dr,
+                   (float)plan->z_lim,
+                   (float)plan->r_lim,
+                   plan->z_lim,
+                   plan->r_lim,
                    plan->scale};
     for (uint64_t i = begin; i < end; i++) {
         uint64_t k = i * b / n; /* the batch of photon i: contiguous photon ranges */

@@ -48,8 +48,7 @@ lucent_status mcml_numbers(mcml_reader *r, int count, double *dest, const char *
     char *p = r->buf;
     for (int i = 0; i < count; i++) {
         while (isspace((unsigned char)*p)) p++;
-        if (!*p) return mcml_fail(r, "expected %s (%d number%s), got %d", what, count,
-                             count > 1 ? "s" : "", i);
+        if (!*p) return mcml_fail(r, "expected %s (%d number%s), got %d", what, count, count > 1 ? "s" : "", i);
         char *end;
         errno = 0;
         dest[i] = strtod(p, &end);
@@ -108,8 +107,7 @@ static lucent_status read_grid(mcml_reader *r, lucent_mc_desc *d)
         return s;
     double cells = v[0] * v[1] > v[1] * v[2] ? v[0] * v[1] : v[1] * v[2];
     if (cells > LUCENT_MC_MAX_GRID_CELLS)
-        return mcml_fail(r, "too many bins: nr x nz = %g cells (at most %d)", cells,
-                    LUCENT_MC_MAX_GRID_CELLS);
+        return mcml_fail(r, "too many bins: nr x nz = %g cells (at most %d)", cells, LUCENT_MC_MAX_GRID_CELLS);
     return LUCENT_OK;
 }
 
@@ -132,16 +130,12 @@ static lucent_status read_layer(mcml_reader *r, int i, int count, lucent_mc_laye
     lucent_status s = mcml_next_line(r, what);
     if (s == LUCENT_OK) s = mcml_numbers(r, 5, v, what);
     if (s != LUCENT_OK) return s;
-    if (!(v[0] >= 1.0 && v[0] <= 10.0))
-        return mcml_fail(r, "layer %d: n must be in [1, 10], got %g", i + 1, v[0]);
+    if (!(v[0] >= 1.0 && v[0] <= 10.0)) return mcml_fail(r, "layer %d: n must be in [1, 10], got %g", i + 1, v[0]);
     if (!(v[1] >= 0 && isfinite(v[1])) || !(v[2] >= 0 && isfinite(v[2])))
         return mcml_fail(r, "layer %d: mua and mus must be >= 0, got %g and %g", i + 1, v[1], v[2]);
-    if (!(v[3] >= -1.0 && v[3] <= 1.0))
-        return mcml_fail(r, "layer %d: g must be in [-1, 1], got %g", i + 1, v[3]);
-    if (!(v[4] > 0))
-        return mcml_fail(r, "layer %d: thickness d must be > 0, got %g", i + 1, v[4]);
-    if (isinf(v[4]) && i != count - 1)
-        return mcml_fail(r, "layer %d: only the last layer may be semi-infinite", i + 1);
+    if (!(v[3] >= -1.0 && v[3] <= 1.0)) return mcml_fail(r, "layer %d: g must be in [-1, 1], got %g", i + 1, v[3]);
+    if (!(v[4] > 0)) return mcml_fail(r, "layer %d: thickness d must be > 0, got %g", i + 1, v[4]);
+    if (isinf(v[4]) && i != count - 1) return mcml_fail(r, "layer %d: only the last layer may be semi-infinite", i + 1);
     if (isinf(v[4]) && v[1] + v[2] == 0)
         return mcml_fail(r, "layer %d: a semi-infinite layer must absorb or scatter", i + 1);
     *l = (lucent_mc_layer){v[0], v[1] / CM, v[2] / CM, v[3], v[4] * CM};
@@ -199,7 +193,7 @@ lucent_status lucent_mcml_parse(const char *text, const char *name, lucent_mcml_
         mcml_reader tail = r;
         if (mcml_next_line(&tail, "") == LUCENT_OK)
             s = mcml_fail(&tail, "unexpected data after the last of %d run%s", dest->run_count,
-                     dest->run_count > 1 ? "s" : "");
+                          dest->run_count > 1 ? "s" : "");
         else
             lucent_clear_error();
     }
@@ -239,8 +233,8 @@ static void write_column(FILE *f, const char *head, const double *v, int n, doub
 
 /* A 2-D array, row-major, 5 numbers per line (MCML's layout); value i is scaled by k, and by
  * col[i % cols] when col is given. */
-static void write_grid(FILE *f, const char *comment, const char *head, const double *v, size_t n,
-                       double k, const double *col, size_t cols)
+static void write_grid(FILE *f, const char *comment, const char *head, const double *v, size_t n, double k,
+                       const double *col, size_t cols)
 {
     fprintf(f, "%s%s\n", comment, head);
     for (size_t i = 0; i < n; i++)
@@ -281,8 +275,8 @@ static void fold_beyond(const lucent_mc_result *r, double *rd_r, double *tt_r, d
 }
 
 /* per_cos[j] = mcml_2d_per_lucent(j, na): the angular 2-D arrays' factor. */
-static void write_results(FILE *f, const lucent_mc_result *r, double *rd_r, double *tt_r,
-                          double *a_z, const double *per_cos)
+static void write_results(FILE *f, const lucent_mc_result *r, double *rd_r, double *tt_r, double *a_z,
+                          const double *per_cos)
 {
     int nr = r->grid.nr, nz = r->grid.nz, na = r->grid.na;
     fprintf(f, "RAT #Reflectance, absorption, transmission. \n");
@@ -314,8 +308,7 @@ static void write_results(FILE *f, const lucent_mc_result *r, double *rd_r, doub
                "Tt_ra", r->tt_ra, (size_t)nr * (size_t)na, CM * CM, per_cos, (size_t)na);
 }
 
-lucent_status lucent_mcml_write(const char *path, const lucent_mcml_run *run,
-                                const lucent_mc_result *result)
+lucent_status lucent_mcml_write(const char *path, const lucent_mcml_run *run, const lucent_mc_result *result)
 {
     const lucent_mc_result *r = result;
     size_t nr = (size_t)r->grid.nr, nz = (size_t)r->grid.nz, na = (size_t)r->grid.na;
@@ -337,8 +330,9 @@ lucent_status lucent_mcml_write(const char *path, const lucent_mcml_run *run,
     fprintf(f, "A1 \t# Version number of the file format.\n\n####\n# Data categories include: \n"
                "# InParm, RAT, \n# A_l, A_z, Rd_r, Rd_a, Tt_r, Tt_a, \n# A_rz, Rd_ra, Tt_ra \n"
                "####\n\n");
-    fprintf(f, "# Written by Lucent %s (lucent mcml), %d batches for the standard errors:\n"
-               "# Rd %.6G +- %.2G, A %.6G +- %.2G, Tt %.6G +- %.2G%s\n\n",
+    fprintf(f,
+            "# Written by Lucent %s (lucent mcml), %d batches for the standard errors:\n"
+            "# Rd %.6G +- %.2G, A %.6G +- %.2G, Tt %.6G +- %.2G%s\n\n",
             LUCENT_VERSION_STRING, r->batches, r->rd, r->rd_se, r->a, r->a_se, r->tt, r->tt_se,
             r->a_rz ? "" : "\n# A(r,z) was not scored: A_rz holds zeros.");
     write_inparm(f, run, &run->desc);

@@ -69,8 +69,7 @@ static void first_word(const mcml_reader *r, char *word, size_t size, bool *more
 }
 
 /* One value of a section: a finite number >= 0. */
-static lucent_status parse_value(const mcml_reader *r, const char *name, size_t index,
-                                 const char **p, double *dest)
+static lucent_status parse_value(const mcml_reader *r, const char *name, size_t index, const char **p, double *dest)
 {
     char *end;
     errno = 0;
@@ -100,15 +99,14 @@ static lucent_status read_values(mcml_reader *r, int id, const section_spec *spe
         bool more;
         first_word(r, word, sizeof word, &more);
         if (section_of(word) >= 0)
-            return mcml_fail(r, "%s: expected %zu values (%s), got %zu before section %s", name,
-                             spec->count, spec->count_name, i, word);
+            return mcml_fail(r, "%s: expected %zu values (%s), got %zu before section %s", name, spec->count,
+                             spec->count_name, i, word);
         const char *p = r->buf;
         while (1) {
             while (isspace((unsigned char)*p)) p++;
             if (!*p) break;
             if (i == spec->count)
-                return mcml_fail(r, "%s: more than %zu values (%s)", name, spec->count,
-                                 spec->count_name);
+                return mcml_fail(r, "%s: more than %zu values (%s)", name, spec->count, spec->count_name);
             if ((s = parse_value(r, name, i, &p, &dest[i])) != LUCENT_OK) return s;
             i++;
         }
@@ -127,8 +125,8 @@ static lucent_status read_section(mcml_reader *r, lucent_mco *m, int id, const s
     }
     /* each value takes two characters at least: a short file cannot make us allocate much */
     if (spec->count > strlen(r->p) / 2 + 1)
-        return mcml_fail(r, "%s: the rest of the file is too short for %zu values (%s)",
-                         k_section[id], spec->count, spec->count_name);
+        return mcml_fail(r, "%s: the rest of the file is too short for %zu values (%s)", k_section[id], spec->count,
+                         spec->count_name);
     double *v = malloc((spec->count ? spec->count : 1) * sizeof *v);
     if (!v) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
     *spec->dest = v;
@@ -155,8 +153,7 @@ static lucent_status read_inparm(mcml_reader *r, lucent_mco *m)
     char word[32];
     bool more;
     first_word(r, word, sizeof word, &more);
-    if (strcmp(word, "InParm") != 0 || more)
-        return mcml_fail(r, "expected the section InParm, got '%s'", word);
+    if (strcmp(word, "InParm") != 0 || more) return mcml_fail(r, "expected the section InParm, got '%s'", word);
     return mcml_read_run(r, &m->run);
 }
 

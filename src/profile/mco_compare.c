@@ -12,13 +12,10 @@
 
 #define SPARSE_REL_SE 0.3 /* relative SE above this: about 10 photons or fewer, not Gaussian */
 
-static const char *const k_name[LUCENT_MCO_SECTION_COUNT] = {"RAT",  "A_l",  "A_z", "Rd_r",
-                                                             "Rd_a", "Tt_r", "Tt_a"};
-static const char *const k_unit[LUCENT_MCO_SECTION_COUNT] = {"-",     "-",     "1/cm", "1/cm2",
-                                                             "sr-1",  "1/cm2", "sr-1"};
-static const char *const k_axis[LUCENT_MCO_SECTION_COUNT] = {"", "", "z [cm]", "r [cm]",
-                                                             "angle [rad]", "r [cm]",
-                                                             "angle [rad]"};
+static const char *const k_name[LUCENT_MCO_SECTION_COUNT] = {"RAT", "A_l", "A_z", "Rd_r", "Rd_a", "Tt_r", "Tt_a"};
+static const char *const k_unit[LUCENT_MCO_SECTION_COUNT] = {"-", "-", "1/cm", "1/cm2", "sr-1", "1/cm2", "sr-1"};
+static const char *const k_axis[LUCENT_MCO_SECTION_COUNT] = {"",       "",           "z [cm]", "r [cm]", "angle [rad]",
+                                                             "r [cm]", "angle [rad]"};
 static const char *const k_state[] = {"compared", "empty", "sparse", "unresolved", "incomparable"};
 
 const char *lucent_mco_section_name(lucent_mco_section_id id) { return k_name[id]; }
@@ -43,15 +40,17 @@ static bool same(double a, double b)
 
 static lucent_status differs(const char *what, double mine, double theirs)
 {
-    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s is %g, the .mco's is %g", what, mine,
-                        theirs);
+    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s is %g, the .mco's is %g", what, mine, theirs);
 }
 
 static lucent_status check_layer(int i, const lucent_mc_layer *a, const lucent_mc_layer *b)
 {
     char what[64];
     const double cm = MCML_CM;
-    struct { const char *name; double mine, theirs; } f[] = {
+    struct {
+        const char *name;
+        double mine, theirs;
+    } f[] = {
         {"n", a->n, b->n},
         {"mua [1/cm]", a->sigma_a * cm, b->sigma_a * cm},
         {"mus [1/cm]", a->sigma_s * cm, b->sigma_s * cm},
@@ -70,8 +69,7 @@ lucent_status lucent_mco_check_run(const lucent_mco *mco, const lucent_mc_desc *
 {
     const lucent_mc_desc *m = &mco->run.desc;
     const double cm = MCML_CM;
-    if (desc->layer_count != m->layer_count)
-        return differs("the number of layers", desc->layer_count, m->layer_count);
+    if (desc->layer_count != m->layer_count) return differs("the number of layers", desc->layer_count, m->layer_count);
     if (!same(desc->n_above, m->n_above)) return differs("n above", desc->n_above, m->n_above);
     if (!same(desc->n_below, m->n_below)) return differs("n below", desc->n_below, m->n_below);
     for (int i = 0; i < m->layer_count; i++) {
@@ -98,8 +96,7 @@ static bool layers_on_grid(const lucent_mc_desc *d)
     for (int i = 0; i + 1 < d->layer_count; i++) {
         z += d->layers[i].thickness;
         double k = z / dz;
-        if (fabs(k - nearbyint(k)) > 1e-6 * fmax(1.0, k) || nearbyint(k) > d->grid.nz - 1)
-            return false;
+        if (fabs(k - nearbyint(k)) > 1e-6 * fmax(1.0, k) || nearbyint(k) > d->grid.nz - 1) return false;
     }
     return true;
 }
@@ -121,8 +118,8 @@ static void judge(lucent_mco_bin *b, double se_scale)
     }
 }
 
-static lucent_status fill(lucent_mco_section *sec, lucent_mco_section_id id, int count,
-                          const double *lv, const double *lse, const double *mv, double se_scale)
+static lucent_status fill(lucent_mco_section *sec, lucent_mco_section_id id, int count, const double *lv,
+                          const double *lse, const double *mv, double se_scale)
 {
     sec->id = id;
     sec->count = count;
@@ -162,20 +159,17 @@ static void tally(lucent_mco_section *sec, lucent_mco_comparison *c)
 static lucent_status check_shapes(const lucent_mco *mco, const lucent_mc_result *r)
 {
     const lucent_mc_grid *a = &r->grid, *b = &mco->run.desc.grid;
-    if (r->layer_count != mco->run.desc.layer_count || a->nr != b->nr || a->nz != b->nz ||
-        a->na != b->na)
+    if (r->layer_count != mco->run.desc.layer_count || a->nr != b->nr || a->nz != b->nz || a->na != b->na)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
                             "the result's layers and grid (%d layers, nz %d, nr %d, na %d) are not "
                             "the .mco's (%d, %d, %d, %d)",
-                            r->layer_count, a->nz, a->nr, a->na, mco->run.desc.layer_count, b->nz,
-                            b->nr, b->na);
+                            r->layer_count, a->nz, a->nr, a->na, mco->run.desc.layer_count, b->nz, b->nr, b->na);
     if (r->photons == 0 || mco->run.desc.photons == 0)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "no photons to compare");
     return LUCENT_OK;
 }
 
-static lucent_status fill_sections(const lucent_mco *m, const lucent_mc_result *r,
-                                   lucent_mco_comparison *c)
+static lucent_status fill_sections(const lucent_mco *m, const lucent_mc_result *r, lucent_mco_comparison *c)
 {
     const lucent_mc_grid *g = &m->run.desc.grid;
     double k = c->se_scale, cm = MCML_CM;
@@ -197,8 +191,7 @@ static lucent_status fill_sections(const lucent_mco *m, const lucent_mc_result *
     return LUCENT_OK;
 }
 
-lucent_status lucent_mco_compare(const lucent_mco *mco, const lucent_mc_result *result,
-                                 lucent_mco_comparison *dest)
+lucent_status lucent_mco_compare(const lucent_mco *mco, const lucent_mc_result *result, lucent_mco_comparison *dest)
 {
     memset(dest, 0, sizeof *dest);
     lucent_status s = check_shapes(mco, result);

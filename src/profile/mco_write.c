@@ -22,9 +22,12 @@ static double to_cm_units(lucent_mco_section_id id)
 /* Where bin i sits: "Rd", "layer 2", or the bin centre on the section's axis. */
 static void position(const lucent_mco_section *s, int i, char *dest, size_t size)
 {
-    if (s->id == LUCENT_MCO_RAT) snprintf(dest, size, "%s", lucent_mco_rat_name(i));
-    else if (s->id == LUCENT_MCO_A_L) snprintf(dest, size, "layer %d", i + 1);
-    else snprintf(dest, size, "%.6g", (i + 0.5) * s->width);
+    if (s->id == LUCENT_MCO_RAT)
+        snprintf(dest, size, "%s", lucent_mco_rat_name(i));
+    else if (s->id == LUCENT_MCO_A_L)
+        snprintf(dest, size, "layer %d", i + 1);
+    else
+        snprintf(dest, size, "%.6g", (i + 0.5) * s->width);
 }
 
 lucent_status lucent_mco_comparison_write_csv(const char *path, const lucent_mco_comparison *c)
@@ -34,8 +37,7 @@ lucent_status lucent_mco_comparison_write_csv(const char *path, const lucent_mco
     lucent_status st = lucent_atomic_open(path, &af, &f);
     if (st != LUCENT_OK) return st;
     fprintf(f, "section,bin,position,axis,unit,lucent,lucent_se,mcml,mcml_se,diff_se,state\n");
-    fprintf(f, "Rsp,0,Rsp,,-,%.9g,0,%.9g,0,,%s\n", c->rsp_lucent, c->rsp_mcml,
-            c->rsp_equal ? "equal" : "differs");
+    fprintf(f, "Rsp,0,Rsp,,-,%.9g,0,%.9g,0,,%s\n", c->rsp_lucent, c->rsp_mcml, c->rsp_equal ? "equal" : "differs");
     for (int k = 0; k < LUCENT_MCO_SECTION_COUNT; k++) {
         const lucent_mco_section *s = &c->sections[k];
         double u = to_cm_units(s->id);
@@ -43,9 +45,9 @@ lucent_status lucent_mco_comparison_write_csv(const char *path, const lucent_mco
             const lucent_mco_bin *b = &s->bins[i];
             char where[32];
             position(s, i, where, sizeof where);
-            fprintf(f, "%s,%d,%s,%s,%s,%.9g,%.9g,%.9g,%.9g,", lucent_mco_section_name(s->id), i,
-                    where, lucent_mco_section_axis(s->id), lucent_mco_section_unit(s->id),
-                    b->lucent * u, b->lucent_se * u, b->mcml * u, b->mcml_se * u);
+            fprintf(f, "%s,%d,%s,%s,%s,%.9g,%.9g,%.9g,%.9g,", lucent_mco_section_name(s->id), i, where,
+                    lucent_mco_section_axis(s->id), lucent_mco_section_unit(s->id), b->lucent * u, b->lucent_se * u,
+                    b->mcml * u, b->mcml_se * u);
             if (b->state == LUCENT_MCO_COMPARED) fprintf(f, "%.4f", b->z);
             fprintf(f, ",%s\n", lucent_mco_bin_state_name(b->state));
         }
@@ -80,8 +82,7 @@ static bool add_bin(cJSON *bins, const lucent_mco_section *s, int i)
 
 static bool add_counts(cJSON *o, int compared, int beyond3, double chi2)
 {
-    return cJSON_AddNumberToObject(o, "compared", compared) &&
-           cJSON_AddNumberToObject(o, "beyond_3se", beyond3) &&
+    return cJSON_AddNumberToObject(o, "compared", compared) && cJSON_AddNumberToObject(o, "beyond_3se", beyond3) &&
            cJSON_AddNumberToObject(o, "beyond_3se_expected_by_chance", 0.0027 * compared) &&
            (compared ? cJSON_AddNumberToObject(o, "chi2_per_bin", chi2 / compared)
                      : cJSON_AddNullToObject(o, "chi2_per_bin"));
@@ -97,8 +98,7 @@ static bool add_section(cJSON *sections, const lucent_mco_section *s)
     bool ok = cJSON_AddStringToObject(o, "name", lucent_mco_section_name(s->id)) &&
               cJSON_AddStringToObject(o, "unit", lucent_mco_section_unit(s->id)) &&
               cJSON_AddStringToObject(o, "axis", lucent_mco_section_axis(s->id)) &&
-              cJSON_AddNumberToObject(o, "width", s->width) &&
-              add_counts(o, s->compared, s->beyond3, s->chi2) &&
+              cJSON_AddNumberToObject(o, "width", s->width) && add_counts(o, s->compared, s->beyond3, s->chi2) &&
               cJSON_AddNumberToObject(o, "sparse", s->sparse) &&
               cJSON_AddNumberToObject(o, "unresolved", s->unresolved) &&
               cJSON_AddNumberToObject(o, "incomparable", s->incomparable);
@@ -122,8 +122,7 @@ static cJSON *comparison_json(const lucent_mco_comparison *c)
               cJSON_AddNumberToObject(root, "mcml_photons", (double)c->mcml_photons) &&
               cJSON_AddNumberToObject(root, "mcml_se_scale", c->se_scale) &&
               cJSON_AddNumberToObject(rsp, "lucent", c->rsp_lucent) &&
-              cJSON_AddNumberToObject(rsp, "mcml", c->rsp_mcml) &&
-              cJSON_AddBoolToObject(rsp, "equal", c->rsp_equal) &&
+              cJSON_AddNumberToObject(rsp, "mcml", c->rsp_mcml) && cJSON_AddBoolToObject(rsp, "equal", c->rsp_equal) &&
               cJSON_AddBoolToObject(root, "a_l_on_grid", c->a_l_on_grid);
     cJSON *summary = ok ? cJSON_AddObjectToObject(root, "summary") : NULL;
     ok = summary && add_counts(summary, c->compared, c->beyond3, c->chi2);

@@ -61,14 +61,13 @@ typedef struct slab {
 static void slab_setup(const lucent_medium *md, const lucent_slab_desc *desc, slab *dest)
 {
     double stp = md->sigma_a + md->sigma_s_prime;
-    *dest = (slab){
-        .alpha = md->sigma_s_prime / stp,
-        .s = sqrt(3.0 * md->sigma_a * stp),
-        .d = desc->thickness,
-        .l = 1.0 / stp,
-        .zb_top = extrapolation_distance(md->eta / index_or_vacuum(desc->eta_above), stp),
-        .zb_bottom = extrapolation_distance(md->eta / index_or_vacuum(desc->eta_below), stp),
-        .n = desc->poles ? desc->poles : MULTIPOLE_DEFAULT_POLES};
+    *dest = (slab){.alpha = md->sigma_s_prime / stp,
+                   .s = sqrt(3.0 * md->sigma_a * stp),
+                   .d = desc->thickness,
+                   .l = 1.0 / stp,
+                   .zb_top = extrapolation_distance(md->eta / index_or_vacuum(desc->eta_above), stp),
+                   .zb_bottom = extrapolation_distance(md->eta / index_or_vacuum(desc->eta_below), stp),
+                   .n = desc->poles ? desc->poles : MULTIPOLE_DEFAULT_POLES};
 }
 
 /* The same slab turned upside down (light entering through its bottom face). */
@@ -91,8 +90,7 @@ static void slab_pair(const slab *s, int i, double *zr, double *zv)
 static lucent_status check_index(double eta, const char *name)
 {
     if (eta == 0.0 || (eta >= 1.0 && eta <= 3.0)) return LUCENT_OK;
-    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                        "slab: %s must be 0 (vacuum) or in [1, 3], got %g", name, eta);
+    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "slab: %s must be 0 (vacuum) or in [1, 3], got %g", name, eta);
 }
 
 static lucent_status slab_validate(const lucent_medium *md, const lucent_slab_desc *desc)
@@ -100,11 +98,11 @@ static lucent_status slab_validate(const lucent_medium *md, const lucent_slab_de
     lucent_status st = lucent_medium_validate(md);
     if (st != LUCENT_OK) return st;
     if (!(desc->thickness > 0.0) || !isfinite(desc->thickness))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "slab: thickness must be finite and > 0, got %g", desc->thickness);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "slab: thickness must be finite and > 0, got %g",
+                            desc->thickness);
     if (desc->poles < 0 || desc->poles > MULTIPOLE_MAX_POLES)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "slab: poles must be in [0, %d], got %d",
-                            MULTIPOLE_MAX_POLES, desc->poles);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "slab: poles must be in [0, %d], got %d", MULTIPOLE_MAX_POLES,
+                            desc->poles);
     st = check_index(desc->eta_above, "eta_above");
     if (st == LUCENT_OK) st = check_index(desc->eta_below, "eta_below");
     return st;
@@ -135,8 +133,7 @@ static void warn_if_thin(const lucent_material *m, double thickness, const char 
 
 /* Sums the dipole pairs of the slab: the flux at radius r through the top (dest[0]) and the
  * bottom (dest[1]) face, or, when r < 0, its integral over the plane. */
-static void sum_poles(const lucent_medium *md, const lucent_slab_desc *slab_desc, double r,
-                      double dest[2])
+static void sum_poles(const lucent_medium *md, const lucent_slab_desc *slab_desc, double r, double dest[2])
 {
     slab s;
     slab_setup(md, slab_desc, &s);
@@ -154,16 +151,14 @@ static void sum_poles(const lucent_medium *md, const lucent_slab_desc *slab_desc
     dest[1] = s.alpha * tsum;
 }
 
-void lucent_multipole_eval(const lucent_medium *md, const lucent_slab_desc *slab_desc, double r,
-                              double dest[2])
+void lucent_multipole_eval(const lucent_medium *md, const lucent_slab_desc *slab_desc, double r, double dest[2])
 {
     dest[0] = dest[1] = NAN;
     if (slab_validate(md, slab_desc) != LUCENT_OK || !(r >= 0.0)) return;
     sum_poles(md, slab_desc, r, dest);
 }
 
-void lucent_multipole_totals(const lucent_medium *md, const lucent_slab_desc *slab_desc,
-                             double dest[2])
+void lucent_multipole_totals(const lucent_medium *md, const lucent_slab_desc *slab_desc, double dest[2])
 {
     dest[0] = dest[1] = NAN;
     if (slab_validate(md, slab_desc) != LUCENT_OK || !(md->sigma_a > 0.0)) return;
@@ -191,8 +186,8 @@ static void destroy_pair(lucent_profile *dest[2])
     }
 }
 
-static lucent_status create_pair(const lucent_profile_grid *g, const char *r_name,
-                                 const char *t_name, lucent_profile *dest[2])
+static lucent_status create_pair(const lucent_profile_grid *g, const char *r_name, const char *t_name,
+                                 lucent_profile *dest[2])
 {
     dest[0] = dest[1] = NULL;
     lucent_status st = lucent_profile_create(g, r_name, &dest[0]);
@@ -227,8 +222,7 @@ lucent_status lucent_profile_multipole(const lucent_material *m, const lucent_sl
         slab_setup(&md, desc, &s);
         for (int j = 0; j < g.count; j++) {
             double r0 = j * g.dr, r1 = (j + 1) * g.dr;
-            for (int k = 0; k < 2; k++)
-                dest[k]->value[c][j] = bin_average(slab_bin(&s, k, r0, r1), r0, r1);
+            for (int k = 0; k < 2; k++) dest[k]->value[c][j] = bin_average(slab_bin(&s, k, r0, r1), r0, r1);
         }
     }
     return LUCENT_OK;
@@ -302,10 +296,8 @@ static stack_hat stack_eval(const slab *slabs, int count, double k)
 }
 
 /* 8-point Gauss-Legendre on [-1, 1]. */
-static const double gl_x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
-                               0.9602898564975363};
-static const double gl_w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
-                               0.1012285362903763};
+static const double gl_x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+static const double gl_w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
 
 typedef struct inverse_ctx {
     const slab *slabs; /* 3 channels x count layers */
@@ -369,8 +361,7 @@ static void inverse_all(inverse_ctx *x)
 static lucent_status layers_check(const lucent_layer *layers, int count)
 {
     if (count < 1 || count > LAYERS_MAX)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "layers: count must be in [1, %d], got %d",
-                            LAYERS_MAX, count);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "layers: count must be in [1, %d], got %d", LAYERS_MAX, count);
     for (int i = 0; i < count; i++) {
         lucent_status st = check_material_slab(&layers[i].material, &layers[i].slab);
         if (st != LUCENT_OK) return lucent_error_context(st, "layers[%d]", i);
@@ -408,8 +399,8 @@ static void layers_fill(inverse_ctx *x, lucent_profile *dest[2])
     }
 }
 
-lucent_status lucent_profile_layered(const lucent_layer *layers, int count,
-                                     const lucent_profile_grid *grid, lucent_profile *dest[2])
+lucent_status lucent_profile_layered(const lucent_layer *layers, int count, const lucent_profile_grid *grid,
+                                     lucent_profile *dest[2])
 {
     dest[0] = dest[1] = NULL;
     lucent_profile_grid g;

@@ -17,7 +17,7 @@ void lucent_profile_grid_default(const lucent_material *m, lucent_profile_grid *
         lo = fmin(lo, d.mfp_prime[c]);
         hi = fmax(hi, d.mfp_prime[c]);
     }
-    dest->dr = lo / 20.0;                      /* Table 6.1: d_r = min(MFP_rgb) / 20 */
+    dest->dr = lo / 20.0;                                 /* Table 6.1: d_r = min(MFP_rgb) / 20 */
     dest->count = (int)ceil(32.0 * hi / dest->dr - 1e-9); /* n_r = ceil(32 max(MFP) / d_r) */
 }
 
@@ -27,8 +27,7 @@ lucent_status lucent_profile_grid_resolve(const lucent_profile_grid *grid, const
     lucent_profile_grid g = grid ? *grid : (lucent_profile_grid){0};
     if (g.dr == 0.0 || g.count == 0) {
         if (!m)
-            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                                "profile grid: dr and count are required (no material)");
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "profile grid: dr and count are required (no material)");
         lucent_status st = lucent_material_validate(m);
         if (st != LUCENT_OK) return st;
         lucent_profile_grid def;
@@ -37,18 +36,15 @@ lucent_status lucent_profile_grid_resolve(const lucent_profile_grid *grid, const
         if (g.count == 0) g.count = def.count;
     }
     if (!(g.dr > 0.0) || !isfinite(g.dr))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "profile grid: dr must be finite and > 0, got %g", g.dr);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "profile grid: dr must be finite and > 0, got %g", g.dr);
     if (g.count <= 0 || g.count > LUCENT_PROFILE_MAX_COUNT)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "profile grid: count must be in [1, %d], got %d",
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "profile grid: count must be in [1, %d], got %d",
                             LUCENT_PROFILE_MAX_COUNT, g.count);
     *dest = g;
     return LUCENT_OK;
 }
 
-lucent_status lucent_profile_create(const lucent_profile_grid *grid, const char *model,
-                                    lucent_profile **dest)
+lucent_status lucent_profile_create(const lucent_profile_grid *grid, const char *model, lucent_profile **dest)
 {
     *dest = NULL;
     if (!grid) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "profile: grid is NULL");
@@ -102,17 +98,15 @@ void lucent_medium_from_material(const lucent_material *m, int c, lucent_medium 
 lucent_status lucent_medium_validate(const lucent_medium *md)
 {
     if (!isfinite(md->sigma_a) || md->sigma_a < 0.0)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "sigma_a must be finite and >= 0, got %g",
-                            md->sigma_a);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "sigma_a must be finite and >= 0, got %g", md->sigma_a);
     if (!isfinite(md->sigma_s_prime) || md->sigma_s_prime < 0.0)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "sigma_s_prime must be finite and >= 0, got %g", md->sigma_s_prime);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "sigma_s_prime must be finite and >= 0, got %g",
+                            md->sigma_s_prime);
     if (!(md->sigma_a + md->sigma_s_prime > 0.0))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "sigma_a + sigma_s_prime must be > 0, got %g",
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "sigma_a + sigma_s_prime must be > 0, got %g",
                             md->sigma_a + md->sigma_s_prime);
     if (!(md->eta >= LUCENT_MATERIAL_ETA_MIN && md->eta <= LUCENT_MATERIAL_ETA_MAX))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "eta must be in [%g, %g], got %g",
-                            LUCENT_MATERIAL_ETA_MIN, LUCENT_MATERIAL_ETA_MAX, md->eta);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "eta must be in [%g, %g], got %g", LUCENT_MATERIAL_ETA_MIN,
+                            LUCENT_MATERIAL_ETA_MAX, md->eta);
     return LUCENT_OK;
 }

@@ -16,10 +16,7 @@
 
 enum { SOG_DEFAULT_STARTS = 8, SOG_DEFAULT_ITERATIONS = 300, N_MAX = LUCENT_SOG_MAX };
 
-double lucent_gaussian(double v, double r)
-{
-    return exp(-r * r / (2.0 * v)) / (2.0 * M_PI * v);
-}
+double lucent_gaussian(double v, double r) { return exp(-r * r / (2.0 * v)) / (2.0 * M_PI * v); }
 
 double lucent_sog_eval(const lucent_sog *s, int c, double r)
 {
@@ -190,8 +187,7 @@ static double sog_eval(sog_problem *p, const double *theta)
     double g[N_MAX][N_MAX];
     sog_basis(p, theta);
     for (int i = 0; i < p->n; i++)
-        for (int j = 0; j <= i; j++)
-            g[i][j] = g[j][i] = dot(p->a + (size_t)i * p->m, p->a + (size_t)j * p->m, p->m);
+        for (int j = 0; j <= i; j++) g[i][j] = g[j][i] = dot(p->a + (size_t)i * p->m, p->a + (size_t)j * p->m, p->m);
     double cost = 0.0;
     for (int c = 0; c < p->channels; c++) cost += sog_channel(p, g, c);
     return cost;
@@ -281,8 +277,7 @@ static double energy_radius(const lucent_profile *p, const sog_problem *pr, doub
 /* Start k: variances spread geometrically over [v05, v95] (the variances of single Gaussians
  * holding 5% / 95% of the energy within those radii), widened for later starts and, from the
  * third start on, jittered by a fixed-seed RNG so the fit stays deterministic. */
-static void sog_start(const sog_problem *p, double lv05, double lv95, int k, lucent_rng *rng,
-                      double *theta)
+static void sog_start(const sog_problem *p, double lv05, double lv95, int k, lucent_rng *rng, double *theta)
 {
     double mid = 0.5 * (lv05 + lv95), half = 0.5 * (lv95 - lv05) * (1.0 + 0.35 * k);
     for (int i = 0; i < p->n; i++) {
@@ -298,19 +293,17 @@ static lucent_status sog_check(const lucent_profile *p, const lucent_sog_desc *d
     if (!p || p->count < 2 || !(p->dr > 0.0))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "sog: profile: needs count >= 2 and dr > 0");
     if (desc->count < 1 || desc->count > LUCENT_SOG_MAX)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "sog: count (N) must be in [1, %d], got %d",
-                            LUCENT_SOG_MAX, desc->count);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "sog: count (N) must be in [1, %d], got %d", LUCENT_SOG_MAX,
+                            desc->count);
     if (desc->starts < 0 || desc->starts > 1000)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "sog: starts must be in [0, 1000], got %d",
-                            desc->starts);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "sog: starts must be in [0, 1000], got %d", desc->starts);
     if (desc->max_iterations < 0)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "sog: max_iterations must be >= 0, got %d",
                             desc->max_iterations);
     for (int c = 0; c < 3; c++)
         for (int j = 0; j < p->count; j++)
             if (!isfinite(p->value[c][j]))
-                return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                                    "sog: profile: value[%d][%d] is not finite", c, j);
+                return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "sog: profile: value[%d][%d] is not finite", c, j);
     return LUCENT_OK;
 }
 
@@ -330,7 +323,7 @@ static lucent_status sog_alloc(sog_problem *pr, const lucent_profile *p, int cha
         for (int c = 0; c < channels; c++) pr->y[c][j] = pr->sw[j] * p->value[first + c][j];
     }
     for (int c = 0; c < channels; c++) pr->norm2[c] = dot(pr->y[c], pr->y[c], pr->m);
-    pr->lo = log(0.01 * p->dr * p->dr);                 /* sigma >= dr / 10 */
+    pr->lo = log(0.01 * p->dr * p->dr);                          /* sigma >= dr / 10 */
     pr->hi = log(4.0 * (p->count * p->dr) * (p->count * p->dr)); /* sigma <= 2 r_max */
     return LUCENT_OK;
 }
@@ -357,8 +350,8 @@ static void sog_store(const sog_problem *pr, const double *theta, lucent_sog *de
 }
 
 /* Fits channels [first, first + channels) of p together (shared variances). */
-static lucent_status sog_fit_group(const lucent_profile *p, const lucent_sog_desc *desc, int first,
-                                   int channels, lucent_sog *dest)
+static lucent_status sog_fit_group(const lucent_profile *p, const lucent_sog_desc *desc, int first, int channels,
+                                   lucent_sog *dest)
 {
     sog_problem pr = {.n = desc->count};
     lucent_status st = sog_alloc(&pr, p, channels, first);
@@ -402,19 +395,17 @@ lucent_status lucent_sog_fit(const lucent_profile *p, const lucent_sog_desc *des
     return st;
 }
 
-lucent_status lucent_profile_from_sog(const lucent_sog *s, const lucent_profile_grid *grid,
-                                      lucent_profile **dest)
+lucent_status lucent_profile_from_sog(const lucent_sog *s, const lucent_profile_grid *grid, lucent_profile **dest)
 {
     *dest = NULL;
     if (s->count < 1 || s->count > LUCENT_SOG_MAX)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "sog: count (N) must be in [1, %d], got %d",
-                            LUCENT_SOG_MAX, s->count);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "sog: count (N) must be in [1, %d], got %d", LUCENT_SOG_MAX,
+                            s->count);
     for (int c = 0; c < 3; c++)
         for (int i = 0; i < s->count; i++)
             if (!(s->variance[c][i] > 0.0) || !isfinite(s->variance[c][i]))
-                return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                                    "sog: variance[%d][%d] must be finite and > 0, got %g", c, i,
-                                    s->variance[c][i]);
+                return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "sog: variance[%d][%d] must be finite and > 0, got %g",
+                                    c, i, s->variance[c][i]);
     lucent_status st = lucent_profile_create(grid, "sog", dest);
     if (st != LUCENT_OK) return st;
     lucent_profile *p = *dest;

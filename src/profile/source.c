@@ -20,19 +20,15 @@ bool lucent_profile_source_known(const char *name)
 }
 
 /* Monte Carlo R_d(r) of a half-space of m, per channel, on the default grid (Freude Table 6.1). */
-static lucent_status profile_mc(const lucent_profile_source_desc *d, const lucent_material *m,
-                                lucent_profile **dest)
+static lucent_status profile_mc(const lucent_profile_source_desc *d, const lucent_material *m, lucent_profile **dest)
 {
     lucent_profile_grid g;
     lucent_profile_grid_default(m, &g);
     lucent_status s = lucent_profile_create(&g, "mc", dest);
     static const char *const labels[] = {"Monte Carlo R", "Monte Carlo G", "Monte Carlo B"};
     for (int c = 0; c < 3 && s == LUCENT_OK; c++) {
-        lucent_mc_layer layer = {.n = m->eta,
-                                 .sigma_a = m->sigma_a[c],
-                                 .sigma_s = m->sigma_s[c],
-                                 .g = m->g[c],
-                                 .thickness = INFINITY};
+        lucent_mc_layer layer = {
+            .n = m->eta, .sigma_a = m->sigma_a[c], .sigma_s = m->sigma_s[c], .g = m->g[c], .thickness = INFINITY};
         lucent_mc_desc md = {.layers = &layer,
                              .layer_count = 1,
                              .photons = d->photons ? d->photons : 200000,
@@ -42,8 +38,7 @@ static lucent_status profile_mc(const lucent_profile_source_desc *d, const lucen
                              .label = labels[c]};
         lucent_mc_result r = {0};
         if ((s = lucent_mc_run(&md, &r)) != LUCENT_OK) break;
-        for (int j = 0; j < g.count; j++)
-            (*dest)->value[c][j] = r.rd_r[j], (*dest)->error[c][j] = r.rd_r_se[j];
+        for (int j = 0; j < g.count; j++) (*dest)->value[c][j] = r.rd_r[j], (*dest)->error[c][j] = r.rd_r_se[j];
         lucent_mc_result_free(&r);
     }
     if (s != LUCENT_OK) lucent_profile_destroy(*dest), *dest = NULL;
@@ -57,8 +52,8 @@ lucent_status lucent_profile_from_source(const lucent_profile_source_desc *desc,
     const lucent_profile_source_desc *d = desc ? desc : &zero;
     const char *source = d->source ? d->source : "dipole";
     if (!lucent_profile_source_known(source))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "unknown profile \"%s\" (dipole, better-dipole, burley, mc)", source);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "unknown profile \"%s\" (dipole, better-dipole, burley, mc)",
+                            source);
     if (!strcmp(source, "mc")) return profile_mc(d, m, dest);
     if (!strcmp(source, "better-dipole")) return lucent_profile_better_dipole(m, NULL, dest);
     if (!strcmp(source, "burley")) {

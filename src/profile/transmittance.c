@@ -38,10 +38,18 @@ lucent_status lucent_slab_transmittance_run(const lucent_material *m, uint64_t p
     lucent_slab_transmittance_grid(m, dest);
     for (int c = 0; c < 3; c++)
         for (int k = 0; k < LUCENT_SLAB_SAMPLES; k++) {
-            lucent_mc_layer layer = {.n = m->eta, .sigma_a = m->sigma_a[c], .sigma_s = m->sigma_s[c], .g = m->g[c],
+            lucent_mc_layer layer = {.n = m->eta,
+                                     .sigma_a = m->sigma_a[c],
+                                     .sigma_s = m->sigma_s[c],
+                                     .g = m->g[c],
                                      .thickness = dest->thickness[k]};
-            lucent_mc_desc d = {.layers = &layer, .layer_count = 1, .photons = photons, .seed = 1 + (uint64_t)k,
-                                .grid = {.dr = 1, .dz = 1, .nr = 1, .nz = 1, .na = 1}, .batches = 4, .pool = pool,
+            lucent_mc_desc d = {.layers = &layer,
+                                .layer_count = 1,
+                                .photons = photons,
+                                .seed = 1 + (uint64_t)k,
+                                .grid = {.dr = 1, .dz = 1, .nr = 1, .nz = 1, .na = 1},
+                                .batches = 4,
+                                .pool = pool,
                                 .label = "translucency: slab transmittance"};
             lucent_mc_result res = {0};
             lucent_status s = lucent_mc_run(&d, &res);
@@ -75,6 +83,7 @@ double lucent_profile_tail(const lucent_profile *p, int c, double s)
     double dr = p->dr, t = 0;
     int K = (int)floor(s / dr);
     if (K >= p->count) return 0;
-    for (int k = p->count - 1; k > K; k--) t += p->value[c][k] * M_PI * ((k + 1.0) * (k + 1.0) - (double)k * k) * dr * dr;
+    for (int k = p->count - 1; k > K; k--)
+        t += p->value[c][k] * M_PI * ((k + 1.0) * (k + 1.0) - (double)k * k) * dr * dr;
     return t + p->value[c][K] * M_PI * ((K + 1.0) * (K + 1.0) * dr * dr - s * s);
 }

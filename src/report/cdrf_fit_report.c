@@ -11,8 +11,8 @@
 enum { CURVE_POINTS = 91 };
 
 static const char *const k_channel[] = {"R", "G", "B"};
-static const char *const k_palette[] = {"#c0392b", "#27ae60", "#2e64c8", "#8e44ad", "#d35400", "#16a085",
-                                        "#7f8c8d", "#2c3e50"};
+static const char *const k_palette[] = {"#c0392b", "#27ae60", "#2e64c8", "#8e44ad",
+                                        "#d35400", "#16a085", "#7f8c8d", "#2c3e50"};
 
 static cJSON *fit_json(const lucent_cdrf_fit *fit)
 {
@@ -68,8 +68,10 @@ lucent_status lucent_cdrf_fit_write_csv(const char *path, const lucent_cdrf_fit_
     const lucent_cdrf_fit *fit = r->fit;
     lucent_strbuf b = {0};
     char *text = NULL;
-    lucent_strbuf_printf(&b, "# lucent cdrf-fit: %s; L per unit irradiance, *_se standard errors, *_fit = k_d f(theta; "
-                         "sigma0 / r) (%s)\n", r->material->name, lucent_cdrf_variant_name(fit->variant));
+    lucent_strbuf_printf(&b,
+                         "# lucent cdrf-fit: %s; L per unit irradiance, *_se standard errors, *_fit = k_d f(theta; "
+                         "sigma0 / r) (%s)\n",
+                         r->material->name, lucent_cdrf_variant_name(fit->variant));
     lucent_strbuf_printf(&b, "radius_mm,theta_deg,R,R_se,R_fit,G,G_se,G_fit,B,B_se,B_fit\n");
     for (int i = 0; i < r->sphere_count; i++) {
         const lucent_cdrf_sphere_result *sp = &r->spheres[i];
@@ -77,7 +79,8 @@ lucent_status lucent_cdrf_fit_write_csv(const char *path, const lucent_cdrf_fit_
             lucent_strbuf_printf(&b, "%.9g,%.9g", sp->radius, sp->theta[j] * 180 / PI);
             for (int c = 0; c < 3; c++)
                 lucent_strbuf_printf(&b, ",%.9g,%.9g,%.9g", sp->radiance[c][j], sp->radiance_se[c][j],
-                                     fit->kd[c] * lucent_cdrf_eval(fit->variant, sp->theta[j], fit->sigma0[c] / sp->radius));
+                                     fit->kd[c] *
+                                         lucent_cdrf_eval(fit->variant, sp->theta[j], fit->sigma0[c] / sp->radius));
             lucent_strbuf_printf(&b, "\n");
         }
     }
@@ -103,11 +106,15 @@ static void channel_series(const lucent_cdrf_fit_report *r, int c, double *deg, 
         snprintf(l1, 48, "r = %g mm (MC)", sp->radius);
         snprintf(l2, 48, "r = %g mm (fit)", sp->radius);
         const char *col = k_palette[i % 8];
-        series[(c * n + i) * 2] = (lucent_plot_series){.label = l1, .x = d, .y = sp->radiance[c],
-                                                       .err = sp->radiance_se[c], .count = sp->bins,
-                                                       .color = col, .markers = true};
-        series[(c * n + i) * 2 + 1] = (lucent_plot_series){.label = l2, .x = cx, .y = y, .count = CURVE_POINTS,
-                                                           .color = col, .dashed = true};
+        series[(c * n + i) * 2] = (lucent_plot_series){.label = l1,
+                                                       .x = d,
+                                                       .y = sp->radiance[c],
+                                                       .err = sp->radiance_se[c],
+                                                       .count = sp->bins,
+                                                       .color = col,
+                                                       .markers = true};
+        series[(c * n + i) * 2 + 1] =
+            (lucent_plot_series){.label = l2, .x = cx, .y = y, .count = CURVE_POINTS, .color = col, .dashed = true};
     }
 }
 
@@ -117,7 +124,7 @@ lucent_status lucent_cdrf_fit_write_svg(const char *path, const lucent_cdrf_fit_
     lucent_plot_series *series = calloc((size_t)(6 * n), sizeof *series);
     double *deg = calloc((size_t)(n * LUCENT_CDRF_MAX_BINS), sizeof *deg);
     double *cx = calloc(CURVE_POINTS, sizeof *cx), *cy = calloc((size_t)(3 * n * CURVE_POINTS), sizeof *cy);
-    char (*labels)[48] = calloc((size_t)(6 * n), sizeof *labels);
+    char(*labels)[48] = calloc((size_t)(6 * n), sizeof *labels);
     lucent_status s = LUCENT_OK;
     if (!series || !deg || !cx || !cy || !labels) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
     lucent_plot_panel panels[3];
@@ -125,10 +132,13 @@ lucent_status lucent_cdrf_fit_write_svg(const char *path, const lucent_cdrf_fit_
     for (int k = 0; s == LUCENT_OK && k < CURVE_POINTS; k++) cx[k] = 180.0 * k / (CURVE_POINTS - 1);
     for (int c = 0; c < 3 && s == LUCENT_OK; c++) {
         channel_series(r, c, deg, cx, cy, labels, series);
-        panels[c] = (lucent_plot_panel){.title = titles[c], .x_label = "theta (degrees, normal to light)",
-                                        .x_min = 0, .x_max = 180,
+        panels[c] = (lucent_plot_panel){.title = titles[c],
+                                        .x_label = "theta (degrees, normal to light)",
+                                        .x_min = 0,
+                                        .x_max = 180,
                                         .y_label = c == 0 ? "radiance toward the camera" : NULL,
-                                        .series = series + c * 2 * n, .series_count = 2 * n};
+                                        .series = series + c * 2 * n,
+                                        .series_count = 2 * n};
     }
     const lucent_cdrf_fit *fit = r->fit;
     char title[200];

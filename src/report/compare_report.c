@@ -53,8 +53,9 @@ static void html_table(lucent_strbuf *b, const lucent_compare_scene *sc)
         const lucent_compare_method *m = &sc->methods[i];
         lucent_strbuf_printf(b, "<tr%s><td>", i == best ? " class=\"best\"" : "");
         lucent_strbuf_xml(b, m->name);
-        lucent_strbuf_printf(b, "</td><td>%.2f%%</td><td>%.2f%%</td><td>%.2f%%</td><td>%.2f%%</td><td>%.2f%%</td>"
-                                "<td>%.3f</td><td>%.0f</td><td>",
+        lucent_strbuf_printf(b,
+                             "</td><td>%.2f%%</td><td>%.2f%%</td><td>%.2f%%</td><td>%.2f%%</td><td>%.2f%%</td>"
+                             "<td>%.3f</td><td>%.0f</td><td>",
                              100 * m->rel_rms, 100 * lucent_compare_net_error(m->rel_rms, sc->reference_noise),
                              100 * m->rel_rms_rgb[0], 100 * m->rel_rms_rgb[1], 100 * m->rel_rms_rgb[2], m->frame_ms,
                              m->setup_ms);
@@ -93,9 +94,10 @@ static void html_scene(lucent_strbuf *b, const lucent_compare_scene *sc)
     lucent_strbuf_xml(b, sc->name);
     lucent_strbuf_printf(b, "</h2>\n<p>");
     lucent_strbuf_xml(b, sc->description ? sc->description : "");
-    lucent_strbuf_printf(b, "</p>\n<p>%d x %d pixels. Reference: Lucent's path tracer, %d samples per pixel in "
-                            "%.1f s; its own relative standard error over the object is %.2f%%, so smaller "
-                            "differences are noise (the net column takes it out: sqrt(error^2 - noise^2)). "
+    lucent_strbuf_printf(b,
+                         "</p>\n<p>%d x %d pixels. Reference: Lucent's path tracer, %d samples per pixel in "
+                         "%.1f s; its own relative standard error over the object is %.2f%%, so smaller "
+                         "differences are noise (the net column takes it out: sqrt(error^2 - noise^2)). "
                          "Real-time methods on: ",
                          sc->width, sc->height, sc->reference_spp, sc->reference_seconds, 100 * sc->reference_noise);
     lucent_strbuf_xml(b, sc->device ? sc->device : "unknown");
@@ -146,17 +148,18 @@ lucent_status lucent_compare_write_markdown(const char *path, const lucent_compa
     lucent_strbuf b = {0};
     for (int i = 0; i < count; i++) {
         const lucent_compare_scene *sc = &scenes[i];
-        lucent_strbuf_printf(&b, "%s## %s\n\nReference: path tracer, %d spp, %.1f s (noise %.2f%%); %d x %d; GL: %s\n\n"
-                                 "| method | rel. RMS error | net of noise | R | G | B | frame ms | setup ms |\n"
-                                 "|---|---|---|---|---|---|---|---|\n",
+        lucent_strbuf_printf(&b,
+                             "%s## %s\n\nReference: path tracer, %d spp, %.1f s (noise %.2f%%); %d x %d; GL: %s\n\n"
+                             "| method | rel. RMS error | net of noise | R | G | B | frame ms | setup ms |\n"
+                             "|---|---|---|---|---|---|---|---|\n",
                              i ? "\n" : "", sc->name, sc->reference_spp, sc->reference_seconds,
                              100 * sc->reference_noise, sc->width, sc->height, sc->device ? sc->device : "unknown");
         for (int k = 0; k < sc->method_count; k++) {
             const lucent_compare_method *m = &sc->methods[k];
             lucent_strbuf_printf(&b, "| %s | %.2f%% | %.2f%% | %.2f%% | %.2f%% | %.2f%% | %.3f | %.0f |\n", m->name,
                                  100 * m->rel_rms, 100 * lucent_compare_net_error(m->rel_rms, sc->reference_noise),
-                                 100 * m->rel_rms_rgb[0], 100 * m->rel_rms_rgb[1], 100 * m->rel_rms_rgb[2],
-                                 m->frame_ms, m->setup_ms);
+                                 100 * m->rel_rms_rgb[0], 100 * m->rel_rms_rgb[1], 100 * m->rel_rms_rgb[2], m->frame_ms,
+                                 m->setup_ms);
         }
     }
     char *text;
@@ -218,8 +221,8 @@ lucent_status lucent_compare_write_chart(const char *path, const lucent_compare_
                                .y_label = "relative RMS error (%)",
                                .series = series,
                                .series_count = n};
-    lucent_status s = lucent_plot_write_svg(path, &(lucent_plot_desc){.panels = &panel, .panel_count = 1,
-                                                                      .panel_width = 640, .panel_height = 400});
+    lucent_status s = lucent_plot_write_svg(
+        path, &(lucent_plot_desc){.panels = &panel, .panel_count = 1, .panel_width = 640, .panel_height = 400});
     free(series), free(xy);
     return s;
 }

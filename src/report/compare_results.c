@@ -42,9 +42,10 @@ static cJSON *scene_json(const lucent_compare_scene_result *sr)
 lucent_status lucent_compare_write_results_json(const char *path, const lucent_compare_result *result)
 {
     cJSON *root = cJSON_CreateObject(), *scenes = cJSON_AddArrayToObject(root, "scenes");
-    for (int i = 0; scenes && i < result->scene_count; i++) cJSON_AddItemToArray(scenes, scene_json(&result->scenes[i]));
-    lucent_status s = root && scenes ? lucent_json_write_file(path, root)
-                                     : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    for (int i = 0; scenes && i < result->scene_count; i++)
+        cJSON_AddItemToArray(scenes, scene_json(&result->scenes[i]));
+    lucent_status s =
+        root && scenes ? lucent_json_write_file(path, root) : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
     cJSON_Delete(root);
     return s;
 }
@@ -56,7 +57,8 @@ static lucent_status write_one(const char *dir, const char *name, int which, con
 {
     char path[1200];
     int n = snprintf(path, sizeof path, "%s/%s", dir, name);
-    if (n < 0 || (size_t)n >= sizeof path) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%.60s...: path too long", dir);
+    if (n < 0 || (size_t)n >= sizeof path)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%.60s...: path too long", dir);
     int count = result->scene_count;
     lucent_status s = which == 0   ? lucent_compare_write_html(path, title, scenes, count)
                       : which == 1 ? lucent_compare_write_markdown(path, scenes, count)

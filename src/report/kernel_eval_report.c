@@ -19,10 +19,7 @@ static double model_at(const lucent_kernel *k, int c, int i, int j)
     return sum / (k->h * k->h);
 }
 
-static bool drawn(const lucent_kernel_eval_model *e)
-{
-    return e->plotted && e->kernel;
-}
+static bool drawn(const lucent_kernel_eval_model *e) { return e->plotted && e->kernel; }
 
 lucent_status lucent_kernel_eval_write_slices(const char *path, const lucent_kernel_eval_result *res, bool diagonal)
 {
@@ -36,8 +33,9 @@ lucent_status lucent_kernel_eval_write_slices(const char *path, const lucent_ker
     lucent_plot_series s[3][16];
     lucent_plot_panel panels[3];
     static const char *const titles[] = {"red channel", "green channel", "blue channel"};
-    static const char *const colors[] = {"#e67e22", "#2e64c8", "#27ae60", "#8e44ad", "#c0392b", "#8c564b", "#7f8c8d",
-                                         "#d35400", "#2c3e50", "#f1c40f", "#1abc9c", "#e84393", "#6c5ce7", "#00b894", "#636e72"};
+    static const char *const colors[] = {"#e67e22", "#2e64c8", "#27ae60", "#8e44ad", "#c0392b",
+                                         "#8c564b", "#7f8c8d", "#d35400", "#2c3e50", "#f1c40f",
+                                         "#1abc9c", "#e84393", "#6c5ce7", "#00b894", "#636e72"};
     for (int c = 0; c < 3; c++) {
         double *y = buf + n * (1 + (size_t)c * curves), peak = 0;
         for (int j = 0; j < n; j++) {
@@ -53,13 +51,17 @@ lucent_status lucent_kernel_eval_write_slices(const char *path, const lucent_ker
             if (!drawn(e)) continue;
             double *ym = buf + n * (1 + (size_t)c * curves + m);
             for (int j = 0; j < n; j++) ym[j] = model_at(e->kernel, c, diagonal ? j : gt->half, j);
-            s[c][m] = (lucent_plot_series){.label = e->name, .x = x, .y = ym, .count = n,
-                                           .color = colors[(m - 1) % 15], .dashed = true};
+            s[c][m] = (lucent_plot_series){
+                .label = e->name, .x = x, .y = ym, .count = n, .color = colors[(m - 1) % 15], .dashed = true};
             m++;
         }
-        panels[c] = (lucent_plot_panel){.title = titles[c], .x_label = diagonal ? "r along x = y (mm)" : "x (mm), y = 0",
-                                        .y_label = c == 0 ? "kernel (1/mm^2)" : NULL, .series = s[c],
-                                        .series_count = m, .y_min = 0, .y_max = 1.6 * peak};
+        panels[c] = (lucent_plot_panel){.title = titles[c],
+                                        .x_label = diagonal ? "r along x = y (mm)" : "x (mm), y = 0",
+                                        .y_label = c == 0 ? "kernel (1/mm^2)" : NULL,
+                                        .series = s[c],
+                                        .series_count = m,
+                                        .y_min = 0,
+                                        .y_max = 1.6 * peak};
     }
     if (reach <= 0) reach = gt->half * gt->h * scale;
     for (int c = 0; c < 3; c++) panels[c].x_min = -reach, panels[c].x_max = reach;
@@ -79,10 +81,7 @@ static void md_row(lucent_strbuf *b, const char *name, const double v[3])
     lucent_strbuf_printf(b, "| %s | %.4g | %.4g | %.4g |\n", name, v[0], v[1], v[2]);
 }
 
-static double mean3(const double v[3])
-{
-    return (v[0] + v[1] + v[2]) / 3;
-}
+static double mean3(const double v[3]) { return (v[0] + v[1] + v[2]) / 3; }
 
 static void table65(lucent_strbuf *b, const lucent_kernel_eval_result *res)
 {
@@ -94,7 +93,9 @@ static void table65(lucent_strbuf *b, const lucent_kernel_eval_result *res)
         double ia = mean3(a->separable.rms), ig = mean3(g->separable.rms);
         double ka = mean3(a->kernel_rms), kg = mean3(g->kernel_rms);
         lucent_strbuf_printf(b, "| %d | %.4g (%.3g) | %.4g (%.3g) | %s |\n", n + 1, ia, ka, ig, kg,
-                             ia < ig ? "SVD" : ia > ig ? "SoG" : "tie");
+                             ia < ig   ? "SVD"
+                             : ia > ig ? "SoG"
+                                       : "tie");
     }
 }
 
@@ -118,8 +119,9 @@ lucent_status lucent_kernel_eval_write_tables(const char *path, const lucent_ker
     lucent_strbuf b = {0};
     const lucent_kernel2d *gt = res->ground_truth;
     lucent_strbuf_printf(&b, "# %s: kernel models against the ground truth\n\n", res->material.name);
-    lucent_strbuf_printf(&b, "Profile %s; ground truth %d x %d cells of %.4g mm. Signal %s, %d x %d pixels at %.4g mm "
-                             "per pixel (pixel kernel %d x %d), clamped borders.\n\n",
+    lucent_strbuf_printf(&b,
+                         "Profile %s; ground truth %d x %d cells of %.4g mm. Signal %s, %d x %d pixels at %.4g mm "
+                         "per pixel (pixel kernel %d x %d), clamped borders.\n\n",
                          res->profile, 2 * gt->half + 1, 2 * gt->half + 1, gt->h, res->signal, res->signal_width,
                          res->signal_height, res->mm_per_pixel, res->kernel_pixels, res->kernel_pixels);
     lucent_strbuf_printf(&b, "## Kernel space (Freude Table 6.3)\n\nRMS of A - R_d over the grid cells (cell weights; "

@@ -104,21 +104,31 @@ static lucent_status write_single(const char *path, const lucent_material *m, co
     int n = 0;
     char labels[3][64];
     for (int c = 0; c < 3; c++) {
-        s[n++] = (lucent_plot_series){.label = k_channel[c], .x = p->r, .y = p->value[c],
-                                      .err = has_error(p, c) ? p->error[c] : NULL, .count = p->count,
+        s[n++] = (lucent_plot_series){.label = k_channel[c],
+                                      .x = p->r,
+                                      .y = p->value[c],
+                                      .err = has_error(p, c) ? p->error[c] : NULL,
+                                      .count = p->count,
                                       .color = k_channel_color[c]};
         if (!fit) continue;
         snprintf(labels[c], sizeof labels[c], "%s: %d Gaussians", k_channel[c], gaussians);
-        s[n++] = (lucent_plot_series){.label = labels[c], .x = fit->r, .y = fit->value[c],
-                                      .count = fit->count, .color = k_channel_color[c], .dashed = true};
+        s[n++] = (lucent_plot_series){.label = labels[c],
+                                      .x = fit->r,
+                                      .y = fit->value[c],
+                                      .count = fit->count,
+                                      .color = k_channel_color[c],
+                                      .dashed = true};
     }
     char title[160];
     snprintf(title, sizeof title, "%s: diffuse reflectance profile (%s)", m->name, p->model);
     lucent_plot_panel panels[2] = {
-        {.title = "near zero (linear)", .x_label = "r (mm)", .y_label = "R_d(r) (1/mm^2)",
-         .x_max = 0.05 * p->count * p->dr, .series = s, .series_count = n},
-        {.title = "whole range (logarithmic)", .x_label = "r (mm)", .log_y = true, .series = s,
-         .series_count = n}};
+        {.title = "near zero (linear)",
+         .x_label = "r (mm)",
+         .y_label = "R_d(r) (1/mm^2)",
+         .x_max = 0.05 * p->count * p->dr,
+         .series = s,
+         .series_count = n},
+        {.title = "whole range (logarithmic)", .x_label = "r (mm)", .log_y = true, .series = s, .series_count = n}};
     lucent_plot_desc desc = {.title = title, .panels = panels, .panel_count = 2};
     return lucent_plot_write_svg(path, &desc);
 }
@@ -144,12 +154,18 @@ lucent_status lucent_profile_write_compare_svg(const char *path, const lucent_ma
     for (int c = 0; c < 3; c++) {
         for (int i = 0; i < shown; i++) {
             const lucent_profile *p = profiles[i];
-            s[c][i] = (lucent_plot_series){.label = p->model, .x = p->r, .y = p->value[c],
+            s[c][i] = (lucent_plot_series){.label = p->model,
+                                           .x = p->r,
+                                           .y = p->value[c],
                                            .err = has_error(p, c) ? p->error[c] : NULL,
-                                           .count = p->count, .dashed = i > 0};
+                                           .count = p->count,
+                                           .dashed = i > 0};
         }
-        panels[c] = (lucent_plot_panel){.title = titles[c], .x_label = "r (mm)", .log_y = true,
-                                        .y_label = c == 0 ? "R_d(r) (1/mm^2)" : NULL, .series = s[c],
+        panels[c] = (lucent_plot_panel){.title = titles[c],
+                                        .x_label = "r (mm)",
+                                        .log_y = true,
+                                        .y_label = c == 0 ? "R_d(r) (1/mm^2)" : NULL,
+                                        .series = s[c],
                                         .series_count = shown};
     }
     char title[160];

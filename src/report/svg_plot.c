@@ -74,10 +74,7 @@ static void fit_ranges(const lucent_plot_panel *p, frame *f)
     f->x0 = xmin, f->x1 = xmax;
 }
 
-static double px(const frame *f, double x)
-{
-    return f->left + (x - f->x0) / (f->x1 - f->x0) * f->width;
-}
+static double px(const frame *f, double x) { return f->left + (x - f->x0) / (f->x1 - f->x0) * f->width; }
 
 static double py(const frame *f, double y)
 {
@@ -85,8 +82,7 @@ static double py(const frame *f, double y)
     return f->top + f->height - (v - f->y0) / (f->y1 - f->y0) * f->height;
 }
 
-static void axis_label(lucent_strbuf *b, double x, double y, const char *anchor, double rotate,
-                       const char *text)
+static void axis_label(lucent_strbuf *b, double x, double y, const char *anchor, double rotate, const char *text)
 {
     lucent_strbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"%s\"", x, y, anchor);
     if (rotate != 0) lucent_strbuf_printf(b, " transform=\"rotate(%g %.1f %.1f)\"", rotate, x, y);
@@ -101,8 +97,8 @@ static void draw_x_ticks(lucent_strbuf *b, const frame *f)
     int n = lucent_plot_nice_ticks(f->x0, f->x1, 7, t);
     for (int i = 0; i < n; i++) {
         double x = px(f, t[i]);
-        lucent_strbuf_printf(b, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"/>\n",
-                             x, f->top, x, f->top + f->height);
+        lucent_strbuf_printf(b, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"/>\n", x, f->top,
+                             x, f->top + f->height);
         lucent_strbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%g</text>\n", x,
                              f->top + f->height + 16, t[i]);
     }
@@ -119,16 +115,17 @@ static void draw_y_ticks(lucent_strbuf *b, const frame *f)
         n = lucent_plot_nice_ticks(f->y0, f->y1, 7, t);
     }
     for (int i = 0; i < n; i++) {
-        double y = f->log_y ? f->top + f->height - (t[i] - f->y0) / (f->y1 - f->y0) * f->height
-                            : py(f, t[i]);
-        lucent_strbuf_printf(b, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"/>\n",
-                             f->left, y, f->left + f->width, y);
+        double y = f->log_y ? f->top + f->height - (t[i] - f->y0) / (f->y1 - f->y0) * f->height : py(f, t[i]);
+        lucent_strbuf_printf(b, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"/>\n", f->left, y,
+                             f->left + f->width, y);
         if (f->log_y)
-            lucent_strbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">10<tspan dy=\"-6\" "
-                                 "font-size=\"9\">%d</tspan></text>\n", f->left - 6, y + 4, (int)t[i]);
+            lucent_strbuf_printf(b,
+                                 "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">10<tspan dy=\"-6\" "
+                                 "font-size=\"9\">%d</tspan></text>\n",
+                                 f->left - 6, y + 4, (int)t[i]);
         else
-            lucent_strbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n",
-                                 f->left - 6, y + 4, t[i]);
+            lucent_strbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n", f->left - 6, y + 4,
+                                 t[i]);
     }
 }
 
@@ -139,8 +136,8 @@ static bool band_point(const lucent_plot_panel *p, const lucent_plot_series *s, 
 
 /* Error band over points [begin, end): y + err forward, y - err backward (on a log axis a
  * lower edge at or below zero sits on the bottom of the panel). */
-static void draw_band_run(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p,
-                          const lucent_plot_series *s, int begin, int end, const char *color)
+static void draw_band_run(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p, const lucent_plot_series *s,
+                          int begin, int end, const char *color)
 {
     lucent_strbuf_printf(b, "<polygon fill=\"%s\" fill-opacity=\"0.18\" stroke=\"none\" points=\"", color);
     for (int i = begin; i < end; i++)
@@ -154,8 +151,8 @@ static void draw_band_run(lucent_strbuf *b, const frame *f, const lucent_plot_pa
 }
 
 /* One band polygon per run of drawable points, so gaps stay gaps. */
-static void draw_band(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p,
-                      const lucent_plot_series *s, const char *color)
+static void draw_band(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p, const lucent_plot_series *s,
+                      const char *color)
 {
     for (int i = 0; i < s->count;) {
         if (!band_point(p, s, i)) {
@@ -170,16 +167,16 @@ static void draw_band(lucent_strbuf *b, const frame *f, const lucent_plot_panel 
 }
 
 /* The curve as polylines, broken where points cannot be drawn. */
-static void draw_series(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p,
-                        const lucent_plot_series *s, const char *color)
+static void draw_series(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p, const lucent_plot_series *s,
+                        const char *color)
 {
     if (s->err) draw_band(b, f, p, s, color);
     bool open = false;
     for (int i = 0; i < s->count; i++) {
         bool ok = usable(p, s->x[i], s->y[i]);
         if (ok && !open)
-            lucent_strbuf_printf(b, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.6\"%s points=\"",
-                                 color, s->dashed ? " stroke-dasharray=\"6 4\"" : "");
+            lucent_strbuf_printf(b, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.6\"%s points=\"", color,
+                                 s->dashed ? " stroke-dasharray=\"6 4\"" : "");
         else if (!ok && open)
             lucent_strbuf_printf(b, "\"/>\n");
         if (ok) lucent_strbuf_printf(b, "%.2f,%.2f ", px(f, s->x[i]), py(f, s->y[i]));
@@ -188,8 +185,8 @@ static void draw_series(lucent_strbuf *b, const frame *f, const lucent_plot_pane
     if (open) lucent_strbuf_printf(b, "\"/>\n");
     for (int i = 0; s->markers && i < s->count; i++)
         if (usable(p, s->x[i], s->y[i]))
-            lucent_strbuf_printf(b, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"2.2\" fill=\"%s\"/>\n",
-                                 px(f, s->x[i]), py(f, s->y[i]), color);
+            lucent_strbuf_printf(b, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"2.2\" fill=\"%s\"/>\n", px(f, s->x[i]),
+                                 py(f, s->y[i]), color);
 }
 
 static void draw_legend(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p)
@@ -200,9 +197,10 @@ static void draw_legend(lucent_strbuf *b, const frame *f, const lucent_plot_pane
         if (!ser->label) continue;
         const char *color = ser->color ? ser->color : k_palette[s % 8];
         double x = f->left + f->width - 150, y = f->top + 14 + 16 * row++;
-        lucent_strbuf_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
-                             "stroke-width=\"2\"%s/>\n", x, y - 4, x + 22, y - 4, color,
-                             ser->dashed ? " stroke-dasharray=\"6 4\"" : "");
+        lucent_strbuf_printf(b,
+                             "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
+                             "stroke-width=\"2\"%s/>\n",
+                             x, y - 4, x + 22, y - 4, color, ser->dashed ? " stroke-dasharray=\"6 4\"" : "");
         axis_label(b, x + 28, y, "start", 0, ser->label);
     }
 }
@@ -211,15 +209,19 @@ static void draw_panel(lucent_strbuf *b, const lucent_plot_desc *d, int index, d
 {
     const lucent_plot_panel *p = &d->panels[index];
     int w = d->panel_width ? d->panel_width : 480, h = d->panel_height ? d->panel_height : 360;
-    frame f = {.left = index * w + MARGIN_LEFT, .top = top + MARGIN_TOP,
-               .width = w - MARGIN_LEFT - MARGIN_RIGHT, .height = h - MARGIN_TOP - MARGIN_BOTTOM};
+    frame f = {.left = index * w + MARGIN_LEFT,
+               .top = top + MARGIN_TOP,
+               .width = w - MARGIN_LEFT - MARGIN_RIGHT,
+               .height = h - MARGIN_TOP - MARGIN_BOTTOM};
     fit_ranges(p, &f);
-    lucent_strbuf_printf(b, "<clipPath id=\"clip%d\"><rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" "
-                         "height=\"%.1f\"/></clipPath>\n", index, f.left, f.top, f.width, f.height);
+    lucent_strbuf_printf(b,
+                         "<clipPath id=\"clip%d\"><rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" "
+                         "height=\"%.1f\"/></clipPath>\n",
+                         index, f.left, f.top, f.width, f.height);
     draw_x_ticks(b, &f);
     draw_y_ticks(b, &f);
-    lucent_strbuf_printf(b, "<rect class=\"frame\" x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\"/>\n",
-                         f.left, f.top, f.width, f.height);
+    lucent_strbuf_printf(b, "<rect class=\"frame\" x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\"/>\n", f.left,
+                         f.top, f.width, f.height);
     lucent_strbuf_printf(b, "<g clip-path=\"url(#clip%d)\">\n", index);
     for (int s = 0; s < p->series_count; s++)
         draw_series(b, &f, p, &p->series[s], p->series[s].color ? p->series[s].color : k_palette[s % 8]);
@@ -232,8 +234,7 @@ static void draw_panel(lucent_strbuf *b, const lucent_plot_desc *d, int index, d
 
 static lucent_status check_desc(const lucent_plot_desc *d)
 {
-    if (!d || d->panel_count < 1 || !d->panels)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "plot: no panels");
+    if (!d || d->panel_count < 1 || !d->panels) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "plot: no panels");
     for (int i = 0; i < d->panel_count; i++)
         for (int s = 0; s < d->panels[i].series_count; s++) {
             const lucent_plot_series *ser = &d->panels[i].series[s];
@@ -251,12 +252,13 @@ lucent_status lucent_plot_svg(const lucent_plot_desc *d, char **dest)
     int w = d->panel_width ? d->panel_width : 480, h = d->panel_height ? d->panel_height : 360;
     double top = d->title ? 28 : 0;
     lucent_strbuf b = {0};
-    lucent_strbuf_printf(&b, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
+    lucent_strbuf_printf(&b,
+                         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
                          "version=\"1.1\" width=\"%d\" height=\"%.0f\" viewBox=\"0 0 %d %.0f\" "
-                         "font-family=\"sans-serif\" font-size=\"12\">\n", w * d->panel_count, h + top,
-                         w * d->panel_count, h + top);
+                         "font-family=\"sans-serif\" font-size=\"12\">\n",
+                         w * d->panel_count, h + top, w * d->panel_count, h + top);
     lucent_strbuf_printf(&b, "<style>.grid{stroke:#e3e3e3;stroke-width:1}.frame{fill:none;stroke:#444}</style>\n"
-                         "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n");
+                             "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n");
     if (d->title) axis_label(&b, w * d->panel_count / 2.0, 20, "middle", 0, d->title);
     for (int i = 0; i < d->panel_count; i++) draw_panel(&b, d, i, top);
     lucent_strbuf_printf(&b, "</svg>\n");

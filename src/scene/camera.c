@@ -23,8 +23,8 @@ void lucent_camera_view(const lucent_camera *cam, double dest[16])
     v3 r, u, b, p = v3_load(cam->position);
     camera_frame(cam, &r, &u, &b);
     /* columns 0..2, rows 0..2: the frame's rows; column 3: the eye moved to the origin */
-    const double m[16] = {r.x, u.x, b.x, 0, r.y, u.y, b.y, 0, r.z, u.z, b.z, 0,
-                          -v3_dot(r, p), -v3_dot(u, p), -v3_dot(b, p), 1};
+    const double m[16] = {r.x, u.x, b.x, 0, r.y,           u.y,           b.y,           0,
+                          r.z, u.z, b.z, 0, -v3_dot(r, p), -v3_dot(u, p), -v3_dot(b, p), 1};
     memcpy(dest, m, sizeof m);
 }
 
@@ -39,8 +39,8 @@ void lucent_camera_projection(const lucent_camera *cam, double aspect, double de
     dest[14] = 2 * fa * n / (n - fa);
 }
 
-void lucent_camera_ray(const lucent_camera *cam, int width, int height, double px, double py,
-                       double origin[3], double dir[3])
+void lucent_camera_ray(const lucent_camera *cam, int width, int height, double px, double py, double origin[3],
+                       double dir[3])
 {
     v3 r, u, b;
     camera_frame(cam, &r, &u, &b);

@@ -11,23 +11,25 @@
 #include "material/internal.h"
 #include "scene/internal.h"
 
-static const char *const k_object_keys[] = {
-    "name",     "mesh",        "mm_per_unit", "transform", "material",     "albedo", "albedo_texture",
-    "roughness", "specular_f0", "sigma0",      "sss_strength", "visible", "subdivide", NULL};
+static const char *const k_object_keys[] = {"name",         "mesh",           "mm_per_unit", "transform",   "material",
+                                            "albedo",       "albedo_texture", "roughness",   "specular_f0", "sigma0",
+                                            "sss_strength", "visible",        "subdivide",   NULL};
 
 /* ---- paths ---- */
 
 static void join_path(const char *base_dir, const char *path, char *dest, size_t size)
 {
-    if (path[0] == '/' || !base_dir || !base_dir[0]) snprintf(dest, size, "%s", path);
-    else snprintf(dest, size, "%s/%s", base_dir, path);
+    if (path[0] == '/' || !base_dir || !base_dir[0])
+        snprintf(dest, size, "%s", path);
+    else
+        snprintf(dest, size, "%s/%s", base_dir, path);
 }
 
 /* ---- the mesh ---- */
 
 static const char *const k_primitive_names[] = {"uv_sphere", "icosphere", "torus", "ellipsoid", NULL};
-static const char *const k_primitive_keys[] = {"primitive", "radius", "major_radius", "axes", "u_count",
-                                               "v_count", "subdivisions", NULL};
+static const char *const k_primitive_keys[] = {"primitive", "radius",  "major_radius", "axes",
+                                               "u_count",   "v_count", "subdivisions", NULL};
 
 static lucent_status read_primitive(const lucent_json_node *n, lucent_primitive_desc *d, const char **kind)
 {
@@ -72,8 +74,7 @@ static lucent_status load_mesh(const lucent_json_node *n, const char *base_dir, 
     join_path(base_dir, file, o->mesh_source, sizeof o->mesh_source);
     if (s != LUCENT_OK || skip) return s;
     if (access(o->mesh_source, R_OK) != 0)
-        return lucent_json_fail(&m, NULL, LUCENT_ERR_NOT_FOUND, "cannot open %s: %s%s", o->mesh_source,
-                                strerror(errno),
+        return lucent_json_fail(&m, NULL, LUCENT_ERR_NOT_FOUND, "cannot open %s: %s%s", o->mesh_source, strerror(errno),
                                 strstr(o->mesh_source, "meshes/") ? " (run `make setup` to fetch the sample meshes)"
                                                                   : "");
     if ((s = lucent_mesh_load(o->mesh_source, NULL, &o->mesh)) != LUCENT_OK)
@@ -125,15 +126,18 @@ static lucent_status read_transform(const lucent_json_node *n, double mm_per_uni
     if (s == LUCENT_OK && t.json) s = lucent_json_check_keys(&t, k_transform_keys);
     if (s == LUCENT_OK && t.json && lucent_json_has(&t, "matrix")) {
         if (lucent_json_has(&t, "translate") || lucent_json_has(&t, "rotate") || lucent_json_has(&t, "scale"))
-            return lucent_json_fail(&t, "matrix", LUCENT_ERR_PARSE, "give a matrix or translate/rotate/scale, not both");
+            return lucent_json_fail(&t, "matrix", LUCENT_ERR_PARSE,
+                                    "give a matrix or translate/rotate/scale, not both");
         s = read_matrix(&t, m);
     } else if (s == LUCENT_OK && t.json) {
         static const double zero[3] = {0, 0, 0}, one[3] = {1, 1, 1};
         double tr[3], rot[3], sc[3];
         s = scene_read_vec3(&t, "translate", zero, tr);
         if (s == LUCENT_OK) s = scene_read_vec3(&t, "rotate", zero, rot);
-        if (s == LUCENT_OK && lucent_json_has(&t, "scale")) s = lucent_json_numbers(&t, "scale", 3, true, sc);
-        else memcpy(sc, one, sizeof sc);
+        if (s == LUCENT_OK && lucent_json_has(&t, "scale"))
+            s = lucent_json_numbers(&t, "scale", 3, true, sc);
+        else
+            memcpy(sc, one, sizeof sc);
         for (int i = 0; s == LUCENT_OK && i < 3; i++)
             if (!(sc[i] != 0)) s = lucent_json_fail(&t, "scale", LUCENT_ERR_PARSE, "must not be zero");
         for (int a = 2; s == LUCENT_OK && a >= 0; a--) mat_rotation(a, rot[a], r), lucent_mat4_mul(m, r, m);
@@ -155,8 +159,8 @@ static void transform_mesh(lucent_mesh *mesh, const double m[16])
         for (int r = 0; r < 3; r++) q[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
         memcpy(p, q, sizeof q);
     }
-    double det = m[0] * (m[5] * m[10] - m[9] * m[6]) - m[4] * (m[1] * m[10] - m[9] * m[2]) +
-                 m[8] * (m[1] * m[6] - m[5] * m[2]);
+    double det =
+        m[0] * (m[5] * m[10] - m[9] * m[6]) - m[4] * (m[1] * m[10] - m[9] * m[2]) + m[8] * (m[1] * m[6] - m[5] * m[2]);
     for (size_t f = 0; det < 0 && f < mesh->face_count; f++) {
         uint32_t t = mesh->faces[3 * f + 1];
         mesh->faces[3 * f + 1] = mesh->faces[3 * f + 2], mesh->faces[3 * f + 2] = t;
@@ -198,8 +202,7 @@ static lucent_status make_texcoords(lucent_scene_object *o)
     return LUCENT_OK;
 }
 
-static lucent_status read_albedo(const lucent_json_node *n, const char *base_dir, bool skip,
-                                 lucent_scene_object *o)
+static lucent_status read_albedo(const lucent_json_node *n, const char *base_dir, bool skip, lucent_scene_object *o)
 {
     lucent_material_derived d;
     lucent_material_derive(&o->material, &d);

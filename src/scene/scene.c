@@ -7,8 +7,7 @@
 
 static const char *const k_scene_keys[] = {"name", "description", "camera", "lights", "objects", "render", NULL};
 
-static lucent_status read_objects(const lucent_json_node *root, const char *base_dir, bool skip,
-                                  lucent_scene *sc)
+static lucent_status read_objects(const lucent_json_node *root, const char *base_dir, bool skip, lucent_scene *sc)
 {
     lucent_json_node list, e;
     int n = 0;
@@ -55,8 +54,7 @@ static void resolve_planes(lucent_scene *sc)
     c->near_plane = fmin(near, 0.5 * far), c->far_plane = far;
 }
 
-static lucent_status read_scene(const lucent_json_node *root, const char *base_dir, bool skip,
-                                lucent_scene *sc)
+static lucent_status read_scene(const lucent_json_node *root, const char *base_dir, bool skip, lucent_scene *sc)
 {
     const char *name, *description;
     if (!cJSON_IsObject(root->json))
@@ -83,8 +81,8 @@ static void stem(const char *path, char *dest, size_t size)
     snprintf(dest, size, "%.*s", (int)len, base);
 }
 
-static lucent_status parse_doc(cJSON *json, const char *name, const char *base_dir,
-                               const lucent_scene_load_desc *desc, lucent_scene **dest)
+static lucent_status parse_doc(cJSON *json, const char *name, const char *base_dir, const lucent_scene_load_desc *desc,
+                               lucent_scene **dest)
 {
     static const lucent_scene_load_desc none = {0};
     const lucent_scene_load_desc *d = desc ? desc : &none;
@@ -130,7 +128,7 @@ lucent_status lucent_scene_load(const char *path, const lucent_scene_load_desc *
     snprintf(dir, sizeof dir, "%s", path);
     s = parse_doc(json, path, dirname(dir), desc, dest);
     cJSON_Delete(json);
-    if (s == LUCENT_OK) snprintf((*dest)->path, sizeof (*dest)->path, "%s", path);
+    if (s == LUCENT_OK) snprintf((*dest)->path, sizeof(*dest)->path, "%s", path);
     return s;
 }
 

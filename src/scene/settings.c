@@ -89,8 +89,7 @@ lucent_status scene_read_camera(const lucent_json_node *root, lucent_camera *des
     v3 up_n = v3_normalize(v3_load(dest->up));
     if (s == LUCENT_OK && v3_dot(d, d) == 0)
         s = lucent_json_fail(&n, "target", LUCENT_ERR_PARSE, "must differ from the position");
-    if (s == LUCENT_OK && v3_dot(up_n, up_n) == 0)
-        s = lucent_json_fail(&n, "up", LUCENT_ERR_PARSE, "must not be zero");
+    if (s == LUCENT_OK && v3_dot(up_n, up_n) == 0) s = lucent_json_fail(&n, "up", LUCENT_ERR_PARSE, "must not be zero");
     if (s == LUCENT_OK && dest->far_plane > 0 && dest->far_plane <= dest->near_plane)
         s = lucent_json_fail(&n, "far", LUCENT_ERR_PARSE, "must be greater than near");
     return s;
@@ -196,8 +195,12 @@ static lucent_status parse_method(const char *text, lucent_render_settings *dest
 static const lucent_setting k_view[] = {
     SETTING_INT("width", view.width, 512, 1, 16384, 0, "image width, pixels"),
     SETTING_INT("height", view.height, 512, 1, 16384, 0, "image height, pixels"),
-    {.key = "method", .type = LUCENT_SETTING_CHOICE, SETTING_AT_(view.method, sizeof(lucent_render_method) == sizeof(int)),
-     .def_text = "ssss", .choice = method_name, .parse = parse_method,
+    {.key = "method",
+     .type = LUCENT_SETTING_CHOICE,
+     SETTING_AT_(view.method, sizeof(lucent_render_method) == sizeof(int)),
+     .def_text = "ssss",
+     .choice = method_name,
+     .parse = parse_method,
      .doc = "the GL renderer's method; ssss:<kernel>[rank] chooses the kernel too (ssss:svd3)"},
     SETTING_INT("shadow_map_size", view.shadow_map_size, 2048, 16, 16384, 0, "texels per side of each shadow map"),
     SETTING_COLOR("background", view.background, 0, 0, INFINITY,
@@ -216,10 +219,7 @@ extern const lucent_settings_group gl_ssss_settings, gl_translucency_settings, g
 static const lucent_settings_group *const k_groups[] = {&k_view_group, &gl_ssss_settings, &gl_translucency_settings,
                                                         &gl_cdrf_settings, &tr_trace_settings};
 
-int lucent_settings_group_count(void)
-{
-    return (int)(sizeof k_groups / sizeof k_groups[0]);
-}
+int lucent_settings_group_count(void) { return (int)(sizeof k_groups / sizeof k_groups[0]); }
 
 const lucent_settings_group *lucent_settings_group_get(int index)
 {

@@ -72,8 +72,8 @@ static bool sample_smooth(v3 no, v3 o, double eta_o, double eta_t, double u0, tr
 
 /* Rough boundary: a visible normal, then reflect with probability F(o . m) or refract; the weight
  * f |cos i| / pdf reduces to G1(i) (eta_o / eta_i)^2. */
-static bool sample_rough(const tr_boundary *b, v3 n, v3 no, v3 o, double eta_o, double eta_t, double u0,
-                         double u1, double u2, tr_bsdf_sample *dest)
+static bool sample_rough(const tr_boundary *b, v3 n, v3 no, v3 o, double eta_o, double eta_t, double u0, double u1,
+                         double u2, tr_bsdf_sample *dest)
 {
     v3 m = lucent_ggx_sample_visible(o, no, b->alpha, u1, u2);
     double om = v3_dot(o, m), F = lucent_fresnel_dielectric(om, eta_t / eta_o, NULL);

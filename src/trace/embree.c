@@ -14,10 +14,10 @@ struct tr_geometry {
     RTCDevice device;
     RTCScene scene;
     int count;
-    int *object;      /* geomID -> tracer object index */
-    double **planes;  /* geomID -> 4 doubles per face: outward unit normal n and n . v0 */
-    double far;       /* rays reaching further than this from the origin get their distance in double */
-    char error[256];  /* the first error Embree reported */
+    int *object;     /* geomID -> tracer object index */
+    double **planes; /* geomID -> 4 doubles per face: outward unit normal n and n . v0 */
+    double far;      /* rays reaching further than this from the origin get their distance in double */
+    char error[256]; /* the first error Embree reported */
 };
 
 static void on_error(void *user, enum RTCError code, const char *text)
@@ -81,8 +81,9 @@ static lucent_status geometry_start(int count, tr_geometry **dest)
     }
     *dest = g;
     g->device = rtcNewDevice(NULL);
-    if (!g->device) return lucent_error(LUCENT_ERR_INTERNAL, "trace: cannot create the Embree device (error %d)",
-                                        (int)rtcGetDeviceError(NULL));
+    if (!g->device)
+        return lucent_error(LUCENT_ERR_INTERNAL, "trace: cannot create the Embree device (error %d)",
+                            (int)rtcGetDeviceError(NULL));
     rtcSetDeviceErrorFunction(g->device, on_error, g);
     g->scene = rtcNewScene(g->device);
     if (!g->scene) return lucent_error(LUCENT_ERR_INTERNAL, "trace: %s", g->error);
@@ -98,8 +99,10 @@ lucent_status tr_geometry_create(const lucent_scene *scene, const int *object_of
     lucent_status s = geometry_start(count, &g);
     for (int i = 0; s == LUCENT_OK && i < count; i++) {
         const lucent_scene_object *o = &scene->objects[object_of[i]];
-        if (!o->mesh) s = lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "trace: objects[%d] has no mesh", object_of[i]);
-        else if (o->mesh->face_count) s = add_mesh(g, o->mesh, i, o->name);
+        if (!o->mesh)
+            s = lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "trace: objects[%d] has no mesh", object_of[i]);
+        else if (o->mesh->face_count)
+            s = add_mesh(g, o->mesh, i, o->name);
     }
     if (s == LUCENT_OK) {
         rtcCommitScene(g->scene);
@@ -128,9 +131,14 @@ bool tr_intersect(const tr_geometry *g, v3 o, v3 d, double tnear, double tfar, t
 {
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    struct RTCRayHit rh = {.ray = {.org_x = (float)o.x, .org_y = (float)o.y, .org_z = (float)o.z,
-                                   .tnear = (float)tnear, .dir_x = (float)d.x, .dir_y = (float)d.y,
-                                   .dir_z = (float)d.z, .tfar = tfar < FLT_MAX ? (float)tfar : INFINITY,
+    struct RTCRayHit rh = {.ray = {.org_x = (float)o.x,
+                                   .org_y = (float)o.y,
+                                   .org_z = (float)o.z,
+                                   .tnear = (float)tnear,
+                                   .dir_x = (float)d.x,
+                                   .dir_y = (float)d.y,
+                                   .dir_z = (float)d.z,
+                                   .tfar = tfar < FLT_MAX ? (float)tfar : INFINITY,
                                    .mask = 0xFFFFFFFFu},
                            .hit = {.geomID = RTC_INVALID_GEOMETRY_ID}};
     rtcIntersect1(g->scene, &ctx, &rh);
@@ -153,8 +161,13 @@ bool tr_occluded(const tr_geometry *g, v3 o, v3 d, double tfar)
 {
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    struct RTCRay ray = {.org_x = (float)o.x, .org_y = (float)o.y, .org_z = (float)o.z, .dir_x = (float)d.x,
-                         .dir_y = (float)d.y, .dir_z = (float)d.z, .tfar = tfar < FLT_MAX ? (float)tfar : INFINITY,
+    struct RTCRay ray = {.org_x = (float)o.x,
+                         .org_y = (float)o.y,
+                         .org_z = (float)o.z,
+                         .dir_x = (float)d.x,
+                         .dir_y = (float)d.y,
+                         .dir_z = (float)d.z,
+                         .tfar = tfar < FLT_MAX ? (float)tfar : INFINITY,
                          .mask = 0xFFFFFFFFu};
     rtcOccluded1(g->scene, &ctx, &ray);
     return ray.tfar < 0; /* Embree sets tfar to -inf when something is hit */

@@ -47,7 +47,8 @@ static void setup_grid(const lucent_mesh *m, tr_field *f)
 {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, ext = 0;
     for (size_t v = 0; v < m->vertex_count; v++)
-        for (int a = 0; a < 3; a++) lo[a] = fmin(lo[a], m->positions[3 * v + a]), hi[a] = fmax(hi[a], m->positions[3 * v + a]);
+        for (int a = 0; a < 3; a++)
+            lo[a] = fmin(lo[a], m->positions[3 * v + a]), hi[a] = fmax(hi[a], m->positions[3 * v + a]);
     for (int a = 0; a < 3; a++) ext = fmax(ext, hi[a] - lo[a]);
     f->cell = fmax(ext, 1e-6) / (FIELD_CELLS - 2);
     for (int a = 0; a < 3; a++) {
@@ -154,7 +155,8 @@ static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
     lucent_rng_init(FIELD_SEED, chunk, &rng);
     for (uint64_t i = begin; i < end; i++) {
         photon ph = {.channel = (int)(i % 3)};
-        if (emit(pick_emitter(tr, lucent_rng_uniform(&rng)), c, r, &rng, &ph)) trace_photon(tr, tr->fields, tally, &ph, &rng);
+        if (emit(pick_emitter(tr, lucent_rng_uniform(&rng)), c, r, &rng, &ph))
+            trace_photon(tr, tr->fields, tally, &ph, &rng);
     }
     return LUCENT_OK;
 }
@@ -211,7 +213,8 @@ static void smooth(const tr_field *f, const double *tally, const float *in, doub
                         for (int dj = -1; dj <= 1; dj++)
                             for (int di = -1; di <= 1; di++) {
                                 int ii = i + di, jj = j + dj, kk = k + dk;
-                                if (ii < 0 || jj < 0 || kk < 0 || ii >= f->n[0] || jj >= f->n[1] || kk >= f->n[2]) continue;
+                                if (ii < 0 || jj < 0 || kk < 0 || ii >= f->n[0] || jj >= f->n[1] || kk >= f->n[2])
+                                    continue;
                                 size_t q = ((size_t)kk * f->n[1] + jj) * f->n[0] + ii;
                                 sum += tally[q * 3 + c], vol += in[q];
                             }
@@ -234,7 +237,7 @@ static void gradient(tr_field *f, const double *phi)
                         double pp = at(f, phi, i + s[0], j + s[1], k + s[2], c);
                         double pm = at(f, phi, i - s[0], j - s[1], k - s[2], c);
                         double lp = pp > 0 ? log(pp) : NAN, lm = pm > 0 ? log(pm) : NAN, l0 = p0 > 0 ? log(p0) : NAN;
-                        double d = isfinite(lp) && isfinite(lm) ? 0.5 * (lp - lm)
+                        double d = isfinite(lp) && isfinite(lm)   ? 0.5 * (lp - lm)
                                    : isfinite(lp) && isfinite(l0) ? lp - l0
                                    : isfinite(lm) && isfinite(l0) ? l0 - lm
                                                                   : 0.0;

@@ -125,8 +125,7 @@ lucent_status tr_film_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *poo
     tr_stats *stats = calloc((size_t)threads, sizeof *stats);
     if (!stats) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory");
     tr_film_allocate(f);
-    pass_job job = {.tr = tr, .film = f, .tiles_x = (f->width + TILE - 1) / TILE, .stats = stats,
-                    .progress = progress};
+    pass_job job = {.tr = tr, .film = f, .tiles_x = (f->width + TILE - 1) / TILE, .stats = stats, .progress = progress};
     uint64_t tiles = (uint64_t)job.tiles_x * (uint64_t)((f->height + TILE - 1) / TILE);
     lucent_status s = lucent_parallel_for(pool, tiles, 1, pass_tile, &job);
     for (int t = 0; t < threads; t++) merge_stats(&f->stats, &stats[t]);

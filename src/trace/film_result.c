@@ -51,8 +51,10 @@ static lucent_status error_summary(const tr_film *f, lucent_trace_error *e)
     for (size_t p = 0; p < n; p++) {
         if (!object_pixel(f, p)) continue;
         double r = pixel_rel_error(f, p);
-        if (r < 0) e->dark_pixels++;
-        else v[count++] = r, sum += r * r;
+        if (r < 0)
+            e->dark_pixels++;
+        else
+            v[count++] = r, sum += r * r;
     }
     qsort(v, count, sizeof *v, cmp_double);
     e->pixels = count;

@@ -101,8 +101,10 @@ static void surface(tr_path *p, const tr_hit *h)
         p->done = true;
         return;
     }
-    if (bs.delta) p->mis = (tr_mis){.kind = MIS_NONE};
-    else record_surface(p, y, n, bs.pdf, inside);
+    if (bs.delta)
+        p->mis = (tr_mis){.kind = MIS_NONE};
+    else
+        record_surface(p, y, n, bs.pdf, inside);
     for (int c = 0; c < 3; c++) p->beta[c] *= bs.weight;
     p->eta_scale /= bs.scale;
     if (bs.transmit) p->medium = inside ? -1 : h->object;
@@ -182,8 +184,10 @@ static void scatter(tr_path *p, const tr_object *ob, double t, const tr_transfor
     p->analog |= p->tw > TR_TW_MAX;
     p->stats->scatters++;
     p->guide = (tr_guide){.x = x, .d_in = p->d, .object = p->medium};
-    if (ob->boundary.kind == TR_BOUNDARY_ROUGH && !p->tr->desc.boundary_nee_only) tr_nee_through(p, &p->guide);
-    else if (ob->boundary.kind == TR_BOUNDARY_MATCHED) tr_nee_volume_matched(p, x);
+    if (ob->boundary.kind == TR_BOUNDARY_ROUGH && !p->tr->desc.boundary_nee_only)
+        tr_nee_through(p, &p->guide);
+    else if (ob->boundary.kind == TR_BOUNDARY_MATCHED)
+        tr_nee_volume_matched(p, x);
     if (++p->scatters >= p->tr->render.trace.max_scatter) {
         p->stats->truncated++;
         p->done = true;
@@ -215,7 +219,14 @@ static void step_inside(tr_path *p)
 
 bool tr_trace_path(const lucent_tracer *tr, double px, double py, lucent_rng *rng, double dest[3], tr_stats *stats)
 {
-    tr_path p = {.tr = tr, .rng = rng, .stats = stats, .beta = {1, 1, 1}, .r = {1, 1, 1}, .eta_scale = 1, .tw = 1, .medium = -1,
+    tr_path p = {.tr = tr,
+                 .rng = rng,
+                 .stats = stats,
+                 .beta = {1, 1, 1},
+                 .r = {1, 1, 1},
+                 .eta_scale = 1,
+                 .tw = 1,
+                 .medium = -1,
                  .camera_ray = true};
     double o[3], d[3];
     lucent_camera_ray(&tr->scene->camera, tr->render.view.width, tr->render.view.height, px, py, o, d);
@@ -225,8 +236,10 @@ bool tr_trace_path(const lucent_tracer *tr, double px, double py, lucent_rng *rn
     bool covered = false;
     stats->paths++;
     while (!p.done) {
-        if (p.medium < 0) step_outside(&p);
-        else step_inside(&p);
+        if (p.medium < 0)
+            step_outside(&p);
+        else
+            step_inside(&p);
         if (!p.camera_ray) covered = true;
     }
     stats->bounces += (uint64_t)p.bounces;

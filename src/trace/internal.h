@@ -56,8 +56,7 @@ typedef struct tr_bsdf_sample {
 
 /* Samples i given o. Returns false when the sample is lost (a microfacet sends it below the macro
  * surface): the path ends there, which is what the single-scattering microfacet model means. */
-bool tr_bsdf_sample_dir(const tr_boundary *b, v3 n, v3 o, double u0, double u1, double u2,
-                        tr_bsdf_sample *dest);
+bool tr_bsdf_sample_dir(const tr_boundary *b, v3 n, v3 o, double u0, double u1, double u2, tr_bsdf_sample *dest);
 
 /* ---- media (media.c) ---- */
 
@@ -84,8 +83,7 @@ typedef struct tr_hit {
     v3 n;       /* outward unit geometric normal of the triangle hit */
 } tr_hit;
 
-lucent_status tr_geometry_create(const lucent_scene *scene, const int *object_of, int count,
-                                 tr_geometry **dest);
+lucent_status tr_geometry_create(const lucent_scene *scene, const int *object_of, int count, tr_geometry **dest);
 void tr_geometry_destroy(tr_geometry *g);
 
 /* The first surface along o + t d with tnear < t < tfar (tfar may be INFINITY). */
@@ -121,7 +119,7 @@ typedef struct tr_light {
     double cos_cone;    /* directional disc: cos of the angular radius */
     double solid_angle; /* directional disc */
     bool delta;
-    double select;      /* probability that next-event estimation picks it */
+    double select; /* probability that next-event estimation picks it */
 } tr_light;
 
 struct lucent_tracer {
@@ -134,8 +132,8 @@ struct lucent_tracer {
     tr_light *lights;
     int light_count;
     double select_cdf[64];
-    double eps;        /* ray offset from surfaces, mm */
-    bool has_matched;  /* some object is index matched (shadow rays must pass through it) */
+    double eps;                  /* ray offset from surfaces, mm */
+    bool has_matched;            /* some object is index matched (shadow rays must pass through it) */
     const tr_light *walk_target; /* the strongest light with a direction (NULL: none) */
     tr_field *fields;            /* one per object once built (NULL: the analog walk) */
     double walk_strength;        /* the share of the fluence gradient the walk follows */
@@ -149,10 +147,10 @@ lucent_status tr_lights_build(lucent_tracer *tr);
 const tr_light *tr_light_pick(const lucent_tracer *tr, double u);
 
 typedef struct tr_light_sample {
-    v3 w;          /* unit direction toward the light */
-    double dist;   /* distance to the emitter along w (INFINITY for distant lights) */
-    double le[3];  /* radiance, or for delta lights the irradiance at the point */
-    double pdf;    /* solid angle density (times the pick probability); for delta lights the pick probability */
+    v3 w;         /* unit direction toward the light */
+    double dist;  /* distance to the emitter along w (INFINITY for distant lights) */
+    double le[3]; /* radiance, or for delta lights the irradiance at the point */
+    double pdf;   /* solid angle density (times the pick probability); for delta lights the pick probability */
     bool delta;
 } tr_light_sample;
 

@@ -26,8 +26,8 @@ static double one_minus_cos(double a)
 
 static void build_one(const lucent_light *in, int index, tr_light *l)
 {
-    *l = (tr_light){.type = in->type, .scene_index = index, .position = v3_load(in->position),
-                    .radius = in->radius, .delta = true};
+    *l = (tr_light){
+        .type = in->type, .scene_index = index, .position = v3_load(in->position), .radius = in->radius, .delta = true};
     double scale = in->intensity;
     if (in->type == LUCENT_LIGHT_DIRECTIONAL) {
         l->toward = v3_neg(v3_normalize(v3_load(in->direction)));
@@ -61,8 +61,9 @@ lucent_status tr_lights_build(lucent_tracer *tr)
 {
     const lucent_scene *sc = tr->scene;
     int n = sc->light_count;
-    if (n > 64) return lucent_error(LUCENT_ERR_UNSUPPORTED, "%s: the path tracer takes at most 64 lights (got %d)",
-                                    sc->path[0] ? sc->path : "scene", n);
+    if (n > 64)
+        return lucent_error(LUCENT_ERR_UNSUPPORTED, "%s: the path tracer takes at most 64 lights (got %d)",
+                            sc->path[0] ? sc->path : "scene", n);
     tr->lights = calloc((size_t)(n ? n : 1), sizeof *tr->lights);
     if (!tr->lights) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory");
     tr->light_count = n;
@@ -80,7 +81,8 @@ lucent_status tr_lights_build(lucent_tracer *tr)
         tr->lights[i].select = sum > 0 ? 0.75 * w[i] / sum + 0.25 / n : 1.0 / n;
         acc += tr->lights[i].select;
         tr->select_cdf[i] = acc;
-        if (sc->lights[i].type != LUCENT_LIGHT_ENVIRONMENT && w[i] > best) best = w[i], tr->walk_target = &tr->lights[i];
+        if (sc->lights[i].type != LUCENT_LIGHT_ENVIRONMENT && w[i] > best)
+            best = w[i], tr->walk_target = &tr->lights[i];
     }
     return LUCENT_OK;
 }

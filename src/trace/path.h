@@ -68,8 +68,10 @@ static inline double tr_u(tr_path *p) { return lucent_rng_uniform(p->rng); }
 /* The walk's transform at x in object `object` for this path (zero once it is analog). */
 static inline void tr_path_transform(const tr_path *p, int object, v3 x, tr_transform *dest)
 {
-    if (p->analog) *dest = (tr_transform){{{0, 0, 0}}, {0, 0, 0}};
-    else tr_field_lookup(p->tr, object, x, dest);
+    if (p->analog)
+        *dest = (tr_transform){{{0, 0, 0}}, {0, 0, 0}};
+    else
+        tr_field_lookup(p->tr, object, x, dest);
 }
 
 /* Adds value_c to the estimate when finite. */

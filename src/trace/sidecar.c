@@ -5,7 +5,8 @@
 static cJSON *error_json(const lucent_trace_error *e)
 {
     cJSON *j = cJSON_CreateObject();
-    cJSON_AddStringToObject(j, "of", "se(Y) / Y per pixel, Y the Rec. 709 luminance, over object pixels (coverage >= 0.5)");
+    cJSON_AddStringToObject(j, "of",
+                            "se(Y) / Y per pixel, Y the Rec. 709 luminance, over object pixels (coverage >= 0.5)");
     cJSON_AddNumberToObject(j, "median", e->median);
     cJSON_AddNumberToObject(j, "p90", e->p90);
     cJSON_AddNumberToObject(j, "rms", e->rms);

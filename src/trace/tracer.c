@@ -23,8 +23,10 @@ static tr_boundary boundary_of(const lucent_scene_object *o)
 
 static void describe_light(const lucent_light *l, char *buf, size_t size)
 {
-    if (l->type == LUCENT_LIGHT_POINT) snprintf(buf, size, "a point light");
-    else snprintf(buf, size, "a directional light with angular_radius 0");
+    if (l->type == LUCENT_LIGHT_POINT)
+        snprintf(buf, size, "a point light");
+    else
+        snprintf(buf, size, "a directional light with angular_radius 0");
 }
 
 /* The refusal rule: a delta light can reach an object's medium only through its boundary, and
@@ -169,7 +171,8 @@ lucent_status lucent_tracer_render(lucent_tracer *tr, const lucent_trace_desc *d
     double start = lucent_clock_seconds(); /* the guiding field's pre-pass counts as rendering time */
     if (!tr->fields && tr->walk_strength > 0 && (s = tr_field_build(tr, d.pool)) != LUCENT_OK) return s;
     tr->film->seed = d.seed;
-    uint64_t per_pass = (uint64_t)tr->render.view.width * (uint64_t)tr->render.view.height * (tr->desc.adaptive ? 5 : 1);
+    uint64_t per_pass =
+        (uint64_t)tr->render.view.width * (uint64_t)tr->render.view.height * (tr->desc.adaptive ? 5 : 1);
     lucent_progress *progress = lucent_progress_begin(d.label, (uint64_t)d.spp * per_pass);
     for (int i = 0; i < d.spp && s == LUCENT_OK; i++) {
         s = tr_film_pass(tr, tr->film, d.pool, progress);

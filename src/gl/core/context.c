@@ -34,8 +34,10 @@ static lucent_status apply_env(lucent_gl_desc *d)
         char *end;
         long v = strtol(dev, &end, 10);
         if (*end || v < 1 || v > 1000)
-            return lucent_error(LUCENT_ERR_GL, "no OpenGL context: LUCENT_GL_DEVICE: '%s' is not a device number "
-                                "(1, 2, ...)", dev);
+            return lucent_error(LUCENT_ERR_GL,
+                                "no OpenGL context: LUCENT_GL_DEVICE: '%s' is not a device number "
+                                "(1, 2, ...)",
+                                dev);
         d->device = (int)v;
     }
     return LUCENT_OK;
@@ -55,8 +57,8 @@ static void fill_info(lucent_gl_context *ctx)
     copy_string(i->vendor, sizeof i->vendor, GL_VENDOR);
     copy_string(i->version, sizeof i->version, GL_VERSION);
     copy_string(i->glsl, sizeof i->glsl, GL_SHADING_LANGUAGE_VERSION);
-    i->software = strstr(i->renderer, "llvmpipe") || strstr(i->renderer, "softpipe") ||
-                  strstr(i->renderer, "swrast") || strstr(i->renderer, "SwiftShader");
+    i->software = strstr(i->renderer, "llvmpipe") || strstr(i->renderer, "softpipe") || strstr(i->renderer, "swrast") ||
+                  strstr(i->renderer, "SwiftShader");
 }
 
 /* The context must be 4.5 or later with the core profile (a driver may hand out more than asked). */
@@ -98,7 +100,8 @@ static lucent_status create(lucent_gl_context *ctx, lucent_gl_desc *d)
 {
     lucent_status s = d->ignore_env ? LUCENT_OK : apply_env(d);
     if (s != LUCENT_OK) return s;
-    s = d->platform == LUCENT_GL_WINDOW ? gl_window_create(ctx, d) : gl_egl_create(ctx, d->platform, d->device, d->debug);
+    s = d->platform == LUCENT_GL_WINDOW ? gl_window_create(ctx, d)
+                                        : gl_egl_create(ctx, d->platform, d->device, d->debug);
     if (s != LUCENT_OK) return s;
     fill_info(ctx);
     if (ctx->info.software) keep_driver_pages();
@@ -128,8 +131,10 @@ lucent_status lucent_gl_create(const lucent_gl_desc *desc, lucent_gl_context **d
 void lucent_gl_destroy(lucent_gl_context *ctx)
 {
     if (!ctx) return;
-    if (ctx->window || ctx->glfw_initialised) gl_window_destroy(ctx);
-    else gl_egl_destroy(ctx);
+    if (ctx->window || ctx->glfw_initialised)
+        gl_window_destroy(ctx);
+    else
+        gl_egl_destroy(ctx);
     free(ctx);
 }
 
@@ -138,10 +143,7 @@ lucent_status lucent_gl_make_current(lucent_gl_context *ctx)
     return ctx->window ? gl_window_make_current(ctx) : gl_egl_make_current(ctx);
 }
 
-void lucent_gl_get_info(const lucent_gl_context *ctx, lucent_gl_info *dest)
-{
-    *dest = ctx->info;
-}
+void lucent_gl_get_info(const lucent_gl_context *ctx, lucent_gl_info *dest) { *dest = ctx->info; }
 
 static const char *gl_error_name(GLenum e)
 {

@@ -32,10 +32,7 @@ static lucent_status egl_fail(const char *what)
     return lucent_error(LUCENT_ERR_GL, "no OpenGL context: %s (%s, 0x%04x)", what, egl_error_name(e), (unsigned)e);
 }
 
-static bool client_has(const char *ext)
-{
-    return epoxy_has_egl_extension(EGL_NO_DISPLAY, ext);
-}
+static bool client_has(const char *ext) { return epoxy_has_egl_extension(EGL_NO_DISPLAY, ext); }
 
 /* The EGL devices (EGL_EXT_device_enumeration); 0 when the extension is missing. */
 static int egl_devices(EGLDeviceEXT *devices)
@@ -109,8 +106,14 @@ static lucent_status create_context(lucent_gl_context *ctx, bool debug)
     }
     if (!epoxy_has_egl_extension(d, "EGL_KHR_surfaceless_context"))
         return lucent_error(LUCENT_ERR_GL, "no OpenGL context: the EGL display lacks EGL_KHR_surfaceless_context");
-    EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5, EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE,
+    EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                        4,
+                        EGL_CONTEXT_MINOR_VERSION,
+                        5,
+                        EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                        EGL_CONTEXT_OPENGL_DEBUG,
+                        debug ? EGL_TRUE : EGL_FALSE,
                         EGL_NONE};
     EGLContext c = eglCreateContext(d, config, EGL_NO_CONTEXT, attribs);
     if (c == EGL_NO_CONTEXT) return egl_fail("the driver offers no OpenGL 4.5 core context");
@@ -128,8 +131,10 @@ static lucent_status open_device(lucent_gl_context *ctx, int device, bool debug)
     int i = device > 0 ? device - 1 : hardware_device(devices, n);
     if (i < 0) i = 0;
     if (i >= n)
-        return lucent_error(LUCENT_ERR_GL, "no OpenGL context: EGL device %d not found (%d device%s; LUCENT_GL_DEVICE "
-                            "counts from 1)", device, n, n == 1 ? "" : "s");
+        return lucent_error(LUCENT_ERR_GL,
+                            "no OpenGL context: EGL device %d not found (%d device%s; LUCENT_GL_DEVICE "
+                            "counts from 1)",
+                            device, n, n == 1 ? "" : "s");
     snprintf(ctx->info.device, sizeof ctx->info.device, "EGL device %d: %s", i + 1, device_extensions(devices[i]));
     ctx->platform = LUCENT_GL_DEVICE;
     lucent_status s = open_display(ctx, EGL_PLATFORM_DEVICE_EXT, devices[i]);

@@ -47,5 +47,4 @@ void gl_timer_mark(gl_timer *t, const char *name);
 void gl_timer_end(gl_timer *t, lucent_frame_times *dest);
 void gl_timer_free(gl_timer *t);
 
-
 #endif

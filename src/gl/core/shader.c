@@ -71,8 +71,8 @@ static int file_index(const gl_source *s, const char *name)
     return -1;
 }
 
-static lucent_status add_file(gl_source_fn fn, void *user, const char *name, gl_source *s, int depth,
-                              const char *from, int from_line);
+static lucent_status add_file(gl_source_fn fn, void *user, const char *name, gl_source *s, int depth, const char *from,
+                              int from_line);
 
 /* Copies text line by line, expanding includes. */
 static lucent_status add_lines(gl_source_fn fn, void *user, const char *text, int index, gl_source *s, int depth)
@@ -99,8 +99,8 @@ static lucent_status add_lines(gl_source_fn fn, void *user, const char *text, in
     return LUCENT_OK;
 }
 
-static lucent_status add_file(gl_source_fn fn, void *user, const char *name, gl_source *s, int depth,
-                              const char *from, int from_line)
+static lucent_status add_file(gl_source_fn fn, void *user, const char *name, gl_source *s, int depth, const char *from,
+                              int from_line)
 {
     const char *text = fn(name, user);
     if (!text && from) return lucent_error(LUCENT_ERR_GL, "%s:%d: cannot include \"%s\"", from, from_line, name);
@@ -181,11 +181,15 @@ lucent_status gl_source_map_log(const gl_source *src, const char *log, char **de
 static char *info_log(GLuint object, bool program)
 {
     GLint n = 0;
-    if (program) glGetProgramiv(object, GL_INFO_LOG_LENGTH, &n);
-    else glGetShaderiv(object, GL_INFO_LOG_LENGTH, &n);
+    if (program)
+        glGetProgramiv(object, GL_INFO_LOG_LENGTH, &n);
+    else
+        glGetShaderiv(object, GL_INFO_LOG_LENGTH, &n);
     char *log = calloc((size_t)(n > 0 ? n : 0) + 1, 1);
-    if (log && n > 0 && program) glGetProgramInfoLog(object, n, NULL, log);
-    else if (log && n > 0) glGetShaderInfoLog(object, n, NULL, log);
+    if (log && n > 0 && program)
+        glGetProgramInfoLog(object, n, NULL, log);
+    else if (log && n > 0)
+        glGetShaderInfoLog(object, n, NULL, log);
     return log;
 }
 

@@ -27,8 +27,7 @@ typedef struct gl_source {
 } gl_source;
 
 /* Assembles file `name` (with defines, a text of "#define" lines, after #version). */
-lucent_status gl_source_assemble(gl_source_fn fn, void *user, const char *name, const char *defines,
-                                 gl_source *dest);
+lucent_status gl_source_assemble(gl_source_fn fn, void *user, const char *name, const char *defines, gl_source *dest);
 void gl_source_free(gl_source *s);
 
 /* Rewrites the source-string:line references of a driver info log ("0:12(3): error",
@@ -36,7 +35,7 @@ void gl_source_free(gl_source *s);
 lucent_status gl_source_map_log(const gl_source *src, const char *log, char **dest);
 
 /* Compiles and links a vertex + fragment program. Errors (LUCENT_ERR_GL) carry the mapped log. */
-lucent_status gl_program_build(gl_source_fn fn, void *user, const char *vert, const char *frag,
-                               const char *defines, GLuint *dest);
+lucent_status gl_program_build(gl_source_fn fn, void *user, const char *vert, const char *frag, const char *defines,
+                               GLuint *dest);
 
 #endif

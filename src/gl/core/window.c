@@ -60,10 +60,7 @@ lucent_status gl_window_make_current(lucent_gl_context *ctx)
     return LUCENT_OK;
 }
 
-void gl_window_swap(lucent_gl_context *ctx)
-{
-    glfwSwapBuffers(ctx->window);
-}
+void gl_window_swap(lucent_gl_context *ctx) { glfwSwapBuffers(ctx->window); }
 
 void gl_window_size(const lucent_gl_context *ctx, int *width, int *height)
 {

@@ -13,21 +13,20 @@
 struct cJSON;
 
 typedef struct gl_method {
-    const char *name;          /* "ssss": render.method in scene files */
+    const char *name;            /* "ssss": render.method in scene files */
     const char *const *settings; /* the keys of the settings it reads (NULL-terminated): compare's
                                     description, the viewer's panel */
     /* "<name>:<variant>" (e.g. "ssss:svd3"): sets the method's settings from the variant text; NULL:
      * the method takes no variant. */
     lucent_status (*variant)(const char *text, lucent_render_settings *s);
-    const char *variant_doc;   /* the variant's form: "<model>[rank] (model svd, preint, ...)" */
-    size_t state_size;         /* its own state, zeroed when first created */
+    const char *variant_doc; /* the variant's form: "<model>[rank] (model svd, preint, ...)" */
+    size_t state_size;       /* its own state, zeroed when first created */
     lucent_status (*prepare)(lucent_renderer *r, void *state, const lucent_render_settings *s);
     lucent_status (*draw)(lucent_renderer *r, void *state, const lucent_render_settings *s);
     /* Optional: what it knows of object i for lucent_renderer_object_info (after a frame). */
     void (*object_info)(const lucent_renderer *r, const void *state, int i, lucent_render_object_info *dest);
     /* Optional: adds its values to the sidecar of a frame it drew. */
-    void (*sidecar)(const lucent_renderer *r, const void *state, const lucent_render_settings *s,
-                    struct cJSON *root);
+    void (*sidecar)(const lucent_renderer *r, const void *state, const lucent_render_settings *s, struct cJSON *root);
     void (*release)(void *state); /* optional: its GL objects (the context is current) */
 } gl_method;
 

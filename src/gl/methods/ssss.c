@@ -56,8 +56,12 @@ static lucent_status parse_kernel(const char *text, lucent_render_settings *dest
 }
 
 static const lucent_setting k_ssss[] = {
-    {.key = "kernel", .type = LUCENT_SETTING_CHOICE, SETTING_AT_(ssss.kernel, true), .def_text = "preint",
-     .choice = kernel_name, .parse = parse_kernel,
+    {.key = "kernel",
+     .type = LUCENT_SETTING_CHOICE,
+     SETTING_AT_(ssss.kernel, true),
+     .def_text = "preint",
+     .choice = kernel_name,
+     .parse = parse_kernel,
      .doc = "the separable kernel model (Freude ch. 5); svd3, sog4 give a rank too"},
     SETTING_INT("rank", ssss.rank, 1, 1, LUCENT_KERNEL_MAX_RANK, 0, "passes of the separable model (svd, sog)"),
     SETTING_INT("taps", ssss.taps, 17, 1, LUCENT_KERNEL_MAX_TAPS, LUCENT_SETTING_ODD, "taps per 1-D pass"),
@@ -80,10 +84,7 @@ typedef struct ssss_state {
     char blur_key[GLR_MAX_MATERIALS * LUCENT_BAKE_KEY_SIZE + 32];
 } ssss_state;
 
-static lucent_status variant(const char *text, lucent_render_settings *s)
-{
-    return parse_kernel(text, s);
-}
+static lucent_status variant(const char *text, lucent_render_settings *s) { return parse_kernel(text, s); }
 
 /* Uploads the materials' taps when they (or the width scale) changed. */
 static lucent_status prepare_blur(lucent_renderer *r, ssss_state *st, const lucent_render_settings *s)
@@ -91,7 +92,8 @@ static lucent_status prepare_blur(lucent_renderer *r, ssss_state *st, const luce
     const gl_tables *t = &r->tables;
     char key[sizeof st->blur_key];
     snprintf(key, sizeof key, "%s %.17g", t->baked[0].taps_key, s->ssss.width_scale);
-    for (int m = 1; m < t->count; m++) snprintf(key + strlen(key), sizeof key - strlen(key), " %s", t->baked[m].taps_key);
+    for (int m = 1; m < t->count; m++)
+        snprintf(key + strlen(key), sizeof key - strlen(key), " %s", t->baked[m].taps_key);
     if (!strcmp(key, st->blur_key)) return LUCENT_OK;
     const lucent_taps *taps[GLR_MAX_MATERIALS];
     for (int m = 0; m < t->count; m++) taps[m] = t->baked[m].taps;
@@ -168,10 +170,7 @@ static void sidecar(const lucent_renderer *r, const void *state, const lucent_re
     }
 }
 
-static void release(void *state)
-{
-    gl_blur_free(&((ssss_state *)state)->blur);
-}
+static void release(void *state) { gl_blur_free(&((ssss_state *)state)->blur); }
 
 const gl_method gl_method_ssss = {
     .name = "ssss",

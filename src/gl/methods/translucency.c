@@ -38,12 +38,10 @@ void gl_translucency_uniforms(const lucent_renderer *r, const lucent_render_sett
     const lucent_baked *b = gl_tables_of(&r->tables, i);
     glUniform1i(glGetUniformLocation(p, "u_translucency"), enabled);
     glUniform1f(glGetUniformLocation(p, "u_transmit_range"), (float)fmax(b->transmit_range, 1e-6));
-    glUniform1f(glGetUniformLocation(p, "u_transmit_v"), (float)((r->tables.object_material[i] + 0.5) / r->tables.count));
+    glUniform1f(glGetUniformLocation(p, "u_transmit_v"),
+                (float)((r->tables.object_material[i] + 0.5) / r->tables.count));
     glUniform1i(glGetUniformLocation(p, "u_transmit_albedo"), s->translucency.transmittance == LUCENT_TRANSMIT_PROFILE);
     glUniform1f(glGetUniformLocation(p, "u_curvature_gain"), (float)s->translucency.curvature);
 }
 
-double gl_translucency_range(const lucent_renderer *r, int i)
-{
-    return gl_tables_of(&r->tables, i)->transmit_range;
-}
+double gl_translucency_range(const lucent_renderer *r, int i) { return gl_tables_of(&r->tables, i)->transmit_range; }

@@ -63,8 +63,10 @@ static void pass_pixel(const cpu_blur *b, int x, int y, double *out)
     bool normalise = b->d->filter == LUCENT_DEPTH_GAUSSIAN && b->positive[m][b->pass];
     for (int c = 0; c < 3; c++) {
         double keep = total[c] - lost[c];
-        if (normalise) out[c] = keep > 1e-6 * total[c] ? sum[c] * total[c] / keep : total[c] * centre[c];
-        else out[c] = sum[c] + lost[c] * centre[c];
+        if (normalise)
+            out[c] = keep > 1e-6 * total[c] ? sum[c] * total[c] / keep : total[c] * centre[c];
+        else
+            out[c] = sum[c] + lost[c] * centre[c];
         if (b->vertical) out[c] *= t->sign[c][b->pass];
     }
 }
@@ -91,7 +93,7 @@ lucent_status gl_blur_check_args(const lucent_image *irr, const lucent_image *de
     if (irr->channels < 3 || depth->channels != 1 || dest->channels < 3 || depth->width != irr->width ||
         depth->height != irr->height || dest->width != irr->width || dest->height != irr->height)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "ssss blur: irradiance (RGB), depth (1 channel) and dest "
-                            "(RGB) must have one size");
+                                                         "(RGB) must have one size");
     size_t n = (size_t)irr->width * (size_t)irr->height;
     for (size_t i = 0; material && i < n; i++)
         if (material[i] >= d->material_count)
@@ -122,8 +124,8 @@ lucent_status lucent_ssss_blur_cpu(const lucent_image *irradiance, const lucent_
 {
     lucent_status s = gl_blur_check_args(irradiance, depth, material, desc, dest);
     if (s != LUCENT_OK) return s;
-    cpu_blur b = {.d = desc, .depth = depth->data, .material = material, .w = irradiance->width,
-                  .h = irradiance->height};
+    cpu_blur b = {
+        .d = desc, .depth = depth->data, .material = material, .w = irradiance->width, .h = irradiance->height};
     setup(&b, desc);
     size_t n = (size_t)b.w * (size_t)b.h;
     double *in = malloc(3 * n * sizeof *in), *tmp = malloc(3 * n * sizeof *tmp), *out = malloc(3 * n * sizeof *out);

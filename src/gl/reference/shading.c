@@ -4,15 +4,9 @@
 #include "base/vec3.h"
 #include "gl/reference/reference.h"
 
-static double dot3(const double *a, const double *b)
-{
-    return v3_dot(v3_load(a), v3_load(b));
-}
+static double dot3(const double *a, const double *b) { return v3_dot(v3_load(a), v3_load(b)); }
 
-static void normalise3(double *a)
-{
-    v3_store(v3_normalize(v3_load(a)), a);
-}
+static void normalise3(double *a) { v3_store(v3_normalize(v3_load(a)), a); }
 
 double gl_ref_lut(const lucent_image *lut, double sigma_max, double cos_theta, double sigma)
 {
@@ -50,7 +44,8 @@ static double ksk(const double *n, const double *v, const double *l, double alph
     return d * f / hh * ndl;
 }
 
-static double cdrf_value(lucent_cdrf_variant variant, const lucent_image *lut, double sigma_max, double ndl, double sigma)
+static double cdrf_value(lucent_cdrf_variant variant, const lucent_image *lut, double sigma_max, double ndl,
+                         double sigma)
 {
     sigma = fmin(fmax(sigma, 0), sigma_max);
     if (lut) return gl_ref_lut(lut, sigma_max, ndl, sigma);
