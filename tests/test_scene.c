@@ -111,6 +111,7 @@ TEST(minimal_scene_gets_the_documented_defaults)
     CHECK_NEAR(o->specular_f0, pow(0.3 / 2.3, 2), 1e-12);
     CHECK_NEAR(o->roughness, 0.3, 0);
     CHECK(!strcmp(o->name, "Skin1"));
+    CHECK(!o->as_points);
     /* near and far enclose the unit sphere 50 mm away */
     CHECK(sc->camera.near_plane > 0 && sc->camera.near_plane < 49);
     CHECK(sc->camera.far_plane > 51);
@@ -152,6 +153,15 @@ TEST(mm_per_unit_and_transform_place_the_mesh_in_world_mm)
 
 /* Each Loop level splits every triangle in four; every new vertex is a convex combination of old
  * ones (Loop's masks have positive weights), so the subdivided icosphere stays inside its sphere. */
+TEST(as_points_is_read)
+{
+    lucent_scene *sc = NULL;
+    CHECK_OK(parse_with(", \"as_points\": true", "", NULL, &sc));
+    if (sc) CHECK(sc->objects[0].as_points && sc->objects[0].mesh && sc->objects[0].mesh->face_count > 0);
+    lucent_scene_destroy(sc);
+    CHECK_ERR(parse_with(", \"as_points\": 3", "", NULL, &sc), LUCENT_ERR_PARSE, "t.json", "as_points");
+}
+
 TEST(subdivide_refines_the_mesh_after_loading)
 {
     lucent_scene *sc = NULL;
@@ -366,6 +376,7 @@ int main(int argc, char **argv)
         TEST_ENTRY(projection_depth_range),
         TEST_ENTRY(minimal_scene_gets_the_documented_defaults),
         TEST_ENTRY(mm_per_unit_and_transform_place_the_mesh_in_world_mm),
+        TEST_ENTRY(as_points_is_read),
         TEST_ENTRY(subdivide_refines_the_mesh_after_loading),
         TEST_ENTRY(rotation_follows_the_right_hand_rule),
         TEST_ENTRY(mirroring_keeps_normals_outward),

@@ -16,6 +16,7 @@
 #include "lucent/render.h"
 #include "lucent/report.h"
 #include "lucent/scene.h"
+#include "lucent/surfels.h"
 #include "lucent/trace.h"
 
 #endif

@@ -104,6 +104,8 @@ typedef struct lucent_scene_object {
     double sigma0[3];             /* mm; meaningful when sigma0_set */
     double sss_strength;          /* ssss: this object's share of the blur, [0, 1], default 1 (per pixel) */
     bool visible;                 /* default true */
+    bool as_points;               /* the points method splats it as surfels (one per vertex,
+                                     lucent/surfels.h); the other methods and the tracer see the mesh */
 } lucent_scene_object;
 
 /* ---- The scene --------------------------------------------------------------------------------- */

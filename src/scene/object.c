@@ -13,7 +13,7 @@
 
 static const char *const k_object_keys[] = {"name",         "mesh",           "mm_per_unit", "transform",   "material",
                                             "albedo",       "albedo_texture", "roughness",   "specular_f0", "sigma0",
-                                            "sss_strength", "visible",        "subdivide",   NULL};
+                                            "sss_strength", "visible",        "subdivide",   "as_points",   NULL};
 
 /* ---- paths ---- */
 
@@ -236,6 +236,7 @@ static lucent_status read_surface(const lucent_json_node *n, lucent_scene_object
     if (s == LUCENT_OK) s = scene_read_range(n, "specular_f0", f0, 0, 1, &o->specular_f0);
     if (s == LUCENT_OK) s = scene_read_range(n, "sss_strength", 1, 0, 1, &o->sss_strength);
     if (s == LUCENT_OK) s = lucent_json_bool_or(n, "visible", true, &o->visible);
+    if (s == LUCENT_OK) s = lucent_json_bool_or(n, "as_points", false, &o->as_points);
     o->sigma0_set = lucent_json_has(n, "sigma0");
     if (s == LUCENT_OK && o->sigma0_set) s = lucent_json_numbers(n, "sigma0", 3, true, o->sigma0);
     for (int c = 0; c < 3 && s == LUCENT_OK && o->sigma0_set; c++)
