@@ -24,13 +24,14 @@ typedef struct cli_command {
 
 /* Options every command accepts, parsed and removed from argv by cli_common_options. */
 typedef struct cli_common {
-    bool quiet;  /* --quiet / -q: no progress bars, no info lines */
-    int threads; /* --threads N (0: LUCENT_THREADS or all cores) */
+    bool quiet;         /* --quiet / -q: no progress bars, no info lines */
+    int threads;        /* --threads N (0: LUCENT_THREADS or all cores) */
+    int part_k, part_n; /* --part K/N (0/0: none): this job's share of the Monte Carlo (lucent/dist.h) */
 } cli_common;
 
 extern cli_common g_cli;
 
-/* Strips --quiet/-q and --threads N / --threads=N from argv[1..], wherever they stand (updating
+/* Strips --quiet/-q, --threads N / --threads=N and --part K/N from argv[1..], wherever they stand (updating
  * *argc), into g_cli, and configures logging and progress output. Returns CLI_OK, or CLI_USAGE
  * after a message. main.c calls it once, before choosing the command. */
 int cli_common_options(int *argc, char **argv);

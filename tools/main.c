@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "lucent/dist.h"
 
 cli_common g_cli;
 static lucent_pool *g_pool;
@@ -22,6 +23,7 @@ static const cli_command k_commands[] = {
     {"render", "render a scene with OpenGL: Lambert, CDRF, CDRF + translucency, screen-space SSS", cmd_render},
     {"trace", "path-traced reference of a scene (Embree): media, rough or smooth boundaries", cmd_trace},
     {"compare", "every real-time method of a scene against the path-traced reference: HTML report", cmd_compare},
+    {"merge", "combine the part files of --part K/N runs into the outputs of the whole run", NULL},
 };
 enum { COMMAND_COUNT = sizeof k_commands / sizeof k_commands[0] };
 
@@ -35,20 +37,29 @@ static void print_help(FILE *out)
             "commands:\n",
             LUCENT_VERSION_STRING);
     for (int i = 0; i < COMMAND_COUNT; i++) fprintf(out, "  %-12s %s\n", k_commands[i].name, k_commands[i].summary);
-    fprintf(out, "\noptions every command accepts:\n"
-                 "  -q, --quiet      no progress bars or informational lines\n"
-                 "  --threads N      worker threads (default: LUCENT_THREADS, else all cores)\n\n"
-                 "exit status: 0 success, 1 failure (bad input, I/O), 2 bad usage.\n");
+    fprintf(out,
+            "\noptions every command accepts:\n"
+            "  -q, --quiet      no progress bars or informational lines\n"
+            "  --threads N      worker threads (default: LUCENT_THREADS, else all cores)\n"
+            "  --part K/N       mcml, profile --model mc, cdrf-fit, trace: run part K of N of the\n"
+            "                   Monte Carlo and write OUTPUT.part-K-of-N instead of the outputs\n"
+            "                   (lucent merge combines them; docs/scale.md)\n\n"
+            "Under mpirun (MPI build: %s), the same commands share their work between the ranks\n"
+            "with results identical to one process's; only rank 0 writes.\n\n"
+            "exit status: 0 success, 1 failure (bad input, I/O), 2 bad usage.\n",
+            lucent_dist_mpi_built() ? "yes" : "no");
 }
 
 int cli_fail(void)
 {
-    fprintf(stderr, "lucent: %s\n", lucent_last_error()[0] ? lucent_last_error() : "failed");
+    if (lucent_dist_rank() == 0) /* every rank has the same (agreed) error: one says it */
+        fprintf(stderr, "lucent: %s\n", lucent_last_error()[0] ? lucent_last_error() : "failed");
     return CLI_FAIL;
 }
 
 int cli_usage_error(const char *command, const char *fmt, ...)
 {
+    if (lucent_dist_rank() != 0) return CLI_USAGE;
     va_list ap;
     va_start(ap, fmt);
     fprintf(stderr, command ? "lucent %s: " : "lucent: ", command);
@@ -131,10 +142,22 @@ int cli_common_options(int *argc, char **argv)
             if (!cli_parse_int(v, &g_cli.threads) || g_cli.threads < 1)
                 return cli_usage_error(NULL, "--threads needs a positive whole number");
             remove_args(argc, argv, i, a[9] == '=' ? 1 : 2);
+        } else if (strcmp(a, "--part") == 0 || strncmp(a, "--part=", 7) == 0) {
+            const char *v = a[6] == '=' ? a + 7 : (i + 1 < *argc ? argv[i + 1] : NULL);
+            char *slash = v ? strchr(v, '/') : NULL, k[16];
+            if (!slash || (size_t)(slash - v) >= sizeof k)
+                return cli_usage_error(NULL, "--part needs K/N (part K of N, 1 <= K <= N)");
+            memcpy(k, v, (size_t)(slash - v));
+            k[slash - v] = '\0';
+            if (!cli_parse_int(k, &g_cli.part_k) || !cli_parse_int(slash + 1, &g_cli.part_n) || g_cli.part_k < 1 ||
+                g_cli.part_k > g_cli.part_n || g_cli.part_n > 65536)
+                return cli_usage_error(NULL, "--part %s: needs K/N with 1 <= K <= N <= 65536", v);
+            remove_args(argc, argv, i, a[6] == '=' ? 1 : 2);
         } else {
             i++;
         }
     }
+    if (lucent_dist_rank() != 0) g_cli.quiet = true; /* rank 0 speaks for the job */
     if (!g_cli.quiet && isatty(STDERR_FILENO)) lucent_progress_set_output(stderr);
     lucent_log_set_sink(lucent_log_stderr_sink, stderr, g_cli.quiet ? LUCENT_LOG_WARN : LUCENT_LOG_INFO);
     return CLI_OK;
@@ -153,14 +176,102 @@ static const cli_command *find_command(const char *name)
     return NULL;
 }
 
-int main(int argc, char **argv)
+/* The commands whose Monte Carlo work is shared by --part and mpirun. */
+static bool shares_work(const char *name)
+{
+    const char *k[] = {"mcml", "profile", "cdrf-fit", "trace"};
+    for (size_t i = 0; i < sizeof k / sizeof *k; i++)
+        if (strcmp(name, k[i]) == 0) return true;
+    return false;
+}
+
+/* Part mode: runs the command (its outputs go nowhere) and writes its tallies beside its first
+ * output, as OUTPUT.part-K-of-N. */
+static int run_part(const cli_command *cmd, int argc, char **argv)
+{
+    if (!shares_work(cmd->name))
+        return cli_usage_error(NULL, "--part goes with mcml, profile, cdrf-fit and trace, not '%s'", cmd->name);
+    if (lucent_dist_set_part(g_cli.part_k, g_cli.part_n, argc, argv) != LUCENT_OK) return cli_fail();
+    fflush(stdout);
+    FILE *quiet_out = freopen("/dev/null", "w", stdout); /* the results of one part are not the results */
+    (void)quiet_out;
+    int rc = cmd->run(argc, argv);
+    if (rc != CLI_OK) return rc;
+    const char *out = lucent_dist_first_output();
+    if (!out)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "--part: '%s' wrote no output to put the part beside",
+                            cmd->name),
+               cli_fail();
+    size_t n = strlen(out) + 40;
+    char *path = malloc(n);
+    if (!path) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory"), cli_fail();
+    snprintf(path, n, "%s.part-%d-of-%d", out, g_cli.part_k, g_cli.part_n);
+    lucent_status s = lucent_dist_part_write(path);
+    if (s == LUCENT_OK && !g_cli.quiet && lucent_dist_rank() == 0)
+        fprintf(stderr, "lucent: wrote %s (part %d of %d; lucent merge combines the parts)\n", path, g_cli.part_k,
+                g_cli.part_n);
+    free(path);
+    return s == LUCENT_OK ? CLI_OK : cli_fail();
+}
+
+static const char k_merge_usage[] =
+    "usage: lucent merge PART... [-- OPTION...]\n"
+    "\n"
+    "Combines the part files of `lucent COMMAND ... --part K/N` runs (parts 1 to N of one command,\n"
+    "each named OUTPUT.part-K-of-N) into the outputs the whole command would have written in one\n"
+    "run, byte for byte: it sums the parts' tallies (exactly) and runs the command's reduction and\n"
+    "writers on them, so the command's input files must still be where they were. OPTIONs after --\n"
+    "are added to the command (later options win: -- --out merged.png, -- --out-dir merged/).\n"
+    "See docs/scale.md.\n"
+    "\n"
+    "examples:\n"
+    "  lucent merge out/sample.mco.part-*-of-4\n"
+    "  lucent merge out/dragon.png.part-*-of-16 -- --exr out/dragon.exr\n";
+
+static int cmd_merge(int argc, char **argv)
+{
+    if (cli_wants_help(argc, argv)) {
+        fputs(k_merge_usage, stdout);
+        return CLI_OK;
+    }
+    int parts = 0, extra = argc;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--") == 0) {
+            extra = i + 1;
+            break;
+        }
+        if (argv[i][0] == '-') return cli_usage_error("merge", "unknown option '%s'", argv[i]);
+        parts++;
+    }
+    if (!parts) return cli_usage_error("merge", "expected part files (OUTPUT.part-K-of-N)");
+    int cargc = 0;
+    char **cargv = NULL;
+    if (lucent_dist_merge_load((const char *const *)argv + 1, parts, &cargc, &cargv) != LUCENT_OK) return cli_fail();
+    const cli_command *cmd = find_command(cargv[0]);
+    if (!cmd || !cmd->run || !shares_work(cmd->name)) {
+        lucent_error(LUCENT_ERR_PARSE, "%s: header: the command '%s' is not one that --part shares", argv[1], cargv[0]);
+        return cli_fail();
+    }
+    int n = cargc + (argc - extra);
+    char **all = calloc((size_t)n + 1, sizeof *all);
+    if (!all) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory"), cli_fail();
+    memcpy(all, cargv, (size_t)cargc * sizeof *all);
+    memcpy(all + cargc, argv + extra, (size_t)(argc - extra) * sizeof *all);
+    int rc = cmd->run(n, all);
+    free(all);
+    if (rc == CLI_OK && lucent_dist_merge_check_used() != LUCENT_OK) rc = cli_fail();
+    return rc;
+}
+
+static int run_command(int argc, char **argv)
 {
     /* The common options may stand anywhere: `lucent -q profile ...`, `lucent profile ... -q`. */
     if (cli_common_options(&argc, argv) != CLI_OK) return CLI_USAGE;
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "help") == 0) {
         if (argc >= 3 && find_command(argv[2])) {
             char *sub[] = {argv[2], "--help", NULL};
-            return find_command(argv[2])->run(2, sub);
+            const cli_command *c = find_command(argv[2]);
+            return c->run ? c->run(2, sub) : cmd_merge(2, sub);
         }
         print_help(argc < 2 ? stderr : stdout);
         return argc < 2 ? CLI_USAGE : CLI_OK;
@@ -174,7 +285,22 @@ int main(int argc, char **argv)
         fprintf(stderr, "lucent: unknown command '%s'\nTry 'lucent --help'.\n", argv[1]);
         return CLI_USAGE;
     }
-    int rc = cmd->run(argc - 1, argv + 1);
+    if (!cmd->run) {
+        if (g_cli.part_n) return cli_usage_error(NULL, "--part does not go with merge");
+        return cmd_merge(argc - 1, argv + 1);
+    }
+    if (g_cli.part_n) return run_part(cmd, argc - 1, argv + 1);
+    return cmd->run(argc - 1, argv + 1);
+}
+
+int main(int argc, char **argv)
+{
+    if (lucent_dist_init(&argc, &argv) != LUCENT_OK) return cli_fail();
+    if (lucent_dist_rank() != 0) { /* rank 0 speaks for the job */
+        FILE *quiet_out = freopen("/dev/null", "w", stdout);
+        (void)quiet_out;
+    }
+    int rc = run_command(argc, argv);
     lucent_pool_destroy(g_pool);
-    return rc;
+    return lucent_dist_finish(rc);
 }

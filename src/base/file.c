@@ -6,7 +6,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "lucent/base.h"
+#include "base/dist_internal.h"
+#include "lucent/dist.h"
 
 struct lucent_atomic_file {
     FILE *fp;
@@ -28,11 +29,27 @@ static void atomic_free(lucent_atomic_file *af)
     free(af);
 }
 
+/* The writes of a process that writes no outputs (an MPI rank other than 0, a part): to /dev/null,
+ * tmp NULL, so that commit and abort only close it. */
+static lucent_status open_nowhere(const char *path, lucent_atomic_file **dest, FILE **out)
+{
+    lucent_atomic_file *af = calloc(1, sizeof *af);
+    if (af) af->fp = fopen("/dev/null", "wb");
+    if (!af || !af->fp) {
+        free(af);
+        return lucent_error(LUCENT_ERR_IO, "%s: cannot open /dev/null", path);
+    }
+    *dest = af;
+    *out = af->fp;
+    return LUCENT_OK;
+}
+
 lucent_status lucent_atomic_open(const char *path, lucent_atomic_file **dest, FILE **out)
 {
     *dest = NULL;
     *out = NULL;
     if (!path || !*path) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "empty output path");
+    if (!dist_open_output(path)) return open_nowhere(path, dest, out);
     struct stat st;
     if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
         return lucent_error(LUCENT_ERR_IO, "%s: cannot write: is a directory", path);
@@ -72,6 +89,10 @@ lucent_status lucent_atomic_commit(lucent_atomic_file *af)
     if (ok && fsync(fileno(af->fp)) != 0 && errno != EINVAL) ok = false, e = errno;
     if (fclose(af->fp) != 0 && ok) ok = false, e = errno;
     af->fp = NULL;
+    if (!af->tmp) { /* nowhere */
+        atomic_free(af);
+        return LUCENT_OK;
+    }
     if (ok && rename(af->tmp, af->path) != 0) ok = false, e = errno;
     if (!ok) {
         unlink(af->tmp);
@@ -85,7 +106,7 @@ void lucent_atomic_abort(lucent_atomic_file *af)
 {
     if (!af) return;
     if (af->fp) fclose(af->fp);
-    unlink(af->tmp);
+    if (af->tmp) unlink(af->tmp);
     atomic_free(af);
 }
 

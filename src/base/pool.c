@@ -7,12 +7,14 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "lucent/base.h"
+#include "base/dist_internal.h"
+#include "lucent/dist.h"
 
 enum { POOL_MAX_THREADS = 256 };
 
 typedef struct pool_job {
     uint64_t count, chunk_size, chunks;
+    uint64_t offset, stride, local; /* the chunks offset + j stride, j < local, run here */
     lucent_chunk_fn fn;
     void *ctx;
     _Atomic uint64_t next;
@@ -70,8 +72,9 @@ static void run_chunks(pool_job *job, int thread)
     bool was_inside = t_in_pool_work;
     t_in_pool_work = true;
     while (!atomic_load(&job->failed)) {
-        uint64_t c = atomic_fetch_add(&job->next, 1);
-        if (c >= job->chunks) break;
+        uint64_t j = atomic_fetch_add(&job->next, 1);
+        if (j >= job->local) break;
+        uint64_t c = job->offset + j * job->stride;
         uint64_t begin = c * job->chunk_size;
         uint64_t end = begin + job->chunk_size < job->count ? begin + job->chunk_size : job->count;
         lucent_status s = job->fn(job->ctx, c, begin, end, thread);
@@ -169,21 +172,31 @@ static void run_on_pool(lucent_pool *pool, pool_job *job)
     pthread_mutex_unlock(&pool->call_lock);
 }
 
-lucent_status lucent_parallel_for(lucent_pool *pool, uint64_t count, uint64_t chunk_size, lucent_chunk_fn fn, void *ctx)
+lucent_status lucent_parallel_for_share(lucent_pool *pool, uint64_t count, uint64_t chunk_size, lucent_chunk_fn fn,
+                                        void *ctx, lucent_share share)
 {
     if (!fn || chunk_size == 0)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "parallel_for: no function or zero chunk size");
     if (count == 0) return LUCENT_OK;
     pool_job job = {.count = count, .chunk_size = chunk_size, .fn = fn, .ctx = ctx};
     job.chunks = count / chunk_size + (count % chunk_size != 0);
+    job.offset = share.offset, job.stride = share.stride;
+    job.local = share.stride && share.offset < job.chunks ? (job.chunks - share.offset - 1) / share.stride + 1 : 0;
+    if (job.local == 0) return LUCENT_OK;
     pthread_mutex_init(&job.error_lock, NULL);
     /* Serial when there is nothing to share, or when called from inside a pool's work
      * (nested loops run on the calling worker rather than deadlocking). */
-    if (!pool || pool->threads == 1 || job.chunks == 1 || t_in_pool_work)
+    if (!pool || pool->threads == 1 || job.local == 1 || t_in_pool_work)
         run_chunks(&job, 0);
     else
         run_on_pool(pool, &job);
     pthread_mutex_destroy(&job.error_lock);
     if (!atomic_load(&job.failed)) return LUCENT_OK;
+    dist_note_failed_chunk(job.error_chunk);
     return lucent_error(job.error_status, "%s", job.error_message);
+}
+
+lucent_status lucent_parallel_for(lucent_pool *pool, uint64_t count, uint64_t chunk_size, lucent_chunk_fn fn, void *ctx)
+{
+    return lucent_parallel_for_share(pool, count, chunk_size, fn, ctx, (lucent_share){0, 1});
 }

@@ -22,6 +22,7 @@
 #include "base/optics.h"
 #include "base/vec3.h"
 #include "lucent/cdrf.h"
+#include "lucent/dist.h"
 
 #define RR_THRESHOLD 1e-4
 #define RR_SURVIVAL 0.1
@@ -261,8 +262,11 @@ lucent_status lucent_cdrf_sphere_run(const lucent_cdrf_sphere_desc *desc, lucent
     job.tally = calloc((size_t)(3 * d->batches) * (size_t)job.stride, sizeof *job.tally);
     if (!job.tally) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "CDRF sphere: out of memory");
     job.progress = lucent_progress_begin(d->label ? d->label : "CDRF sphere", 3 * job.per_batch * (uint64_t)d->batches);
-    s = lucent_parallel_for(d->pool, 3 * (uint64_t)d->batches, 1, run_batch, &job);
+    s = lucent_parallel_for_share(d->pool, 3 * (uint64_t)d->batches, 1, run_batch, &job, lucent_dist_share());
     lucent_progress_end(job.progress);
+    /* Each batch writes its own slots, 0 in every other process: the sum over processes (lucent/dist.h)
+     * adds zeros only, so it is exact. */
+    s = lucent_dist_sum(s, LUCENT_DIST_F64, job.tally, (size_t)(3 * d->batches) * (size_t)job.stride);
     if (s == LUCENT_OK) {
         memset(dest, 0, sizeof *dest);
         dest->bins = d->bins;

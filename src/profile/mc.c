@@ -4,11 +4,14 @@
  * Determinism: photons are cut into chunks of MC_CHUNK; chunk c draws from RNG stream
  * (seed, c). Photon i belongs to batch floor(i B / N). Scores go to per-thread fixed-point
  * counters (integer sums do not depend on their order), so the result is bit-identical for
- * any number of threads. */
+ * any number of threads. The same chunks are shared out between processes (lucent/dist.h:
+ * MPI ranks, --part), whose counters are summed exactly, so the result does not depend on
+ * the number of processes either. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "lucent/dist.h"
 #include "profile/mc_internal.h"
 
 #define MC_CHUNK 1024
@@ -439,14 +442,17 @@ lucent_status lucent_mc_run(const lucent_mc_desc *desc, lucent_mc_result *dest)
         s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "Monte Carlo: out of memory for the scores");
     } else {
         ctx.progress = lucent_progress_begin(d.label, d.photons);
-        s = lucent_parallel_for(d.pool, d.photons, MC_CHUNK, run_chunk, &ctx);
+        s = lucent_parallel_for_share(d.pool, d.photons, MC_CHUNK, run_chunk, &ctx, lucent_dist_share());
         lucent_progress_end(ctx.progress);
     }
     if (s == LUCENT_OK) {
         sum_counters(ctx.batch, threads, bsize);
         sum_counters(ctx.grid, threads, plan->lay.grid_size);
-        s = reduce(&d, plan, ctx.batch[0], ctx.grid[0], dest);
     }
+    /* the other processes' counters (integers: exact in any order) */
+    s = lucent_dist_sum(s, LUCENT_DIST_I64, s == LUCENT_OK ? ctx.batch[0] : NULL, bsize);
+    s = lucent_dist_sum(s, LUCENT_DIST_I64, s == LUCENT_OK ? ctx.grid[0] : NULL, plan->lay.grid_size);
+    if (s == LUCENT_OK) s = reduce(&d, plan, ctx.batch[0], ctx.grid[0], dest);
     free_counters(ctx.batch, threads);
     free_counters(ctx.grid, threads);
     free(plan);

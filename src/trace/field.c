@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lucent/dist.h"
 #include "trace/field.h"
 
 enum { FIELD_CELLS = 16, CHUNKS = 64, MIN_PHOTONS = 1 << 16, MAX_PHOTONS = 1 << 20, MAX_COLLISIONS = 256 };
@@ -282,7 +283,17 @@ lucent_status tr_field_build(lucent_tracer *tr, lucent_pool *pool)
     uint64_t pixels = (uint64_t)tr->render.view.width * (uint64_t)tr->render.view.height;
     uint64_t photons = pixels * 64 < MIN_PHOTONS ? MIN_PHOTONS : pixels * 64 > MAX_PHOTONS ? MAX_PHOTONS : pixels * 64;
     photons = (photons + CHUNKS - 1) / CHUNKS * CHUNKS;
-    lucent_status s = lucent_parallel_for(pool, photons, photons / CHUNKS, photon_chunk, &job);
+    /* MPI ranks share the chunks (lucent/dist.h); every rank needs the whole field, so each gets the
+     * others' chunk tallies, exactly: the owner's values against -inf under a maximum. (The parts of
+     * --part cannot talk: each builds the whole field, as the ranks inside a part share it.) */
+    lucent_share share = {(uint64_t)lucent_dist_rank(), (uint64_t)lucent_dist_size()};
+    lucent_status s = lucent_parallel_for_share(pool, photons, photons / CHUNKS, photon_chunk, &job, share);
+    if (share.stride > 1) {
+        for (uint64_t ch = 0; s == LUCENT_OK && ch < CHUNKS; ch++)
+            if (ch % share.stride != share.offset)
+                for (size_t i = 0; i < job.per_chunk; i++) job.tally[ch * job.per_chunk + i] = -INFINITY;
+        s = lucent_dist_max_f64(s, job.tally, CHUNKS * job.per_chunk);
+    }
     for (int ch = 1; s == LUCENT_OK && ch < CHUNKS; ch++)
         for (size_t i = 0; i < job.per_chunk; i++) job.tally[i] += job.tally[ch * job.per_chunk + i];
     for (int o = 0; s == LUCENT_OK && o < tr->object_count; o++) s = finish_object(tr, o, job.tally);

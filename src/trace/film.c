@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lucent/dist.h"
 #include "trace/film.h"
 
 enum { TILE = 16 };
@@ -127,9 +128,59 @@ lucent_status tr_film_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *poo
     tr_film_allocate(f);
     pass_job job = {.tr = tr, .film = f, .tiles_x = (f->width + TILE - 1) / TILE, .stats = stats, .progress = progress};
     uint64_t tiles = (uint64_t)job.tiles_x * (uint64_t)((f->height + TILE - 1) / TILE);
-    lucent_status s = lucent_parallel_for(pool, tiles, 1, pass_tile, &job);
+    lucent_status s = lucent_parallel_for_share(pool, tiles, 1, pass_tile, &job, lucent_dist_share());
     for (int t = 0; t < threads; t++) merge_stats(&f->stats, &stats[t]);
     free(stats);
+    if (f->adaptive && lucent_dist_size() > 1) s = tr_film_gather(f, f->pilot, TR_FILM_ACC, s);
     if (s == LUCENT_OK) f->passes++;
     return s;
+}
+
+bool tr_film_owns(const tr_film *f, size_t p)
+{
+    lucent_share sh = lucent_dist_share();
+    if (!sh.stride) return false;
+    uint64_t tiles_x = (uint64_t)(f->width + TILE - 1) / TILE, x = p % (size_t)f->width, y = p / (size_t)f->width;
+    return (y / TILE * tiles_x + x / TILE) % sh.stride == sh.offset;
+}
+
+lucent_status tr_film_gather(const tr_film *f, double *v, int per_pixel, lucent_status status)
+{
+    size_t n = (size_t)f->width * (size_t)f->height;
+    if (status == LUCENT_OK)
+        for (size_t p = 0; p < n; p++)
+            if (!tr_film_owns(f, p))
+                for (int k = 0; k < per_pixel; k++) v[p * (size_t)per_pixel + (size_t)k] = -INFINITY;
+    return lucent_dist_max_f64(status, v, n * (size_t)per_pixel);
+}
+
+lucent_status tr_film_total(const tr_film *f, lucent_status status, tr_film **dest)
+{
+    *dest = NULL;
+    tr_film *t = NULL;
+    lucent_status s = status == LUCENT_OK ? tr_film_create(f->width, f->height, false, &t) : status;
+    s = lucent_dist_agree(s);
+    if (s != LUCENT_OK) {
+        tr_film_destroy(t);
+        return s;
+    }
+    size_t n = (size_t)f->width * (size_t)f->height;
+    memcpy(t->acc, f->acc, n * TR_FILM_ACC * sizeof *t->acc);
+    memcpy(t->count, f->count, n * sizeof *t->count);
+    memcpy(t->hits, f->hits, n * sizeof *t->hits);
+    t->adaptive = f->adaptive, t->seed = f->seed, t->passes = f->passes, t->seconds = f->seconds;
+    t->stats = f->stats;
+    uint64_t stats[6] = {t->stats.paths,   t->stats.scatters,  t->stats.bounces,
+                         t->stats.escaped, t->stats.truncated, t->stats.nonfinite};
+    s = lucent_dist_sum(LUCENT_OK, LUCENT_DIST_F64, t->acc, n * TR_FILM_ACC);
+    s = lucent_dist_sum(s, LUCENT_DIST_U32, t->count, n);
+    s = lucent_dist_sum(s, LUCENT_DIST_U32, t->hits, n);
+    s = lucent_dist_sum(s, LUCENT_DIST_I64, stats, 6);
+    if (s != LUCENT_OK) {
+        tr_film_destroy(t);
+        return s;
+    }
+    t->stats = (tr_stats){stats[0], stats[1], stats[2], stats[3], stats[4], stats[5]};
+    *dest = t;
+    return LUCENT_OK;
 }

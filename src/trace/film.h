@@ -31,6 +31,17 @@ void tr_film_reset(tr_film *f);
 /* One pass: every pixel's quota of samples (one each unless adaptive), plus its pilot sample. */
 lucent_status tr_film_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *pool, lucent_progress *progress);
 
+/* Whether this process runs the tile of pixel p (lucent/dist.h). */
+bool tr_film_owns(const tr_film *f, size_t p);
+
+/* Gives every rank the values per_pixel doubles per pixel of v of the pixels other ranks own (after
+ * agreeing on status; an exact maximum against -inf). */
+lucent_status tr_film_gather(const tr_film *f, double *v, int per_pixel, lucent_status status);
+
+/* The estimate of every process together (their sums; in a merge, the parts'), a new film; first
+ * agrees on status. */
+lucent_status tr_film_total(const tr_film *f, lucent_status status, tr_film **dest);
+
 /* The quota of the next pass (film_alloc.c): adaptive films give pixels samples in proportion to
  * the square root of their relative variance as the pilot estimates it. */
 void tr_film_allocate(tr_film *f);
@@ -41,8 +52,8 @@ uint64_t tr_film_pass_samples(const tr_film *f);
 /* Rec. 709 luminance weights. */
 extern const double tr_film_luminance[3];
 
-/* The RMS over object pixels of se(Y) / Y (INFINITY when there is none). */
-double tr_film_error_rms(const tr_film *f);
+/* The RMS over object pixels of se(Y) / Y (INFINITY when there is none), over every rank's pixels. */
+lucent_status tr_film_error_rms(const tr_film *f, double *dest);
 
 /* Images and figures of the estimate. */
 lucent_status tr_film_result(const tr_film *f, lucent_trace_result *dest);

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lucent/dist.h"
 #include "trace/film.h"
 
 /* Mean and variance of the mean of sum s, sum of squares s2 over n samples. */
@@ -24,16 +25,23 @@ static double pixel_rel_error(const tr_film *f, size_t p)
 
 static bool object_pixel(const tr_film *f, size_t p) { return f->count[p] && 2 * (uint64_t)f->hits[p] >= f->count[p]; }
 
-double tr_film_error_rms(const tr_film *f)
+lucent_status tr_film_error_rms(const tr_film *f, double *dest)
 {
     size_t n = (size_t)f->width * (size_t)f->height;
-    double sum = 0;
-    uint64_t count = 0;
-    for (size_t p = 0; p < n; p++) {
-        double e = object_pixel(f, p) ? pixel_rel_error(f, p) : -1.0;
-        if (e >= 0) sum += e * e, count++;
+    double *e = malloc((n ? n : 1) * sizeof *e), sum = 0;
+    lucent_status s = e ? LUCENT_OK : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory");
+    for (size_t p = 0; s == LUCENT_OK && p < n; p++) e[p] = object_pixel(f, p) ? pixel_rel_error(f, p) : -1.0;
+    if (lucent_dist_size() > 1) s = tr_film_gather(f, e, 1, s); /* the pixels other ranks own */
+    if (s != LUCENT_OK) {
+        free(e);
+        return s;
     }
-    return count ? sqrt(sum / (double)count) : INFINITY;
+    uint64_t count = 0;
+    for (size_t p = 0; p < n; p++)
+        if (e[p] >= 0) sum += e[p] * e[p], count++;
+    free(e);
+    *dest = count ? sqrt(sum / (double)count) : INFINITY;
+    return LUCENT_OK;
 }
 
 static int cmp_double(const void *a, const void *b)

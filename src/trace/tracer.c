@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lucent/dist.h"
 #include "trace/field.h"
 #include "trace/film.h"
 #include "trace/internal.h"
@@ -155,10 +156,35 @@ static lucent_status resolve(const lucent_tracer *tr, const lucent_trace_desc *i
     return LUCENT_OK;
 }
 
-static bool should_stop(const lucent_tracer *tr, const lucent_trace_desc *d, double start)
+/* Whether to stop after this pass (agreeing on status first). Ranks share the pass schedule: every
+ * rank measures the error of the whole image, and rank 0's decision (its clock) holds for all. */
+static lucent_status should_stop(const lucent_tracer *tr, const lucent_trace_desc *d, double start,
+                                 lucent_status status, bool *stop)
 {
-    if (d->time_limit > 0 && lucent_clock_seconds() - start >= d->time_limit) return true;
-    return d->target_error > 0 && tr->film->passes >= 16 && tr_film_error_rms(tr->film) <= d->target_error;
+    *stop = d->time_limit > 0 && lucent_clock_seconds() - start >= d->time_limit;
+    if (status == LUCENT_OK && d->target_error > 0 && tr->film->passes >= 16) {
+        double e = INFINITY;
+        status = tr_film_error_rms(tr->film, &e);
+        *stop |= e <= d->target_error;
+    }
+    return lucent_dist_bcast_flag(status, stop);
+}
+
+/* A part (--part K/N) runs its tiles of a fixed number of passes, with no exchange between parts:
+ * nothing that needs the whole image between passes. */
+static lucent_status check_part(const lucent_tracer *tr, const lucent_trace_desc *d)
+{
+    if (!lucent_dist_part(NULL, NULL)) return LUCENT_OK;
+    const char *what = tr->desc.adaptive     ? "adaptive sampling"
+                       : d->time_limit > 0   ? "a time limit"
+                       : d->target_error > 0 ? "a target error"
+                                             : NULL;
+    if (what)
+        return lucent_error(LUCENT_ERR_UNSUPPORTED,
+                            "trace: --part runs a fixed number of samples without talking to the other parts; "
+                            "%s needs the whole image after every pass (use mpirun for that, docs/scale.md)",
+                            what);
+    return LUCENT_OK;
 }
 
 lucent_status lucent_tracer_render(lucent_tracer *tr, const lucent_trace_desc *desc, lucent_trace_result *dest)
@@ -167,18 +193,27 @@ lucent_status lucent_tracer_render(lucent_tracer *tr, const lucent_trace_desc *d
     memset(dest, 0, sizeof *dest);
     lucent_trace_desc d;
     lucent_status s = resolve(tr, desc, &d);
+    if (s == LUCENT_OK) s = check_part(tr, &d);
     if (s != LUCENT_OK) return s;
-    double start = lucent_clock_seconds(); /* the guiding field's pre-pass counts as rendering time */
-    if (!tr->fields && tr->walk_strength > 0 && (s = tr_field_build(tr, d.pool)) != LUCENT_OK) return s;
+    double start = lucent_clock_seconds();        /* the guiding field's pre-pass counts as rendering time */
+    bool merge = lucent_dist_share().stride == 0; /* a merge of parts: no path is traced here */
+    if (!merge && !tr->fields && tr->walk_strength > 0 && (s = tr_field_build(tr, d.pool)) != LUCENT_OK) return s;
     tr->film->seed = d.seed;
     uint64_t per_pass =
         (uint64_t)tr->render.view.width * (uint64_t)tr->render.view.height * (tr->desc.adaptive ? 5 : 1);
     lucent_progress *progress = lucent_progress_begin(d.label, (uint64_t)d.spp * per_pass);
     for (int i = 0; i < d.spp && s == LUCENT_OK; i++) {
+        bool stop = false;
         s = tr_film_pass(tr, tr->film, d.pool, progress);
-        if (should_stop(tr, &d, start)) break;
+        s = should_stop(tr, &d, start, s, &stop);
+        if (stop) break;
     }
     lucent_progress_end(progress);
     tr->film->seconds += lucent_clock_seconds() - start;
-    return s == LUCENT_OK ? tr_film_result(tr->film, dest) : s;
+    if (!lucent_dist_active()) return s == LUCENT_OK ? tr_film_result(tr->film, dest) : s;
+    tr_film *total = NULL; /* the estimate of every process (or part) together */
+    s = tr_film_total(tr->film, s, &total);
+    if (s == LUCENT_OK) s = tr_film_result(total, dest);
+    tr_film_destroy(total);
+    return s;
 }
