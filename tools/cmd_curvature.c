@@ -138,10 +138,35 @@ static lucent_status write_csv(const char *path, const lucent_mesh *m, const luc
     return lucent_atomic_commit(af);
 }
 
-static int cmp_double(const void *a, const void *b)
+/* The k-th smallest of a[0..n) (Hoare's selection, median-of-three pivots; a is reordered): the value
+ * a full sort would put at a[k], in linear expected time. */
+static double select_kth(double *a, size_t n, size_t k)
 {
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
+    size_t lo = 0, hi = n - 1;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        double x = a[lo], y = a[mid], z = a[hi];
+        double pivot = x < y ? (y < z ? y : (x < z ? z : x)) : (x < z ? x : (y < z ? z : y));
+        size_t i = lo, j = hi;
+        while (i <= j) {
+            while (a[i] < pivot) i++;
+            while (a[j] > pivot) j--;
+            if (i <= j) {
+                double t = a[i];
+                a[i] = a[j], a[j] = t;
+                i++;
+                if (j == 0) break;
+                j--;
+            }
+        }
+        if (k <= j && j != (size_t)-1)
+            hi = j;
+        else if (k >= i)
+            lo = i;
+        else
+            return a[k];
+    }
+    return a[k];
 }
 
 /* The q-quantile of |H| over valid vertices (0 when none). */
@@ -151,10 +176,7 @@ static double abs_quantile(const lucent_curvature *c, double q)
     size_t n = 0;
     for (size_t v = 0; a && v < c->count; v++)
         if (!(c->flags[v] & LUCENT_CURVATURE_INVALID)) a[n++] = fabs(c->mean[v]);
-    if (a && n) {
-        qsort(a, n, sizeof *a, cmp_double);
-        r = a[(size_t)(q * (double)(n - 1))];
-    }
+    if (a && n) r = select_kth(a, n, (size_t)(q * (double)(n - 1)));
     free(a);
     return r;
 }

@@ -196,6 +196,14 @@ void lucent_atomic_abort(lucent_atomic_file *af);
 /* Writes size bytes to path atomically. */
 lucent_status lucent_write_file(const char *path, const void *data, size_t size);
 
+/* Opens path for reading when it is a regular file: a FIFO, a device (/dev/urandom), a socket or a
+ * directory is refused up front (LUCENT_ERR_IO naming the file), since reading one can block or never
+ * end. *size receives the file's size. The descriptor is blocking and close-on-exec. */
+lucent_status lucent_open_regular(const char *path, int *fd, uint64_t *size);
+
+/* The same as a FILE* ("rb"). */
+lucent_status lucent_fopen_regular(const char *path, FILE **dest, uint64_t *size);
+
 /* Reads a whole file; *dest is NUL-terminated (not counted in *size) and freed with free(). */
 lucent_status lucent_read_file(const char *path, char **dest, size_t *size);
 

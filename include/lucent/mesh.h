@@ -39,9 +39,14 @@ void lucent_mesh_destroy(lucent_mesh *mesh);
 typedef struct lucent_mesh_load_desc {
     const char *format;  /* "ply", "obj", "gltf", "glb"; default: from the extension (.gz inflated) */
     int keep_duplicates; /* non-zero: do not weld vertices at identical positions */
+    int use_assimp;      /* non-zero: PLY and OBJ through assimp too (in its child process), for the
+                            comparison in bench/bench_mesh_load.c */
 } lucent_mesh_load_desc;
 
-/* Loads a triangle mesh from a file (PLY ASCII/binary, .ply.gz, OBJ, glTF/GLB). Vertices at
+/* Loads a triangle mesh from a file: PLY (ASCII/binary, .ply.gz) and OBJ (.obj, .obj.gz) through
+ * Lucent's own readers (lucent_ply_open below; OBJ: v and f lines, polygons fan-triangulated, mtllib
+ * never opened), other formats (glTF/GLB, STL, OFF) through assimp, restricted to the named file and
+ * run in a child process so that a crash there is an error. Vertices at
  * identical positions are welded, faces that collapse to a line or point after welding are
  * dropped, normals are computed (lucent_mesh_compute_normals). Empty, truncated or malformed
  * files fail with LUCENT_ERR_PARSE and a message naming the file. desc may be NULL. */
@@ -50,6 +55,79 @@ lucent_status lucent_mesh_load(const char *path, const lucent_mesh_load_desc *de
 /* The same from memory; name is used in messages, format is required ("ply", "obj", ...). */
 lucent_status lucent_mesh_load_memory(const void *data, size_t size, const char *name,
                                       const lucent_mesh_load_desc *desc, lucent_mesh **dest);
+
+/* ---- PLY reading: any vertex property by name ------------------------------
+ * Lucent's own PLY reader (ASCII, binary little and big endian, gzip-compressed .ply.gz), written for
+ * hostile input: only regular files are read (a FIFO or /dev/urandom is refused up front), the header is
+ * bounded (1 MiB, 64 elements, 1024 properties each), every count is checked against the bytes the file
+ * can still hold before anything is allocated (for .gz, against deflate's largest expansion of what is
+ * left, and arrays then grow with the data actually read), every face index is checked, and a truncated
+ * or malformed body is an error naming the file and the line (ASCII) or byte offset (binary).
+ *
+ * Usage (a point cloud, say 3D Gaussian splats):
+ *     lucent_ply *ply;
+ *     if (lucent_ply_open("points.ply", &ply) != LUCENT_OK) return fail();
+ *     const char *names[] = {"x", "y", "z", "f_dc_0", "opacity"};
+ *     lucent_ply_data d;
+ *     s = lucent_ply_read(ply, &(lucent_ply_read_desc){.names = names, .count = 5}, &d);
+ *     lucent_ply_close(ply);
+ *     ... d.values[5 * i + k] is property names[k] of vertex i ...
+ *     lucent_ply_data_free(&d);
+ * lucent_ply_property_index tells which properties a file has before reading. */
+typedef struct lucent_ply lucent_ply;
+
+/* Opens a PLY file (plain or gzip, found by its first bytes) and reads its header. Close with
+ * lucent_ply_close. */
+lucent_status lucent_ply_open(const char *path, lucent_ply **dest);
+
+/* The same from memory (data must outlive the lucent_ply); name is used in messages. */
+lucent_status lucent_ply_open_memory(const void *data, size_t size, const char *name, lucent_ply **dest);
+
+void lucent_ply_close(lucent_ply *ply);
+
+/* The declared vertex count (0 when there is no vertex element) and face count (0 without a face
+ * element). */
+size_t lucent_ply_vertex_count(const lucent_ply *ply);
+size_t lucent_ply_face_count(const lucent_ply *ply);
+
+/* The vertex element's scalar properties in file order: their number, the i-th one's name, and the
+ * index of a name (-1 when the file has no such vertex property). */
+int lucent_ply_property_count(const lucent_ply *ply);
+const char *lucent_ply_property_name(const lucent_ply *ply, int i);
+int lucent_ply_property_index(const lucent_ply *ply, const char *name);
+
+/* Faces: not read, read when the file has them, or required (an error naming the file when the file
+ * has no face element: "holds points only"). */
+typedef enum lucent_ply_faces {
+    LUCENT_PLY_FACES_SKIP = 0,
+    LUCENT_PLY_FACES_OPTIONAL,
+    LUCENT_PLY_FACES_REQUIRED
+} lucent_ply_faces;
+
+/* What to read. A name the file lacks is an error naming it, unless allow_missing is set: then its
+ * values are NaN. single: values as float (values32) instead of double (values), half the memory. */
+typedef struct lucent_ply_read_desc {
+    const char *const *names; /* vertex properties, any PLY scalar type; converted to floating point */
+    int count;
+    int allow_missing;
+    int single;
+    lucent_ply_faces faces; /* faces are fan-triangulated: a polygon of n vertices gives n - 2 */
+} lucent_ply_read_desc;
+
+typedef struct lucent_ply_data {
+    size_t vertex_count;
+    int count;       /* values per vertex (desc->count) */
+    double *values;  /* vertex_count x count, row-major (NULL when single) */
+    float *values32; /* the same when single */
+    size_t triangle_count;
+    uint32_t *triangles;  /* 3 per triangle, each index < vertex_count */
+    size_t polygon_count; /* faces in the file (before triangulation) */
+} lucent_ply_data;
+
+/* Reads the body once (a lucent_ply reads once); on failure dest is zeroed. */
+lucent_status lucent_ply_read(lucent_ply *ply, const lucent_ply_read_desc *desc, lucent_ply_data *dest);
+
+void lucent_ply_data_free(lucent_ply_data *data);
 
 /* Writes the mesh as binary little-endian PLY, with per-vertex colours (3 bytes per vertex)
  * and per-vertex scalar properties when given (names[i] for values[i], vertex_count each). */

@@ -124,12 +124,50 @@ lucent_status lucent_write_file(const char *path, const void *data, size_t size)
     return lucent_atomic_commit(af);
 }
 
+lucent_status lucent_open_regular(const char *path, int *fd, uint64_t *size)
+{
+    *fd = -1;
+    if (size) *size = 0;
+    /* O_NONBLOCK so that opening a FIFO with no writer does not block; cleared after the check. */
+    int f = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (f < 0) return lucent_error(LUCENT_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    struct stat st;
+    if (fstat(f, &st) != 0 || !S_ISREG(st.st_mode)) {
+        const char *what = S_ISDIR(st.st_mode)                          ? "a directory"
+                           : S_ISFIFO(st.st_mode)                       ? "a FIFO"
+                           : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
+                                                                        : "not a regular file";
+        close(f);
+        return lucent_error(LUCENT_ERR_IO, "%s: cannot read: %s (only regular files are read)", path, what);
+    }
+    int flags = fcntl(f, F_GETFL);
+    if (flags >= 0) fcntl(f, F_SETFL, flags & ~O_NONBLOCK);
+    *fd = f;
+    if (size) *size = (uint64_t)st.st_size;
+    return LUCENT_OK;
+}
+
+lucent_status lucent_fopen_regular(const char *path, FILE **dest, uint64_t *size)
+{
+    *dest = NULL;
+    int fd;
+    lucent_status s = lucent_open_regular(path, &fd, size);
+    if (s != LUCENT_OK) return s;
+    *dest = fdopen(fd, "rb");
+    if (!*dest) {
+        close(fd);
+        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
+    }
+    return LUCENT_OK;
+}
+
 lucent_status lucent_read_file(const char *path, char **dest, size_t *size)
 {
     *dest = NULL;
     if (size) *size = 0;
-    FILE *fp = fopen(path, "rb");
-    if (!fp) return lucent_error(LUCENT_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    FILE *fp;
+    lucent_status st = lucent_fopen_regular(path, &fp, NULL);
+    if (st != LUCENT_OK) return st;
     size_t cap = 1 << 16, len = 0;
     char *buf = malloc(cap + 1);
     while (buf) {

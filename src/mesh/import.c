@@ -1,14 +1,26 @@
-/* Mesh import through assimp's C API (PLY ASCII/binary, OBJ, glTF); .gz inflated with zlib
- * first, then handed to assimp from memory with a format hint. */
+/* Mesh import. PLY (ASCII/binary, .ply.gz) and OBJ go through Lucent's own readers (ply.c, obj.c),
+ * written for hostile input. The other formats (glTF/GLB, STL, OFF) go through assimp's C API, which
+ * is not: its file system is restricted to the mesh's own bytes (a custom aiFileIO refusing any other
+ * name, so a reference to /etc/passwd or ../../x.mtl reads nothing), post-processing is kept to
+ * triangulation and flattening the node transforms, and the import runs in a child process under CPU
+ * and time limits, so that a crash or a hang there becomes an error naming the file. */
+#include <assimp/cfileio.h>
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <errno.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <zlib.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "mesh/internal.h"
+#include "mesh/reader.h"
+
+lucent_status lucent_mesh_obj_read(lucent_reader *r, lucent_mesh **dest);
 
 static int has_suffix(const char *s, const char *suffix)
 {
@@ -16,7 +28,7 @@ static int has_suffix(const char *s, const char *suffix)
     return n >= k && strcasecmp(s + n - k, suffix) == 0;
 }
 
-/* The format hint from a file name: "ply" for x.ply and x.ply.gz, etc. */
+/* The format from a file name: "ply" for x.ply and x.ply.gz, etc. */
 static lucent_status format_from_path(const char *path, char *dest, size_t size)
 {
     char name[4096];
@@ -30,78 +42,153 @@ static lucent_status format_from_path(const char *path, char *dest, size_t size)
             return LUCENT_OK;
         }
     return lucent_error(LUCENT_ERR_UNSUPPORTED,
-                        "%s: unknown mesh format (expected .ply, .ply.gz, "
-                        ".obj, .gltf or .glb)",
-                        path);
+                        "%s: unknown mesh format (expected .ply, .ply.gz, .obj, .gltf, .glb, .stl or .off)", path);
 }
 
-/* Reads a file, inflating it when gzip-compressed (gzread passes plain files through). */
-static lucent_status read_maybe_gz(const char *path, char **dest, size_t *size)
+/* ---- PLY ------------------------------------------------------------------------ */
+
+static lucent_status mesh_from_ply(lucent_ply *ply, const char *name, lucent_mesh **dest)
 {
-    gzFile gz = gzopen(path, "rb");
-    if (!gz) return lucent_error(LUCENT_ERR_IO, "%s: cannot open", path);
-    size_t cap = 1 << 20, n = 0;
-    char *buf = malloc(cap);
-    int got = 1;
-    while (buf && got > 0) {
-        if (cap - n < (1u << 20)) {
-            char *grown = cap < ((size_t)1 << 31) ? realloc(buf, cap * 2) : NULL;
-            if (!grown) free(buf);
-            buf = grown, cap *= 2;
-            if (!buf) break;
+    static const char *const xyz[] = {"x", "y", "z"};
+    lucent_ply_data d;
+    lucent_status s =
+        lucent_ply_read(ply, &(lucent_ply_read_desc){.names = xyz, .count = 3, .faces = LUCENT_PLY_FACES_REQUIRED}, &d);
+    if (s != LUCENT_OK) return s;
+    if (d.triangle_count == 0) s = lucent_error(LUCENT_ERR_PARSE, "%s: no faces in the file", name);
+    if (d.triangle_count > UINT32_MAX / 3)
+        s = lucent_error(LUCENT_ERR_UNSUPPORTED, "%s: %zu triangles: too many", name, d.triangle_count);
+    if (s == LUCENT_OK) s = lucent_mesh_create(0, 0, dest);
+    if (s == LUCENT_OK) {
+        /* Hand the arrays over instead of copying them. */
+        lucent_mesh *m = *dest;
+        free(m->positions), free(m->normals), free(m->faces);
+        m->vertex_count = d.vertex_count, m->face_count = d.triangle_count;
+        m->positions = d.values, m->faces = d.triangles;
+        m->normals = calloc(3 * d.vertex_count + 1, sizeof *m->normals);
+        d.values = NULL, d.triangles = NULL;
+        if (!m->normals) {
+            lucent_mesh_destroy(m), *dest = NULL;
+            s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", name);
         }
-        got = gzread(gz, buf + n, 1u << 20);
-        if (got > 0) n += (size_t)got;
     }
-    int err = 0;
-    const char *msg = buf ? gzerror(gz, &err) : "";
-    lucent_status s = !buf      ? lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path)
-                      : got < 0 ? lucent_error(LUCENT_ERR_PARSE, "%s: truncated or corrupt gzip data (%s)", path, msg)
-                                : LUCENT_OK;
-    gzclose(gz);
-    if (s != LUCENT_OK) {
-        free(buf);
-        return s;
-    }
-    *dest = buf, *size = n;
-    return LUCENT_OK;
+    lucent_ply_data_free(&d);
+    return s;
 }
 
-/* Copies the triangles of every assimp mesh into one lucent_mesh. */
-static lucent_status copy_scene(const struct aiScene *sc, const char *name, lucent_mesh **dest)
+/* ---- assimp, in a child, on a closed file system ------------------------------------ */
+
+typedef struct memfile {
+    const unsigned char *data;
+    size_t size, pos;
+} memfile;
+
+static const char k_import_name[] = "lucent-mesh-input";
+
+static size_t mem_read(struct aiFile *f, char *dest, size_t size, size_t count)
 {
-    size_t nv = 0, nf = 0;
-    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
-        nv += sc->mMeshes[i]->mNumVertices;
-        for (unsigned f = 0; f < sc->mMeshes[i]->mNumFaces; f++) nf += sc->mMeshes[i]->mFaces[f].mNumIndices == 3;
+    memfile *m = (memfile *)f->UserData;
+    if (size == 0) return 0;
+    size_t items = (m->size - m->pos) / size;
+    if (items > count) items = count;
+    memcpy(dest, m->data + m->pos, items * size);
+    m->pos += items * size;
+    return items;
+}
+
+static size_t mem_write(struct aiFile *f, const char *src, size_t size, size_t count)
+{
+    (void)f, (void)src, (void)size, (void)count;
+    return 0;
+}
+
+static size_t mem_tell(struct aiFile *f) { return ((memfile *)f->UserData)->pos; }
+static size_t mem_size(struct aiFile *f) { return ((memfile *)f->UserData)->size; }
+static void mem_flush(struct aiFile *f) { (void)f; }
+
+static enum aiReturn mem_seek(struct aiFile *f, size_t offset, enum aiOrigin origin)
+{
+    memfile *m = (memfile *)f->UserData;
+    size_t base = origin == aiOrigin_SET ? 0 : origin == aiOrigin_CUR ? m->pos : m->size;
+    /* assimp passes negative offsets from the end as size_t: wraps modulo 2^64 as intended. */
+    size_t to = base + offset;
+    if (to > m->size) return aiReturn_FAILURE;
+    m->pos = to;
+    return aiReturn_SUCCESS;
+}
+
+/* Opens only the mesh's own bytes (under the name given to assimp); every other name is refused. */
+static struct aiFile *mem_open(struct aiFileIO *io, const char *path, const char *mode)
+{
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    if (strncmp(base, k_import_name, sizeof k_import_name - 1) != 0 || strchr(mode, 'w') || strchr(mode, 'a'))
+        return NULL;
+    const memfile *src = (const memfile *)io->UserData;
+    struct aiFile *f = calloc(1, sizeof *f);
+    memfile *m = calloc(1, sizeof *m);
+    if (!f || !m) {
+        free(f), free(m);
+        return NULL;
     }
-    if (nf == 0) return lucent_error(LUCENT_ERR_PARSE, "%s: no triangles in the file", name);
-    lucent_status s = lucent_mesh_create(nv, nf, dest);
-    if (s != LUCENT_OK) return lucent_error_context(s, "%s", name);
-    size_t v0 = 0, fi = 0;
-    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
-        const struct aiMesh *am = sc->mMeshes[i];
-        for (unsigned v = 0; v < am->mNumVertices; v++) {
-            double *p = (*dest)->positions + 3 * (v0 + v);
-            p[0] = am->mVertices[v].x, p[1] = am->mVertices[v].y, p[2] = am->mVertices[v].z;
-            if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
-                lucent_mesh_destroy(*dest), *dest = NULL;
-                return lucent_error(LUCENT_ERR_PARSE, "%s: vertex %zu is not finite", name, v0 + v);
-            }
-        }
-        for (unsigned f = 0; f < am->mNumFaces; f++) {
-            const struct aiFace *face = &am->mFaces[f];
-            if (face->mNumIndices != 3) continue;
-            for (int j = 0; j < 3; j++) (*dest)->faces[3 * fi + j] = (uint32_t)(v0 + face->mIndices[j]);
-            fi++;
-        }
-        v0 += am->mNumVertices;
+    *m = (memfile){src->data, src->size, 0};
+    f->ReadProc = mem_read, f->WriteProc = mem_write, f->TellProc = mem_tell, f->FileSizeProc = mem_size;
+    f->SeekProc = mem_seek, f->FlushProc = mem_flush, f->UserData = (aiUserData)m;
+    return f;
+}
+
+static void mem_close(struct aiFileIO *io, struct aiFile *f)
+{
+    (void)io;
+    if (!f) return;
+    free(f->UserData);
+    free(f);
+}
+
+/* What the child sends: a header, then positions (3 doubles per vertex) and faces (3 uint32 each), or an
+ * error message of `message_len` bytes. */
+typedef struct child_header {
+    uint32_t magic;
+    int32_t status;
+    uint64_t vertex_count, face_count, message_len;
+} child_header;
+
+#define CHILD_MAGIC 0x4c4d4553u
+
+static int write_all(int fd, const void *data, size_t n)
+{
+    const char *p = data;
+    while (n > 0) {
+        ssize_t k = write(fd, p, n);
+        if (k < 0 && errno == EINTR) continue;
+        if (k <= 0) return 0;
+        p += k, n -= (size_t)k;
     }
-    return LUCENT_OK;
+    return 1;
+}
+
+static int read_all(int fd, void *data, size_t n)
+{
+    char *p = data;
+    while (n > 0) {
+        ssize_t k = read(fd, p, n);
+        if (k < 0 && errno == EINTR) continue;
+        if (k <= 0) return 0;
+        p += k, n -= (size_t)k;
+    }
+    return 1;
+}
+
+static void child_fail(int fd, lucent_status status, const char *message)
+{
+    size_t n = strlen(message);
+    if (n > 900) n = 900;
+    child_header h = {CHILD_MAGIC, (int32_t)status, 0, 0, n};
+    write_all(fd, &h, sizeof h);
+    write_all(fd, message, n);
 }
 
 /* True when every face index of every mesh names one of its vertices. */
-static int scene_indices_valid(const struct aiScene *sc)
+static int scene_valid(const struct aiScene *sc)
 {
     for (unsigned i = 0; i < sc->mNumMeshes; i++) {
         const struct aiMesh *am = sc->mMeshes[i];
@@ -116,34 +203,136 @@ static int scene_indices_valid(const struct aiScene *sc)
     return 1;
 }
 
-lucent_status lucent_mesh_load_memory(const void *data, size_t size, const char *name,
-                                      const lucent_mesh_load_desc *desc, lucent_mesh **dest)
+/* The child: import, then stream the triangles to fd. Never returns. */
+static void assimp_child(int fd, const void *data, size_t size, const char *format)
 {
-    *dest = NULL;
-    const char *format = desc && desc->format ? desc->format : NULL;
-    if (!format) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: no mesh format given", name);
-    if (size == 0) return lucent_error(LUCENT_ERR_PARSE, "%s: empty file", name);
+    /* A hang becomes SIGALRM / SIGXCPU; memory is bounded where no sanitizer reserves shadow memory. */
+    alarm(60);
+    struct rlimit cpu = {50, 55};
+    setrlimit(RLIMIT_CPU, &cpu);
+#if !defined(__SANITIZE_ADDRESS__) && !defined(__has_feature)
+    struct rlimit as = {((rlim_t)4 << 30) + (rlim_t)size * 64, ((rlim_t)4 << 30) + (rlim_t)size * 64};
+    setrlimit(RLIMIT_AS, &as);
+#endif
+    memfile src = {data, size, 0};
+    struct aiFileIO io = {mem_open, mem_close, (aiUserData)&src};
+    char name[64];
+    snprintf(name, sizeof name, "%s.%s", k_import_name, format);
+    const struct aiScene *sc = aiImportFileEx(name, 0, &io);
+    if (sc && sc->mNumMeshes && !scene_valid(sc)) {
+        child_fail(fd, LUCENT_ERR_PARSE, "truncated or malformed: a face refers to a missing vertex");
+        _exit(0);
+    }
+    if (sc && sc->mNumMeshes) sc = aiApplyPostProcessing(sc, aiProcess_Triangulate | aiProcess_PreTransformVertices);
+    if (!sc || !sc->mNumMeshes || !scene_valid(sc)) {
+        child_fail(fd, LUCENT_ERR_PARSE, sc ? "no meshes" : aiGetErrorString());
+        _exit(0);
+    }
+    uint64_t nv = 0, nf = 0;
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+        nv += sc->mMeshes[i]->mNumVertices;
+        for (unsigned f = 0; f < sc->mMeshes[i]->mNumFaces; f++) nf += sc->mMeshes[i]->mFaces[f].mNumIndices == 3;
+    }
+    if (nv > UINT32_MAX) {
+        child_fail(fd, LUCENT_ERR_UNSUPPORTED, "more than 4294967295 vertices");
+        _exit(0);
+    }
+    child_header h = {CHILD_MAGIC, LUCENT_OK, nv, nf, 0};
+    if (!write_all(fd, &h, sizeof h)) _exit(0);
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+        const struct aiMesh *am = sc->mMeshes[i];
+        for (unsigned v = 0; v < am->mNumVertices; v++) {
+            double p[3] = {am->mVertices[v].x, am->mVertices[v].y, am->mVertices[v].z};
+            if (!write_all(fd, p, sizeof p)) _exit(0);
+        }
+    }
+    uint64_t v0 = 0;
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+        const struct aiMesh *am = sc->mMeshes[i];
+        for (unsigned f = 0; f < am->mNumFaces; f++) {
+            const struct aiFace *face = &am->mFaces[f];
+            if (face->mNumIndices != 3) continue;
+            uint32_t t[3];
+            for (int j = 0; j < 3; j++) t[j] = (uint32_t)(v0 + face->mIndices[j]);
+            if (!write_all(fd, t, sizeof t)) _exit(0);
+        }
+        v0 += am->mNumVertices;
+    }
+    _exit(0);
+}
+
+static lucent_status assimp_load(const void *data, size_t size, const char *name, const char *format,
+                                 lucent_mesh **dest)
+{
     if (size > UINT32_MAX) return lucent_error(LUCENT_ERR_UNSUPPORTED, "%s: file larger than 4 GiB", name);
-    /* Import raw, check indices ourselves (assimp's post-processing crashes on the faces of a
-     * truncated binary PLY, which point past the vertices read), then post-process. */
-    unsigned flags = aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType;
-    const struct aiScene *sc = aiImportFileFromMemory(data, (unsigned)size, 0, format);
-    if (sc && sc->mNumMeshes && !scene_indices_valid(sc)) {
-        aiReleaseImport(sc);
-        return lucent_error(LUCENT_ERR_PARSE,
-                            "%s: truncated or malformed %s mesh (a face refers to a "
-                            "missing vertex)",
-                            name, format);
+    int fds[2];
+    if (pipe(fds) != 0) return lucent_error(LUCENT_ERR_IO, "%s: cannot start the importer: %s", name, strerror(errno));
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0) {
+        close(fds[0]), close(fds[1]);
+        return lucent_error(LUCENT_ERR_IO, "%s: cannot start the importer: %s", name, strerror(errno));
     }
-    if (sc && sc->mNumMeshes) sc = aiApplyPostProcessing(sc, flags);
-    if (!sc || !sc->mNumMeshes) {
-        lucent_status s = lucent_error(LUCENT_ERR_PARSE, "%s: not a readable %s mesh (%s)", name, format,
-                                       sc ? "no meshes" : aiGetErrorString());
-        aiReleaseImport(sc);
-        return s;
+    if (pid == 0) {
+        close(fds[0]);
+        signal(SIGPIPE, SIG_IGN);
+        assimp_child(fds[1], data, size, format);
     }
-    lucent_status s = copy_scene(sc, name, dest);
-    aiReleaseImport(sc);
+    close(fds[1]);
+    child_header h;
+    lucent_status s = LUCENT_OK;
+    int got = read_all(fds[0], &h, sizeof h) && h.magic == CHILD_MAGIC;
+    /* What the child may claim is bounded by what the input can describe: each vertex and face takes some
+     * bytes of the file (STL: 50 per triangle and 3 vertices; glTF at least 12 per vertex, 2 per index). */
+    uint64_t limit = 64 * (uint64_t)size + 4096;
+    if (got && h.status != LUCENT_OK) {
+        char msg[1024] = {0};
+        size_t n = h.message_len < sizeof msg - 1 ? (size_t)h.message_len : sizeof msg - 1;
+        read_all(fds[0], msg, n);
+        /* assimp's message may quote bytes of the input: keep printable ASCII only. */
+        for (size_t i = 0; i < n; i++)
+            if (msg[i] < 32 || msg[i] > 126) msg[i] = '?';
+        s = lucent_error((lucent_status)h.status == LUCENT_ERR_UNSUPPORTED ? LUCENT_ERR_UNSUPPORTED : LUCENT_ERR_PARSE,
+                         "%s: not a readable %s mesh (%s)", name, format, msg);
+    } else if (got && (h.vertex_count > limit || h.face_count > limit)) {
+        s = lucent_error(LUCENT_ERR_PARSE, "%s: the importer claims more vertices or faces than the file can hold",
+                         name);
+    } else if (got) {
+        s = lucent_mesh_create((size_t)h.vertex_count, (size_t)h.face_count, dest);
+        if (s == LUCENT_OK && (!read_all(fds[0], (*dest)->positions, (size_t)h.vertex_count * 3 * sizeof(double)) ||
+                               !read_all(fds[0], (*dest)->faces, (size_t)h.face_count * 3 * sizeof(uint32_t)))) {
+            lucent_mesh_destroy(*dest), *dest = NULL;
+            got = 0;
+        }
+    }
+    close(fds[0]);
+    int wstatus = 0;
+    while (waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
+    }
+    if (s == LUCENT_OK && (!got || !WIFEXITED(wstatus))) {
+        lucent_mesh_destroy(*dest), *dest = NULL;
+        if (WIFSIGNALED(wstatus))
+            s = lucent_error(
+                LUCENT_ERR_PARSE, "%s: malformed %s mesh: the importer (assimp) %s on it (signal %d)", name, format,
+                WTERMSIG(wstatus) == SIGALRM || WTERMSIG(wstatus) == SIGXCPU ? "ran out of time" : "crashed",
+                WTERMSIG(wstatus));
+        else
+            s = lucent_error(LUCENT_ERR_PARSE, "%s: malformed %s mesh: the importer (assimp) failed", name, format);
+    }
+    if (s != LUCENT_OK && *dest) lucent_mesh_destroy(*dest), *dest = NULL;
+    return s;
+}
+
+/* ---- Entry points ---------------------------------------------------------------------- */
+
+/* After reading: finite positions, weld (or normals), no face left. */
+static lucent_status finish(lucent_status s, const char *name, const lucent_mesh_load_desc *desc, lucent_mesh **dest)
+{
+    if (s == LUCENT_OK && (*dest)->face_count == 0)
+        s = lucent_error(LUCENT_ERR_PARSE, "%s: no triangles in the file", name);
+    for (size_t i = 0; s == LUCENT_OK && i < 3 * (*dest)->vertex_count; i++)
+        if (!isfinite((*dest)->positions[i]))
+            s = lucent_error(LUCENT_ERR_PARSE, "%s: vertex %zu is not finite", name, i / 3);
     if (s == LUCENT_OK && !(desc && desc->keep_duplicates))
         s = lucent_mesh_weld(*dest);
     else if (s == LUCENT_OK)
@@ -154,17 +343,100 @@ lucent_status lucent_mesh_load_memory(const void *data, size_t size, const char 
     return s;
 }
 
+/* Reads the whole (inflated) input for assimp, bounded to 1 GiB. */
+static lucent_status slurp(lucent_reader *r, unsigned char **dest, size_t *size)
+{
+    size_t cap = 1 << 16, n = 0;
+    unsigned char *buf = malloc(cap);
+    lucent_status s = buf ? LUCENT_OK : LUCENT_ERR_OUT_OF_MEMORY;
+    while (s == LUCENT_OK) {
+        if ((s = lucent_reader_fill(r, r->cap)) != LUCENT_OK) break;
+        size_t k = r->len - r->pos;
+        if (k == 0) break;
+        if (n + k > ((size_t)1 << 30)) {
+            s = lucent_error(LUCENT_ERR_UNSUPPORTED, "%s: more than 1 GiB of mesh data", r->name);
+            break;
+        }
+        if (n + k > cap) {
+            while (cap < n + k) cap *= 2;
+            unsigned char *g = realloc(buf, cap);
+            if (!g) {
+                s = LUCENT_ERR_OUT_OF_MEMORY;
+                break;
+            }
+            buf = g;
+        }
+        memcpy(buf + n, r->buf + r->pos, k);
+        n += k, r->pos += k;
+    }
+    if (s == LUCENT_ERR_OUT_OF_MEMORY) lucent_error(s, "%s: out of memory", r->name);
+    if (s != LUCENT_OK) {
+        free(buf);
+        return s;
+    }
+    *dest = buf, *size = n;
+    return LUCENT_OK;
+}
+
+static lucent_status load_reader(lucent_reader *r, const char *format, const lucent_mesh_load_desc *desc,
+                                 lucent_mesh **dest)
+{
+    lucent_status s;
+    if (strcmp(format, "obj") == 0 && !(desc && desc->use_assimp)) {
+        s = lucent_mesh_obj_read(r, dest);
+    } else {
+        unsigned char *data;
+        size_t size;
+        s = slurp(r, &data, &size);
+        if (s == LUCENT_OK && size == 0) s = lucent_error(LUCENT_ERR_PARSE, "%s: empty file", r->name);
+        if (s == LUCENT_OK) {
+            s = assimp_load(data, size, r->name, format, dest);
+            free(data);
+        }
+    }
+    return finish(s, r->name, desc, dest);
+}
+
+lucent_status lucent_mesh_load_memory(const void *data, size_t size, const char *name,
+                                      const lucent_mesh_load_desc *desc, lucent_mesh **dest)
+{
+    *dest = NULL;
+    const char *format = desc && desc->format ? desc->format : NULL;
+    if (!format) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: no mesh format given", name);
+    if (size == 0) return lucent_error(LUCENT_ERR_PARSE, "%s: empty file", name);
+    lucent_status s;
+    if (strcmp(format, "ply") == 0 && !(desc && desc->use_assimp)) {
+        lucent_ply *ply;
+        s = lucent_ply_open_memory(data, size, name, &ply);
+        if (s == LUCENT_OK) s = mesh_from_ply(ply, name, dest), lucent_ply_close(ply);
+        return finish(s, name, desc, dest);
+    }
+    lucent_reader r;
+    if ((s = lucent_reader_open_memory(&r, data, size, name)) != LUCENT_OK) return s;
+    s = load_reader(&r, format, desc, dest);
+    lucent_reader_close(&r);
+    return s;
+}
+
 lucent_status lucent_mesh_load(const char *path, const lucent_mesh_load_desc *desc, lucent_mesh **dest)
 {
     *dest = NULL;
     char format[16];
-    lucent_mesh_load_desc d = desc ? *desc : (lucent_mesh_load_desc){0};
+    const char *fmt = desc && desc->format ? desc->format : NULL;
     lucent_status s = LUCENT_OK;
-    if (!d.format) s = format_from_path(path, format, sizeof format), d.format = format;
-    char *data = NULL;
-    size_t size = 0;
-    if (s == LUCENT_OK) s = read_maybe_gz(path, &data, &size);
-    if (s == LUCENT_OK) s = lucent_mesh_load_memory(data, size, path, &d, dest);
-    free(data);
+    if (!fmt) {
+        if ((s = format_from_path(path, format, sizeof format)) != LUCENT_OK) return s;
+        fmt = format;
+    }
+    if (strcmp(fmt, "ply") == 0 && !(desc && desc->use_assimp)) {
+        lucent_ply *ply;
+        s = lucent_ply_open(path, &ply);
+        if (s == LUCENT_OK) s = mesh_from_ply(ply, path, dest), lucent_ply_close(ply);
+        return finish(s, path, desc, dest);
+    }
+    lucent_reader r;
+    if ((s = lucent_reader_open(&r, path)) != LUCENT_OK) return s;
+    s = load_reader(&r, fmt, desc, dest);
+    lucent_reader_close(&r);
     return s;
 }

@@ -1,0 +1,131 @@
+/* Lucent's OBJ reader (Wavefront's geometry format): `v x y z` and `f a b c ...` lines, indices 1-based
+ * or negative (relative to the vertices so far), in the forms a, a/t, a/t/n and a//n; polygons are
+ * fan-triangulated. Everything else (vt, vn, l, p, o, g, s, usemtl, and mtllib, whose file is never
+ * opened) is ignored. Streaming through mesh/reader.h, every index checked, errors name the line. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mesh/internal.h"
+#include "mesh/reader.h"
+
+typedef struct grow {
+    void *data;
+    size_t count, cap, size;
+} grow;
+
+static int grow_push(grow *g, const void *item)
+{
+    if (g->count == g->cap) {
+        size_t cap = g->cap ? 2 * g->cap : 4096;
+        void *d = realloc(g->data, cap * g->size);
+        if (!d) return 0;
+        g->data = d, g->cap = cap;
+    }
+    memcpy((char *)g->data + g->count * g->size, item, g->size);
+    g->count++;
+    return 1;
+}
+
+static lucent_status parse_error(const lucent_reader *r, const char *what)
+{
+    return lucent_error(LUCENT_ERR_PARSE, "%s: line %llu: %s", r->name, (unsigned long long)r->line, what);
+}
+
+static lucent_status read_obj(lucent_reader *r, lucent_mesh **dest)
+{
+    grow pos = {.size = 3 * sizeof(double)}, tri = {.size = 3 * sizeof(uint32_t)};
+    uint32_t *poly = NULL;
+    size_t poly_cap = 0;
+    lucent_status s = LUCENT_OK;
+    for (;;) {
+        char *line;
+        size_t len;
+        if ((s = lucent_reader_line(r, &line, &len)) != LUCENT_OK || !line) break;
+        const char *p = line, *end = line + len;
+        while (p < end && (*p == ' ' || *p == '\t')) p++;
+        if (p + 1 < end && p[0] == 'v' && (p[1] == ' ' || p[1] == '\t')) {
+            double v[3];
+            p += 2;
+            for (int k = 0; k < 3; k++)
+                if (!lucent_parse_double(&p, end, &v[k]) || !isfinite(v[k])) {
+                    s = parse_error(r, "a vertex needs three finite coordinates");
+                    goto done;
+                }
+            /* A fourth value (w) or vertex colours may follow: ignored. */
+            if (pos.count >= UINT32_MAX) {
+                s = lucent_error(LUCENT_ERR_UNSUPPORTED, "%s: more than 4294967295 vertices", r->name);
+                goto done;
+            }
+            if (!grow_push(&pos, v)) goto oom;
+        } else if (p + 1 < end && p[0] == 'f' && (p[1] == ' ' || p[1] == '\t')) {
+            p += 2;
+            size_t n = 0;
+            for (;;) {
+                while (p < end && (*p == ' ' || *p == '\t')) p++;
+                if (p >= end) break;
+                int64_t idx;
+                const char *q = p;
+                while (q < end && *q != '/' && *q != ' ' && *q != '\t') q++;
+                const char *num = p;
+                if (!lucent_parse_int64(&num, q, &idx) || num != q) {
+                    s = parse_error(r, "a face index is not an integer");
+                    goto done;
+                }
+                /* Skip /t/n. */
+                while (q < end && *q != ' ' && *q != '\t') q++;
+                p = q;
+                int64_t have = (int64_t)pos.count;
+                int64_t v = idx > 0 ? idx - 1 : idx < 0 ? have + idx : -1;
+                if (v < 0 || v >= have) {
+                    char what[160];
+                    snprintf(what, sizeof what, "face index %lld does not name a vertex (%lld defined so far)",
+                             (long long)idx, (long long)have);
+                    s = parse_error(r, what);
+                    goto done;
+                }
+                if (n == poly_cap) {
+                    size_t cap = poly_cap ? 2 * poly_cap : 64;
+                    if (cap > ((size_t)1 << 20)) {
+                        s = parse_error(r, "a face with more than a million vertices");
+                        goto done;
+                    }
+                    uint32_t *g = realloc(poly, cap * sizeof *g);
+                    if (!g) goto oom;
+                    poly = g, poly_cap = cap;
+                }
+                poly[n++] = (uint32_t)v;
+            }
+            if (n < 3) {
+                s = parse_error(r, "a face needs 3 or more vertices");
+                goto done;
+            }
+            for (size_t j = 1; j + 1 < n; j++) {
+                uint32_t t[3] = {poly[0], poly[j], poly[j + 1]};
+                if (!grow_push(&tri, t)) goto oom;
+            }
+        }
+        /* Anything else: a comment, vt, vn, l, p, o, g, s, usemtl, mtllib (never opened), ... */
+    }
+done:
+    if (s == LUCENT_OK && tri.count == 0)
+        s = lucent_error(LUCENT_ERR_PARSE, "%s: no faces in the file (%zu vertices)", r->name, pos.count);
+    if (s == LUCENT_OK) s = lucent_mesh_create(pos.count, tri.count, dest);
+    if (s == LUCENT_OK) {
+        memcpy((*dest)->positions, pos.data, pos.count * pos.size);
+        memcpy((*dest)->faces, tri.data, tri.count * tri.size);
+    }
+    free(pos.data);
+    free(tri.data);
+    free(poly);
+    return s;
+oom:
+    s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", r->name);
+    goto done;
+}
+
+lucent_status lucent_mesh_obj_read(lucent_reader *r, lucent_mesh **dest)
+{
+    *dest = NULL;
+    return read_obj(r, dest);
+}
