@@ -19,7 +19,8 @@ static void print_load(void)
 {
     FILE *f = fopen("/proc/loadavg", "r");
     double l[3];
-    if (f && fscanf(f, "%lf %lf %lf", l, l + 1, l + 2) == 3) printf("  (load average %.2f %.2f %.2f)\n", l[0], l[1], l[2]);
+    if (f && fscanf(f, "%lf %lf %lf", l, l + 1, l + 2) == 3)
+        printf("  (load average %.2f %.2f %.2f)\n", l[0], l[1], l[2]);
     if (f) fclose(f);
 }
 

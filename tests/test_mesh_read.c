@@ -85,9 +85,10 @@ static void check_content(lucent_ply *ply, const char *what)
     CHECK(strcmp(lucent_ply_property_name(ply, 5), "red") == 0);
     const char *names[] = {"red", "x", "y", "nx", "blue"};
     lucent_ply_data d;
-    CHECK_OK(lucent_ply_read(ply, &(lucent_ply_read_desc){.names = names, .count = 5, .allow_missing = 1,
-                                                          .faces = LUCENT_PLY_FACES_OPTIONAL},
-                             &d));
+    CHECK_OK(lucent_ply_read(
+        ply,
+        &(lucent_ply_read_desc){.names = names, .count = 5, .allow_missing = 1, .faces = LUCENT_PLY_FACES_OPTIONAL},
+        &d));
     if (!d.values) return;
     printf("  %s: %zu vertices, %zu triangles\n", what, d.vertex_count, d.triangle_count);
     CHECK(d.vertex_count == 4 && d.count == 5 && d.triangle_count == 2 && d.polygon_count == 1);
@@ -157,8 +158,9 @@ TEST(faceless_ply_points_and_mesh_error)
     /* A property the file lacks, without allow_missing. */
     CHECK_OK(lucent_ply_open(bad("hand-segv-ply-no-faces.ply"), &ply));
     const char *op[] = {"opacity"};
-    if (ply) CHECK_ERR(lucent_ply_read(ply, &(lucent_ply_read_desc){.names = op, .count = 1}, &d), LUCENT_ERR_PARSE,
-                       "no property opacity");
+    if (ply)
+        CHECK_ERR(lucent_ply_read(ply, &(lucent_ply_read_desc){.names = op, .count = 1}, &d), LUCENT_ERR_PARSE,
+                  "no property opacity");
     lucent_ply_close(ply);
 }
 
@@ -168,7 +170,9 @@ TEST(hostile_ply)
     static const struct {
         const char *text, *expect;
     } k[] = {
-        {"ply\nformat binary_b\x01\x00\x00\x1e\x03" "f", "format"},
+        {"ply\nformat binary_b\x01\x00\x00\x1e\x03"
+         "f",
+         "format"},
         {"ply\nformat ascii 1.0\nelement vertex 2000000000\nproperty float x\nproperty float y\nproperty float z\n"
          "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n",
          "declares 2000000000 vertex entries"},
@@ -211,9 +215,9 @@ TEST(hostile_ply)
         lucent_mesh *m = NULL;
         char name[32];
         snprintf(name, sizeof name, "hostile%zu.ply", i);
-        CHECK_ERR(lucent_mesh_load_memory(k[i].text, strlen(k[i].text), name, &(lucent_mesh_load_desc){.format = "ply"},
-                                          &m),
-                  LUCENT_ERR_PARSE, name, k[i].expect);
+        CHECK_ERR(
+            lucent_mesh_load_memory(k[i].text, strlen(k[i].text), name, &(lucent_mesh_load_desc){.format = "ply"}, &m),
+            LUCENT_ERR_PARSE, name, k[i].expect);
         CHECK(!m);
     }
     /* Binary truncation names the byte offset: the tetrahedron-like file cut inside its faces. */
@@ -295,9 +299,9 @@ TEST(obj_reader)
     for (size_t i = 0; i < sizeof k / sizeof k[0]; i++) {
         char name[32];
         snprintf(name, sizeof name, "bad%zu.obj", i);
-        CHECK_ERR(lucent_mesh_load_memory(k[i].text, strlen(k[i].text), name, &(lucent_mesh_load_desc){.format = "obj"},
-                                          &m),
-                  LUCENT_ERR_PARSE, name, k[i].expect);
+        CHECK_ERR(
+            lucent_mesh_load_memory(k[i].text, strlen(k[i].text), name, &(lucent_mesh_load_desc){.format = "obj"}, &m),
+            LUCENT_ERR_PARSE, name, k[i].expect);
         CHECK(!m);
     }
     CHECK_ERR(lucent_mesh_load(bad("fuzz-uaf-obj-point.obj"), NULL, &m), LUCENT_ERR_PARSE, "fuzz-uaf-obj-point.obj");
@@ -323,9 +327,12 @@ TEST(assimp_formats_in_child)
     if (m) CHECK(m->vertex_count == 3 && m->face_count == 1);
     lucent_mesh_destroy(m), m = NULL;
     static const char off[] = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n";
-    lucent_status s = lucent_mesh_load_memory(off, sizeof off - 1, "cut.off", &(lucent_mesh_load_desc){.format = "off"}, &m);
+    lucent_status s =
+        lucent_mesh_load_memory(off, sizeof off - 1, "cut.off", &(lucent_mesh_load_desc){.format = "off"}, &m);
     CHECK(s == LUCENT_ERR_PARSE && strstr(lucent_last_error(), "cut.off"));
     printf("  truncated OFF: %s\n", lucent_last_error());
     lucent_mesh_destroy(m);
 }
-TEST_MAIN(TEST_ENTRY(ply_property_api_all_encodings), TEST_ENTRY(faceless_ply_points_and_mesh_error), TEST_ENTRY(hostile_ply), TEST_ENTRY(fifo_and_device_refused), TEST_ENTRY(obj_reader), TEST_ENTRY(assimp_formats_in_child))
+TEST_MAIN(TEST_ENTRY(ply_property_api_all_encodings), TEST_ENTRY(faceless_ply_points_and_mesh_error),
+          TEST_ENTRY(hostile_ply), TEST_ENTRY(fifo_and_device_refused), TEST_ENTRY(obj_reader),
+          TEST_ENTRY(assimp_formats_in_child))

@@ -50,10 +50,10 @@ static ptype type_parse(const char *s)
     static const struct {
         const char *name;
         ptype t;
-    } k[] = {{"char", T_I8},    {"int8", T_I8},    {"uchar", T_U8},    {"uint8", T_U8},    {"short", T_I16},
-             {"int16", T_I16},  {"ushort", T_U16}, {"uint16", T_U16},  {"int", T_I32},     {"int32", T_I32},
-             {"uint", T_U32},   {"uint32", T_U32}, {"float", T_F32},   {"float32", T_F32}, {"double", T_F64},
-             {"float64", T_F64}};
+    } k[] = {{"char", T_I8},   {"int8", T_I8},     {"uchar", T_U8},   {"uint8", T_U8},
+             {"short", T_I16}, {"int16", T_I16},   {"ushort", T_U16}, {"uint16", T_U16},
+             {"int", T_I32},   {"int32", T_I32},   {"uint", T_U32},   {"uint32", T_U32},
+             {"float", T_F32}, {"float32", T_F32}, {"double", T_F64}, {"float64", T_F64}};
     for (size_t i = 0; i < sizeof k / sizeof k[0]; i++)
         if (strcmp(s, k[i].name) == 0) return k[i].t;
     return T_NONE;
@@ -101,8 +101,8 @@ static lucent_status read_header(lucent_ply *ply)
     ply->vertex_el = ply->face_el = ply->face_prop = -1;
     for (;;) {
         if (lucent_reader_offset(r) > MAX_HEADER)
-            return lucent_error(LUCENT_ERR_PARSE, "%s: the header is longer than %llu bytes (no end_header?)",
-                                r->name, (unsigned long long)MAX_HEADER);
+            return lucent_error(LUCENT_ERR_PARSE, "%s: the header is longer than %llu bytes (no end_header?)", r->name,
+                                (unsigned long long)MAX_HEADER);
         if ((s = lucent_reader_line(r, &line, NULL)) != LUCENT_OK) return s;
         if (!line)
             return lucent_error(LUCENT_ERR_PARSE, "%s: the header ends without end_header (line %llu)", r->name,
@@ -296,15 +296,18 @@ static double decode(const unsigned char *p, ptype t, int big)
 typedef struct body {
     lucent_ply *ply;
     const lucent_ply_read_desc *desc;
-    int *columns;   /* per output column: the vertex property index, -1 when missing */
-    double *row;    /* one vertex row of scalar values, per property index */
+    int *columns; /* per output column: the vertex property index, -1 when missing */
+    double *row;  /* one vertex row of scalar values, per property index */
     lucent_ply_data *d;
     size_t vertex_cap, tri_cap;
-    int growable; /* gzip: the counts are only bounds, grow with the data */
+    int growable;   /* gzip: the counts are only bounds, grow with the data */
     uint32_t *poly; /* one face's indices */
 } body;
 
-static lucent_status oom(body *b) { return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", b->ply->r.name); }
+static lucent_status oom(body *b)
+{
+    return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", b->ply->r.name);
+}
 
 static lucent_status store_vertex(body *b, uint64_t i)
 {
@@ -356,7 +359,8 @@ static lucent_status store_face(body *b, uint64_t f, uint32_t n)
     for (uint32_t j = 0; j < n; j++)
         if (b->poly[j] >= vcount) {
             where(b, at, sizeof at);
-            return lucent_error(LUCENT_ERR_PARSE, "%s: %s: face %llu: vertex index %u out of range (the file has %llu vertices)",
+            return lucent_error(LUCENT_ERR_PARSE,
+                                "%s: %s: face %llu: vertex index %u out of range (the file has %llu vertices)",
                                 b->ply->r.name, at, (unsigned long long)f, b->poly[j], (unsigned long long)vcount);
         }
     if (d->triangle_count + n - 2 > b->tri_cap) {
@@ -495,7 +499,8 @@ static lucent_status binary_element(body *b, int ei)
                 if (is_vertex) b->row[j] = decode(raw, pr->type, big);
                 continue;
             }
-            snprintf(what, sizeof what, "%s %llu of %llu", e->name, (unsigned long long)i, (unsigned long long)e->count);
+            snprintf(what, sizeof what, "%s %llu of %llu", e->name, (unsigned long long)i,
+                     (unsigned long long)e->count);
             lucent_status s = lucent_reader_bytes(r, raw, (size_t)k_size[pr->count_type], what);
             if (s != LUCENT_OK) return s;
             double n = decode(raw, pr->count_type, big);
@@ -566,8 +571,8 @@ lucent_status lucent_ply_read(lucent_ply *ply, const lucent_ply_read_desc *desc,
             return lucent_error(LUCENT_ERR_PARSE,
                                 "%s: the header declares %llu %s entries (at least %llu bytes each) but at most %llu "
                                 "bytes follow the header: truncated or a false count",
-                                r->name, (unsigned long long)e->count, e->name,
-                                (unsigned long long)row, (unsigned long long)bound);
+                                r->name, (unsigned long long)e->count, e->name, (unsigned long long)row,
+                                (unsigned long long)bound);
         need += e->count * row;
     }
     body b = {.ply = ply, .desc = desc, .d = dest};

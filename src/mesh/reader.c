@@ -164,8 +164,7 @@ static lucent_status decode_more(lucent_reader *r)
                                     r->name, (unsigned long long)(r->base + r->len));
         } else {
             return lucent_error(LUCENT_ERR_PARSE, "%s: corrupt gzip data after %llu inflated bytes: %s", r->name,
-                                (unsigned long long)(r->base + r->len),
-                                r->zs.msg ? r->zs.msg : zError(z));
+                                (unsigned long long)(r->base + r->len), r->zs.msg ? r->zs.msg : zError(z));
         }
         if (made > 0) break;
     }

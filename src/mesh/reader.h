@@ -19,11 +19,11 @@ typedef struct lucent_reader {
     int fd;           /* -1 for memory */
     const unsigned char *mem;
     size_t mem_size, mem_pos;
-    int gz;          /* inflating */
-    z_stream zs;     /* when gz */
-    unsigned char *in; /* compressed input buffer (fd + gz) */
-    int in_eof;      /* no more raw input */
-    int stream_end;  /* inflate saw the end of the gzip stream */
+    int gz;             /* inflating */
+    z_stream zs;        /* when gz */
+    unsigned char *in;  /* compressed input buffer (fd + gz) */
+    int in_eof;         /* no more raw input */
+    int stream_end;     /* inflate saw the end of the gzip stream */
     unsigned char *buf; /* decoded bytes: buf[pos..len) not yet consumed */
     size_t cap, len, pos;
     uint64_t base;     /* decoded offset of buf[0] */
