@@ -74,5 +74,6 @@ int cmd_kernel_eval(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int cmd_trace(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
+int cmd_view(int argc, char **argv);
 
 #endif

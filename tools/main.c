@@ -24,6 +24,7 @@ static const cli_command k_commands[] = {
     {"trace", "path-traced reference of a scene (Embree): media, rough or smooth boundaries", cmd_trace},
     {"compare", "every real-time method of a scene against the path-traced reference: HTML report", cmd_compare},
     {"merge", "combine the part files of --part K/N runs into the outputs of the whole run", NULL},
+    {"view", "tune a scene live in a window: methods side by side, settings, materials, error", cmd_view},
 };
 enum { COMMAND_COUNT = sizeof k_commands / sizeof k_commands[0] };
 

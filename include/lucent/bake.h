@@ -81,6 +81,10 @@ typedef struct lucent_baked {
 lucent_status lucent_material_bake(const lucent_material *material, const lucent_bake_desc *desc, lucent_cache *cache,
                                    lucent_baked *baked);
 
+/* Makes dest (freed first) a deep copy of src: what a bake on another thread starts from, so that
+ * it rebuilds only what changed (the viewer's background bakes). */
+lucent_status lucent_baked_copy(const lucent_baked *src, lucent_baked *dest);
+
 /* Frees the parts and zeroes baked. */
 void lucent_baked_free(lucent_baked *baked);
 

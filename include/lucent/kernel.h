@@ -160,6 +160,9 @@ lucent_taps_desc lucent_taps_defaults(void);
 /* Samples k into taps. Free with lucent_taps_destroy. */
 lucent_status lucent_kernel_taps(const lucent_kernel *k, const lucent_taps_desc *desc, lucent_taps **dest);
 
+/* Creates a deep copy of src. Free with lucent_taps_destroy. */
+lucent_status lucent_taps_clone(const lucent_taps *src, lucent_taps **dest);
+
 /* Frees t (NULL is fine). */
 void lucent_taps_destroy(lucent_taps *t);
 

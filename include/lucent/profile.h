@@ -53,6 +53,9 @@ lucent_status lucent_profile_grid_resolve(const lucent_profile_grid *grid, const
  * set to model (may be NULL). Free with lucent_profile_destroy. */
 lucent_status lucent_profile_create(const lucent_profile_grid *grid, const char *model, lucent_profile **dest);
 
+/* Creates a deep copy of src. Free with lucent_profile_destroy. */
+lucent_status lucent_profile_clone(const lucent_profile *src, lucent_profile **dest);
+
 /* Frees p (NULL is fine). */
 void lucent_profile_destroy(lucent_profile *p);
 

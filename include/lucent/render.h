@@ -14,6 +14,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "lucent/bake.h"
 #include "lucent/base.h"
 #include "lucent/image.h"
 #include "lucent/kernel.h"
@@ -86,6 +87,14 @@ bool lucent_gl_window_poll(lucent_gl_context *ctx);
 /* Window contexts: sets the title (no-op when headless). */
 void lucent_gl_window_set_title(lucent_gl_context *ctx, const char *title);
 
+/* Window contexts: the GLFW window (a GLFWwindow *), for a user interface drawn over the frames in
+ * the same context (the viewer's Dear ImGui); NULL when headless. */
+void *lucent_gl_window_handle(lucent_gl_context *ctx);
+
+/* Window contexts: shows what was drawn (after lucent_render_present_region calls that did not
+ * swap); no-op when headless. */
+void lucent_gl_window_swap(lucent_gl_context *ctx);
+
 /* ---- The renderer ------------------------------------------------------------------------------ */
 
 typedef struct lucent_renderer lucent_renderer;
@@ -149,6 +158,21 @@ lucent_status lucent_render_frame(lucent_renderer *r, const lucent_render_settin
  * sRGB-encoded, and swaps buffers. Headless contexts: no-op. */
 lucent_status lucent_render_present(lucent_renderer *r);
 
+/* Where lucent_render_present_region puts the last frame. Rectangles are in framebuffer pixels from
+ * the window's top-left corner. */
+typedef struct lucent_present_desc {
+    int x, y, width, height; /* the rectangle the frame fills, texel for pixel when its size is the
+                                frame's (width 0: the whole window) */
+    int clip[4];             /* x, y, width, height: only this part is drawn (clip[2] 0: all of it) */
+    bool clear;              /* clear the whole window first (dark grey) */
+    bool swap;               /* swap buffers after */
+} lucent_present_desc;
+
+/* Window contexts: draws the last frame, tonemapped and sRGB-encoded as lucent_render_present does,
+ * into a rectangle of the window (side by side or split-screen views of several frames, a user
+ * interface around them); headless contexts: no-op. */
+lucent_status lucent_render_present_region(lucent_renderer *r, const lucent_present_desc *desc);
+
 /* Frees the images of a result and zeroes it. */
 void lucent_render_result_free(lucent_render_result *res);
 
@@ -165,6 +189,29 @@ typedef struct lucent_render_object_info {
 
 /* Fills dest with object index's values (0 <= index < the scene's object_count). */
 lucent_status lucent_renderer_object_info(const lucent_renderer *r, int index, lucent_render_object_info *dest);
+
+/* ---- Changing the scene under a renderer (the viewer) -----------------------------------------
+ * The camera and the objects' albedo, roughness, specular_f0, sss_strength and visible flag are read
+ * by every frame. Lights and materials are copied when the renderer is created: after changing them
+ * in the scene, say so. */
+enum {
+    LUCENT_RENDERER_LIGHTS = 1u << 0,   /* light directions, positions, colours, intensities (not their
+                                           number or types) */
+    LUCENT_RENDERER_MATERIALS = 1u << 1 /* the objects' materials: parts baked for materials that
+                                           are still in the scene are kept */
+};
+
+/* Re-reads what `what` names from the scene. */
+lucent_status lucent_renderer_scene_changed(lucent_renderer *r, unsigned what);
+
+/* Hands the renderer parts baked elsewhere (on another thread) for material m: copied into the
+ * renderer's bake of every object whose material equals m, so that frames needing only those parts
+ * bake nothing. LUCENT_ERR_NOT_FOUND when no object has that material. */
+lucent_status lucent_renderer_adopt_baked(lucent_renderer *r, const lucent_material *m, const lucent_baked *baked);
+
+/* The parts (LUCENT_BAKE_*) a frame of r with settings s bakes for every material: those of
+ * s->view.method (all parts for a method that does not say). */
+unsigned lucent_renderer_bakes(const lucent_renderer *r, const lucent_render_settings *s);
 
 /* The JSON sidecar of a render (docs/render.md): the scene after overrides, the settings, the GL
  * strings, the timings, each object's albedo, sigma0 and curvature, each kernel's taps. Free *dest

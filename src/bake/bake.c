@@ -225,6 +225,18 @@ lucent_status lucent_material_bake(const lucent_material *material, const lucent
     return s;
 }
 
+lucent_status lucent_baked_copy(const lucent_baked *src, lucent_baked *dest)
+{
+    if (src == dest) return LUCENT_OK;
+    lucent_baked_free(dest);
+    *dest = *src;
+    dest->profile = NULL, dest->taps = NULL;
+    lucent_status s = src->profile ? lucent_profile_clone(src->profile, &dest->profile) : LUCENT_OK;
+    if (s == LUCENT_OK && src->taps) s = lucent_taps_clone(src->taps, &dest->taps);
+    if (s != LUCENT_OK) lucent_baked_free(dest);
+    return s;
+}
+
 void lucent_baked_free(lucent_baked *baked)
 {
     if (!baked) return;

@@ -84,6 +84,14 @@ lucent_status lucent_render_method_parse(const char *text, lucent_render_method 
     return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "unknown method '%s' (%s)", text, list);
 }
 
+unsigned lucent_renderer_bakes(const lucent_renderer *r, const lucent_render_settings *s)
+{
+    const gl_method *m =
+        s->view.method >= 0 && s->view.method < LUCENT_METHOD_COUNT ? gl_methods[s->view.method] : NULL;
+    if (m && m->bakes) return m->bakes(r, s);
+    return LUCENT_BAKE_PROFILE | LUCENT_BAKE_TAPS | LUCENT_BAKE_TRANSMITTANCE | LUCENT_BAKE_SIGMA0 | LUCENT_BAKE_SOG;
+}
+
 /* ---- the frame ---- */
 
 static void light_block(const lucent_renderer *r, int i, gl_frame_block *b)

@@ -27,7 +27,7 @@ lucent_status gl_renderer_read_back(lucent_renderer *r, lucent_render_result *re
 
 /* ---- the window ---- */
 
-lucent_status lucent_render_present(lucent_renderer *r)
+lucent_status lucent_render_present_region(lucent_renderer *r, const lucent_present_desc *d)
 {
     if (!r->ctx->window || !r->have_frame) return LUCENT_OK;
     lucent_status s = lucent_gl_make_current(r->ctx);
@@ -37,18 +37,38 @@ lucent_status lucent_render_present(lucent_renderer *r)
     if (s != LUCENT_OK) return s;
     int w, h;
     gl_window_size(r->ctx, &w, &h);
+    int rx = d->x, rw = d->width > 0 ? d->width : w, rh = d->width > 0 ? d->height : h;
+    int ry = d->width > 0 ? h - d->y - rh : 0; /* GL counts rows from the bottom */
+    if (d->width <= 0) rx = 0;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    glViewport(0, 0, w, h);
+    glDisable(GL_SCISSOR_TEST);
+    if (d->clear) {
+        glViewport(0, 0, w, h);
+        glClearColor(0.12f, 0.12f, 0.13f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+    }
+    if (d->clip[2] > 0) {
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(d->clip[0], h - d->clip[1] - d->clip[3], d->clip[2], d->clip[3]);
+    }
+    glViewport(rx, ry, rw, rh);
     glUseProgram(r->present_program);
     glBindVertexArray(r->empty_vao);
     glBindTextureUnit(0, r->targets.final);
     glUniform1i(glGetUniformLocation(r->present_program, "u_tonemap"), (int)r->last.view.tonemap);
     glUniform1f(glGetUniformLocation(r->present_program, "u_exposure"), (float)exp2(r->last.view.exposure));
-    glUniform2f(glGetUniformLocation(r->present_program, "u_scale"), (float)r->targets.width / (float)(w > 0 ? w : 1),
-                (float)r->targets.height / (float)(h > 0 ? h : 1));
+    glUniform2f(glGetUniformLocation(r->present_program, "u_scale"), (float)r->targets.width / (float)(rw > 0 ? rw : 1),
+                (float)r->targets.height / (float)(rh > 0 ? rh : 1));
+    glUniform2f(glGetUniformLocation(r->present_program, "u_origin"), (float)rx, (float)ry);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    gl_window_swap(r->ctx);
+    glDisable(GL_SCISSOR_TEST);
+    if (d->swap) gl_window_swap(r->ctx);
     return gl_check("presenting the frame");
+}
+
+lucent_status lucent_render_present(lucent_renderer *r)
+{
+    return lucent_render_present_region(r, &(lucent_present_desc){.swap = true});
 }
 
 /* ---- the sidecar ---- */

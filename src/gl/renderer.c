@@ -163,6 +163,29 @@ lucent_status lucent_renderer_object_info(const lucent_renderer *r, int index, l
     return LUCENT_OK;
 }
 
+lucent_status lucent_renderer_scene_changed(lucent_renderer *r, unsigned what)
+{
+    lucent_status s = lucent_gl_make_current(r->ctx);
+    if (s == LUCENT_OK && (what & LUCENT_RENDERER_LIGHTS)) gl_shadows_update(&r->shadows, r->scene);
+    if (s == LUCENT_OK && (what & LUCENT_RENDERER_MATERIALS)) {
+        /* The methods keep what they uploaded under the bakes' keys, which do not name the material:
+         * they start again (their programs stay in r->programs). */
+        release_methods(r);
+        s = gl_tables_recollect(&r->tables, r->scene);
+    }
+    return s;
+}
+
+lucent_status lucent_renderer_adopt_baked(lucent_renderer *r, const lucent_material *m, const lucent_baked *baked)
+{
+    lucent_status s = gl_tables_adopt(&r->tables, m, baked);
+    if (s != LUCENT_OK) return s;
+    /* Uploads made from the old parts under the same keys (the taps of ssss) must be made again. */
+    lucent_gl_make_current(r->ctx);
+    release_methods(r);
+    return LUCENT_OK;
+}
+
 /* ---- tests ---- */
 
 void gl_renderer_set_aov(lucent_renderer *r, bool on)

@@ -91,6 +91,25 @@ lucent_status gl_shadows_setup(gl_shadows *r, const lucent_scene *scene)
     return s;
 }
 
+void gl_shadows_update(gl_shadows *r, const lucent_scene *scene)
+{
+    r->ambient[0] = r->ambient[1] = r->ambient[2] = 0;
+    for (int i = 0; i < scene->light_count; i++) {
+        const lucent_light *l = &scene->lights[i];
+        if (l->type == LUCENT_LIGHT_ENVIRONMENT)
+            for (int c = 0; c < 3; c++) r->ambient[c] += l->color[c] * l->intensity;
+    }
+    for (int i = 0; i < r->light_count; i++) {
+        gl_light *g = &r->lights[i];
+        const lucent_light *l = &scene->lights[g->scene_index];
+        if (g->layer < 0) continue;
+        if (l->type == LUCENT_LIGHT_DIRECTIONAL)
+            directional(r, l, g);
+        else
+            point(r, l, g); /* inside the bounds now: the last projection stays */
+    }
+}
+
 lucent_status gl_shadows_resize(gl_shadows *r, int size)
 {
     if (r->tex && r->size == size) return LUCENT_OK;

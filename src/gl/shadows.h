@@ -31,6 +31,10 @@ typedef struct gl_shadows {
 /* Sets up the lights of scene (its meshes give the bounds) and the shadow program. */
 lucent_status gl_shadows_setup(gl_shadows *sh, const lucent_scene *scene);
 
+/* Re-reads the lights' directions, positions, colours and intensities from scene (same lights as at
+ * setup): their projections and the ambient radiance. */
+void gl_shadows_update(gl_shadows *sh, const lucent_scene *scene);
+
 /* (Re)creates the maps at size x size texels; no-op when unchanged. */
 lucent_status gl_shadows_resize(gl_shadows *sh, int size);
 

@@ -31,6 +31,35 @@ lucent_status gl_tables_collect(gl_tables *t, const lucent_scene *scene)
     return LUCENT_OK;
 }
 
+lucent_status gl_tables_recollect(gl_tables *t, const lucent_scene *scene)
+{
+    gl_tables old = *t;
+    memset(t, 0, sizeof *t);
+    lucent_status s = gl_tables_collect(t, scene);
+    bool kept[GLR_MAX_MATERIALS] = {false};
+    for (int k = 0; s == LUCENT_OK && k < t->count; k++)
+        for (int j = 0; j < old.count; j++)
+            if (!kept[j] && same_material(&old.material[j], &t->material[k])) {
+                t->baked[k] = old.baked[j], kept[j] = true;
+                break;
+            }
+    for (int j = 0; j < old.count; j++)
+        if (!kept[j]) lucent_baked_free(&old.baked[j]);
+    if (old.transmit_tex) glDeleteTextures(1, &old.transmit_tex);
+    free(old.object_material);
+    return s;
+}
+
+lucent_status gl_tables_adopt(gl_tables *t, const lucent_material *m, const lucent_baked *baked)
+{
+    for (int k = 0; k < t->count; k++)
+        if (same_material(&t->material[k], m)) {
+            t->transmit_key[0] = '\0'; /* the rows may have changed under the same key */
+            return lucent_baked_copy(baked, &t->baked[k]);
+        }
+    return lucent_error(LUCENT_ERR_NOT_FOUND, "no object has the material %s", m->name);
+}
+
 lucent_status gl_tables_bake(gl_tables *t, const lucent_bake_desc *desc, lucent_cache *cache)
 {
     lucent_status s = LUCENT_OK;

@@ -22,6 +22,13 @@ typedef struct gl_tables {
 /* Finds the scene's distinct materials (at most GLR_MAX_MATERIALS). */
 lucent_status gl_tables_collect(gl_tables *t, const lucent_scene *scene);
 
+/* Finds the scene's materials again (after they changed): the bakes of materials still there are
+ * kept, the others freed; the transmittance texture is uploaded again by the next frame. */
+lucent_status gl_tables_recollect(gl_tables *t, const lucent_scene *scene);
+
+/* Copies baked into the bake of material m; LUCENT_ERR_NOT_FOUND when m is not in the table. */
+lucent_status gl_tables_adopt(gl_tables *t, const lucent_material *m, const lucent_baked *baked);
+
 /* Bakes what desc asks for for every material (only what changed is rebuilt). */
 lucent_status gl_tables_bake(gl_tables *t, const lucent_bake_desc *desc, lucent_cache *cache);
 

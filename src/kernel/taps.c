@@ -4,6 +4,7 @@
  * blended with the delta by the strength. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "kernel/internal.h"
 
@@ -111,6 +112,17 @@ lucent_status lucent_kernel_taps(const lucent_kernel *k, const lucent_taps_desc 
         return st;
     }
     *dest = t;
+    return LUCENT_OK;
+}
+
+lucent_status lucent_taps_clone(const lucent_taps *src, lucent_taps **dest)
+{
+    lucent_taps *t = taps_alloc(src->count, src->rank);
+    if (!(*dest = t)) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "taps: out of memory");
+    memcpy(t->offset, src->offset, (size_t)src->count * sizeof *t->offset);
+    for (int c = 0; c < 3; c++)
+        memcpy(t->weight[c], src->weight[c], (size_t)src->count * (size_t)src->rank * sizeof *t->weight[c]);
+    memcpy(t->sign, src->sign, sizeof t->sign);
     return LUCENT_OK;
 }
 

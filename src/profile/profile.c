@@ -71,6 +71,19 @@ lucent_status lucent_profile_create(const lucent_profile_grid *grid, const char 
     return LUCENT_OK;
 }
 
+lucent_status lucent_profile_clone(const lucent_profile *src, lucent_profile **dest)
+{
+    lucent_status st =
+        lucent_profile_create(&(lucent_profile_grid){.dr = src->dr, .count = src->count}, src->model, dest);
+    if (st != LUCENT_OK) return st;
+    memcpy((*dest)->r, src->r, (size_t)src->count * sizeof *src->r);
+    for (int c = 0; c < 3; c++) {
+        memcpy((*dest)->value[c], src->value[c], (size_t)src->count * sizeof *src->value[c]);
+        memcpy((*dest)->error[c], src->error[c], (size_t)src->count * sizeof *src->error[c]);
+    }
+    return LUCENT_OK;
+}
+
 void lucent_profile_destroy(lucent_profile *p)
 {
     if (!p) return;

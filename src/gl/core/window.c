@@ -78,3 +78,10 @@ void lucent_gl_window_set_title(lucent_gl_context *ctx, const char *title)
 {
     if (ctx && ctx->window && title) glfwSetWindowTitle(ctx->window, title);
 }
+
+void *lucent_gl_window_handle(lucent_gl_context *ctx) { return ctx ? ctx->window : NULL; }
+
+void lucent_gl_window_swap(lucent_gl_context *ctx)
+{
+    if (ctx && ctx->window) gl_window_swap(ctx);
+}

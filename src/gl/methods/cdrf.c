@@ -168,10 +168,25 @@ static void release(void *state)
     free(st->objects);
 }
 
+/* What objects_sigma0 bakes: the fit, when an object needs it. */
+static unsigned bakes_plain(const lucent_renderer *r, const lucent_render_settings *s)
+{
+    bool fit = false;
+    for (int i = 0; i < r->scene->object_count; i++)
+        fit |= r->scene->objects[i].visible && !r->scene->objects[i].sigma0_set && s->cdrf.sigma0 == LUCENT_SIGMA0_FIT;
+    return fit ? LUCENT_BAKE_SIGMA0 : 0u;
+}
+
+static unsigned bakes_translucent(const lucent_renderer *r, const lucent_render_settings *s)
+{
+    return bakes_plain(r, s) | LUCENT_BAKE_TRANSMITTANCE;
+}
+
 const gl_method gl_method_cdrf = {
     .name = "cdrf",
     .settings = (const char *const[]){"cdrf_variant", "cdrf_lut", "sigma0", "curvature_smooth", NULL},
     .state_size = sizeof(cdrf_state),
+    .bakes = bakes_plain,
     .prepare = prepare_plain,
     .draw = draw,
     .object_info = object_info,
@@ -183,6 +198,7 @@ const gl_method gl_method_cdrf_translucency = {
     .settings = (const char *const[]){"cdrf_variant", "cdrf_lut", "sigma0", "curvature_smooth", "transmittance",
                                       "translucency_curvature", NULL},
     .state_size = sizeof(cdrf_state),
+    .bakes = bakes_translucent,
     .prepare = prepare_translucent,
     .draw = draw,
     .object_info = object_info,

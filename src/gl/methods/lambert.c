@@ -19,9 +19,12 @@ static lucent_status draw(lucent_renderer *r, void *state, const lucent_render_s
     return LUCENT_OK;
 }
 
+static unsigned bakes(const lucent_renderer *r, const lucent_render_settings *s) { return (void)r, (void)s, 0u; }
+
 const gl_method gl_method_lambert = {
     .name = "lambert",
     .settings = (const char *const[]){NULL},
+    .bakes = bakes,
     .state_size = sizeof(lambert_state),
     .prepare = prepare,
     .draw = draw,

@@ -20,7 +20,10 @@ typedef struct gl_method {
      * the method takes no variant. */
     lucent_status (*variant)(const char *text, lucent_render_settings *s);
     const char *variant_doc; /* the variant's form: "<model>[rank] (model svd, preint, ...)" */
-    size_t state_size;       /* its own state, zeroed when first created */
+    /* Optional: the parts (LUCENT_BAKE_*) its prepare bakes for settings s (the viewer bakes them on
+     * a thread of its own first); NULL: all of them. */
+    unsigned (*bakes)(const lucent_renderer *r, const lucent_render_settings *s);
+    size_t state_size; /* its own state, zeroed when first created */
     lucent_status (*prepare)(lucent_renderer *r, void *state, const lucent_render_settings *s);
     lucent_status (*draw)(lucent_renderer *r, void *state, const lucent_render_settings *s);
     /* Optional: what it knows of object i for lucent_renderer_object_info (after a frame). */

@@ -172,12 +172,19 @@ static void sidecar(const lucent_renderer *r, const void *state, const lucent_re
 
 static void release(void *state) { gl_blur_free(&((ssss_state *)state)->blur); }
 
+static unsigned bakes(const lucent_renderer *r, const lucent_render_settings *s)
+{
+    (void)r;
+    return LUCENT_BAKE_TAPS | (s->translucency.enabled ? LUCENT_BAKE_TRANSMITTANCE : 0u);
+}
+
 const gl_method gl_method_ssss = {
     .name = "ssss",
     .settings = (const char *const[]){"kernel", "rank", "taps", "profile", "strength", "width_scale", "depth_filter",
                                       "translucency", "transmittance", NULL},
     .variant = variant,
     .variant_doc = "<model>[rank] with model svd, preint, guided, manual, sog, jimenez",
+    .bakes = bakes,
     .state_size = sizeof(ssss_state),
     .prepare = prepare,
     .draw = draw,

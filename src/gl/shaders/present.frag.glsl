@@ -4,6 +4,7 @@ layout(binding = 0) uniform sampler2D u_image;
 uniform int u_tonemap;     // 0 none, 1 clamp, 2 reinhard, 3 filmic (lucent_tonemap_op)
 uniform float u_exposure;  // 2^stops
 uniform vec2 u_scale;      // image texels per window pixel
+uniform vec2 u_origin;     // the window pixel (bottom-left) where the image starts
 
 layout(location = 0) out vec4 o_color;
 
@@ -22,6 +23,6 @@ vec3 srgb(vec3 x)
 
 void main()
 {
-    vec3 c = texture(u_image, gl_FragCoord.xy * u_scale / vec2(textureSize(u_image, 0))).rgb;
+    vec3 c = texture(u_image, (gl_FragCoord.xy - u_origin) * u_scale / vec2(textureSize(u_image, 0))).rgb;
     o_color = vec4(srgb(tonemap(max(c, 0.0) * u_exposure)), 1.0);
 }

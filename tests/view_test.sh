@@ -1,0 +1,148 @@
+#!/usr/bin/env bash
+# `lucent view --script`: a scripted session orbits, switches among every method the renderer lists,
+# changes the kernel width and the material, loads a reference and saves the scene; `lucent render`
+# of the saved scene (and of its --set form) gives the viewer's last frame pixel for pixel. Resizing
+# keeps a sphere round (its silhouette's width and height measured in the screenshot). Run in a
+# window under Xvfb when xvfb-run is there, and headless (EGL surfaceless) always.
+# Usage: view_test.sh path/to/lucent path/to/tests/fixtures
+set -u
+LUCENT=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+FIXTURES=$(cd "$2" && pwd)
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/lucent-view-XXXXXX")
+trap 'rm -rf "$TMP"' EXIT
+passed=0 failed=0
+SPHERE=$FIXTURES/scenes/sphere.json
+
+check() { # DESCRIPTION -- command...
+  local what=$1; shift 2
+  if "$@" >"$TMP/.out" 2>&1; then
+    passed=$((passed + 1)); echo "ok   $what"
+  else
+    failed=$((failed + 1)); echo "FAIL $what"; sed 's/^/     /' "$TMP/.out" | tail -20
+  fi
+}
+# fails SUBSTRING -- command...: exit 1 and the message on stderr.
+fails() {
+  local sub=$1; shift 2
+  local err rc
+  err=$("$@" 2>&1 >/dev/null); rc=$?
+  if [ "$rc" = 1 ] && [[ "$err" == *"$sub"* ]]; then
+    passed=$((passed + 1)); echo "ok   fails '$sub'"
+  else
+    failed=$((failed + 1)); echo "FAIL fails '$sub': exit $rc: $err"
+  fi
+}
+# same_pixels A.exr B.exr: lucent image diff reports 0 in every channel.
+same_pixels() {
+  "$LUCENT" image diff "$1" "$2" | tee /dev/stderr | grep -Eq '^  all +0 +0$'
+}
+
+# Every method the renderer lists (the settings table's names for render.method).
+methods=$("$LUCENT" render --settings | grep -A1 '^  method ' | tail -1 | sed 's/.*; //; s/,//g')
+[ -n "$methods" ] || { echo "FAIL no methods listed"; exit 1; }
+
+# A tiny path-traced reference of the sphere (4 spp): what load-reference reads.
+"$LUCENT" -q trace "$SPHERE" --spp 4 --set render.width=64 --set render.height=40 --out "$TMP/ref.png" --exr "$TMP/ref.exr" ||
+  { echo "FAIL lucent trace for the reference"; exit 1; }
+
+session() { # MODE (window or headless) RUNNER...
+  local mode=$1; shift
+  local d=$TMP/$mode panel=0
+  mkdir -p "$d"
+  [ "$mode" = window ] && panel=380 # the panel's width: the view is the rest of the window
+  {
+    echo "# orbit, every method, the width, the material, a reference, a save"
+    echo "resize $((panel + 64)) 40"
+    echo "orbit 35 -12"
+    echo "zoom 0.9"
+    for m in $methods; do echo "method $m"; echo "print"; done
+    echo "light 0 25 10"
+    echo "set width_scale=1.7"
+    echo "material skin2"
+    echo "material sigma_a=0.05,0.2,0.4 g=0.3"
+    echo "load-reference $TMP/ref.exr"
+    echo "print"
+    echo "save-scene $d/saved.json"
+    echo "screenshot $d/last.png"
+    echo "export-taps $d/taps.json json"
+    echo "quit"
+  } >"$d/script.txt"
+  check "$mode: the scripted session runs" -- "$@" "$LUCENT" view "$SPHERE" --script "$d/script.txt" --no-cache ${HEADLESS:-}
+  for m in $methods; do
+    check "$mode: it switched to $m" -- grep -q "^view: $m, frame 64x40" "$TMP/.out.session" 
+  done
+  check "$mode: it wrote the scene, its --set form, the PNG, the EXR and the taps" -- \
+    test -s "$d/saved.json" -a -s "$d/saved.sets.txt" -a -s "$d/last.png" -a -s "$d/last.exr" -a -s "$d/taps.json"
+  check "$mode: the saved scene holds the tuned width and material" -- \
+    grep -q '"width_scale":[[:space:]]*1.7' "$d/saved.json"
+  check "$mode: the relative RMS error against the reference is finite and > 0" -- \
+    grep -Eq 'rel_rms (0\.[0-9]*[1-9]|[1-9])' "$TMP/.out.session"
+  check "$mode: lucent render of the saved scene is the viewer's last frame" -- eval \
+    '"$LUCENT" -q render "$d/saved.json" --no-cache --out "$d/render.exr" && same_pixels "$d/last.exr" "$d/render.exr"'
+  check "$mode: the --set form on the original scene gives the same pixels" -- eval \
+    'PATH="$(dirname "$LUCENT"):$PATH" bash -c "$(cat "$d/saved.sets.txt") -q --no-cache --out $d/sets.exr" &&
+     same_pixels "$d/last.exr" "$d/sets.exr"'
+
+  # Roundness: a wide and a tall view; the sphere's silhouette is as wide as it is tall.
+  printf 'resize %d 100\nscreenshot %s/wide.png\nresize %d 150\nscreenshot %s/tall.png\nquit\n' \
+    $((panel + 200)) "$d" $((panel + 100)) "$d" >"$d/round.txt"
+  check "$mode: the resize session runs" -- "$@" "$LUCENT" -q view "$SPHERE" --script "$d/round.txt" --no-cache ${HEADLESS:-}
+  if command -v python3 >/dev/null 2>&1; then
+    for shape in wide tall; do
+      "$LUCENT" -q image convert "$d/$shape.exr" "$d/$shape.pfm"
+      check "$mode: $shape view (the image's own size) keeps the sphere round" -- python3 - "$d/$shape.pfm" "$shape" <<'PY'
+import struct, sys
+# The silhouette: pixels that differ from the background (the corner pixel), their bounding box.
+f = open(sys.argv[1], "rb")
+kind = f.readline().strip(); w, h = map(int, f.readline().split()); scale = float(f.readline())
+n = 3 if kind == b"PF" else 1
+data = struct.unpack(("<" if scale < 0 else ">") + "f" * (w * h * n), f.read(4 * w * h * n))
+px = lambda x, y: data[(y * w + x) * n:(y * w + x) * n + n]
+bg = px(0, 0)
+xs, ys = [], []
+for y in range(h):
+    for x in range(w):
+        if max(abs(a - b) for a, b in zip(px(x, y), bg)) > 1e-4:
+            xs.append(x); ys.append(y)
+bw, bh = max(xs) - min(xs) + 1, max(ys) - min(ys) + 1
+# The sphere (radius 10 mm, 60 mm away, fov_y 30 degrees) spans 2 asin(10/60) of the vertical field:
+# tan(asin(1/6)) / tan(15 deg) of the image's height (the perspective projection of its silhouette).
+import math
+expect = h * math.tan(math.asin(10 / 60)) / math.tan(math.radians(15))
+print(sys.argv[2], w, "x", h, ": silhouette", bw, "x", bh, "expected", round(expect, 2))
+sys.exit(0 if abs(bw - bh) <= 1 and abs(bh - expect) <= 2 else 1)
+PY
+    done
+  else
+    echo "skip roundness: no python3"
+  fi
+}
+
+# The session's stdout (print lines) goes to .out.session.
+run_session() { "$@" >"$TMP/.out.session" 2>&1; local rc=$?; cat "$TMP/.out.session"; return $rc; }
+
+HEADLESS=--headless session headless run_session
+if command -v xvfb-run >/dev/null 2>&1; then
+  session window run_session xvfb-run -a -s "-screen 0 1280x1024x24"
+else
+  echo "skip the window sessions: no xvfb-run"
+fi
+
+# Bad scripts: the file and the line named, exit 1.
+printf 'orbit 10\n' >"$TMP/bad1.txt"
+fails "bad1.txt: line 1 (orbit): usage: orbit YAW PITCH" -- "$LUCENT" view "$SPHERE" --script "$TMP/bad1.txt" --headless --no-cache
+printf '# fine\nset taps=16\n' >"$TMP/bad2.txt"
+fails "bad2.txt: line 2 (set): " -- "$LUCENT" view "$SPHERE" --script "$TMP/bad2.txt" --headless --no-cache
+printf 'dance\n' >"$TMP/bad3.txt"
+fails "line 1 (dance): unknown action 'dance'" -- "$LUCENT" view "$SPHERE" --script "$TMP/bad3.txt" --headless --no-cache
+printf 'method phong\n' >"$TMP/bad4.txt"
+fails "unknown method 'phong'" -- "$LUCENT" view "$SPHERE" --script "$TMP/bad4.txt" --headless --no-cache
+printf 'load-reference %s/none.exr\n' "$TMP" >"$TMP/bad5.txt"
+fails "none.exr" -- "$LUCENT" view "$SPHERE" --script "$TMP/bad5.txt" --headless --no-cache
+fails "nofile.txt: cannot open" -- "$LUCENT" view "$SPHERE" --script "$TMP/nofile.txt" --headless --no-cache
+printf 'save-scene %s/nodir/x.json\n' "$TMP" >"$TMP/bad6.txt"
+fails "nodir/x.json" -- "$LUCENT" view "$SPHERE" --script "$TMP/bad6.txt" --headless --no-cache
+check "a failed save leaves nothing" -- test ! -e "$TMP/nodir/x.json"
+
+echo "$passed passed, $failed failed"
+[ "$failed" = 0 ]

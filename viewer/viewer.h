@@ -1,0 +1,163 @@
+/* `lucent view`: the interactive viewer for tuning translucent materials live (docs/view.md). A
+ * GLFW window with a Dear ImGui panel (ui.h) over the renderer of lucent/render.h, on the public API
+ * only. Or headless: a script of UI actions (script.c) drives the same state, for tests and
+ * benchmarks.
+ *
+ * Files: app.c (the window, the frame, input, layout, hot reload), state.c (camera, lights,
+ * materials, the background bakes), panel.c (the panel built from the settings table), script.c,
+ * output.c (saved scenes, screenshots, taps, the reference and its error). */
+#ifndef LUCENT_VIEWER_VIEWER_H
+#define LUCENT_VIEWER_VIEWER_H
+
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdbool.h>
+#include <time.h>
+
+#include "lucent/lucent.h"
+
+/* What `lucent view` was asked (tools/cmd_view.c). */
+typedef struct viewer_options {
+    const char *scene;
+    const char *const *sets; /* --set overrides */
+    int set_count;
+    const char *script;    /* --script FILE: play it and quit */
+    const char *cache_dir; /* NULL: none */
+    bool headless;         /* no window (EGL surfaceless); the script only */
+    int width, height;     /* the window (0: the scene's image plus the panel) */
+    lucent_pool *pool;
+    bool quiet;
+} viewer_options;
+
+/* Runs the viewer; returns LUCENT_OK or an error (message set). */
+lucent_status viewer_run(const viewer_options *opt);
+
+/* ---- internal ---- */
+
+enum { VIEWER_MAX_MATERIALS = 8, VIEWER_PATH = 1024 };
+
+typedef enum viewer_layout { VIEWER_SINGLE = 0, VIEWER_SPLIT, VIEWER_SIDE } viewer_layout;
+typedef enum viewer_show { VIEWER_SHOW_IMAGE = 0, VIEWER_SHOW_ERROR, VIEWER_SHOW_REFERENCE } viewer_show;
+
+/* A bake on a thread of its own: the parts the settings need, for every distinct material, started
+ * from copies of the parts already baked so that only what changed is rebuilt. */
+typedef struct viewer_job {
+    pthread_t thread;
+    bool running;     /* started and not yet joined */
+    atomic_bool done; /* the thread finished */
+    atomic_int step;  /* parts done */
+    int steps;        /* parts to do */
+    atomic_int at;    /* the material being baked */
+    atomic_uint part; /* the part being baked (LUCENT_BAKE_*) */
+    double started;   /* lucent_clock_seconds */
+    int count;
+    lucent_material material[VIEWER_MAX_MATERIALS];
+    lucent_baked baked[VIEWER_MAX_MATERIALS];
+    lucent_render_settings settings;
+    lucent_render_method method_b;
+    lucent_material *objects; /* the objects' materials the job is for */
+    unsigned what;
+    lucent_cache *cache;
+    lucent_pool *pool;
+    lucent_status status;
+    char error[1024];
+} viewer_job;
+
+typedef struct viewer {
+    viewer_options opt;
+    lucent_scene *scene;
+    lucent_camera home;        /* the scene file's camera (reset) */
+    lucent_light *home_lights; /* the scene file's lights */
+    lucent_gl_context *gl;
+    lucent_renderer *r;
+    void *window; /* GLFWwindow *, NULL when headless */
+    bool ui;      /* the panel is drawn */
+    int win_w, win_h;
+    int panel_w;
+
+    /* What the UI asks for and what the renderer draws: they differ while a bake runs. */
+    lucent_render_settings wanted, applied;
+    lucent_render_method method_b, applied_b;
+    lucent_material *wanted_material; /* per object */
+    bool ready;                       /* the first bake is done */
+    viewer_layout layout;
+    double split; /* where A ends, as a fraction of the view's width */
+    int object, light;
+
+    /* The renderer's bakes as the viewer knows them (what the next job starts from). */
+    int baked_count;
+    lucent_material baked_material[VIEWER_MAX_MATERIALS];
+    lucent_baked baked[VIEWER_MAX_MATERIALS];
+    viewer_job job;
+    lucent_cache *cache;
+    lucent_pool *job_pool;
+
+    /* The last redraw. */
+    lucent_frame_times times_a, times_b;
+    double redraw_ms, fps, last_frame;
+    int frame_w, frame_h; /* the size of A's frame */
+    unsigned long gen;    /* counts the changes of what a frame shows */
+
+    /* The reference (lucent trace's EXR) and the error of method A against it. */
+    lucent_image *reference;
+    char reference_path[VIEWER_PATH];
+    bool match_reference; /* render A at the reference's size */
+    lucent_image *error_map;
+    double rel_rms;
+    unsigned long error_gen;
+    viewer_show show;
+    unsigned show_tex;
+    unsigned long show_gen;
+
+    /* The scene file on disk (hot reload). */
+    struct timespec mtime;
+    double next_check;
+    bool hot_reload;
+
+    char status[1024];
+    bool status_error;
+    char save_path[VIEWER_PATH], shot_path[VIEWER_PATH], ref_input[VIEWER_PATH], taps_path[VIEWER_PATH];
+    int taps_format;
+    char set_form[8192]; /* the last saved scene as --set options */
+    bool quit;
+} viewer;
+
+/* state.c */
+lucent_status viewer_scene_open(viewer *v); /* loads opt.scene, (re)creates the renderer */
+void viewer_scene_close(viewer *v);
+void viewer_orbit(viewer *v, double yaw_deg, double pitch_deg);
+void viewer_pan(viewer *v, double dx_px, double dy_px); /* pixels of the view */
+void viewer_zoom(viewer *v, double factor);
+void viewer_reset_camera(viewer *v);
+void viewer_light_rotate(viewer *v, int light, double yaw_deg, double pitch_deg);
+lucent_status viewer_set(viewer *v, const char *key, const char *value); /* a setting of the table */
+lucent_status viewer_method(viewer *v, const char *name, bool b);
+lucent_status viewer_material_preset(viewer *v, int object, const char *name);
+void viewer_material_edited(viewer *v, int object); /* wanted_material[object] changed */
+void viewer_step(viewer *v);                        /* starts, polls and applies the bakes */
+void viewer_settle(viewer *v);                      /* waits until the renderer draws what is wanted */
+bool viewer_baking(const viewer *v, float *fraction, char *label, size_t size);
+lucent_render_settings viewer_frame_settings(const viewer *v, bool b, int width, int height);
+void viewer_status(viewer *v, bool error, const char *fmt, ...) LUCENT_PRINTF(3, 4);
+
+/* app.c */
+lucent_status viewer_redraw(viewer *v); /* one frame: render, present, the UI, swap */
+lucent_status viewer_resize(viewer *v, int width, int height);
+void viewer_view_rect(const viewer *v, int rect[4]);
+
+/* panel.c */
+void viewer_panel(viewer *v);
+
+/* output.c */
+lucent_status viewer_save_scene(viewer *v, const char *path);
+lucent_status viewer_screenshot(viewer *v, const char *path);
+lucent_status viewer_window_shot(viewer *v, const char *path);
+lucent_status viewer_export_taps(viewer *v, const char *path, const char *format);
+lucent_status viewer_load_reference(viewer *v, const char *path);
+void viewer_drop_reference(viewer *v);
+lucent_status viewer_update_error(viewer *v); /* the error map of A against the reference */
+
+/* script.c */
+lucent_status viewer_script_run(viewer *v, const char *path);
+
+#endif
