@@ -28,6 +28,8 @@ static const char k_usage[] =
     "  cdrf+translucency    the CDRF plus curvature-modulated transmission (the CDRF blog)\n"
     "  ssss[:MODEL[RANK]]   Jimenez's screen-space separable SSS with a kernel of `lucent kernel`\n"
     "                       (ssss:preint, ssss:svd3, ssss:jimenez, ...)\n"
+    "  points[:VARIANT]     surfels: splatting and splat-based diffusion (Kim et al.; docs/points.md);\n"
+    "                       points:sog4, points:deon (d'Eon's skin table), points:brdf, points:disks\n"
     "\n"
     "options:\n"
     "  --method M          the method (same as --set render.method=M)\n"

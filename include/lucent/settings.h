@@ -9,6 +9,7 @@
  *   ssss          the screen-space blur and its kernel (src/gl/methods/ssss.c)
  *   translucency  light through thin parts (src/gl/methods/translucency.c)
  *   cdrf          the curvature-dependent reflectance (src/gl/methods/cdrf.c)
+ *   points        surfels, splatting and splat-based diffusion (src/gl/methods/points.c)
  *   trace         the path tracer (src/trace/settings.c)
  * In scene files every setting is a member of the "render" object under its key ("render.taps");
  * keys are unique across groups. `lucent render --settings` lists the table. */
@@ -34,6 +35,7 @@ typedef enum lucent_render_method {
     LUCENT_METHOD_CDRF,              /* Kubo's curvature-dependent reflectance */
     LUCENT_METHOD_CDRF_TRANSLUCENCY, /* the CDRF with depth-based transmission (the blog) */
     LUCENT_METHOD_SSSS,              /* screen-space separable subsurface scattering */
+    LUCENT_METHOD_POINTS,            /* surfels: splatting and splat-based diffusion (Kim et al.) */
     LUCENT_METHOD_COUNT
 } lucent_render_method;
 
@@ -52,6 +54,17 @@ typedef enum lucent_sigma0_source {
     LUCENT_SIGMA0_FIT = 0, /* fitted to Monte Carlo spheres of the material (cached per material) */
     LUCENT_SIGMA0_DIFFUSE  /* sigma0 = d_c^2 from the diffuse colour (Kubo Eq. 6) */
 } lucent_sigma0_source;
+
+typedef enum lucent_points_style {
+    LUCENT_POINTS_DIFFUSION = 0, /* Kim et al.: splat-based diffusion with a sum of Gaussians */
+    LUCENT_POINTS_BRDF,          /* high-quality splatting (Botsch et al. 2005) with a BRDF, no diffusion */
+    LUCENT_POINTS_DISKS          /* flat opaque disks, no blending (Kim et al.'s Figure 2, left) */
+} lucent_points_style;
+
+typedef enum lucent_sog_source {
+    LUCENT_SOG_FIT = 0, /* Lucent's sum-of-Gaussians fit of the material's profile (lucent/bake.h) */
+    LUCENT_SOG_DEON     /* d'Eon & Luebke 2007's six-Gaussian skin table */
+} lucent_sog_source;
 
 /* ---- The groups (defaults and ranges: the table, `lucent render --settings`, docs/scenes.md) -- */
 
@@ -90,6 +103,22 @@ typedef struct lucent_cdrf_settings {
     int curvature_smooth;        /* n-ring smoothing of the per-vertex curvature */
 } lucent_cdrf_settings;
 
+typedef struct lucent_points_settings {
+    lucent_points_style style;
+    double radius_scale;  /* times every surfel's radius */
+    double depth_epsilon; /* visibility splats pushed back along the view ray, in splat radii */
+    double cutoff;        /* a splat's radius in standard deviations of its Gaussian */
+    int sog;              /* Gaussians of the fit */
+    lucent_sog_source sog_source;
+    double sog_cutoff;    /* a diffusion splat's support in standard deviations */
+    double decimation;    /* spacing ratio of consecutive surfel levels */
+    double level_spacing; /* a Gaussian is splatted from the coarsest level whose spacing is at most
+                             this times its standard deviation */
+    int neighbours;       /* k of the radii from the k nearest */
+    double filter_px;     /* radius of the screen-space prefilter, pixels */
+    int impulse;          /* >= 0: only that surfel of each object is lit (the impulse response) */
+} lucent_points_settings;
+
 typedef struct lucent_trace_settings {
     int spp; /* samples per pixel */
     uint64_t seed;
@@ -103,6 +132,7 @@ typedef struct lucent_render_settings {
     lucent_ssss_settings ssss;
     lucent_translucency_settings translucency;
     lucent_cdrf_settings cdrf;
+    lucent_points_settings points;
     lucent_trace_settings trace;
 } lucent_render_settings;
 

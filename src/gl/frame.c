@@ -12,13 +12,14 @@
 /* ---- the methods: the table indexed by lucent_render_method, and the names and variants of
  * lucent/settings.h read from it ---- */
 
-extern const gl_method gl_method_lambert, gl_method_cdrf, gl_method_cdrf_translucency, gl_method_ssss;
+extern const gl_method gl_method_lambert, gl_method_cdrf, gl_method_cdrf_translucency, gl_method_ssss, gl_method_points;
 
 const gl_method *const gl_methods[LUCENT_METHOD_COUNT] = {
     [LUCENT_METHOD_LAMBERT] = &gl_method_lambert,
     [LUCENT_METHOD_CDRF] = &gl_method_cdrf,
     [LUCENT_METHOD_CDRF_TRANSLUCENCY] = &gl_method_cdrf_translucency,
     [LUCENT_METHOD_SSSS] = &gl_method_ssss,
+    [LUCENT_METHOD_POINTS] = &gl_method_points,
 };
 
 const char *lucent_render_method_name(lucent_render_method method)

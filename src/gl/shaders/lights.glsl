@@ -1,6 +1,9 @@
 // Lights, shadow maps, shadow-map thickness and the specular lobe. Needs common.glsl.
 layout(binding = 1) uniform sampler2DArrayShadow u_shadow_cmp; // depth compare (PCF)
 layout(binding = 2) uniform sampler2DArray u_shadow_depth;     // the same depths, read raw
+layout(binding = 4) uniform sampler2D u_transmit;              // T(s) per channel; a row per material
+uniform float u_transmit_range; // mm: thickness where the table ends
+uniform float u_transmit_v;     // the material's row, as a texture coordinate
 
 // The direction toward light i from p and the irradiance it gives a surface facing it
 // (directional: colour x intensity; point: intensity / d^2).
@@ -61,6 +64,15 @@ float shadow_thickness(int i, vec3 p)
     if (u_light_vec[i].w == 0.0) return dz;
     float z = light_depth_mm(i, clamp(c.z, 0.0, 1.0)); // perspective: along the ray, not the axis
     return dz * length(p - u_light_vec[i].xyz) / max(z, 1e-6);
+}
+
+// The transmittance through thickness s (table samples on the end points).
+vec3 transmittance(float s)
+{
+    if (s < 0.0) return vec3(0.0);
+    float size = float(textureSize(u_transmit, 0).x);
+    float u = (0.5 + clamp(s / u_transmit_range, 0.0, 1.0) * (size - 1.0)) / size;
+    return texture(u_transmit, vec2(u, u_transmit_v)).rgb;
 }
 
 // Kelemen & Szirmay-Kalos specular (d'Eon & Luebke 2007, GPU Gems 3 ch. 14): Beckmann D with alpha =

@@ -11,7 +11,6 @@ in float v_curvature;
 in vec2 v_uv;
 
 layout(binding = 0) uniform sampler2D u_albedo_map;
-layout(binding = 4) uniform sampler2D u_transmit; // T(s) per channel; a row per material
 
 uniform vec3 u_albedo;
 uniform vec3 u_sigma0;          // mm (cdrf)
@@ -22,8 +21,6 @@ uniform float u_f0;
 uniform float u_strength;       // ssss: the blur's share here (object's sss_strength x settings)
 uniform float u_material;       // material index (kernel and transmittance row)
 uniform float u_object;
-uniform float u_transmit_range; // mm: thickness where the table ends
-uniform float u_transmit_v;     // the material's row, as a texture coordinate
 uniform int u_transmit_albedo;  // 1: T is the profile's T(s) / T(0), times the albedo (Jimenez);
                                 // 0: T is the slab's own transmittance
 uniform float u_shadow_offset;  // normal offset, in shadow-map texels
@@ -43,15 +40,6 @@ layout(location = 5) out vec4 o_aov_light;    // light 0: visibility, 0, thickne
 float method_visibility(int i, vec3 n, vec3 l, float ndl, float offset);
 vec3 method_irradiance(vec3 e, float ndl, vec3 sigma0);
 vec3 method_transmission(vec3 sigma0);
-
-// The transmittance through thickness s (table samples on the end points).
-vec3 transmittance(float s)
-{
-    if (s < 0.0) return vec3(0.0);
-    float size = float(textureSize(u_transmit, 0).x);
-    float u = (0.5 + clamp(s / u_transmit_range, 0.0, 1.0) * (size - 1.0)) / size;
-    return texture(u_transmit, vec2(u, u_transmit_v)).rgb;
-}
 
 // Light reaching the back of a thin part and leaving here: E max(-n.l, 0) T(s) (Jimenez 2010; T the
 // Monte Carlo slab transmittance or the material's own profile, docs/render.md), times the method's
