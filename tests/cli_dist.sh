@@ -30,6 +30,15 @@ expect_fail 1 "merge: part 2 of 4 given twice" -- "$LUCENT" merge "$P.part-1-of-
 expect_fail 1 "$MCI3: header: not a Lucent part file" -- "$LUCENT" merge "$MCI3"
 head -c 300 "$P.part-1-of-4" >"$D/bad/short.part"
 expect_fail 1 "$D/bad/short.part: tally 1:" -- "$LUCENT" merge "$D/bad/short.part"
+# damaged headers and tails (the layout: docs/scale.md, src/base/dist.c)
+cp "$P.part-1-of-4" "$D/bad/tail.part" && printf 'x' >>"$D/bad/tail.part"
+expect_fail 1 "$D/bad/tail.part: 1 bytes after the last tally" -- "$LUCENT" merge "$D/bad/tail.part"
+cp "$P.part-1-of-4" "$D/bad/k.part" && printf '\005' | dd of="$D/bad/k.part" bs=1 seek=20 conv=notrunc 2>/dev/null
+expect_fail 1 "$D/bad/k.part: header: part 5 of 4" -- "$LUCENT" merge "$D/bad/k.part"
+cp "$P.part-1-of-4" "$D/bad/order.part" && printf '\001\002\003\004' | dd of="$D/bad/order.part" bs=1 seek=16 \
+  conv=notrunc 2>/dev/null
+expect_fail 1 "$D/bad/order.part: header: written on a machine of another byte order" -- \
+  "$LUCENT" merge "$D/bad/order.part"
 expect_ok -- "$LUCENT" mcml "$MCI3" --out-dir "$D/parts" --part 4/4 --seed 9 --quiet
 expect_fail 1 "are parts of different commands" -- "$LUCENT" merge "$P.part-1-of-4" "$P.part-2-of-4" \
   "$P.part-3-of-4" "$P.part-4-of-4" -- --out-dir "$D/bad"

@@ -41,6 +41,16 @@ expect_ok -- "${MPIRUN[@]}" -np 2 "$LUCENT" trace "$SC" --spp 6 --adaptive --out
 expect_true "trace --adaptive: 2 ranks (sharing the pilot after every pass) give the plain run's EXR" -- \
   cmp "$M/plain/a.exr" "$M/np2/a.exr"
 
+# --target-error: every rank measures the whole image's error (exactly), so the stop comes after the
+# same pass as in one process
+expect_ok -- "$LUCENT" trace "$SC" --spp 40 --target-error 0.2 --out "$M/plain/e.png" --exr "$M/plain/e.exr" --quiet
+expect_ok -- "${MPIRUN[@]}" -np 3 "$LUCENT" trace "$SC" --spp 40 --target-error 0.2 --out "$M/np3/e.png" \
+  --exr "$M/np3/e.exr" --threads 1 --quiet
+expect_true "trace --target-error: 3 ranks stop after the plain run's pass, same EXR" -- \
+  cmp "$M/plain/e.exr" "$M/np3/e.exr"
+expect_true "... which is before --spp 40 (the target was met)" -- \
+  awk '/"spp":/ { gsub(/[^0-9]/, "", $2); exit !($2 >= 16 && $2 < 40) }' "$M/np3/e.json"
+
 # ranks inside parts: parts 1/2 and 2/2 on 2 ranks each, merged, give the plain run
 for k in 1 2; do
   expect_ok -- "${MPIRUN[@]}" -np 2 "$LUCENT" mcml "$MCI3" --out-dir "$M/np2" --part "$k/2" --threads 1 --quiet
