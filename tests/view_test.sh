@@ -128,6 +128,23 @@ else
   echo "skip the window sessions: no xvfb-run"
 fi
 
+# A bake runs on a thread of its own: frames keep coming while it runs (the marble's slab
+# transmittance, a Monte Carlo run of seconds without the cache, against frames of milliseconds).
+printf 'async material marble\nframes 1\nquit\n' >"$TMP/async.txt"
+check "frames are drawn while a new material bakes" -- eval \
+  '"$LUCENT" view "$SPHERE" --script "$TMP/async.txt" --headless --no-cache | grep -q "^frame 1: redraw .* while baking"'
+
+# Hot reload: the scene file changes on disk, the viewer reads it again (here: another method).
+cp "$SPHERE" "$TMP/watched.json"
+printf 'print\nwait-reload 60\nprint\nquit\n' >"$TMP/reload.txt"
+"$LUCENT" view "$TMP/watched.json" --script "$TMP/reload.txt" --headless --no-cache >"$TMP/reload.out" 2>&1 &
+pid=$!
+for _ in $(seq 600); do grep -q "^view:" "$TMP/reload.out" && break; sleep 0.1; done
+sed 's/"method": "ssss"/"method": "lambert"/' "$SPHERE" >"$TMP/watched.tmp" && mv "$TMP/watched.tmp" "$TMP/watched.json"
+wait $pid
+check "a changed scene file is read again" -- eval \
+  'grep -q "^view: ssss" "$TMP/reload.out" && grep -q "^reloaded" "$TMP/reload.out" && tail -1 "$TMP/reload.out" | grep -q "^view: lambert"'
+
 # Bad scripts: the file and the line named, exit 1.
 printf 'orbit 10\n' >"$TMP/bad1.txt"
 fails "bad1.txt: line 1 (orbit): usage: orbit YAW PITCH" -- "$LUCENT" view "$SPHERE" --script "$TMP/bad1.txt" --headless --no-cache

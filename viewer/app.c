@@ -213,12 +213,14 @@ static void hot_reload(viewer *v)
     }
     bool same_home = !memcmp(&home, &v->home, sizeof home);
     if (same_home) v->scene->camera = cam; /* the file's camera did not change: keep the user's */
+    v->reloads++;
     viewer_status(v, false, "reloaded %s", v->opt.scene);
 }
 
 lucent_status viewer_redraw(viewer *v)
 {
     double t0 = lucent_clock_ms();
+    if (!v->r) return lucent_error(LUCENT_ERR_GL, "%s: no renderer for the reloaded scene", v->opt.scene);
     if (v->window) glfwGetFramebufferSize(v->window, &v->win_w, &v->win_h);
     if (v->ui) {
         ui_frame_begin();

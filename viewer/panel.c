@@ -261,23 +261,15 @@ static void material(viewer *v)
     bool edited = false;
     double sp[3];
     for (int c = 0; c < 3; c++) sp[c] = m->sigma_s[c] * (1 - m->g[c]);
-    static const char *const ch[3] = {"R", "G", "B"};
-    for (int c = 0; c < 3; c++) {
-        char label[32];
-        ui_push_id(c);
-        snprintf(label, sizeof label, "sigma_a %s", ch[c]);
-        edited |= ui_drag_double(label, &m->sigma_a[c], 1e-5, 100, true, "%.4g /mm");
-        ui_tooltip("absorption coefficient, mm^-1");
-        snprintf(label, sizeof label, "sigma_s' %s", ch[c]);
-        if (ui_drag_double(label, &sp[c], 1e-4, 1000, true, "%.4g /mm"))
-            m->sigma_s[c] = sp[c] / (1 - m->g[c]), edited = true;
-        ui_tooltip("reduced scattering coefficient sigma_s (1 - g), mm^-1");
-        snprintf(label, sizeof label, "g %s", ch[c]);
-        if (ui_drag_double(label, &m->g[c], -0.99, 0.99, false, "%.3f"))
-            m->sigma_s[c] = sp[c] / (1 - m->g[c]), edited = true;
-        ui_tooltip("Henyey-Greenstein mean cosine (sigma_s' is kept)");
-        ui_pop_id();
-    }
+    double g[3] = {m->g[0], m->g[1], m->g[2]};
+    edited |= ui_drag_double3("sigma_a", m->sigma_a, 1e-5, 100, true, "%.3g");
+    ui_tooltip("absorption coefficient per channel (R, G, B), mm^-1");
+    bool scatter = ui_drag_double3("sigma_s'", sp, 1e-4, 1000, true, "%.3g");
+    ui_tooltip("reduced scattering coefficient sigma_s (1 - g) per channel, mm^-1");
+    if (ui_drag_double3("g", g, -0.99, 0.99, false, "%.2f")) memcpy(m->g, g, sizeof g), scatter = true;
+    ui_tooltip("Henyey-Greenstein mean cosine per channel (sigma_s' is kept)");
+    for (int c = 0; scatter && c < 3; c++) m->sigma_s[c] = sp[c] / (1 - m->g[c]);
+    edited |= scatter;
     edited |= ui_drag_double("eta", &m->eta, LUCENT_MATERIAL_ETA_MIN, LUCENT_MATERIAL_ETA_MAX, false, "%.3f");
     ui_tooltip("relative index of refraction");
     if (edited) viewer_material_edited(v, v->object);

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "viewer.h"
 
@@ -108,6 +109,40 @@ static lucent_status bench(viewer *v, char **w, int n)
     return st;
 }
 
+/* Redraws without waiting for the bakes: what the window does while one runs. */
+static lucent_status frames(viewer *v, char **w, int n)
+{
+    double count;
+    lucent_status st = need(n, 2, 2, "frames N");
+    if (st == LUCENT_OK) st = numbers(w + 1, 1, &count, "frames 5");
+    for (int i = 0; st == LUCENT_OK && i < (int)count; i++) {
+        float f;
+        char label[256] = "";
+        bool baking = viewer_baking(v, &f, label, sizeof label);
+        st = viewer_redraw(v);
+        printf("frame %d: redraw %.1f ms, %s%s\n", i + 1, v->redraw_ms, baking ? "while " : "no bake running",
+               baking ? label : "");
+    }
+    return st;
+}
+
+/* Redraws until the scene file changed and was read again (the file is watched twice a second). */
+static lucent_status wait_reload(viewer *v, char **w, int n)
+{
+    double seconds;
+    lucent_status st = need(n, 2, 2, "wait-reload SECONDS");
+    if (st == LUCENT_OK) st = numbers(w + 1, 1, &seconds, "wait-reload 10");
+    int before = v->reloads;
+    double end = lucent_clock_seconds() + seconds;
+    while (st == LUCENT_OK && v->reloads == before && lucent_clock_seconds() < end) {
+        st = viewer_redraw(v);
+        nanosleep(&(struct timespec){0, 20000000}, NULL);
+    }
+    if (st == LUCENT_OK && v->reloads == before)
+        st = lucent_error(LUCENT_ERR_IO, "wait-reload: %s did not change in %g s", v->opt.scene, seconds);
+    return st;
+}
+
 static lucent_status action(viewer *v, char **w, int n)
 {
     const char *a = w[0];
@@ -181,14 +216,17 @@ static lucent_status action(viewer *v, char **w, int n)
         printf("view: %s, frame %dx%d, camera %.17g %.17g %.17g, rel_rms %.6g\n",
                lucent_render_method_name(v->applied.view.method), v->frame_w, v->frame_h, v->scene->camera.position[0],
                v->scene->camera.position[1], v->scene->camera.position[2], v->rel_rms);
+        fflush(stdout); /* a watching process reads it now */
         return need(n, 1, 1, "print");
     }
     if (!strcmp(a, "bench")) return bench(v, w, n);
+    if (!strcmp(a, "frames")) return frames(v, w, n);
+    if (!strcmp(a, "wait-reload")) return wait_reload(v, w, n);
     if (!strcmp(a, "quit")) return v->quit = true, need(n, 1, 1, "quit");
     return lucent_error(LUCENT_ERR_PARSE,
                         "unknown action '%s' (orbit, pan, zoom, reset, light, set, method, method-b, layout, object, "
                         "material, load-reference, show, save-scene, screenshot, window-shot, export-taps, resize, "
-                        "print, bench, quit)",
+                        "print, bench, frames, wait-reload, quit)",
                         a);
 }
 
@@ -210,8 +248,11 @@ lucent_status viewer_script_run(viewer *v, const char *path)
         for (char *t = strtok_r(line, " \t\r\n", &save); t && n < MAX_WORDS; t = strtok_r(NULL, " \t\r\n", &save))
             words[n++] = t;
         if (n == 0 || words[0][0] == '#') continue;
-        st = action(v, words, n);
-        if (st == LUCENT_OK) {
+        bool async = !strcmp(words[0], "async") && n > 1; /* do not wait for the bakes it starts */
+        st = action(v, words + async, n - async);
+        if (async && st == LUCENT_OK) viewer_step(v);
+        bool no_wait = async || !strcmp(words[0], "frames") || !strcmp(words[0], "wait-reload");
+        if (st == LUCENT_OK && !no_wait) {
             viewer_settle(v);
             st = viewer_redraw(v);
         }

@@ -18,6 +18,7 @@ void viewer_status(viewer *v, bool error, const char *fmt, ...)
     va_end(ap);
     v->status_error = error;
     if (!v->opt.quiet || error) fprintf(error ? stderr : stdout, "%s%s\n", error ? "lucent: " : "", v->status);
+    fflush(stdout);
 }
 
 /* ---- small vector helpers (directions only) ---- */

@@ -125,6 +125,13 @@ bool ui_drag_double(const char *label, double *v, double lo, double hi, bool log
     return ImGui::DragScalar(label, ImGuiDataType_Double, v, (float)speed, &lo, &hi, format ? format : "%.4g", flags);
 }
 
+bool ui_drag_double3(const char *label, double v[3], double lo, double hi, bool logarithmic, const char *format)
+{
+    ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp | (logarithmic ? ImGuiSliderFlags_Logarithmic : 0);
+    float speed = logarithmic ? 0.01f : (float)((hi - lo) / 500.0);
+    return ImGui::DragScalarN(label, ImGuiDataType_Double, v, 3, speed, &lo, &hi, format ? format : "%.4g", flags);
+}
+
 bool ui_drag_int(const char *label, int *v, int lo, int hi)
 {
     return ImGui::DragInt(label, v, hi - lo > 200 ? 1.0f : 0.2f, lo, hi, "%d", ImGuiSliderFlags_AlwaysClamp);

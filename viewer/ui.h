@@ -46,6 +46,7 @@ bool ui_button(const char *label);
 bool ui_checkbox(const char *label, bool *v);
 bool ui_radio(const char *label, int *v, int value);
 bool ui_drag_double(const char *label, double *v, double lo, double hi, bool logarithmic, const char *format);
+bool ui_drag_double3(const char *label, double v[3], double lo, double hi, bool logarithmic, const char *format);
 bool ui_drag_int(const char *label, int *v, int lo, int hi);
 /* names(user, i) gives the i-th name, NULL past the last. */
 bool ui_combo(const char *label, int *current, const char *(*names)(void *user, int i), void *user);

@@ -113,6 +113,7 @@ typedef struct viewer {
     struct timespec mtime;
     double next_check;
     bool hot_reload;
+    int reloads; /* scene files reloaded */
 
     char status[1024];
     bool status_error;
