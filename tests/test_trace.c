@@ -335,6 +335,85 @@ TEST(same_seed_same_image_on_one_and_two_threads)
     lucent_scene_destroy(sc);
 }
 
+/* ---- distance-bounded flights and next-event roulette at deep vertices ---- */
+
+/* A dense, nearly non-absorbing sphere (16 to 20 mean free paths in radius, albedo 0.997, like marble's
+ * scale ratio) with a rough boundary, lit by a sun from the side and a dim environment. */
+static lucent_scene *dense_scene(int size)
+{
+    return sphere_scene("{\"units\": \"mm^-1\", \"sigma_a\": [0.05, 0.08, 0.1], \"sigma_s\": [20, 18, 16], "
+                        "\"g\": 0, \"eta\": 1.5}",
+                        "{\"type\": \"directional\", \"direction\": [-1, -0.2, -0.3], \"intensity\": 2},"
+                        " {\"type\": \"environment\", \"intensity\": 0.1}",
+                        size, ", \"roughness\": 0.3");
+}
+
+/* A flight that ends inside a sphere holding no surface cannot have crossed one: skipping its ray
+ * query must change no decision, so (with next-event estimation at every vertex) the image is the
+ * same bit for bit, with fewer ray queries. */
+TEST(distance_bounded_flights_change_nothing)
+{
+    lucent_scene *sc = dense_scene(16);
+    lucent_pool *pool = lucent_pool_create(2);
+    lucent_trace_result plain = {0}, bounded = {0};
+    CHECK(sc != NULL);
+    if (!sc) return;
+    CHECK_OK(render(sc, &(lucent_tracer_desc){.plain_flights = true, .nee_every_vertex = true}, 4, 5, pool, &plain));
+    CHECK_OK(render(sc, &(lucent_tracer_desc){.nee_every_vertex = true}, 4, 5, pool, &bounded));
+    printf("  per path: plain %.1f ray queries, bounded %.1f ray and %.2f distance queries, %.0f%% of vertices "
+           "reached without a ray query\n",
+           (double)plain.cost.rays / plain.cost.paths, (double)bounded.cost.rays / bounded.cost.paths,
+           (double)bounded.cost.points / bounded.cost.paths,
+           100.0 * bounded.cost.free_flights / (bounded.cost.scatters + bounded.cost.bounces));
+    CHECK_MSG(same_image(plain.image, bounded.image) && same_image(plain.variance, bounded.variance),
+              "distance-bounded flights changed the image");
+    CHECK(plain.cost.points == 0 && plain.cost.free_flights == 0);
+    CHECK(bounded.cost.free_flights > bounded.cost.scatters / 4 && bounded.cost.rays < plain.cost.rays);
+    CHECK(plain.cost.scatters == bounded.cost.scatters && plain.cost.nee == plain.cost.scatters);
+    lucent_trace_result_free(&plain), lucent_trace_result_free(&bounded);
+    lucent_pool_destroy(pool);
+    lucent_scene_destroy(sc);
+}
+
+/* Russian roulette on the next-event estimate of deep vertices (made with probability P, weighted by
+ * 1 / P) leaves the estimate unbiased: against the plain estimator (every vertex, every flight
+ * queried), independent seeds, the pixels' differences are unit normal in their standard errors
+ * (chi2 per degree of freedom between 0.7 and 1.5) and the pooled difference over the object is
+ * within 4 standard errors of zero. */
+TEST(deep_nee_roulette_is_unbiased)
+{
+    lucent_scene *sc = dense_scene(32);
+    lucent_pool *pool = lucent_pool_create(2);
+    lucent_trace_result a = {0}, b = {0};
+    CHECK(sc != NULL);
+    if (!sc) return;
+    int spp = 96 / SLOW;
+    CHECK_OK(render(sc, &(lucent_tracer_desc){.plain_flights = true, .nee_every_vertex = true}, spp, 7, pool, &a));
+    CHECK_OK(render(sc, NULL, spp, 8, pool, &b));
+    double chi2 = 0, diff = 0, var = 0, sum = 0;
+    int n = 0;
+    for (int p = 0; a.image && b.image && p < a.image->width * a.image->height; p++) {
+        if (a.coverage->data[p] < 1.0f || b.coverage->data[p] < 1.0f) continue;
+        for (int c = 0; c < 3; c++) {
+            double d = (double)a.image->data[3 * p + c] - b.image->data[3 * p + c];
+            double v = (double)a.variance->data[3 * p + c] + b.variance->data[3 * p + c];
+            if (!(v > 0)) continue;
+            chi2 += d * d / v, diff += d, var += v, sum += a.image->data[3 * p + c], n++;
+        }
+    }
+    double pooled_z = var > 0 ? diff / sqrt(var) : 0;
+    printf("  %d pixel channels: chi2/dof %.3f, pooled difference %+.2f%% (z %.2f); next-event estimates at "
+           "%.0f%% of volume vertices\n",
+           n, n ? chi2 / n : 0, sum > 0 ? 100.0 * diff / sum : 0, pooled_z, 100.0 * b.cost.nee / b.cost.scatters);
+    CHECK(n > 600);
+    CHECK_MSG(n && chi2 / n > 0.7 && chi2 / n < 1.5, "chi2/dof %.3f", n ? chi2 / n : 0);
+    CHECK_MSG(fabs(pooled_z) < 4, "pooled z %.2f", pooled_z);
+    CHECK_MSG(b.cost.nee < b.cost.scatters / 2, "the roulette skipped too few deep vertices");
+    lucent_trace_result_free(&a), lucent_trace_result_free(&b);
+    lucent_pool_destroy(pool);
+    lucent_scene_destroy(sc);
+}
+
 /* Mean over the object's pixels and channels of (a - b)^2 / 2: the squared error of one estimate,
  * from two independent ones (E[(a - b)^2] = 2 var). */
 static double squared_error(const lucent_trace_result *a, const lucent_trace_result *b)
@@ -536,4 +615,5 @@ TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_ad
           TEST_ENTRY(agrees_with_the_light_traced_sphere), TEST_ENTRY(same_seed_same_image_on_one_and_two_threads),
           TEST_ENTRY(error_falls_as_one_over_sqrt_spp), TEST_ENTRY(framing_matches_the_camera_projection),
           TEST_ENTRY(refuses_delta_lights_through_smooth_boundaries), TEST_ENTRY(meshes_with_holes_terminate),
-          TEST_ENTRY(bad_input_is_named))
+          TEST_ENTRY(bad_input_is_named), TEST_ENTRY(distance_bounded_flights_change_nothing),
+          TEST_ENTRY(deep_nee_roulette_is_unbiased))

@@ -30,6 +30,10 @@ static const char k_usage[] =
     "  --subsurface-only  drop the light reflected where camera rays first meet a surface\n"
     "  --boundary-nee-only  for comparison: next-event estimation only where the walk meets the\n"
     "                     boundary (Cycles' strategy), not through it from every vertex\n"
+    "  --plain-flights    for comparison: every free flight in a medium asks for the boundary ahead\n"
+    "                     (no distance bound)\n"
+    "  --nee-every-vertex for comparison: next-event estimation from every volume vertex (no Russian\n"
+    "                     roulette at deep ones)\n"
     "  --adaptive         adaptive sampling: each pass gives pixels samples by their relative variance\n"
     "                     (measured by a pilot that is not part of the image: still unbiased); --spp\n"
     "                     then counts passes of about 4 samples per pixel (and one pilot sample)\n"
@@ -47,7 +51,7 @@ typedef struct trace_options {
     const char *sets[MAX_SETS];
     int set_count;
     lucent_trace_desc desc;
-    bool subsurface_only, adaptive, boundary_nee_only;
+    bool subsurface_only, adaptive, boundary_nee_only, plain_flights, nee_every_vertex;
 } trace_options;
 
 static bool parse_seed(const char *v, uint64_t *dest)
@@ -82,6 +86,8 @@ static int parse_option(int argc, char **argv, int *i, trace_options *o)
     bool *flag = strcmp(name, "--subsurface-only") == 0     ? &o->subsurface_only
                  : strcmp(name, "--adaptive") == 0          ? &o->adaptive
                  : strcmp(name, "--boundary-nee-only") == 0 ? &o->boundary_nee_only
+                 : strcmp(name, "--plain-flights") == 0     ? &o->plain_flights
+                 : strcmp(name, "--nee-every-vertex") == 0  ? &o->nee_every_vertex
                                                             : NULL;
     if (flag) {
         *flag = true;
@@ -154,8 +160,11 @@ static char *sidecar_path(const trace_options *o)
 
 static lucent_tracer_desc tracer_options(const trace_options *o)
 {
-    return (lucent_tracer_desc){
-        .subsurface_only = o->subsurface_only, .adaptive = o->adaptive, .boundary_nee_only = o->boundary_nee_only};
+    return (lucent_tracer_desc){.subsurface_only = o->subsurface_only,
+                                .adaptive = o->adaptive,
+                                .boundary_nee_only = o->boundary_nee_only,
+                                .plain_flights = o->plain_flights,
+                                .nee_every_vertex = o->nee_every_vertex};
 }
 
 static lucent_status write_outputs(const trace_options *o, const lucent_scene *sc, const lucent_trace_result *r)
@@ -188,6 +197,14 @@ static void summary(const lucent_trace_result *r)
     if (r->samples != r->spp * (uint64_t)r->image->width * (uint64_t)r->image->height)
         cli_info("trace: adaptive: %.1f samples per pixel on average",
                  (double)r->samples / r->image->width / r->image->height);
+    const lucent_trace_cost *c = &r->cost;
+    double paths = c->paths ? (double)c->paths : 1.0, vertices = (double)(c->scatters + c->bounces);
+    cli_info("trace: per path %.1f scatterings, %.1f surface events, %.1f ray and %.2f distance queries; %.2f ray "
+             "queries per vertex, %.0f%% of flights without one, next-event estimates at %.0f%% of volume vertices",
+             (double)c->scatters / paths, (double)c->bounces / paths, (double)c->rays / paths,
+             (double)c->points / paths, vertices > 0 ? (double)c->rays / vertices : 0.0,
+             vertices > 0 ? 100.0 * (double)c->free_flights / vertices : 0.0,
+             c->scatters ? 100.0 * (double)c->nee / (double)c->scatters : 0.0);
     if (r->truncated || r->escaped || r->nonfinite)
         cli_info("trace: %llu paths truncated by max_bounces/max_scatter, %llu left a mesh through a hole, "
                  "%llu non-finite contributions dropped",

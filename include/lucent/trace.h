@@ -50,6 +50,13 @@ typedef struct lucent_tracer_desc {
      * unbiased. For the per-pixel relative error (dark regions of translucent objects). Default false:
      * one sample per pixel and pass. */
     bool adaptive;
+    /* For comparison only (both unbiased, the defaults are faster in dense media; docs/trace.md):
+     * plain_flights: every free flight inside a medium asks Embree for the boundary ahead, instead of
+     * skipping the query when the flight ends inside a sphere known to hold no surface;
+     * nee_every_vertex: next-event estimation from every volume vertex, instead of playing Russian
+     * roulette with it at vertices deeper than a few mean free paths (weighted by 1 / probability). */
+    bool plain_flights;
+    bool nee_every_vertex;
 } lucent_tracer_desc;
 
 /* Creates a tracer for a loaded scene (which must outlive it): builds the ray-tracing scene from the
@@ -89,6 +96,17 @@ typedef struct lucent_trace_error {
     uint64_t dark_pixels;    /* object pixels with Y == 0 (no relative error) */
 } lucent_trace_error;
 
+/* Where the time goes: totals over the estimate's camera paths (the pilot's included). */
+typedef struct lucent_trace_cost {
+    uint64_t paths;
+    uint64_t scatters;     /* volume scattering vertices */
+    uint64_t bounces;      /* surface events */
+    uint64_t rays;         /* Embree ray queries: intersections and shadow rays */
+    uint64_t points;       /* Embree distance (point) queries */
+    uint64_t free_flights; /* free flights inside a medium that needed no ray query */
+    uint64_t nee;          /* next-event estimates made from volume vertices */
+} lucent_trace_cost;
+
 typedef struct lucent_trace_result {
     lucent_image *image;    /* mean linear HDR RGB radiance, top row first */
     lucent_image *variance; /* RGB variance of that mean (the standard error squared), from the samples */
@@ -102,6 +120,7 @@ typedef struct lucent_trace_result {
     uint64_t truncated; /* paths ended by max_bounces / max_scatter */
     uint64_t escaped;   /* paths that left a medium through a hole in its mesh */
     uint64_t nonfinite; /* contributions dropped because they were not finite (expect 0) */
+    lucent_trace_cost cost;
 } lucent_trace_result;
 
 /* Adds samples to the tracer's estimate and returns the whole estimate so far (new images, freed

@@ -14,10 +14,11 @@ struct tr_geometry {
     RTCDevice device;
     RTCScene scene;
     int count;
-    int *object;     /* geomID -> tracer object index */
-    double **planes; /* geomID -> 4 doubles per face: outward unit normal n and n . v0 */
-    double far;      /* rays reaching further than this from the origin get their distance in double */
-    char error[256]; /* the first error Embree reported */
+    int *object;              /* geomID -> tracer object index */
+    const lucent_mesh **mesh; /* geomID -> its mesh (double positions, for distances) */
+    double **planes;          /* geomID -> 4 doubles per face: outward unit normal n and n . v0 */
+    double far;               /* rays reaching further than this from the origin get their distance in double */
+    char error[256];          /* the first error Embree reported */
 };
 
 static void on_error(void *user, enum RTCError code, const char *text)
@@ -64,6 +65,7 @@ static lucent_status add_mesh(tr_geometry *g, const lucent_mesh *m, int object, 
     rtcReleaseGeometry(geom);
     if (id != (unsigned)g->count) return lucent_error(LUCENT_ERR_INTERNAL, "trace: unexpected Embree geometry id");
     g->object[g->count] = object;
+    g->mesh[g->count] = m;
     g->planes[g->count] = face_planes(m);
     if (!g->planes[g->count]) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory");
     g->count++;
@@ -75,7 +77,8 @@ static lucent_status geometry_start(int count, tr_geometry **dest)
     tr_geometry *g = calloc(1, sizeof *g);
     if (g) g->object = calloc((size_t)count + 1, sizeof *g->object);
     if (g && g->object) g->planes = calloc((size_t)count + 1, sizeof *g->planes);
-    if (!g || !g->planes) {
+    if (g && g->planes) g->mesh = calloc((size_t)count + 1, sizeof *g->mesh);
+    if (!g || !g->mesh) {
         tr_geometry_destroy(g);
         return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory");
     }
@@ -123,12 +126,19 @@ void tr_geometry_destroy(tr_geometry *g)
     if (g->device) rtcReleaseDevice(g->device);
     for (int i = 0; g->planes && i < g->count; i++) free(g->planes[i]);
     free(g->planes);
+    free(g->mesh);
     free(g->object);
     free(g);
 }
 
+/* Queries made by this thread (tr_geometry_queries). */
+static _Thread_local uint64_t t_rays, t_points;
+
+void tr_geometry_queries(uint64_t *rays, uint64_t *points) { *rays = t_rays, *points = t_points; }
+
 bool tr_intersect(const tr_geometry *g, v3 o, v3 d, double tnear, double tfar, tr_hit *hit)
 {
+    t_rays++;
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     struct RTCRayHit rh = {.ray = {.org_x = (float)o.x,
@@ -159,6 +169,7 @@ bool tr_intersect(const tr_geometry *g, v3 o, v3 d, double tnear, double tfar, t
 
 bool tr_occluded(const tr_geometry *g, v3 o, v3 d, double tfar)
 {
+    t_rays++;
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     struct RTCRay ray = {.org_x = (float)o.x,
@@ -171,4 +182,67 @@ bool tr_occluded(const tr_geometry *g, v3 o, v3 d, double tfar)
                          .mask = 0xFFFFFFFFu};
     rtcOccluded1(g->scene, &ctx, &ray);
     return ray.tfar < 0; /* Embree sets tfar to -inf when something is hit */
+}
+
+/* The squared distance from p to triangle abc: the closest point lies in the face, on an edge or at a
+ * vertex, told apart by the signs of the barycentric projections (the Voronoi regions of the
+ * triangle; Ericson, Real-Time Collision Detection, 2005, section 5.1.5). */
+static double triangle_distance2(v3 p, v3 a, v3 b, v3 c)
+{
+    v3 ab = v3_sub(b, a), ac = v3_sub(c, a), ap = v3_sub(p, a);
+    double d1 = v3_dot(ab, ap), d2 = v3_dot(ac, ap);
+    v3 q;
+    if (d1 <= 0 && d2 <= 0) {
+        q = a;
+    } else {
+        v3 bp = v3_sub(p, b), cp = v3_sub(p, c);
+        double d3 = v3_dot(ab, bp), d4 = v3_dot(ac, bp), d5 = v3_dot(ab, cp), d6 = v3_dot(ac, cp);
+        double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+        if (d3 >= 0 && d4 <= d3)
+            q = b;
+        else if (d6 >= 0 && d5 <= d6)
+            q = c;
+        else if (vc <= 0 && d1 >= 0 && d3 <= 0)
+            q = v3_madd(a, ab, d1 / (d1 - d3));
+        else if (vb <= 0 && d2 >= 0 && d6 <= 0)
+            q = v3_madd(a, ac, d2 / (d2 - d6));
+        else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
+            q = v3_madd(b, v3_sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)));
+        else {
+            double den = 1.0 / (va + vb + vc);
+            q = v3_add(a, v3_add(v3_scale(ab, vb * den), v3_scale(ac, vc * den)));
+        }
+    }
+    v3 e = v3_sub(p, q);
+    return v3_dot(e, e);
+}
+
+typedef struct distance_query {
+    const tr_geometry *g;
+    v3 p;
+    double d2; /* the smallest squared distance found so far */
+} distance_query;
+
+static bool on_point_query(struct RTCPointQueryFunctionArguments *args)
+{
+    distance_query *q = args->userPtr;
+    const lucent_mesh *m = q->g->mesh[args->geomID];
+    const uint32_t *f = m->faces + 3 * (size_t)args->primID;
+    double d2 = triangle_distance2(q->p, v3_load(m->positions + 3 * f[0]), v3_load(m->positions + 3 * f[1]),
+                                   v3_load(m->positions + 3 * f[2]));
+    if (!(d2 < q->d2)) return false;
+    q->d2 = d2;
+    args->query->radius = (float)sqrt(d2) * (1.0f + 1e-6f); /* shrink the search (never below the distance) */
+    return true;
+}
+
+double tr_distance_bound(const tr_geometry *g, v3 p, double rmax)
+{
+    t_points++;
+    struct RTCPointQuery query = {.x = (float)p.x, .y = (float)p.y, .z = (float)p.z, .radius = (float)rmax};
+    struct RTCPointQueryContext ctx;
+    rtcInitPointQueryContext(&ctx);
+    distance_query q = {.g = g, .p = p, .d2 = rmax * rmax};
+    rtcPointQuery(g->scene, &query, &ctx, on_point_query, &q);
+    return sqrt(q.d2);
 }

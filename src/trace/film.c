@@ -110,6 +110,7 @@ static void merge_stats(tr_stats *into, const tr_stats *s)
 {
     into->paths += s->paths, into->scatters += s->scatters, into->bounces += s->bounces;
     into->escaped += s->escaped, into->truncated += s->truncated, into->nonfinite += s->nonfinite;
+    into->rays += s->rays, into->points += s->points, into->free_flights += s->free_flights, into->nee += s->nee;
 }
 
 uint64_t tr_film_pass_samples(const tr_film *f)

@@ -108,6 +108,14 @@ lucent_status tr_film_result(const tr_film *f, lucent_trace_result *r)
     r->spp = f->passes, r->seed = f->seed, r->seconds = f->seconds;
     r->samples_per_second = f->seconds > 0 ? (double)f->stats.paths / f->seconds : 0;
     r->truncated = f->stats.truncated, r->escaped = f->stats.escaped, r->nonfinite = f->stats.nonfinite;
+    const tr_stats *st = &f->stats;
+    r->cost = (lucent_trace_cost){.paths = st->paths,
+                                  .scatters = st->scatters,
+                                  .bounces = st->bounces,
+                                  .rays = st->rays,
+                                  .points = st->points,
+                                  .free_flights = st->free_flights,
+                                  .nee = st->nee};
     return LUCENT_OK;
 }
 

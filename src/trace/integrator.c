@@ -82,6 +82,7 @@ static void surface(tr_path *p, const tr_hit *h)
     const tr_boundary *b = &tr->objects[h->object].boundary;
     bool first = p->camera_ray, inside = v3_dot(p->d, n) > 0, drop_reflection = first && tr->desc.subsurface_only;
     p->camera_ray = false;
+    p->safe_r = 0, p->gap = 0; /* a new stretch of medium: no sphere until a ray query says it may be deep */
     if (++p->bounces > tr->render.trace.max_bounces || v3_dot(n, n) == 0) {
         p->stats->truncated += p->bounces > tr->render.trace.max_bounces;
         p->done = true;
@@ -176,6 +177,53 @@ static void scatter_direction(tr_path *p, const tr_object *ob, v3 x, const tr_tr
     p->d = w;
 }
 
+/* ---- free flights bounded by the distance to the boundary ----
+ * In a dense, nearly non-absorbing medium (marble: a mean free path of 0.4 mm, albedo 0.999) a walk
+ * takes hundreds of flights, and each asked Embree for the boundary ahead although most end far from
+ * it. A distance query (tr_distance_bound) gives a sphere around a vertex that holds no surface; a
+ * flight that ends inside it cannot have crossed a surface, so it needs no ray query: the same
+ * decision the query would have made, so the estimate is unchanged (tested bit for bit). Next-event
+ * estimation from a vertex at depth d (a lower bound from the sphere) reaches the boundary through at
+ * least d of medium, so it contributes at most about exp(-sigma_min d) of a shallow vertex's; it is
+ * made with probability P = min(1, exp(1 - sigma_min d)) and weighted by 1 / P (Russian roulette on
+ * an estimator: unbiased, and its weighted value stays below a shallow vertex's). */
+#define SAFE_MFP_MAX 16.0 /* a distance query looks this many mean free paths far at most */
+#define SAFE_MFP_MIN 2.0  /* spheres smaller than this (in mean free paths) are not worth their query */
+
+/* How far the flight from p->o along p->d stays inside the safe sphere (0 when there is none). */
+static double safe_reach(const tr_path *p)
+{
+    if (!(p->safe_r > 0)) return 0;
+    v3 e = v3_sub(p->o, p->safe_c);
+    double b = v3_dot(e, p->d), c = v3_dot(e, e) - p->safe_r * p->safe_r;
+    return c < 0 ? -b + sqrt(b * b - c) : 0.0;
+}
+
+/* A lower bound on the distance from x to any surface (0 outside the safe sphere). */
+static double safe_depth(const tr_path *p, v3 x)
+{
+    return p->safe_r > 0 ? fmax(0.0, p->safe_r - v3_length(v3_sub(x, p->safe_c))) : 0.0;
+}
+
+/* A new safe sphere at volume vertex x once the old one is half used up, where x may lie deep: the
+ * last ray query left at least SAFE_MFP_MIN mean free paths between x and the surface ahead. */
+static void refresh_safe(tr_path *p, const tr_object *ob, v3 x)
+{
+    double mfp = 1.0 / ob->sigma_t_min;
+    if (p->tr->desc.plain_flights || (p->safe_r > 0 && safe_depth(p, x) >= 0.5 * p->safe_r)) return;
+    p->safe_r = 0;
+    if (!(p->gap >= SAFE_MFP_MIN * mfp)) return;
+    double r = tr_distance_bound(p->tr->geometry, x, SAFE_MFP_MAX * mfp) - 4.0 * p->tr->eps;
+    if (r >= SAFE_MFP_MIN * mfp) p->safe_c = x, p->safe_r = r;
+}
+
+/* The probability of making the next-event estimate at volume vertex x (see above). */
+static double nee_probability(const tr_path *p, const tr_object *ob, v3 x)
+{
+    if (p->tr->desc.nee_every_vertex) return 1.0;
+    return fmin(1.0, exp(1.0 - ob->sigma_t_min * safe_depth(p, x)));
+}
+
 static void scatter(tr_path *p, const tr_object *ob, double t, const tr_transform *tf)
 {
     v3 x = v3_madd(p->o, p->d, t);
@@ -184,10 +232,18 @@ static void scatter(tr_path *p, const tr_object *ob, double t, const tr_transfor
     p->analog |= p->tw > TR_TW_MAX;
     p->stats->scatters++;
     p->guide = (tr_guide){.x = x, .d_in = p->d, .object = p->medium};
-    if (ob->boundary.kind == TR_BOUNDARY_ROUGH && !p->tr->desc.boundary_nee_only)
-        tr_nee_through(p, &p->guide);
-    else if (ob->boundary.kind == TR_BOUNDARY_MATCHED)
+    refresh_safe(p, ob, x);
+    if (ob->boundary.kind == TR_BOUNDARY_ROUGH && !p->tr->desc.boundary_nee_only) {
+        double pn = nee_probability(p, ob, x);
+        if (pn >= 1.0 || tr_u(p) < pn) {
+            p->nee_weight = 1.0 / pn;
+            p->stats->nee++;
+            tr_nee_through(p, &p->guide);
+            p->nee_weight = 1.0;
+        }
+    } else if (ob->boundary.kind == TR_BOUNDARY_MATCHED) {
         tr_nee_volume_matched(p, x);
+    }
     if (++p->scatters >= p->tr->render.trace.max_scatter) {
         p->stats->truncated++;
         p->done = true;
@@ -205,11 +261,18 @@ static void step_inside(tr_path *p)
     tr_transform tf;
     tr_path_transform(p, p->medium, p->o, &tf);
     double t = -log(1.0 - tr_u(p)) / tr_walk_sigma(ob, &tf, p->hero, p->d);
+    if (t < safe_reach(p)) { /* ends inside the safe sphere: no surface on the way */
+        p->stats->free_flights++;
+        p->gap = INFINITY;
+        scatter(p, ob, t, &tf);
+        return;
+    }
     tr_hit h;
     if (!tr_intersect(p->tr->geometry, p->o, p->d, 0.0, INFINITY, &h)) {
         p->stats->escaped++; /* left the mesh through a hole */
         p->done = true;
     } else if (t < h.t) {
+        p->gap = h.t - t;
         scatter(p, ob, t, &tf);
     } else {
         attenuate(p, ob, h.t, false, &tf);
@@ -227,7 +290,10 @@ bool tr_trace_path(const lucent_tracer *tr, double px, double py, lucent_rng *rn
                  .eta_scale = 1,
                  .tw = 1,
                  .medium = -1,
+                 .nee_weight = 1,
                  .camera_ray = true};
+    uint64_t rays0, points0, rays1, points1;
+    tr_geometry_queries(&rays0, &points0);
     double o[3], d[3];
     lucent_camera_ray(&tr->scene->camera, tr->render.view.width, tr->render.view.height, px, py, o, d);
     p.o = v3_load(o), p.d = v3_load(d);
@@ -243,6 +309,8 @@ bool tr_trace_path(const lucent_tracer *tr, double px, double py, lucent_rng *rn
         if (!p.camera_ray) covered = true;
     }
     stats->bounces += (uint64_t)p.bounces;
+    tr_geometry_queries(&rays1, &points1);
+    stats->rays += rays1 - rays0, stats->points += points1 - points0;
     for (int c = 0; c < 3; c++) dest[c] = p.L[c];
     return covered;
 }

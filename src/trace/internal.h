@@ -92,12 +92,20 @@ bool tr_intersect(const tr_geometry *g, v3 o, v3 d, double tnear, double tfar, t
 /* Whether any surface lies along o + t d for 0 < t < tfar. */
 bool tr_occluded(const tr_geometry *g, v3 o, v3 d, double tfar);
 
+/* The distance from p to the nearest surface of any object, or rmax when none is nearer (Embree's
+ * point query with an exact point-triangle distance on the meshes' double positions). */
+double tr_distance_bound(const tr_geometry *g, v3 p, double rmax);
+
+/* Ray queries (tr_intersect, tr_occluded) and distance queries this thread has made so far. */
+void tr_geometry_queries(uint64_t *rays, uint64_t *points);
+
 /* ---- the tracer ---- */
 struct tr_object {
     int scene_index; /* objects[i] in the scene file */
     tr_boundary boundary;
     double sigma_t[3], sigma_s[3], g[3];
-    double g_mean; /* the guide's phase component (channel-independent) */
+    double g_mean;      /* the guide's phase component (channel-independent) */
+    double sigma_t_min; /* of the three channels: sets the walk's distance scales (integrator.c) */
 };
 
 /* An object's importance field (field.c): a grid of grad ln(fluence) per channel. */
@@ -182,6 +190,9 @@ void tr_field_lookup(const lucent_tracer *tr, int object, v3 x, tr_transform *de
 /* ---- one camera path (integrator.c) ---- */
 typedef struct tr_stats {
     uint64_t paths, scatters, bounces, escaped, truncated, nonfinite;
+    uint64_t rays, points; /* ray queries (intersections, shadow rays) and distance queries */
+    uint64_t free_flights; /* free flights inside a medium that needed no ray query (within a safe sphere) */
+    uint64_t nee;          /* next-event estimates made from volume vertices */
 } tr_stats;
 
 /* Estimates the radiance through image point (px, py); dest receives RGB. Returns whether the camera

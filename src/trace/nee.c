@@ -70,7 +70,7 @@ void tr_nee_through(tr_path *p, tr_guide *g)
     for (int k = 0; k < 3; k++) {
         double walk = pw[k] * exp(-tr_walk_sigma(ob, &tf, k, w) * h.t);
         den += p->r[k] * (q * c.ls.pdf + walk * (c.ls.pdf + pb * c.Tw[k]));
-        v[k] = p->beta[k] * f[k] * exp(-ob->sigma_t[k] * h.t) * c.f * c.cos * c.ls.le[k] * c.T[k];
+        v[k] = p->nee_weight * p->beta[k] * f[k] * exp(-ob->sigma_t[k] * h.t) * c.f * c.cos * c.ls.le[k] * c.T[k];
     }
     den /= 3.0;
     if (!(den > 0)) return;

@@ -56,6 +56,12 @@ typedef struct tr_path {
     tr_guide guide;
     double rx[3];
     double walk_h;
+    /* a sphere inside the current medium that holds no surface (integrator.c), and what the last ray
+     * query left between the vertex it made and the surface ahead (an upper bound on its depth) */
+    v3 safe_c;
+    double safe_r; /* 0: none */
+    double gap;
+    double nee_weight; /* 1 / the probability with which this vertex's next-event estimate was made */
 } tr_path;
 
 static inline double tr_u(tr_path *p) { return lucent_rng_uniform(p->rng); }

@@ -15,6 +15,22 @@ static cJSON *error_json(const lucent_trace_error *e)
     return j;
 }
 
+static double per(uint64_t a, uint64_t b) { return b ? (double)a / (double)b : 0.0; }
+
+static cJSON *cost_json(const lucent_trace_cost *c)
+{
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddNumberToObject(j, "paths", (double)c->paths);
+    cJSON_AddNumberToObject(j, "scatters_per_path", per(c->scatters, c->paths));
+    cJSON_AddNumberToObject(j, "bounces_per_path", per(c->bounces, c->paths));
+    cJSON_AddNumberToObject(j, "ray_queries_per_path", per(c->rays, c->paths));
+    cJSON_AddNumberToObject(j, "distance_queries_per_path", per(c->points, c->paths));
+    cJSON_AddNumberToObject(j, "ray_queries_per_vertex", per(c->rays, c->scatters + c->bounces));
+    cJSON_AddNumberToObject(j, "free_flights_without_query", per(c->free_flights, c->scatters + c->bounces));
+    cJSON_AddNumberToObject(j, "nee_per_volume_vertex", per(c->nee, c->scatters));
+    return j;
+}
+
 static void add_run(cJSON *root, const lucent_trace_sidecar_desc *d)
 {
     const lucent_trace_result *r = d->result;
@@ -31,11 +47,14 @@ static void add_run(cJSON *root, const lucent_trace_sidecar_desc *d)
     cJSON_AddBoolToObject(root, "subsurface_only", tracer.subsurface_only);
     cJSON_AddBoolToObject(root, "adaptive", tracer.adaptive);
     cJSON_AddBoolToObject(root, "boundary_nee_only", tracer.boundary_nee_only);
+    cJSON_AddBoolToObject(root, "plain_flights", tracer.plain_flights);
+    cJSON_AddBoolToObject(root, "nee_every_vertex", tracer.nee_every_vertex);
     cJSON_AddNumberToObject(root, "samples", (double)r->samples);
     cJSON_AddItemToObject(root, "relative_standard_error", error_json(&r->error));
     cJSON_AddNumberToObject(root, "truncated_paths", (double)r->truncated);
     cJSON_AddNumberToObject(root, "escaped_paths", (double)r->escaped);
     cJSON_AddNumberToObject(root, "nonfinite_contributions", (double)r->nonfinite);
+    cJSON_AddItemToObject(root, "cost", cost_json(&r->cost));
 }
 
 lucent_status lucent_trace_write_sidecar(const char *path, const lucent_trace_sidecar_desc *d)

@@ -62,6 +62,7 @@ static void build_object(const lucent_scene_object *o, int index, tr_object *des
         dest->g[c] = o->material.g[c];
     }
     dest->g_mean = (dest->g[0] + dest->g[1] + dest->g[2]) / 3.0;
+    dest->sigma_t_min = fmax(fmin(dest->sigma_t[0], fmin(dest->sigma_t[1], dest->sigma_t[2])), 1e-12);
 }
 
 /* Ray offsets: a few thousand float ulps of the scene's largest coordinate. */
