@@ -171,17 +171,19 @@ lucent_status tr_film_total(const tr_film *f, lucent_status status, tr_film **de
     memcpy(t->hits, f->hits, n * sizeof *t->hits);
     t->adaptive = f->adaptive, t->seed = f->seed, t->passes = f->passes, t->seconds = f->seconds;
     t->stats = f->stats;
-    uint64_t stats[6] = {t->stats.paths,   t->stats.scatters,  t->stats.bounces,
-                         t->stats.escaped, t->stats.truncated, t->stats.nonfinite};
+    uint64_t stats[10] = {t->stats.paths,        t->stats.scatters,  t->stats.bounces, t->stats.escaped,
+                          t->stats.truncated,    t->stats.nonfinite, t->stats.rays,    t->stats.points,
+                          t->stats.free_flights, t->stats.nee};
     s = lucent_dist_sum(LUCENT_OK, LUCENT_DIST_F64, t->acc, n * TR_FILM_ACC);
     s = lucent_dist_sum(s, LUCENT_DIST_U32, t->count, n);
     s = lucent_dist_sum(s, LUCENT_DIST_U32, t->hits, n);
-    s = lucent_dist_sum(s, LUCENT_DIST_I64, stats, 6);
+    s = lucent_dist_sum(s, LUCENT_DIST_I64, stats, 10);
     if (s != LUCENT_OK) {
         tr_film_destroy(t);
         return s;
     }
-    t->stats = (tr_stats){stats[0], stats[1], stats[2], stats[3], stats[4], stats[5]};
+    t->stats =
+        (tr_stats){stats[0], stats[1], stats[2], stats[3], stats[4], stats[5], stats[6], stats[7], stats[8], stats[9]};
     *dest = t;
     return LUCENT_OK;
 }
