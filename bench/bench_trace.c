@@ -17,7 +17,9 @@
  * (lucent_tracer_desc.adaptive: samples where the relative variance is, still unbiased); for
  * comparison also run: one sample per pixel and pass (UNIFORM_SECONDS), and next-event estimation only
  * at boundary vertices, Cycles' strategy (CYCLES_SECONDS).
- * Usage: bench_trace [max_seconds_per_run (default 300)] [threads (default 2)] */
+ * Then the default scenes' references (issue 12 section 3, references() below).
+ * Usage: bench_trace [references] [max_seconds_per_run (default 300)] [threads (default 2)]
+ *   references: only the default scenes' references (BENCH_REFERENCE_SECONDS each, default 60) */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -189,13 +191,116 @@ static void report(const curve *cv)
     report_clock("cpu / threads   ", cv, cv->u);
 }
 
+/* ---- the default scenes' references (issue 12 section 3) ----
+ * Today's estimator (plain_flights + nee_every_vertex: a ray query per flight, next-event estimation
+ * from every vertex; bit for bit the tracer before the change) against the default one, pass by pass
+ * interleaved (so both see the same load on the shared machine), at the size lucent compare renders
+ * (256 x 256; the spheres 384 x 128). Time is CPU time over the threads: the wall clock on an
+ * unloaded machine. Noise is what lucent compare reports as the reference's noise:
+ * sqrt(sum var / sum mean^2) over the pixels the object covers (coverage >= 0.5), from the tracer's
+ * own variance. Time to 5%: the fixed cost (scene set-up, the guiding field's pre-pass and the first
+ * pass, measured) plus the passes' cost scaled by (noise / 5%)^2. */
+typedef struct reference_run {
+    lucent_tracer *tracer;
+    lucent_trace_result last;
+    double cpu, first_cpu;
+    int passes;
+} reference_run;
+
+static double reference_noise(const lucent_trace_result *r)
+{
+    size_t n = (size_t)r->image->width * (size_t)r->image->height;
+    float *mask = malloc(n * sizeof *mask);
+    if (!mask) die("out of memory");
+    for (size_t p = 0; p < n; p++) mask[p] = r->coverage->data[p] >= 0.5f ? 1.0f : 0.0f;
+    double noise = lucent_compare_reference_noise(r->image, r->variance, mask);
+    free(mask);
+    return noise;
+}
+
+static void reference_pass(reference_run *r, lucent_pool *pool)
+{
+    lucent_trace_result_free(&r->last);
+    double c0 = lucent_cpu_seconds();
+    if (lucent_tracer_render(r->tracer, &(lucent_trace_desc){.spp = 1, .seed = 1, .pool = pool}, &r->last))
+        die("render");
+    double c = (lucent_cpu_seconds() - c0) / g_threads;
+    r->cpu += c, r->passes++;
+    if (r->passes == 1) r->first_cpu = r->cpu; /* set-up, the guiding field's pre-pass and one pass */
+}
+
+/* Seconds (CPU over the threads) to noise 5%, and the noise at `at` seconds, of a run. */
+static void reference_figures(const reference_run *r, double at, double *t5, double *noise_at)
+{
+    double noise = reference_noise(&r->last),
+           per_pass = r->passes > 1 ? (r->cpu - r->first_cpu) / (r->passes - 1) : r->cpu;
+    double fixed = r->first_cpu - per_pass, passes = r->cpu - fixed;
+    *t5 = fixed + passes * (noise / 0.05) * (noise / 0.05);
+    *noise_at = at > fixed ? noise * sqrt(passes / (at - fixed)) : INFINITY;
+}
+
+static void reference_scene(const char *file, const char *const *sets, int nsets, double budget, lucent_pool *pool)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/data/scenes/%s", LUCENT_SOURCE_DIR, file);
+    lucent_scene *sc;
+    if (lucent_scene_load(path, &(lucent_scene_load_desc){.overrides = sets, .override_count = nsets}, &sc)) die(path);
+    reference_run runs[2] = {{0}};
+    const lucent_tracer_desc today = {.plain_flights = true, .nee_every_vertex = true};
+    for (int k = 0; k < 2; k++) {
+        double c0 = lucent_cpu_seconds();
+        if (lucent_tracer_create(sc, k == 0 ? &today : NULL, &runs[k].tracer)) die("tracer");
+        runs[k].cpu = (lucent_cpu_seconds() - c0) / g_threads; /* set-up (the BVH) */
+    }
+    while (runs[0].cpu < budget || runs[1].cpu < budget)
+        for (int k = 0; k < 2; k++)
+            if (runs[k].cpu < budget) reference_pass(&runs[k], pool);
+    double t5[2], n60[2];
+    for (int k = 0; k < 2; k++) reference_figures(&runs[k], 60.0, &t5[k], &n60[k]);
+    const lucent_trace_cost *c = &runs[1].last.cost, *c0 = &runs[0].last.cost;
+    printf("  %-18s %dx%d  today: %4d spp in %5.1f s, noise %5.1f%% (at 60 s %5.1f%%), to 5%% %7.0f s, %5.1f rays/path"
+           " | now: %4d spp in %5.1f s, noise %5.1f%% (at 60 s %5.1f%%), to 5%% %7.0f s, %5.1f rays + %.1f distance "
+           "queries/path | %.2fx\n",
+           file, runs[1].last.image->width, runs[1].last.image->height, runs[0].passes, runs[0].cpu,
+           100 * reference_noise(&runs[0].last), 100 * n60[0], t5[0], (double)c0->rays / c0->paths, runs[1].passes,
+           runs[1].cpu, 100 * reference_noise(&runs[1].last), 100 * n60[1], t5[1], (double)c->rays / c->paths,
+           (double)c->points / c->paths, t5[0] / t5[1]);
+    fflush(stdout);
+    for (int k = 0; k < 2; k++) lucent_trace_result_free(&runs[k].last), lucent_tracer_destroy(runs[k].tracer);
+    lucent_scene_destroy(sc);
+}
+
+/* BENCH_REFERENCE_SECONDS (default 60): each estimator's CPU seconds over the threads per scene. */
+static void references(lucent_pool *pool)
+{
+    const char *env = getenv("BENCH_REFERENCE_SECONDS");
+    double budget = env && atof(env) > 0 ? atof(env) : 60.0;
+    printf("\nbench_trace: the default scenes' references, today's estimator (a ray query per flight, next-event "
+           "estimation from every vertex) against the default one, interleaved, %.0f s each (CPU over %d threads); "
+           "anchor (issue 12): dragon-marble 22 spp in 60 s, 28%% noise; goal 10%% in 60 s, 5%% in 300 s\n",
+           budget, g_threads);
+    const char *square[] = {"render.width=256", "render.height=256"},
+               *wide[] = {"render.width=384", "render.height=128"};
+    reference_scene("dragon-marble.json", square, 2, budget, pool);
+    reference_scene("bunny-skin.json", square, 2, budget, pool);
+    reference_scene("bunny-jade.json", square, 2, budget, pool);
+    reference_scene("spheres-skin.json", wide, 2, budget, pool);
+}
+
 int main(int argc, char **argv)
 {
+    bool only_references = argc > 1 && strcmp(argv[1], "references") == 0;
+    if (only_references) argc--, argv++;
     double max_seconds = argc > 1 ? atof(argv[1]) : 300;
     int threads = argc > 2 ? atoi(argv[2]) : 2;
     if (!(max_seconds > 0)) max_seconds = 300;
     lucent_pool *pool = lucent_pool_create(threads > 0 ? threads : 2);
     g_threads = lucent_pool_threads(pool);
+    if (only_references) {
+        references(pool);
+        lucent_pool_destroy(pool);
+        return 0;
+    }
     lucent_scene *sc;
     load(LUCENT_SOURCE_DIR "/bench/skin1-sphere.json", &sc);
     printf("bench_trace: Skin1 sphere R 10 mm, rough boundary (alpha 0.3, eta 1.3), delta sun from the side, "
@@ -214,6 +319,7 @@ int main(int argc, char **argv)
     print_curve("boundary vertices only (Cycles' strategy, same code, uniform)", &cycles);
     report(&adaptive);
     lucent_scene_destroy(sc);
+    references(pool);
     lucent_pool_destroy(pool);
     return 0;
 }

@@ -122,9 +122,10 @@ typedef struct lucent_points_settings {
 typedef struct lucent_trace_settings {
     int spp; /* samples per pixel */
     uint64_t seed;
-    int max_bounces;   /* surface events per path */
-    int max_scatter;   /* volume scattering events per path */
-    double time_limit; /* seconds, 0: none (stops at spp) */
+    int max_bounces;    /* surface events per path */
+    int max_scatter;    /* volume scattering events per path */
+    double time_limit;  /* seconds, 0: none (stops at spp) */
+    int boundary_model; /* a lucent_boundary_model (lucent/trace.h) */
 } lucent_trace_settings;
 
 typedef struct lucent_render_settings {

@@ -33,6 +33,13 @@ extern "C" {
 
 typedef struct lucent_tracer lucent_tracer;
 
+/* The rough boundary's BSDF (render.boundary_model). WALTER: Walter et al. 2007, the physics
+ * Lucent follows. CYCLES3: a peer's convention, for side-by-side validation, not physics: Blender
+ * 3.x Cycles' Glass BSDF, reflection weighted by the Fresnel term of the macro normal and the view
+ * direction, refraction by max(1e-4, 1 - that), no check that a transmitted pair's implied microfacet
+ * is valid (docs/trace.md). */
+typedef enum lucent_boundary_model { LUCENT_BOUNDARY_WALTER = 0, LUCENT_BOUNDARY_CYCLES3 } lucent_boundary_model;
+
 /* How a tracer is made; a zero field means the default. */
 typedef struct lucent_tracer_desc {
     /* Drop the light reflected where a camera ray first meets a refracting surface (the specular

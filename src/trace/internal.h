@@ -34,6 +34,7 @@ typedef struct tr_boundary {
     tr_boundary_kind kind;
     double eta;   /* medium / outside */
     double alpha; /* GGX alpha */
+    bool cycles3; /* rough: Blender 3.x Cycles' Glass BSDF instead of Walter's (render.boundary_model) */
 } tr_boundary;
 
 /* The optics (Fresnel, refraction, GGX D and G1, visible normals, Henyey-Greenstein, the basis)

@@ -1,12 +1,17 @@
 /* The path tracer's settings group (lucent/settings.h), read by tracer.c and integrator.c. */
 #include "base/settings_table.h"
 
+SETTINGS_NAMES(boundary_model_names, "walter", "cycles3")
+
 static const lucent_setting k_trace[] = {
     SETTING_INT("spp", trace.spp, 64, 1, 1 << 24, 0, "samples per pixel"),
     SETTING_SEED("seed", trace.seed, 1, 0, 9007199254740992.0, "the random seed (the image depends on it alone)"),
     SETTING_INT("max_bounces", trace.max_bounces, 64, 1, 100000, 0, "surface events per path"),
     SETTING_INT("max_scatter", trace.max_scatter, 100000, 1, 1 << 30, 0, "volume scattering events per path"),
     SETTING_REAL("time_limit", trace.time_limit, 0, 0, 1e9, "seconds of tracing at most (0: stop at spp)"),
+    SETTING_CHOICE("boundary_model", trace.boundary_model, "walter", boundary_model_names,
+                   "the rough boundary's BSDF: Walter et al. 2007 (physics), or cycles3, Blender 3.x Cycles' "
+                   "Glass BSDF convention (a peer's, for side-by-side validation; docs/trace.md)"),
 };
 
 const lucent_settings_group tr_trace_settings = SETTINGS_GROUP("trace", "the path-traced reference", k_trace);

@@ -15,11 +15,14 @@
 
 static const char *scene_name(const lucent_scene *s) { return s->path[0] ? s->path : "scene"; }
 
-static tr_boundary boundary_of(const lucent_scene_object *o)
+static tr_boundary boundary_of(const lucent_scene_object *o, int model)
 {
     double eta = o->material.eta;
     tr_boundary_kind k = eta == 1.0 ? TR_BOUNDARY_MATCHED : o->roughness > 0 ? TR_BOUNDARY_ROUGH : TR_BOUNDARY_SMOOTH;
-    return (tr_boundary){.kind = k, .eta = eta, .alpha = o->roughness};
+    return (tr_boundary){.kind = k,
+                         .eta = eta,
+                         .alpha = o->roughness,
+                         .cycles3 = k == TR_BOUNDARY_ROUGH && model == LUCENT_BOUNDARY_CYCLES3};
 }
 
 static void describe_light(const lucent_light *l, char *buf, size_t size)
@@ -39,7 +42,7 @@ static lucent_status check_convergence(const lucent_scene *sc)
         bool delta = l->type == LUCENT_LIGHT_POINT || (l->type == LUCENT_LIGHT_DIRECTIONAL && !(l->angular_radius > 0));
         for (int oi = 0; delta && oi < sc->object_count; oi++) {
             const lucent_scene_object *o = &sc->objects[oi];
-            if (!o->visible || boundary_of(o).kind != TR_BOUNDARY_SMOOTH) continue;
+            if (!o->visible || boundary_of(o, LUCENT_BOUNDARY_WALTER).kind != TR_BOUNDARY_SMOOTH) continue;
             char what[64];
             describe_light(l, what, sizeof what);
             return lucent_error(LUCENT_ERR_UNSUPPORTED,
@@ -53,9 +56,9 @@ static lucent_status check_convergence(const lucent_scene *sc)
     return LUCENT_OK;
 }
 
-static void build_object(const lucent_scene_object *o, int index, tr_object *dest)
+static void build_object(const lucent_scene_object *o, int index, int model, tr_object *dest)
 {
-    *dest = (tr_object){.scene_index = index, .boundary = boundary_of(o)};
+    *dest = (tr_object){.scene_index = index, .boundary = boundary_of(o, model)};
     for (int c = 0; c < 3; c++) {
         dest->sigma_s[c] = o->material.sigma_s[c];
         dest->sigma_t[c] = o->material.sigma_a[c] + o->material.sigma_s[c];
@@ -86,7 +89,7 @@ static lucent_status build(lucent_tracer *tr)
     for (int i = 0; i < sc->object_count; i++)
         if (sc->objects[i].visible) {
             map[tr->object_count] = i;
-            build_object(&sc->objects[i], i, &tr->objects[tr->object_count]);
+            build_object(&sc->objects[i], i, tr->render.trace.boundary_model, &tr->objects[tr->object_count]);
             tr->has_matched |= tr->objects[tr->object_count++].boundary.kind == TR_BOUNDARY_MATCHED;
         }
     lucent_status s = tr_geometry_create(sc, map, tr->object_count, &tr->geometry);
