@@ -330,8 +330,64 @@ TEST(mcml_write_units_and_last_bin)
     lucent_mcml_file_free(&f);
 }
 
+/* Media outside what float steps can take, and grids that cannot be represented (issue 17): refused,
+ * with the field named; the per-thread scores are capped. */
+TEST(degenerate_media_refused)
+{
+    lucent_mc_layer l = {1.3, 0.01, 1e300, 0.0, INFINITY};
+    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = &l, .layer_count = 1}), LUCENT_ERR_INVALID_ARGUMENT,
+              "layers[0].sigma_s", "outside what the Monte Carlo can step");
+    l.sigma_s = 1e-300, l.sigma_a = 0;
+    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = &l, .layer_count = 1}), LUCENT_ERR_INVALID_ARGUMENT,
+              "layers[0].sigma_s");
+    l.sigma_s = 1, l.sigma_a = 1e300;
+    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = &l, .layer_count = 1}), LUCENT_ERR_INVALID_ARGUMENT,
+              "layers[0].sigma_a");
+    l.sigma_a = 0.1;
+    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = &l, .layer_count = 1, .grid = {.dr = 1e-300}}),
+              LUCENT_ERR_INVALID_ARGUMENT, "grid.dr", "cannot be represented");
+    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = &l, .layer_count = 1, .grid = {.dr = 1, .dz = 1e-300}}),
+              LUCENT_ERR_INVALID_ARGUMENT, "grid.dz");
+    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = &l, .layer_count = 1, .grid = {.dr = 1e300, .nr = 10}}),
+              LUCENT_ERR_INVALID_ARGUMENT, "grid.dr", "spans more than");
+    lucent_mc_layer slab = {1.3, 0.1, 1, 0, 1e300};
+    CHECK_ERR(lucent_mc_validate(&(lucent_mc_desc){.layers = &slab, .layer_count = 1}), LUCENT_ERR_INVALID_ARGUMENT,
+              "layers[0].thickness");
+    /* The largest grid with A(r, z): (2 x 100001 x 200 + 100001 x 201) counters of 8 bytes, 0.48 GB a thread:
+     * 8 threads would take 3.9 GB, above the 2 GiB cap; refused before anything is allocated. */
+    lucent_pool *pool = lucent_pool_create(8);
+    lucent_mc_result r;
+    CHECK_ERR(lucent_mc_run(&(lucent_mc_desc){.layers = &l,
+                                              .layer_count = 1,
+                                              .photons = 10,
+                                              .pool = pool,
+                                              .score_a_rz = 1,
+                                              .grid = {.nr = 100000, .nz = 200, .na = 200}},
+                            &r),
+              LUCENT_ERR_INVALID_ARGUMENT, "per thread", "8 threads", "fewer threads");
+    lucent_pool_destroy(pool);
+}
+
+/* A medium that does not absorb: every packet keeps its weight 1 - Rsp until it leaves or reaches the step
+ * limit, so energy conservation reads Rsp + Rd + capped (1 - Rsp) / N = 1 exactly (up to the fixed-point
+ * rounding), and the capped packets are counted. */
+TEST(non_absorbing_medium_is_bounded)
+{
+    lucent_mc_layer l = {1.0, 0.0, 1.0, 0.9, INFINITY};
+    lucent_mc_result r;
+    uint64_t n = 3000;
+    CHECK_OK(lucent_mc_run(&(lucent_mc_desc){.layers = &l, .layer_count = 1, .photons = n, .seed = 3}, &r));
+    printf("  %llu of %llu packets reached the step limit; Rd %.5f\n", (unsigned long long)r.capped,
+           (unsigned long long)n, r.rd);
+    CHECK(r.capped > 0 && r.capped < n / 10);
+    CHECK_NEAR(r.rsp + r.rd + (double)r.capped * (1 - r.rsp) / (double)n, 1.0, 1e-6);
+    CHECK(r.a == 0 && r.tt == 0);
+    lucent_mc_result_free(&r);
+}
+
 TEST_MAIN(TEST_ENTRY(vanhulst_slab), TEST_ENTRY(giovanelli_half_space),
           TEST_ENTRY(same_seed_same_result_for_any_thread_count), TEST_ENTRY(profiles_integrate_to_totals),
           TEST_ENTRY(beyond_the_grid), TEST_ENTRY(beer_lambert), TEST_ENTRY(glass_layer), TEST_ENTRY(validation),
           TEST_ENTRY(mcml_read_converts_cm_to_mm), TEST_ENTRY(mcml_errors_name_the_line),
-          TEST_ENTRY(mcml_write_units_and_last_bin))
+          TEST_ENTRY(mcml_write_units_and_last_bin), TEST_ENTRY(degenerate_media_refused),
+          TEST_ENTRY(non_absorbing_medium_is_bounded))

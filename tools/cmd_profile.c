@@ -237,7 +237,7 @@ static lucent_status run_mc_channel(const options *o, int c, lucent_profile *p)
                            .label = labels[c]};
     lucent_mc_result r = {0};
     lucent_status s = lucent_mc_run(&desc, &r);
-    if (s != LUCENT_OK) return s;
+    if (s != LUCENT_OK) return o->layer_count == 1 ? lucent_error_context(s, "%s", o->spec) : s;
     for (int j = 0; j < p->count; j++) p->value[c][j] = r.rd_r[j], p->error[c][j] = r.rd_r_se[j];
     lucent_mc_result_free(&r);
     return LUCENT_OK;

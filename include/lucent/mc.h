@@ -29,6 +29,20 @@ extern "C" {
 #define LUCENT_MC_MAX_ANGLE_BINS 10000        /* na */
 #define LUCENT_MC_MAX_GRID_CELLS 20000000     /* nr * nz and nr * na */
 #define LUCENT_MC_MAX_BATCHES 1024
+/* sigma_t = sigma_a + sigma_s of a scattering layer, mm^-1: float steps of 1/sigma_t mm (and positions
+ * in float) cannot be taken outside this range. */
+#define LUCENT_MC_MIN_SIGMA_T 1e-12
+#define LUCENT_MC_MAX_SIGMA_T 1e12
+#define LUCENT_MC_MAX_THICKNESS 1e9 /* mm, a finite layer */
+#define LUCENT_MC_MIN_BIN 1e-15     /* mm: dr and dz */
+#define LUCENT_MC_MAX_EXTENT 1e12   /* mm: nr dr and nz dz */
+/* Interactions (and boundary crossings) one photon packet may take; a packet that reaches it is
+ * dropped unscored and counted (lucent_mc_result.capped): with sigma_a / sigma_t above 1e-5 the weight
+ * meets Russian roulette well before this many steps, so only a medium that barely absorbs gets here. */
+#define LUCENT_MC_MAX_STEPS (1 << 20)
+/* The per-thread score arrays of one run, all threads together: above this the run is refused (fewer
+ * threads or a smaller grid). */
+#define LUCENT_MC_MAX_TALLY_BYTES ((size_t)2 << 30)
 
 /* One layer of the slab, top to bottom. */
 typedef struct lucent_mc_layer {
@@ -92,6 +106,8 @@ typedef struct lucent_mc_result {
     double *a_z, *a_z_se;                    /* [nz] */
     double *rd_ra, *tt_ra;                   /* [nr * na] */
     double *a_rz;                            /* [nr * nz]; NULL unless score_a_rz */
+    uint64_t capped; /* packets stopped at LUCENT_MC_MAX_STEPS: their weight is missing from every
+                        score, which are then lower bounds (a warning is logged) */
 } lucent_mc_result;
 
 /* Fills dest with the defaults that zero fields of desc take (layers left as given). */

@@ -23,6 +23,7 @@
 #include "base/vec3.h"
 #include "lucent/cdrf.h"
 #include "lucent/dist.h"
+#include "lucent/mc.h"
 
 #define RR_THRESHOLD 1e-4
 #define RR_SURVIVAL 0.1
@@ -133,7 +134,8 @@ static void trace(const sphere_job *job, int ch, double *tally, lucent_rng *rng)
     photon ph = {.w = 0};
     double w0 = enter(job, &ph, rng);
     tally[bins] += w0;
-    for (int events = 0; ph.w > 0 && events < MAX_EVENTS; events++) {
+    int events = 0;
+    for (; ph.w > 0 && events < MAX_EVENTS; events++) {
         double s = st > 0 ? -log(1.0 - lucent_rng_uniform(rng)) / st : INFINITY;
         double db = to_boundary(ph.p, ph.d, r);
         if (s < db) {
@@ -148,6 +150,7 @@ static void trace(const sphere_job *job, int ch, double *tally, lucent_rng *rng)
         }
         if (ph.w > 0 && ph.w < RR_THRESHOLD) ph.w = lucent_rng_uniform(rng) < RR_SURVIVAL ? ph.w / RR_SURVIVAL : 0;
     }
+    if (ph.w > 0 && events == MAX_EVENTS) tally[bins + 3] += 1; /* stopped at the step limit, unscored */
 }
 
 static lucent_status run_batch(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
@@ -213,6 +216,16 @@ static lucent_status validate(const lucent_cdrf_sphere_desc *d)
     if (d->batches < 2 || d->batches > 4096)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "CDRF sphere: batches must be in [2, 4096]");
     if (d->max_order < 0) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "CDRF sphere: max_order must be >= 0");
+    for (int c = 0; c < 3; c++) {
+        double sa = d->material->sigma_a[c], ss = d->material->sigma_s[c], st = sa + ss;
+        if (st > 0 && (st < LUCENT_MC_MIN_SIGMA_T || st > LUCENT_MC_MAX_SIGMA_T))
+            return lucent_error(
+                LUCENT_ERR_INVALID_ARGUMENT,
+                "%s: %s[%d]: sigma_t = sigma_a + sigma_s = %g mm^-1 is outside what the Monte Carlo can "
+                "step (%g to %g mm^-1)",
+                d->material->name, ss >= sa ? "sigma_s" : "sigma_a", c, st, LUCENT_MC_MIN_SIGMA_T,
+                LUCENT_MC_MAX_SIGMA_T);
+    }
     return LUCENT_OK;
 }
 
@@ -257,7 +270,7 @@ lucent_status lucent_cdrf_sphere_run(const lucent_cdrf_sphere_desc *desc, lucent
     lucent_status s = validate(d);
     if (s != LUCENT_OK) return s;
     job.per_batch = (d->photons + (uint64_t)d->batches - 1) / (uint64_t)d->batches;
-    job.stride = d->bins + 3;
+    job.stride = d->bins + 4; /* bins, entered, exited, absorbed, packets stopped at the step limit */
     job.cos_cone = cos(d->cone);
     job.tally = calloc((size_t)(3 * d->batches) * (size_t)job.stride, sizeof *job.tally);
     if (!job.tally) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "CDRF sphere: out of memory");
@@ -273,6 +286,14 @@ lucent_status lucent_cdrf_sphere_run(const lucent_cdrf_sphere_desc *desc, lucent
         dest->radius = d->radius;
         dest->photons = job.per_batch * (uint64_t)d->batches;
         reduce(&job, dest);
+        double capped = 0;
+        for (int b = 0; b < 3 * d->batches; b++)
+            capped += job.tally[(size_t)b * (size_t)job.stride + (size_t)d->bins + 3];
+        if (capped > 0)
+            lucent_log(LUCENT_LOG_WARN,
+                       "%s: %.0f photons reached the step limit (%d steps): the medium barely absorbs; results are "
+                       "lower bounds",
+                       d->label ? d->label : "CDRF sphere", capped, MAX_EVENTS);
     }
     free(job.tally);
     return s;

@@ -72,6 +72,17 @@ static lucent_status check_layer(const lucent_mc_layer *l, int i, int count)
                             "layers[%d].thickness: only the last layer may be semi-infinite", i);
     if (semi_infinite(l) && l->sigma_a + l->sigma_s == 0.0)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "layers[%d]: a semi-infinite layer must absorb or scatter", i);
+    double st = l->sigma_a + l->sigma_s;
+    if (st > 0.0 && (st < LUCENT_MC_MIN_SIGMA_T || st > LUCENT_MC_MAX_SIGMA_T))
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                            "layers[%d].%s: sigma_t = sigma_a + sigma_s = %g mm^-1 is outside what the Monte Carlo can "
+                            "step (%g to %g mm^-1, or 0 for a clear layer)",
+                            i, l->sigma_s >= l->sigma_a ? "sigma_s" : "sigma_a", st, LUCENT_MC_MIN_SIGMA_T,
+                            LUCENT_MC_MAX_SIGMA_T);
+    if (!semi_infinite(l) && l->thickness > LUCENT_MC_MAX_THICKNESS)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                            "layers[%d].thickness: %g mm is more than %g mm (leave it 0 or inf for semi-infinite)", i,
+                            l->thickness, LUCENT_MC_MAX_THICKNESS);
     return LUCENT_OK;
 }
 
@@ -79,6 +90,14 @@ static lucent_status check_grid(const lucent_mc_grid *g, bool a_rz)
 {
     if (!(g->dr > 0.0 && isfinite(g->dr)) || !(g->dz > 0.0 && isfinite(g->dz)))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "grid: dr and dz must be finite and > 0");
+    /* Bins are found as float(r / dr): a bin too small or a grid too large has no float representation. */
+    if (g->dr < LUCENT_MC_MIN_BIN || g->dz < LUCENT_MC_MIN_BIN)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "grid.%s: %g mm is below %g mm, which cannot be represented",
+                            g->dr < LUCENT_MC_MIN_BIN ? "dr" : "dz", g->dr < LUCENT_MC_MIN_BIN ? g->dr : g->dz,
+                            LUCENT_MC_MIN_BIN);
+    if (g->dr * g->nr > LUCENT_MC_MAX_EXTENT || g->dz * g->nz > LUCENT_MC_MAX_EXTENT)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "grid.%s: the grid spans more than %g mm",
+                            g->dr * g->nr > LUCENT_MC_MAX_EXTENT ? "dr" : "dz", LUCENT_MC_MAX_EXTENT);
     if (g->nr < 1 || g->nr > LUCENT_MC_MAX_RADIAL_BINS || g->nz < 1 || g->nz > LUCENT_MC_MAX_RADIAL_BINS || g->na < 1 ||
         g->na > LUCENT_MC_MAX_ANGLE_BINS)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
@@ -165,7 +184,8 @@ static void plan_layout(mc_plan *p)
     l->tt_a = l->rd_a + na;
     l->a_z = l->tt_a + na;
     l->a_l = l->a_z + nz1;
-    l->batch_size = l->a_l + (size_t)p->layer_count;
+    l->capped = l->a_l + (size_t)p->layer_count;
+    l->batch_size = l->capped + 1;
     l->rd_ra = 0;
     l->tt_ra = nr1 * na;
     l->a_rz = 2 * nr1 * na;
@@ -437,6 +457,15 @@ lucent_status lucent_mc_run(const lucent_mc_desc *desc, lucent_mc_result *dest)
     make_plan(&d, plan);
     int threads = d.pool ? lucent_pool_threads(d.pool) : 1;
     size_t bsize = plan->lay.batch_size * (size_t)plan->batches;
+    double per_thread = (double)(bsize + plan->lay.grid_size) * sizeof(int64_t);
+    if (per_thread * threads > (double)LUCENT_MC_MAX_TALLY_BYTES) {
+        free(plan);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                            "%s: the scores take %.0f MB per thread, %.0f MB for %d threads: above the %.0f MB limit; "
+                            "use fewer threads, fewer batches or a smaller grid",
+                            d.label, per_thread / 1e6, per_thread * threads / 1e6, threads,
+                            (double)LUCENT_MC_MAX_TALLY_BYTES / 1e6);
+    }
     run_ctx ctx = {plan, alloc_counters(threads, bsize), alloc_counters(threads, plan->lay.grid_size), NULL};
     if (!ctx.batch || !ctx.grid) {
         s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "Monte Carlo: out of memory for the scores");
@@ -453,6 +482,15 @@ lucent_status lucent_mc_run(const lucent_mc_desc *desc, lucent_mc_result *dest)
     s = lucent_dist_sum(s, LUCENT_DIST_I64, s == LUCENT_OK ? ctx.batch[0] : NULL, bsize);
     s = lucent_dist_sum(s, LUCENT_DIST_I64, s == LUCENT_OK ? ctx.grid[0] : NULL, plan->lay.grid_size);
     if (s == LUCENT_OK) s = reduce(&d, plan, ctx.batch[0], ctx.grid[0], dest);
+    if (s == LUCENT_OK) {
+        for (int b = 0; b < plan->batches; b++)
+            dest->capped += (uint64_t)ctx.batch[0][(size_t)b * plan->lay.batch_size + plan->lay.capped];
+        if (dest->capped)
+            lucent_log(LUCENT_LOG_WARN,
+                       "%s: %llu photons reached the step limit (%d steps): the medium barely absorbs; results are "
+                       "lower bounds",
+                       d.label, (unsigned long long)dest->capped, LUCENT_MC_MAX_STEPS);
+    }
     free_counters(ctx.batch, threads);
     free_counters(ctx.grid, threads);
     free(plan);

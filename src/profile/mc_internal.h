@@ -25,7 +25,7 @@ typedef struct mc_layer_k {
 /* Offsets (in int64 counters) of the per-batch 1-D scores. Radial and depth arrays hold one
  * more bin than the grid: weight beyond the grid, unless the last bin collects it. */
 typedef struct mc_layout {
-    size_t rd_r, tt_r, rd_a, tt_a, a_z, a_l, batch_size;
+    size_t rd_r, tt_r, rd_a, tt_a, a_z, a_l, capped, batch_size; /* capped: packets stopped at the step limit */
     size_t rd_ra, tt_ra, a_rz, grid_size;
 } mc_layout;
 

@@ -253,7 +253,11 @@ static void trace_one(const mc_plan *plan, rbuf *rb, lucent_rng *rng, int64_t *b
     dc.a_l = batch + plan->lay.a_l;
     photon p = {0.0f, 0.0f, plan->launch_z, 0.0f, 0.0f, 1.0f, plan->w_launch, plan->launch_layer};
     float sleft = 0.0f; /* step left over after a boundary, in mean free paths */
-    for (;;) {
+    for (int steps = 0;; steps++) {
+        if (steps == LUCENT_MC_MAX_STEPS) { /* dropped unscored, counted (lucent_mc_result.capped) */
+            batch[plan->lay.capped]++;
+            break;
+        }
         const mc_layer_k *L = &plan->layers[p.layer];
         if (L->clear) { /* MCML's HopInGlass */
             if (p.uz == 0.0f) break;

@@ -1,0 +1,32 @@
+# Cases for hostile input (issue 17), sourced by cli_test.sh: the reproducers found from outside and
+# the fuzzers' findings exit 1 with a message naming the file, never a crash, a hang or a leak of
+# another file's content; a medium that does not absorb ends, with the step-limit warning.
+
+# Mesh files: every fixture of tests/fixtures/bad-meshes is refused by `lucent curvature`.
+for f in "$FIXTURES"/bad-meshes/*; do
+  expect_fail 1 "$f: " -- "$LUCENT" curvature "$f" --out "$TMP/bad-mesh.csv"
+done
+expect_no_file "$TMP/bad-mesh.csv"
+expect_fail 1 "points only" -- "$LUCENT" curvature "$FIXTURES/bad-meshes/hand-segv-ply-no-faces.ply" --out "$TMP/x.csv"
+mkfifo "$TMP/fifo.ply" 2>/dev/null &&
+  expect_fail 1 "$TMP/fifo.ply: cannot read: a FIFO" -- timeout 10 "$LUCENT" curvature "$TMP/fifo.ply" --out "$TMP/x.csv"
+ln -s /dev/urandom "$TMP/random.ply"
+expect_fail 1 "$TMP/random.ply: cannot read: a device" -- timeout 10 "$LUCENT" curvature "$TMP/random.ply" --out "$TMP/x.csv"
+# An OBJ naming other files as its materials: nothing of them is read or printed (mtllib is never opened).
+printf 'mtllib /etc/passwd\nmtllib ../../x.mtl\nusemtl root\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n' >"$TMP/mtl.obj"
+expect_fail 1 "$TMP/mtl.obj: line 7: face index 4" -- "$LUCENT" curvature "$TMP/mtl.obj" --out "$TMP/x.csv"
+expect_true "an OBJ's mtllib /etc/passwd echoes nothing of it" -- \
+  bash -c "! \"$LUCENT\" curvature \"$TMP/mtl.obj\" --out \"$TMP/x.csv\" 2>&1 | grep -q 'root:'"
+
+# Monte Carlo: media outside what doubles can step are refused, naming the file and the field.
+expect_fail 1 "dense-1e300.json: layers[0].sigma_s: sigma_t" -- \
+  "$LUCENT" profile "$FIXTURES/materials/dense-1e300.json" --model mc --out "$TMP/dense"
+expect_no_file "$TMP/dense.json" "$TMP/dense.csv"
+cp "$FIXTURES/mcml/drtiny.mci" "$TMP/"
+expect_fail 1 "drtiny.mci: line 3 (run): grid.dr" -- bash -c "cd '$TMP' && '$LUCENT' mcml drtiny.mci"
+expect_no_file "$TMP/drtiny.mco"
+# A material that does not absorb ends in bounded time with the step-limit warning.
+printf '{"name":"white","units":"mm^-1","sigma_a":[0,0,0],"sigma_s":[1,1,1],"g":0.9,"eta":1.0}\n' >"$TMP/white.json"
+out=$("$LUCENT" profile "$TMP/white.json" --model mc --photons 1000 --out "$TMP/white" 2>&1)
+expect_true "profile of a non-absorbing medium warns: photons reached the step limit, results are lower bounds" -- \
+  grep -q "photons reached the step limit (1048576 steps): the medium barely absorbs; results are lower bounds" <<<"$out"
