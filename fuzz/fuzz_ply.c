@@ -12,8 +12,8 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
         if (lucent_ply_property_index(ply, lucent_ply_property_name(ply, i)) < 0) __builtin_trap();
     static const char *const names[] = {"x", "y", "z", "red", "opacity", "f_dc_0"};
     lucent_ply_data d;
-    lucent_ply_read_desc desc = {.names = names, .count = 6, .allow_missing = 1, .single = (int)(size & 1),
-                                 .faces = LUCENT_PLY_FACES_OPTIONAL};
+    lucent_ply_read_desc desc = {
+        .names = names, .count = 6, .allow_missing = 1, .single = (int)(size & 1), .faces = LUCENT_PLY_FACES_OPTIONAL};
     if (lucent_ply_read(ply, &desc, &d) == LUCENT_OK) {
         for (size_t t = 0; t < 3 * d.triangle_count; t++)
             if (d.triangles[t] >= d.vertex_count) __builtin_trap();

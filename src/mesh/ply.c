@@ -302,7 +302,20 @@ typedef struct body {
     size_t vertex_cap, tri_cap;
     int growable;   /* gzip: the counts are only bounds, grow with the data */
     uint32_t *poly; /* one face's indices */
+    size_t poly_cap;
 } body;
+
+/* Room for a face of n vertices in b->poly (n <= MAX_POLYGON, checked before). */
+static int poly_room(body *b, size_t n)
+{
+    if (n <= b->poly_cap) return 1;
+    size_t cap = b->poly_cap ? b->poly_cap : 16;
+    while (cap < n) cap *= 2;
+    uint32_t *g = realloc(b->poly, cap * sizeof *g);
+    if (!g) return 0;
+    b->poly = g, b->poly_cap = cap;
+    return 1;
+}
 
 static lucent_status oom(body *b)
 {
@@ -428,6 +441,7 @@ static lucent_status ascii_element(body *b, int ei)
             int this_face = is_face && j == ply->face_prop;
             lucent_status s = list_count_check(b, (double)n, i, e, this_face);
             if (s != LUCENT_OK) return s;
+            if (this_face && !poly_room(b, (size_t)n)) return oom(b);
             for (int64_t k = 0; k < n; k++) {
                 if (this_face) {
                     int64_t idx;
@@ -506,6 +520,7 @@ static lucent_status binary_element(body *b, int ei)
             double n = decode(raw, pr->count_type, big);
             int this_face = is_face && j == ply->face_prop;
             if ((s = list_count_check(b, n, i, e, this_face)) != LUCENT_OK) return s;
+            if (this_face && !poly_room(b, (size_t)n)) return oom(b);
             size_t isz = (size_t)k_size[pr->type];
             for (uint64_t k = 0; k < (uint64_t)n; k++) {
                 if ((s = lucent_reader_bytes(r, raw, isz, what)) != LUCENT_OK) return s;
@@ -578,9 +593,8 @@ lucent_status lucent_ply_read(lucent_ply *ply, const lucent_ply_read_desc *desc,
     body b = {.ply = ply, .desc = desc, .d = dest};
     b.columns = malloc(((size_t)desc->count + 1) * sizeof *b.columns);
     b.row = calloc((size_t)ve->prop_count + 1, sizeof *b.row);
-    b.poly = malloc(MAX_POLYGON * sizeof *b.poly);
     lucent_status s = LUCENT_OK;
-    if (!b.columns || !b.row || !b.poly) s = oom(&b);
+    if (!b.columns || !b.row || !poly_room(&b, 16)) s = oom(&b);
     for (int c = 0; s == LUCENT_OK && c < desc->count; c++) {
         int k = lucent_ply_property_index(ply, desc->names[c]);
         b.columns[c] = k >= 0 ? ply->scalars[k] : -1;

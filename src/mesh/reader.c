@@ -15,9 +15,11 @@
 
 static lucent_status start(lucent_reader *r)
 {
-    r->buf = malloc(BUF_CAP + 1);
+    /* The buffer starts small (a small file or a fuzzer's input needs no more) and grows to BUF_CAP for
+     * long lines and large reads. */
+    r->cap = r->raw_size < ((uint64_t)1 << 16) && r->fd < 0 ? (size_t)1 << 14 : (size_t)1 << 18;
+    r->buf = malloc(r->cap + 1);
     if (!r->buf) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", r->name);
-    r->cap = BUF_CAP;
     r->line = 0;
     /* Peek at the first two bytes for the gzip magic (1f 8b). */
     unsigned char magic[2] = {0, 0};
@@ -173,6 +175,14 @@ static lucent_status decode_more(lucent_reader *r)
 
 lucent_status lucent_reader_fill(lucent_reader *r, size_t n)
 {
+    if (n > r->cap && r->cap < BUF_CAP) {
+        size_t cap = 2 * r->cap;
+        while (cap < n && cap < BUF_CAP) cap *= 2;
+        if (cap > BUF_CAP) cap = BUF_CAP;
+        unsigned char *grown = realloc(r->buf, cap + 1);
+        if (!grown) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", r->name);
+        r->buf = grown, r->cap = cap;
+    }
     if (n > r->cap) n = r->cap;
     if (r->len - r->pos >= n) return LUCENT_OK;
     if (r->pos > 0) {
@@ -213,10 +223,8 @@ lucent_status lucent_reader_line(lucent_reader *r, char **line, size_t *length)
             return lucent_error(LUCENT_ERR_PARSE, "%s: line %llu: longer than %zu bytes", r->name,
                                 (unsigned long long)(r->line + 1), LUCENT_READER_MAX_LINE);
         scanned = have;
-        size_t before = r->pos;
         lucent_status s = lucent_reader_fill(r, have + 1);
         if (s != LUCENT_OK) return s;
-        (void)before;
     }
 }
 
