@@ -51,6 +51,17 @@ expect_true "trace --target-error: 3 ranks stop after the plain run's pass, same
 expect_true "... which is before --spp 40 (the target was met)" -- \
   awk '/"spp":/ { gsub(/[^0-9]/, "", $2); exit !($2 >= 16 && $2 < 40) }' "$M/np3/e.json"
 
+# cdrf-fit: the spheres' batches; mcml with two runs (two .mco files, the tallies of each in turn)
+expect_ok -- "$LUCENT" cdrf-fit skin1 --radii 2,5 --photons 2000 --bins 12 --out "$M/plain/c" --quiet
+expect_ok -- "${MPIRUN[@]}" -np 2 "$LUCENT" cdrf-fit skin1 --radii 2,5 --photons 2000 --bins 12 --out "$M/np2/c" \
+  --threads 1 --quiet
+expect_true "cdrf-fit: 2 ranks give the plain run's CSV and JSON (the fit)" -- \
+  sh -c "cmp '$M/plain/c.csv' '$M/np2/c.csv' && cmp '$M/plain/c.json' '$M/np2/c.json'"
+expect_ok -- "$LUCENT" mcml "$FIXTURES/mcml/two_runs.mci" --out-dir "$M/plain" --quiet
+expect_ok -- "${MPIRUN[@]}" -np 3 "$LUCENT" mcml "$FIXTURES/mcml/two_runs.mci" --out-dir "$M/np3" --threads 1 --quiet
+expect_true "mcml, two runs: 3 ranks give both of the plain run's .mco files" -- \
+  sh -c "cmp '$M/plain/glass.mco' '$M/np3/glass.mco' && cmp '$M/plain/half.mco' '$M/np3/half.mco'"
+
 # ranks inside parts: parts 1/2 and 2/2 on 2 ranks each, merged, give the plain run
 for k in 1 2; do
   expect_ok -- "${MPIRUN[@]}" -np 2 "$LUCENT" mcml "$MCI3" --out-dir "$M/np2" --part "$k/2" --threads 1 --quiet

@@ -10,6 +10,7 @@
 #include "base/mat4.h"
 #include "base/vec3.h"
 #include "lucent/base.h"
+#include "lucent/dist.h"
 #include "test.h"
 
 /* ---- errors ---- */
@@ -145,6 +146,68 @@ TEST(parallel_for_reports_lowest_failing_chunk)
         CHECK_ERR(lucent_parallel_for(pool, 64, 1, fail_some_chunks, NULL), LUCENT_ERR_NUMERIC, "chunk 13 failed");
     }
     lucent_pool_destroy(pool);
+}
+
+typedef struct share_ctx {
+    _Atomic uint64_t visits[1000];
+    _Atomic uint64_t wrong_chunk; /* chunks run outside the share */
+    uint64_t offset, stride;
+} share_ctx;
+
+static lucent_status visit_share(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
+{
+    share_ctx *c = ctx;
+    (void)thread;
+    if (chunk % c->stride != c->offset || begin != chunk * 7) atomic_fetch_add(&c->wrong_chunk, 1);
+    for (uint64_t i = begin; i < end; i++) atomic_fetch_add(&c->visits[i], 1);
+    return LUCENT_OK;
+}
+
+/* The chunks of processes 0 .. P-1 (lucent/dist.h: chunk % P == p) together are every chunk once,
+ * with the same chunk numbers and bounds as one process's loop. */
+TEST(parallel_for_share_splits_the_same_chunks)
+{
+    lucent_pool *pool = lucent_pool_create(3);
+    static share_ctx c;
+    for (uint64_t stride = 1; stride <= 5; stride++) {
+        memset(&c, 0, sizeof c);
+        for (uint64_t offset = 0; offset < stride; offset++) {
+            c.offset = offset, c.stride = stride;
+            CHECK_OK(lucent_parallel_for_share(pool, 1000, 7, visit_share, &c, (lucent_share){offset, stride}));
+        }
+        int once = 0;
+        for (int i = 0; i < 1000; i++) once += c.visits[i] == 1;
+        CHECK_MSG(once == 1000 && c.wrong_chunk == 0, "stride %d: %d items once, %d chunks outside the share",
+                  (int)stride, once, (int)c.wrong_chunk);
+    }
+    memset(&c, 0, sizeof c);
+    c.stride = 1;
+    CHECK_OK(lucent_parallel_for_share(pool, 1000, 7, visit_share, &c, (lucent_share){0, 0}));     /* a merge: none */
+    CHECK_OK(lucent_parallel_for_share(pool, 1000, 7, visit_share, &c, (lucent_share){200, 300})); /* past the end */
+    int none = 0;
+    for (int i = 0; i < 1000; i++) none += c.visits[i] == 0;
+    CHECK(none == 1000);
+    /* the lowest failing chunk of the share: 13 (odd) for offset 1 of 2, 40 for offset 0 */
+    CHECK_ERR(lucent_parallel_for_share(pool, 64, 1, fail_some_chunks, NULL, (lucent_share){1, 2}), LUCENT_ERR_NUMERIC,
+              "chunk 13 failed");
+    CHECK_ERR(lucent_parallel_for_share(pool, 64, 1, fail_some_chunks, NULL, (lucent_share){0, 2}), LUCENT_ERR_NUMERIC,
+              "chunk 40 failed");
+    lucent_pool_destroy(pool);
+}
+
+/* One process (no MPI launcher, no part): sums are the values themselves and errors pass through. */
+TEST(dist_one_process_is_the_identity)
+{
+    CHECK(lucent_dist_rank() == 0 && lucent_dist_size() == 1 && !lucent_dist_active());
+    lucent_share sh = lucent_dist_share();
+    CHECK(sh.offset == 0 && sh.stride == 1);
+    int64_t v[3] = {1, -2, 3};
+    CHECK_OK(lucent_dist_sum(LUCENT_OK, LUCENT_DIST_I64, v, 3));
+    CHECK(v[0] == 1 && v[1] == -2 && v[2] == 3);
+    lucent_error(LUCENT_ERR_IO, "disk on fire");
+    CHECK_ERR(lucent_dist_sum(LUCENT_ERR_IO, LUCENT_DIST_I64, v, 3), LUCENT_ERR_IO, "disk on fire");
+    CHECK_OK(lucent_dist_agree(LUCENT_OK)); /* one process does not latch a failure */
+    CHECK(lucent_dist_writes_outputs());
 }
 
 static lucent_status inner_loop(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
@@ -576,7 +639,8 @@ TEST(mat4_multiplies_column_major)
 
 TEST_MAIN(TEST_ENTRY(error_message_and_context), TEST_ENTRY(error_is_per_thread), TEST_ENTRY(log_filters_by_level),
           TEST_ENTRY(progress_silent_by_default_and_draws_when_asked), TEST_ENTRY(parallel_for_visits_every_item_once),
-          TEST_ENTRY(parallel_for_reports_lowest_failing_chunk), TEST_ENTRY(parallel_for_nested_runs_without_deadlock),
+          TEST_ENTRY(parallel_for_reports_lowest_failing_chunk), TEST_ENTRY(parallel_for_share_splits_the_same_chunks),
+          TEST_ENTRY(dist_one_process_is_the_identity), TEST_ENTRY(parallel_for_nested_runs_without_deadlock),
           TEST_ENTRY(pool_size_from_environment), TEST_ENTRY(rng_matches_xoshiro256starstar_reference),
           TEST_ENTRY(rng_streams_are_uniform), TEST_ENTRY(rng_neighbouring_streams_are_independent),
           TEST_ENTRY(rng_same_seed_same_numbers_other_seed_differs),
