@@ -99,6 +99,10 @@ void lucent_progress_set_output(FILE *out);
  * every progress function accepts NULL and then does nothing. */
 lucent_progress *lucent_progress_begin(const char *label, uint64_t total);
 
+/* Makes the bar also follow a time limit of `seconds` from the task's start (<= 0: none): it shows
+ * the larger of the units' fraction and the elapsed time's, and the ETA of whichever ends first. */
+void lucent_progress_set_deadline(lucent_progress *p, double seconds);
+
 /* Adds n finished units. Thread-safe, cheap (redraws at most ten times per second). */
 void lucent_progress_add(lucent_progress *p, uint64_t n);
 

@@ -89,7 +89,10 @@ typedef struct lucent_trace_desc {
                             that has samples is refused */
     lucent_pool *pool;   /* NULL: the calling thread only */
     double time_limit;   /* seconds for this call (0: the scene's render.time_limit, where 0 means
-                            none; < 0: none); checked after every sample pass */
+                            none; < 0: none); checked before every tile of 16 x 16 pixels, so
+                            the call ends within a tile's time of it; a pass cut short keeps its
+                            finished tiles' samples (each pixel's mean uses its own count) without
+                            counting in spp, so a limit shorter than one pass leaves pixels empty */
     double target_error; /* stop once the estimate's error_rms (lucent_trace_result) is at most this,
                             after at least 16 samples per pixel (0: no target) */
     const char *label;   /* progress label (NULL: "trace") */

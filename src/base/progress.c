@@ -1,5 +1,6 @@
 /* Progress bars on a stream (stderr in the CLI): label, bar, percentage, rate and ETA.
  * Redrawn at most ten times per second by whichever thread reports progress. */
+#include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
@@ -11,7 +12,7 @@ struct lucent_progress {
     char label[48];
     uint64_t total;
     _Atomic uint64_t done;
-    double start;
+    double start, limit; /* limit: seconds from start (0: none) */
     _Atomic long long next_draw_ns;
     pthread_mutex_t draw_lock;
 };
@@ -53,19 +54,29 @@ static void format_duration(double s, char *dest, size_t n)
     (void)len; /* t is at most 100 hours: always fits */
 }
 
+void lucent_progress_set_deadline(lucent_progress *p, double seconds)
+{
+    if (p) p->limit = seconds > 0 ? seconds : 0;
+}
+
 static void draw(lucent_progress *p, FILE *out, bool final)
 {
     uint64_t done = atomic_load(&p->done);
     double frac = p->total ? (double)done / (double)p->total : 1.0;
-    if (frac > 1) frac = 1;
     double elapsed = lucent_clock_seconds() - p->start;
     double rate = elapsed > 0 ? (double)done / elapsed : 0;
+    double eta = rate > 0 ? (double)(p->total - (done < p->total ? done : p->total)) / rate : -1;
+    if (p->limit > 0) { /* the time limit ends the task first when its share is ahead */
+        frac = fmax(frac, elapsed / p->limit);
+        eta = eta < 0 ? fmax(p->limit - elapsed, 0) : fmin(eta, fmax(p->limit - elapsed, 0));
+    }
+    if (frac > 1) frac = 1;
     char bar[31], rate_s[32], time_s[32];
     int fill = (int)(frac * 30);
     for (int i = 0; i < 30; i++) bar[i] = i < fill ? '#' : '.';
     bar[30] = '\0';
     format_rate(rate, rate_s, sizeof rate_s);
-    format_duration(final ? elapsed : (rate > 0 ? (double)(p->total - done) / rate : -1), time_s, sizeof time_s);
+    format_duration(final ? elapsed : eta, time_s, sizeof time_s);
     fprintf(out, "\r%-20s [%s] %5.1f%% %8s/s %s %s%s", p->label, bar, 100 * frac, rate_s, final ? "took" : "ETA",
             time_s, final ? "\n" : "   ");
     fflush(out);

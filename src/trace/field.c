@@ -26,6 +26,7 @@ typedef struct field_job {
     const lucent_tracer *tr;
     double *tally; /* [CHUNKS][objects][cells][3] */
     size_t per_chunk;
+    double deadline; /* lucent_clock_seconds() after which no chunk starts (0: none) */
 } field_job;
 
 static size_t cell_count(const tr_field *f) { return (size_t)f->n[0] * (size_t)f->n[1] * (size_t)f->n[2]; }
@@ -152,6 +153,7 @@ static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
     lucent_scene_bounds(tr->scene, lo, hi);
     v3 c = v3_scale(v3_add(v3_load(lo), v3_load(hi)), 0.5);
     double r = 0.5 * v3_length(v3_sub(v3_load(hi), v3_load(lo))) * 1.01 + tr->eps;
+    if (job->deadline > 0 && lucent_clock_seconds() >= job->deadline) return LUCENT_OK; /* the run's time limit */
     lucent_rng rng;
     lucent_rng_init(FIELD_SEED, chunk, &rng);
     for (uint64_t i = begin; i < end; i++) {
@@ -265,7 +267,7 @@ static lucent_status finish_object(const lucent_tracer *tr, int o, const double 
     return LUCENT_OK;
 }
 
-lucent_status tr_field_build(lucent_tracer *tr, lucent_pool *pool)
+lucent_status tr_field_build(lucent_tracer *tr, lucent_pool *pool, double deadline)
 {
     if (!tr->walk_target || tr->object_count == 0) return LUCENT_OK;
     tr->fields = calloc((size_t)tr->object_count, sizeof *tr->fields);
@@ -276,7 +278,7 @@ lucent_status tr_field_build(lucent_tracer *tr, lucent_pool *pool)
         tr->fields[o].offset = cells;
         cells += cell_count(&tr->fields[o]);
     }
-    field_job job = {.tr = tr, .per_chunk = cells * 3};
+    field_job job = {.tr = tr, .per_chunk = cells * 3, .deadline = deadline};
     job.tally = calloc(CHUNKS * job.per_chunk, sizeof *job.tally);
     if (!job.tally) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory for the guiding field");
     /* 64 photons per pixel, within [2^16, 2^20]: a function of the scene alone */

@@ -4,8 +4,9 @@
 
 #include "trace/internal.h"
 
-/* Builds tr->fields from a light-tracing pre-pass (nothing when no light has a direction). */
-lucent_status tr_field_build(lucent_tracer *tr, lucent_pool *pool);
+/* Builds tr->fields from a light-tracing pre-pass (nothing when no light has a direction). With a deadline (lucent_clock_seconds(), 0: none) photon chunks not begun by then are left out:
+ * a field of fewer photons (the gradient of ln phi needs no normalisation), still only a density. */
+lucent_status tr_field_build(lucent_tracer *tr, lucent_pool *pool, double deadline);
 void tr_field_destroy(lucent_tracer *tr);
 
 #endif

@@ -4,6 +4,7 @@
  * added in sample order whatever the thread count. Sample i of pixel p draws from RNG stream
  * (i << 32 | p); the pilot sample of pass k from stream (k << 32 | p) with the top bit set. */
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -59,6 +60,8 @@ typedef struct pass_job {
     int tiles_x;
     tr_stats *stats; /* one per thread */
     lucent_progress *progress;
+    double deadline;  /* lucent_clock_seconds() after which no tile starts (0: none) */
+    _Atomic bool cut; /* a tile was skipped for the deadline */
 } pass_job;
 
 static void accumulate(double *a, const double v[3])
@@ -100,6 +103,10 @@ static lucent_status pass_tile(void *ctx, uint64_t chunk, uint64_t begin, uint64
     int x0 = (int)(chunk % (uint64_t)job->tiles_x) * TILE, y0 = (int)(chunk / (uint64_t)job->tiles_x) * TILE;
     int x1 = x0 + TILE < f->width ? x0 + TILE : f->width, y1 = y0 + TILE < f->height ? y0 + TILE : f->height;
     uint64_t done = 0;
+    if (job->deadline > 0 && (atomic_load(&job->cut) || lucent_clock_seconds() >= job->deadline)) {
+        atomic_store(&job->cut, true);
+        return LUCENT_OK;
+    }
     for (int y = y0; y < y1; y++)
         for (int x = x0; x < x1; x++) done += pixel_pass(job, x, y, thread);
     lucent_progress_add(job->progress, done);
@@ -121,19 +128,26 @@ uint64_t tr_film_pass_samples(const tr_film *f)
     return total;
 }
 
-lucent_status tr_film_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *pool, lucent_progress *progress)
+lucent_status tr_film_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *pool, lucent_progress *progress,
+                           double deadline, bool *cut)
 {
     int threads = pool ? lucent_pool_threads(pool) : 1;
     tr_stats *stats = calloc((size_t)threads, sizeof *stats);
     if (!stats) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory");
     tr_film_allocate(f);
-    pass_job job = {.tr = tr, .film = f, .tiles_x = (f->width + TILE - 1) / TILE, .stats = stats, .progress = progress};
+    pass_job job = {.tr = tr,
+                    .film = f,
+                    .tiles_x = (f->width + TILE - 1) / TILE,
+                    .stats = stats,
+                    .progress = progress,
+                    .deadline = deadline};
     uint64_t tiles = (uint64_t)job.tiles_x * (uint64_t)((f->height + TILE - 1) / TILE);
     lucent_status s = lucent_parallel_for_share(pool, tiles, 1, pass_tile, &job, lucent_dist_share());
     for (int t = 0; t < threads; t++) merge_stats(&f->stats, &stats[t]);
     free(stats);
     if (f->adaptive && lucent_dist_size() > 1) s = tr_film_gather(f, f->pilot, TR_FILM_ACC, s);
-    if (s == LUCENT_OK) f->passes++;
+    *cut = atomic_load(&job.cut);
+    if (s == LUCENT_OK && !*cut) f->passes++;
     return s;
 }
 

@@ -28,8 +28,12 @@ lucent_status tr_film_create(int width, int height, bool adaptive, tr_film **des
 void tr_film_destroy(tr_film *f);
 void tr_film_reset(tr_film *f);
 
-/* One pass: every pixel's quota of samples (one each unless adaptive), plus its pilot sample. */
-lucent_status tr_film_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *pool, lucent_progress *progress);
+/* One pass: every pixel's quota of samples (one each unless adaptive), plus its pilot sample. With a
+ * deadline (lucent_clock_seconds(), 0: none) no tile starts after it: the pass is then cut (*cut),
+ * its finished tiles keep their samples (each pixel's mean and variance use its own count, so the
+ * estimate stays unbiased) and it is not counted in passes. */
+lucent_status tr_film_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *pool, lucent_progress *progress,
+                           double deadline, bool *cut);
 
 /* Whether this process runs the tile of pixel p (lucent/dist.h). */
 bool tr_film_owns(const tr_film *f, size_t p);

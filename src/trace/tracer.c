@@ -201,14 +201,20 @@ lucent_status lucent_tracer_render(lucent_tracer *tr, const lucent_trace_desc *d
     if (s != LUCENT_OK) return s;
     double start = lucent_clock_seconds();        /* the guiding field's pre-pass counts as rendering time */
     bool merge = lucent_dist_share().stride == 0; /* a merge of parts: no path is traced here */
-    if (!merge && !tr->fields && tr->walk_strength > 0 && (s = tr_field_build(tr, d.pool)) != LUCENT_OK) return s;
+    /* under a time limit the field's photons get at most a quarter of it (the passes the rest) */
+    double field_deadline = d.time_limit > 0 ? start + 0.25 * d.time_limit : 0;
+    if (!merge && !tr->fields && tr->walk_strength > 0 && (s = tr_field_build(tr, d.pool, field_deadline)) != LUCENT_OK)
+        return s;
     tr->film->seed = d.seed;
     uint64_t per_pass =
         (uint64_t)tr->render.view.width * (uint64_t)tr->render.view.height * (tr->desc.adaptive ? 5 : 1);
     lucent_progress *progress = lucent_progress_begin(d.label, (uint64_t)d.spp * per_pass);
+    lucent_progress_set_deadline(progress, d.time_limit); /* the bar follows whichever limit stops the run */
+    double deadline = d.time_limit > 0 ? start + d.time_limit : 0;
     for (int i = 0; i < d.spp && s == LUCENT_OK; i++) {
-        bool stop = false;
-        s = tr_film_pass(tr, tr->film, d.pool, progress);
+        bool stop = false, cut = false; /* a cut pass is past the deadline, so should_stop (which all
+                                           processes agree on) stops too */
+        s = tr_film_pass(tr, tr->film, d.pool, progress, deadline, &cut);
         s = should_stop(tr, &d, start, s, &stop);
         if (stop) break;
     }
