@@ -6,21 +6,36 @@ if [ -n "${LUCENT_GL_SKIP:-}" ]; then
   return 0
 fi
 
-expect_ok -- "${GLRUN[@]}" compare "$SC/sphere.json" --methods lambert,ssss:svd2 --spp 4 --frames 2 --out "$TMP/cmp"
+expect_ok -- "${GLRUN[@]}" compare "$SC/sphere.json" --methods lambert,ssss:svd2 --spp 8 --frames 2 --out "$TMP/cmp"
 for f in report.html report.md report.csv results.json test-sphere/reference.png test-sphere/reference.exr \
-         test-sphere/lambert.png test-sphere/ssss-svd2.exr test-sphere/ssss-svd2-error.png test-sphere/errors.svg; do
+         test-sphere/lambert.png test-sphere/ssss-svd2.exr test-sphere/ssss-svd2-error.png test-sphere/errors.svg \
+         test-sphere/ssss-svd2-worst.png error-scale.png; do
   expect_true "compare wrote $f" -- test -s "$TMP/cmp/$f"
 done
 expect_true "compare says where the report is" -- grep -q "^wrote $TMP/cmp/report.html" <<<"$OUT"
-expect_true "compare prints a row per method" -- test "$(grep -cE '^  (lambert|ssss:svd2) +[0-9.]+% ' <<<"$OUT")" = 2
+expect_true "compare prints a ranked row per method" -- \
+  test "$(grep -cE '^  =?[12] +(lambert|ssss:svd2) +[0-9.]+% +[0-9.]+% ' <<<"$OUT")" = 2
+expect_true "lambert's frame is 1.00 x Lambert's" -- grep -qE '^  =?[12] +lambert .* 1\.00 ' <<<"$OUT"
 expect_true "the CSV has a row per method" -- test "$(grep -c '^"test-sphere",' "$TMP/cmp/report.csv")" = 2
-expect_true "the HTML shows every image" -- test "$(grep -o '<img src=' "$TMP/cmp/report.html" | wc -l)" = 6
+# reference, 2 methods, 2 error maps, the colour bar, 2 crops, the chart
+expect_true "the HTML shows every image" -- test "$(grep -o '<img src=' "$TMP/cmp/report.html" | wc -l)" = 9
 expect_true "the errors are finite percentages" -- \
   awk -F, 'NR > 1 {if (!($3 >= 0 && $3 < 10)) bad = 1} END {exit bad}' "$TMP/cmp/report.csv"
 expect_true "net of the reference's noise: sqrt(error^2 - noise^2), never above the error" -- \
   awk -F, 'NR > 1 {want = $3 * $3 - $10 * $10; want = want > 0 ? sqrt(want) : 0
-                   if (NF != 11 || $11 > $3 || (want - $11) ^ 2 > 1e-8 * (want * want + 1e-12)) bad = 1} END {exit bad}' \
+                   if (NF != 13 || $11 > $3 || (want - $11) ^ 2 > 1e-8 * (want * want + 1e-12)) bad = 1} END {exit bad}' \
   "$TMP/cmp/report.csv"
+
+# A 1-spp reference cannot estimate its own noise: unknown, a warning in the terminal and the HTML,
+# nothing ranked or bolded (issue 12, section 2).
+expect_ok -- "${GLRUN[@]}" compare "$SC/sphere.json" --methods lambert,ssss:svd2 --spp 1 --frames 1 --out "$TMP/cmp1"
+expect_true "1 spp: the noise is unknown in the terminal" -- grep -q "its noise unknown" <<<"$OUT"
+expect_true "1 spp: the terminal warns" -- grep -q "warning: test-sphere: the reference has 1 spp" "$TMP/.stderr"
+expect_true "1 spp: no rank in the terminal" -- test "$(grep -cE '^  - +(lambert|ssss:svd2) ' <<<"$OUT")" = 2
+expect_true "1 spp: the HTML warns" -- grep -q 'class="warn"><b>Warning:</b> the reference has 1 sample per pixel' \
+  "$TMP/cmp1/report.html"
+expect_true "1 spp: no best in the HTML" -- bash -c '! grep -q "class=\"best\"" "$0"' "$TMP/cmp1/report.html"
+expect_true "1 spp: the JSON's noise is null" -- grep -q '"reference_noise":[[:space:]]*null' "$TMP/cmp1/results.json"
 
 # Failures: exit 1 (bad input) or 2 (bad usage), a message naming the cause, no report left behind.
 expect_fail 2 "--methods: unknown method 'phong'" -- "${GLRUN[@]}" compare "$SC/sphere.json" --methods lambert,phong --out "$TMP/c1"

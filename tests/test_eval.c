@@ -55,20 +55,47 @@ TEST(reference_noise_is_sqrt_of_summed_variance_over_summed_squares)
     lucent_image_destroy(v);
 }
 
-TEST(error_map_is_white_at_half_relative_error_and_black_outside_the_mask)
+/* The signed map: (2 - 1) / (1 + 0.01) = +99% (beyond the 50% scale: full orange), (0.75 - 1) / 1.01 =
+ * -24.75% (blue at 24.75 / 50 of full), black outside the mask. */
+TEST(error_map_is_signed_full_at_half_relative_error_and_black_outside_the_mask)
 {
     lucent_image *ref, *img, *heat = NULL;
     CHECK_OK(lucent_image_create(3, 3, 3, &ref));
     CHECK_OK(lucent_image_create(3, 3, 3, &img));
-    for (int i = 0; i < 27; i++) ref->data[i] = 1, img->data[i] = 2; /* |2 - 1| / (1 + 0.01) > 0.5 */
+    for (int i = 0; i < 27; i++) ref->data[i] = 1, img->data[i] = i / 3 == 3 ? 0.75f : 2;
     float mask[9] = {0};
-    mask[4] = 1;
+    mask[4] = mask[3] = 1;
     CHECK_OK(lucent_compare_error_map(img, ref, mask, &heat));
     CHECK(heat && heat->channels == 3 && heat->width == 3 && heat->height == 3);
+    float full[3], part[3];
+    lucent_compare_error_colour(1.0, 0.5, full);
+    lucent_compare_error_colour(-0.25 / 1.01, 0.5, part);
+    CHECK(full[0] == 1.0f && full[2] == 0.0f && part[2] > part[0]); /* orange too bright, blue too dark */
     for (int p = 0; heat && p < 9; p++)
-        for (int c = 0; c < 3; c++)
-            CHECK_NEAR(heat->data[p * 3 + c], p == 4 ? 1.0 : 0.0, 1e-6); /* the ramp ends black and white */
+        for (int c = 0; c < 3; c++) CHECK_NEAR(heat->data[p * 3 + c], p == 4 ? full[c] : p == 3 ? part[c] : 0.0, 1e-6);
+    CHECK_NEAR(part[2], 0.25 / 1.01 / 0.5, 1e-6); /* linear to full at the scale */
     lucent_image_destroy(heat);
+    lucent_image_destroy(ref);
+    lucent_image_destroy(img);
+}
+
+/* The worst square is where the error is: a 16 x 12 image with one wrong pixel at (11, 7) and a 4 x 4
+ * window: the first window (in row order) holding it starts at (8, 4). */
+TEST(worst_region_holds_the_largest_error)
+{
+    lucent_image *ref, *img;
+    CHECK_OK(lucent_image_create(16, 12, 3, &ref));
+    CHECK_OK(lucent_image_create(16, 12, 3, &img));
+    for (size_t i = 0; i < 16 * 12 * 3; i++) ref->data[i] = img->data[i] = 0.5f;
+    img->data[(7 * 16 + 11) * 3 + 1] = 3;
+    img->data[(1 * 16 + 1) * 3 + 1] = 0.6f; /* a smaller error elsewhere */
+    int x = -1, y = -1;
+    CHECK_OK(lucent_compare_worst_region(img, ref, NULL, 4, &x, &y));
+    CHECK(x == 8 && y == 4);
+    float mask[16 * 12] = {0};
+    mask[1 * 16 + 1] = 1; /* masked out, the big error does not count */
+    CHECK_OK(lucent_compare_worst_region(img, ref, mask, 4, &x, &y));
+    CHECK(x == 0 && y == 0);
     lucent_image_destroy(ref);
     lucent_image_destroy(img);
 }
@@ -330,7 +357,8 @@ TEST(cdrf_fit_csv_tabulates_the_fitted_function)
 
 TEST_MAIN(TEST_ENTRY(object_mask_keeps_pixels_whose_3x3_neighbourhood_is_covered),
           TEST_ENTRY(reference_noise_is_sqrt_of_summed_variance_over_summed_squares),
-          TEST_ENTRY(error_map_is_white_at_half_relative_error_and_black_outside_the_mask),
+          TEST_ENTRY(error_map_is_signed_full_at_half_relative_error_and_black_outside_the_mask),
+          TEST_ENTRY(worst_region_holds_the_largest_error),
           TEST_ENTRY(compare_refuses_a_desc_without_scenes_or_with_an_unknown_method),
           TEST_ENTRY(kernel_eval_model_names), TEST_ENTRY(kernel_eval_refuses_a_bad_desc),
           TEST_ENTRY(kernel_eval_on_an_impulse),

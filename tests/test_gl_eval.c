@@ -119,19 +119,20 @@ TEST(compare_run_errors_are_the_relative_rms_over_the_mask)
                                                        .scene_count = 1,
                                                        .methods = methods,
                                                        .method_count = 2,
-                                                       .spp = 4,
+                                                       .spp = LUCENT_COMPARE_MIN_SPP, /* noise known */
                                                        .frames = 1,
                                                        .out = dir,
                                                        .on_event = on_event,
                                                        .user = &s},
                                 &r));
     CHECK(r.scene_count == 1 && s.done == 1 && s.done_index == 0 && s.methods_when_done == 2 && s.html == 1);
-    /* reference.exr/.png, per method .exr/.png/-error.png, errors.svg, 4 reports: 2 + 6 + 1 + 4. */
-    CHECK_MSG(s.wrote == 13, "%d files told", s.wrote);
+    /* reference.exr/.png, per method .exr/.png/-error.png/-worst.png, errors.svg, the colour bar, 4 reports:
+     * 2 + 8 + 1 + 1 + 4. */
+    CHECK_MSG(s.wrote == 16, "%d files told", s.wrote);
     if (r.scene_count != 1) return;
     const lucent_compare_scene_result *sr = &r.scenes[0];
     const lucent_image *cov = sr->reference->coverage, *ref = sr->reference->image;
-    CHECK(sr->report.width == 48 && sr->report.height == 40 && sr->report.reference_spp == 4);
+    CHECK(sr->report.width == 48 && sr->report.height == 40 && sr->report.reference_spp == LUCENT_COMPARE_MIN_SPP);
     float *mask = malloc((size_t)cov->width * cov->height * sizeof *mask);
     uint64_t n = hand_mask(cov, mask);
     CHECK(n > 0 && sr->object_pixels == n);

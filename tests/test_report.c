@@ -72,12 +72,22 @@ TEST(svg_rejects_empty_figures)
     free(svg);
 }
 
-/* Two scenes with two methods each; one name needs escaping. */
+/* Two scenes with two methods each; one name needs escaping. The first scene's errors, net of its
+ * 1% noise: lambert sqrt(25^2 - 1) = 24.98%, ssss 4.90%; the second's: cdrf 12.46%, x<y 49.99%. */
 static const lucent_compare_method k_methods[2][2] = {
-    {{"lambert", "a/lambert.png", "a/lambert-err.png", 0.25, {0.3, 0.2, 0.1}, 1.5, 10, "Blinn-Phong"},
-     {"ssss:preint", "a/ssss.png", "a/ssss-err.png", 0.05, {0.06, 0.05, 0.04}, 2.25, 300, "17 taps"}},
-    {{"cdrf", "b/cdrf.png", "b/cdrf-err.png", 0.125, {0.1, 0.1, 0.2}, 1.75, 900, "LUT"},
-     {"x<y&\"z\"", "b/x.png", "b/x-err.png", 0.5, {0.5, 0.5, 0.5}, 3, 1, "a, b"}}};
+    {{"lambert", "a/lambert.png", "a/lambert-err.png", 0.25, {0.3, 0.2, 0.1}, 1.5, 10, "Blinn-Phong", NULL, {0}},
+     {"ssss:preint",
+      "a/ssss.png",
+      "a/ssss-err.png",
+      0.05,
+      {0.06, 0.05, 0.04},
+      2.25,
+      300,
+      "17 taps",
+      "a/ssss-worst.png",
+      {8, 4, 16}}},
+    {{"cdrf", "b/cdrf.png", "b/cdrf-err.png", 0.125, {0.1, 0.1, 0.2}, 1.75, 900, "LUT", NULL, {0}},
+     {"x<y&\"z\"", "b/x.png", "b/x-err.png", 0.5, {0.5, 0.5, 0.5}, 3, 1, "a, b", NULL, {0}}}};
 
 static void make_scenes(lucent_compare_scene sc[2])
 {
@@ -100,6 +110,7 @@ TEST(compare_html_has_every_scene_method_and_image)
 {
     lucent_compare_scene sc[2];
     make_scenes(sc);
+    sc[0].error_scale_image = "error-scale.png";
     const char *path = test_path("report.html");
     CHECK_OK(lucent_compare_write_html(path, "Lucent <test>", sc, 2));
     char *html;
@@ -108,17 +119,82 @@ TEST(compare_html_has_every_scene_method_and_image)
     if (!html) return;
     CHECK(strstr(html, "<title>Lucent &lt;test&gt;</title>") != NULL);
     CHECK(count_of(html, "<section id=") == 2);
-    CHECK(count_of(html, "<tr") == 2 * 3); /* a header row and two method rows per scene */
+    /* the summary (a header, the noise row, a row per method name) and per scene a header and two rows */
+    CHECK(count_of(html, "<tr") == (2 + 4) + 2 * 3);
+    CHECK(strstr(html, "Summary across scenes") < strstr(html, "<section id="));
     CHECK(count_of(html, "class=\"best\"") == 2);
-    /* the best row of the first scene is ssss:preint (5% < 25%) */
+    /* the ranked table: ssss:preint (5% < 25%) first, bold, rank 1 */
     const char *best = strstr(html, "class=\"best\"");
-    static const char want[] = "class=\"best\"><td>ssss:preint<";
+    static const char want[] = "class=\"best\"><td>1</td><td>ssss:preint<";
     CHECK(best && strncmp(best, want, strlen(want)) == 0);
     CHECK(strstr(html, "x&lt;y&amp;&quot;z&quot;") != NULL && strstr(html, "x<y") == NULL);
-    CHECK(count_of(html, "<img src=") == 2 * (1 + 2 + 2));                     /* reference, methods, error maps */
-    CHECK(strstr(html, "<td>5.00%</td><td>4.90%</td><td>6.00%</td>") != NULL); /* net: sqrt(5^2 - 1^2) */
+    /* reference, methods, error maps (each also a link), the colour bar, one crop */
+    CHECK(count_of(html, "<img src=") == 2 * (1 + 2 + 2) + 1 + 1);
+    CHECK(count_of(html, "<a href=\"a/") == 1 + 2 + 2 + 1);
+    CHECK(strstr(html, "<img src=\"a/ref.png\" width=\"64\" height=\"32\"") != NULL); /* native size */
+    CHECK(strstr(html, "<td>5.00%</td><td>4.90%</td><td>6.00%</td>") != NULL);        /* net: sqrt(5^2 - 1^2) */
+    CHECK(strstr(html, "<td>1.500</td><td>1.00x</td>") != NULL && strstr(html, "<td>2.250</td><td>1.50x</td>"));
     CHECK(strstr(html, "256 samples per pixel in 12.5 s") != NULL);
+    CHECK(strstr(html, "full at 50%") != NULL && strstr(html, "too dark") != NULL);
+    CHECK(strstr(html, "Warning") == NULL);
     free(html);
+}
+
+/* Errors within the noise of each other share a rank: with 3% noise, nets 4.00% (5% raw) and 6.71%
+ * (7.35% raw: sqrt(7.35^2 - 9) = 6.71) differ by 2.71 < 3, so both are rank 1, tied; a third at 20%
+ * (net 19.77%) is rank 3. */
+TEST(compare_rank_ties_methods_within_the_noise)
+{
+    lucent_compare_method m[3] = {
+        {.name = "c", .rel_rms = 0.20}, {.name = "a", .rel_rms = 0.05}, {.name = "b", .rel_rms = 0.0735}};
+    lucent_compare_scene sc = {
+        .name = "s", .reference_spp = 64, .reference_noise = 0.03, .methods = m, .method_count = 3};
+    int order[3], rank[3];
+    CHECK(lucent_compare_rank(&sc, order, rank));
+    CHECK(order[0] == 1 && order[1] == 2 && order[2] == 0);
+    CHECK(rank[1] == 1 && rank[2] == 1 && rank[0] == 3);
+    sc.reference_noise = 0.02; /* 2.71 > 2: no tie */
+    CHECK(lucent_compare_rank(&sc, order, rank) && rank[1] == 1 && rank[2] == 2 && rank[0] == 3);
+    sc.reference_spp = LUCENT_COMPARE_MIN_SPP - 1; /* too few samples: no ranking */
+    CHECK(!lucent_compare_rank(&sc, order, rank) && rank[0] == 0 && rank[1] == 0 && order[0] == 0);
+    CHECK(!lucent_compare_noise_known(&sc));
+}
+
+/* A 1-spp reference: its variance cannot be estimated, so the noise is unknown, nothing is ranked or
+ * bolded, and every report says so. */
+TEST(compare_reports_of_a_one_spp_reference_warn_and_rank_nothing)
+{
+    lucent_compare_scene sc[2];
+    make_scenes(sc);
+    sc[0].reference_spp = 1, sc[0].reference_noise = NAN;
+    const char *path = test_path("report1.html");
+    CHECK_OK(lucent_compare_write_html(path, "one spp", sc, 2));
+    char *text;
+    size_t size;
+    CHECK_OK(lucent_read_file(path, &text, &size));
+    if (text) {
+        CHECK(count_of(text, "class=\"warn\"") == 2); /* at the head and in the scene */
+        CHECK(strstr(text, "the reference has 1 sample per pixel, fewer than the 8") != NULL);
+        CHECK(count_of(text, "class=\"best\"") == 1); /* the other scene only */
+        CHECK(strstr(text, "object is unknown,") != NULL);
+        CHECK(strstr(text, ">0.00%") == NULL && strstr(text, " 0.00%") == NULL); /* no zero noise claimed */
+        free(text);
+    }
+    const char *md = test_path("report1.md");
+    CHECK_OK(lucent_compare_write_markdown(md, sc, 2));
+    CHECK_OK(lucent_read_file(md, &text, &size));
+    if (text) {
+        CHECK(strstr(text, "(noise unknown)") != NULL && strstr(text, "**Warning:**") != NULL);
+        CHECK(strstr(text, "| - | lambert | 25.00% | unknown |") != NULL);
+        free(text);
+    }
+    const char *csv = test_path("report1.csv");
+    CHECK_OK(lucent_compare_write_csv(csv, sc, 2));
+    CHECK_OK(lucent_read_file(csv, &text, &size));
+    if (text) {
+        CHECK(strstr(text, "\"dragon\",\"lambert\",0.25,0.3,0.2,0.1,1.5,10,1,,,,1\n") != NULL);
+        free(text);
+    }
 }
 
 TEST(compare_markdown_and_csv_tables)
@@ -132,8 +208,8 @@ TEST(compare_markdown_and_csv_tables)
     CHECK_OK(lucent_read_file(md, &text, &size));
     if (text) {
         CHECK(count_of(text, "\n## ") + (strncmp(text, "## ", 3) == 0) == 2);
-        /* net of noise: sqrt(0.125^2 - 0.01^2) = 12.46% */
-        CHECK(strstr(text, "| cdrf | 12.50% | 12.46% | 10.00% | 10.00% | 20.00% | 1.750 | 900 |") != NULL);
+        /* net of noise: sqrt(0.125^2 - 0.01^2) = 12.46%; ranked first, bold */
+        CHECK(strstr(text, "| 1 | **cdrf** | 12.50% | 12.46% | 10.00% | 10.00% | 20.00% | 1.750 | - | 900 |") != NULL);
         free(text);
     }
     const char *csv = test_path("report.csv");
@@ -141,7 +217,7 @@ TEST(compare_markdown_and_csv_tables)
     CHECK_OK(lucent_read_file(csv, &text, &size));
     if (!text) return;
     CHECK(count_of(text, "\n") == 1 + 4);
-    CHECK(strstr(text, "\"dragon\",\"lambert\",0.25,0.3,0.2,0.1,1.5,10,256,0.01,0.2498\n") != NULL);
+    CHECK(strstr(text, "\"dragon\",\"lambert\",0.25,0.3,0.2,0.1,1.5,10,256,0.01,0.2498,2,1\n") != NULL);
     CHECK(strstr(text, "\"x<y&\"\"z\"\"\"") != NULL); /* quotes doubled */
     free(text);
 }
@@ -165,12 +241,17 @@ TEST(compare_chart_has_a_marker_per_method)
     size_t size;
     CHECK_OK(lucent_read_file(path, &svg, &size));
     if (!svg) return;
-    CHECK(count_of(svg, "<circle") >= 2);
-    CHECK(strstr(svg, "ssss:preint") != NULL);
+    /* two methods: two shapes (a square and a triangle, in the data and the legend), their labels at the
+     * points and in the legend, the noise band and its legend entry */
+    CHECK(count_of(svg, "<rect x=") >= 2 + 2);
+    CHECK(count_of(svg, ">ssss:preint<") == 2 && count_of(svg, ">lambert<") == 2);
+    CHECK(strstr(svg, "reference noise (1.00%)") != NULL && strstr(svg, "fill-opacity=\"0.25\"") != NULL);
+    CHECK(strstr(svg, "net of the reference") != NULL);
     free(svg);
 }
 
 TEST_MAIN(TEST_ENTRY(nice_ticks_are_1_2_5_steps), TEST_ENTRY(svg_has_a_curve_per_series_and_log_decades),
           TEST_ENTRY(svg_rejects_empty_figures), TEST_ENTRY(compare_html_has_every_scene_method_and_image),
-          TEST_ENTRY(compare_markdown_and_csv_tables), TEST_ENTRY(net_error_takes_the_noise_out_in_quadrature),
-          TEST_ENTRY(compare_chart_has_a_marker_per_method))
+          TEST_ENTRY(compare_markdown_and_csv_tables), TEST_ENTRY(compare_rank_ties_methods_within_the_noise),
+          TEST_ENTRY(compare_reports_of_a_one_spp_reference_warn_and_rank_nothing),
+          TEST_ENTRY(net_error_takes_the_noise_out_in_quadrature), TEST_ENTRY(compare_chart_has_a_marker_per_method))

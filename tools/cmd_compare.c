@@ -1,5 +1,6 @@
 /* `lucent compare`: every real-time method of a scene against the path-traced reference, in error
  * and in time, as an HTML report with images (and Markdown, CSV, JSON). */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -120,13 +121,35 @@ static int parse_args(int argc, char **argv, options *o)
 
 static void print_scene(const lucent_compare_scene *r)
 {
-    cli_info("%s: %d x %d; reference %d spp in %.1f s (its noise %.2f%%); %s", r->name, r->width, r->height,
-             r->reference_spp, r->reference_seconds, 100 * r->reference_noise, r->device);
-    cli_info("  %-22s %14s %13s %12s %12s", "method", "rel. RMS error", "net of noise", "frame ms", "setup ms");
-    for (int i = 0; i < r->method_count; i++)
-        cli_info("  %-22s %13.2f%% %12.2f%% %12.3f %12.0f", r->methods[i].name, 100 * r->methods[i].rel_rms,
-                 100 * lucent_compare_net_error(r->methods[i].rel_rms, r->reference_noise), r->methods[i].frame_ms,
-                 r->methods[i].setup_ms);
+    int order[MAX_METHODS], rank[MAX_METHODS], l = lucent_compare_lambert_index(r);
+    bool ranked = lucent_compare_rank(r, order, rank);
+    char noise[32] = "unknown";
+    if (ranked) snprintf(noise, sizeof noise, "%.2f%%", 100 * r->reference_noise);
+    cli_info("%s: %d x %d; reference %d spp in %.1f s (its noise %s); %s", r->name, r->width, r->height,
+             r->reference_spp, r->reference_seconds, noise, r->device);
+    if (!ranked)
+        fprintf(stderr,
+                "lucent: warning: %s: the reference has %d spp, fewer than the %d from which its noise can be "
+                "estimated: its noise is unknown, and no method is ranked or marked best\n",
+                r->name, r->reference_spp, LUCENT_COMPARE_MIN_SPP);
+    cli_info("  %-4s %-22s %14s %13s %12s %10s %12s", "rank", "method", "rel. RMS error", "net of noise", "frame ms",
+             "x Lambert", "setup ms");
+    for (int k = 0; k < r->method_count; k++) {
+        int i = order[k];
+        const lucent_compare_method *m = &r->methods[i];
+        char rk[16] = "-", net[24] = "unknown", ratio[24] = "-";
+        if (ranked) {
+            bool tie = false;
+            for (int j = 0; j < r->method_count; j++) tie |= j != i && rank[j] == rank[i];
+            snprintf(rk, sizeof rk, "%s%d", tie ? "=" : "", rank[i]);
+            snprintf(net, sizeof net, "%.2f%%", 100 * lucent_compare_net_error(m->rel_rms, r->reference_noise));
+        }
+        if (l >= 0 && r->methods[l].frame_ms > 0)
+            snprintf(ratio, sizeof ratio, "%.2f", m->frame_ms / r->methods[l].frame_ms);
+        cli_info("  %-4s %-22s %13.2f%% %13s %12.3f %10s %12.0f", rk, m->name, 100 * m->rel_rms, net, m->frame_ms,
+                 ratio, m->setup_ms);
+    }
+    if (ranked) cli_info("  (= : tied, net errors within the reference's noise of each other)");
 }
 
 /* Prints each scene's table once it is measured. */

@@ -69,7 +69,7 @@ enum { LUCENT_COMPARE_MAX_SCENES = 16, LUCENT_COMPARE_MAX_METHODS = 32, LUCENT_C
     "lambert,cdrf,cdrf+translucency,ssss:preint,ssss:svd1,ssss:svd3,ssss:guided,ssss:manual,ssss:jimenez"
 /* The report's title when a desc gives none. */
 #define LUCENT_COMPARE_DEFAULT_TITLE "Lucent: real-time subsurface scattering against a path-traced reference"
-/* The relative error drawn white in the error maps (50%). */
+/* The relative error drawn in full colour in the error maps (50%). */
 #define LUCENT_COMPARE_ERROR_MAP_SCALE 0.5f
 
 /* A compare run; a zero field means the default. */
@@ -137,11 +137,24 @@ uint64_t lucent_compare_object_mask(const lucent_image *coverage, float *dest);
  * that the reference alone adds to every method's error (see lucent_compare_net_error). */
 double lucent_compare_reference_noise(const lucent_image *mean, const lucent_image *variance, const float *mask);
 
-/* The error map of a method: per pixel |image - reference| / (reference + 0.01), averaged over R, G,
- * B, zero outside the mask (NULL: everywhere counted), as a heat map white at
- * LUCENT_COMPARE_ERROR_MAP_SCALE. Free *dest with lucent_image_destroy. */
+/* The colour of a signed relative error e in the error maps: black at 0, growing linearly to full
+ * at |e| = scale (and full beyond): blue (too dark, e < 0) or orange (too bright, e > 0), linear RGB. */
+void lucent_compare_error_colour(double e, double scale, float rgb[3]);
+
+/* The error map of a method: per pixel the signed relative error (image - reference) / (reference +
+ * 0.01), averaged over R, G, B, zero outside the mask (NULL: everywhere counted), in the colours of
+ * lucent_compare_error_colour with scale LUCENT_COMPARE_ERROR_MAP_SCALE. Free *dest with
+ * lucent_image_destroy. */
 lucent_status lucent_compare_error_map(const lucent_image *image, const lucent_image *reference, const float *mask,
                                        lucent_image **dest);
+
+/* The maps' colour bar: 256 x 14 pixels, -scale at the left to +scale at the right. */
+lucent_status lucent_compare_error_scale_image(lucent_image **dest);
+
+/* The size x size square (clamped to the image) where the squared error sum over R, G, B, inside the
+ * mask (NULL: everywhere), is largest: its top-left pixel in *x, *y (the first such, in row order). */
+lucent_status lucent_compare_worst_region(const lucent_image *image, const lucent_image *reference, const float *mask,
+                                          int size, int *x, int *y);
 
 /* Writes DIR/STEM.exr (linear) and DIR/STEM.png (tonemapped by tonemap; NULL: the defaults). */
 lucent_status lucent_compare_write_image(const char *dir, const char *stem, const lucent_image *image,

@@ -20,8 +20,15 @@ typedef struct lucent_plot_series {
     int count;
     const char *color; /* any SVG colour ("#c0392b", "red"); NULL: from the palette */
     bool dashed;
-    bool markers; /* draw a small circle at every point */
+    bool markers;                    /* draw a marker at every point (a circle unless marker says) */
+    int marker;                      /* 0: circle; 1 square, 2 triangle, 3 diamond, 4 inverted
+                                        triangle, 5 cross, 6 plus, 7 star (lucent_plot_marker_count) */
+    const char *const *point_labels; /* NULL, or count texts written beside the points (NULL: none) */
 } lucent_plot_series;
+
+/* How many marker shapes lucent_plot_series.marker names; the palette has 12 distinct colours, so
+ * series s drawn with colour s % 12 and marker s % 8 differ from every other of the first 24. */
+int lucent_plot_marker_count(void);
 
 /* One panel (a pair of axes). Zero fields mean "the default". */
 typedef struct lucent_plot_panel {
@@ -33,6 +40,8 @@ typedef struct lucent_plot_panel {
     double y_min, y_max; /* both 0: fit the data (points outside [x_min, x_max] do not count) */
     const lucent_plot_series *series;
     int series_count;
+    double band_y0, band_y1; /* a shaded horizontal band between these y (both 0: none) */
+    const char *band_label;  /* its legend text */
 } lucent_plot_panel;
 
 /* A figure: panels side by side. */
@@ -61,12 +70,14 @@ int lucent_plot_nice_ticks(double lo, double hi, int max_ticks, double *dest);
 typedef struct lucent_compare_method {
     const char *name;        /* "lambert", "ssss:preint", ... */
     const char *image;       /* the method's tonemapped PNG */
-    const char *error_image; /* heat map of the per-pixel relative error against the reference */
+    const char *error_image; /* signed map of the per-pixel relative error against the reference */
     double rel_rms;          /* relative RMS error over the object's pixels, pooled over R, G, B */
     double rel_rms_rgb[3];   /* per channel */
     double frame_ms;         /* GPU time of one frame (timer queries) */
     double setup_ms;         /* CPU preparation: kernels, LUTs, curvature, sigma0 (once per scene) */
     const char *settings;    /* what distinguishes this method's run (free text) */
+    const char *crop_image;  /* NULL, or zoomed crops of the worst region: reference, method, error */
+    int crop[3];             /* the worst region: x, y of its top-left pixel and its size */
 } lucent_compare_method;
 
 typedef struct lucent_compare_scene {
@@ -76,14 +87,38 @@ typedef struct lucent_compare_scene {
     const char *reference_image; /* the path tracer's tonemapped PNG */
     int reference_spp;
     double reference_seconds;
-    double reference_noise; /* the reference's own relative standard error over the object:
-                                    differences below it are noise, not method error */
-    const char *device;     /* the GL renderer that ran the methods */
-    const char *chart;      /* an SVG of error against frame time (NULL: none) */
-    const char *scene_json; /* the scene after overrides: what made the images */
+    double reference_noise;        /* the reference's own relative standard error over the object:
+                                    differences below it are noise, not method error; NaN when
+                                    unknown (fewer than LUCENT_COMPARE_MIN_SPP samples per pixel) */
+    const char *error_scale_image; /* NULL, or the colour bar of the error maps */
+    double error_scale;            /* the relative error drawn in full colour (0: 0.5) */
+    const char *device;            /* the GL renderer that ran the methods */
+    const char *chart;             /* an SVG of error against frame time (NULL: none) */
+    const char *scene_json;        /* the scene after overrides: what made the images */
     const lucent_compare_method *methods;
     int method_count;
 } lucent_compare_scene;
+
+/* The fewest samples per pixel from which the reference's noise is estimated: the variance of a
+ * pixel's mean comes from its samples' spread, and with fewer than 8 samples that estimate is itself
+ * off by a factor (its relative spread is sqrt(2 / (n - 1)) for Gaussian samples, 53% at n = 8 and
+ * undefined at n = 1; path-traced radiance is far from Gaussian, so worse). Below it the noise is
+ * unknown, and with it every net error and every ranking. */
+enum { LUCENT_COMPARE_MIN_SPP = 8 };
+
+/* Whether a scene's reference noise is known: reference_spp >= LUCENT_COMPARE_MIN_SPP and a finite
+ * reference_noise. Without it no method is ranked, tied or marked best. */
+bool lucent_compare_noise_known(const lucent_compare_scene *scene);
+
+/* Ranks the methods by their net error (lucent_compare_net_error; non-finite errors last): order[k]
+ * receives the index of the k-th, rank[i] the 1-based rank of method i, where a method whose net
+ * error is within the reference noise of the first of the group above it shares that group's rank
+ * (a tie: the reference cannot tell them apart). Returns false, and leaves order in the given order
+ * and every rank 0, when the noise is unknown (no ranking can be claimed). */
+bool lucent_compare_rank(const lucent_compare_scene *scene, int *order, int *rank);
+
+/* The index of the method named "lambert" (-1: none), whose frame time the others are given against. */
+int lucent_compare_lambert_index(const lucent_compare_scene *scene);
 
 /* A method's relative RMS error with the reference's own noise taken out: sqrt(max(e^2 - n^2, 0)).
  * The reference is the truth plus noise independent of the method, so E[e^2] = d^2 + n^2 with d the
@@ -102,7 +137,8 @@ lucent_status lucent_compare_write_markdown(const char *path, const lucent_compa
  * frame_ms,setup_ms,reference_spp,reference_noise,rel_rms_net (lucent_compare_net_error). */
 lucent_status lucent_compare_write_csv(const char *path, const lucent_compare_scene *scenes, int count);
 
-/* Draws error against frame time, one marker per method, and writes it as SVG to path. */
+/* Draws the net error against frame time, a colour and marker of its own and a label per method,
+ * over the band of the reference's noise (the raw error when the noise is unknown), as SVG. */
 lucent_status lucent_compare_write_chart(const char *path, const lucent_compare_scene *scene);
 
 #ifdef __cplusplus

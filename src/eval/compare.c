@@ -8,6 +8,7 @@
 
 typedef struct method_store {
     char name[EVAL_NAME_SIZE], image[EVAL_PATH_SIZE], error_image[EVAL_PATH_SIZE], settings[EVAL_SETTINGS_SIZE];
+    char crop_image[EVAL_PATH_SIZE];
 } method_store;
 
 typedef struct scene_store {
@@ -151,8 +152,56 @@ static lucent_status time_frames(const run *r, lucent_renderer *rend, const luce
     return LUCENT_OK;
 }
 
-/* Relative RMS errors over the mask, and the heat map of the per-pixel relative error. */
-static lucent_status measure(const run *r, scene_store *ss, const lucent_image *img, int m)
+/* Copies the size x size square at (x0, y0) of src, zoomed zoom times (nearest), to column block k
+ * (of width size x zoom + GAP) of dest. */
+enum { CROP_GAP = 4 };
+static void paste_crop(const lucent_image *src, int x0, int y0, int size, int zoom, int k, lucent_image *dest)
+{
+    for (int y = 0; y < size * zoom; y++)
+        for (int x = 0; x < size * zoom; x++)
+            for (int c = 0; c < 3; c++)
+                lucent_image_set(dest, k * (size * zoom + CROP_GAP) + x, y, c,
+                                 lucent_image_get(src, x0 + x / zoom, y0 + y / zoom, c));
+}
+
+/* The worst region of a method, zoomed: the reference, the method (both tonemapped as their PNGs)
+ * and the signed error map side by side, into DIR/STEM-worst.png. */
+static lucent_status write_crop(const run *r, scene_store *ss, const lucent_image *img, const lucent_image *heat,
+                                const lucent_render_settings *rs, int m, const char *stem)
+{
+    lucent_compare_method *row = &ss->rows[m];
+    method_store *ms = &ss->methods[m];
+    const lucent_image *ref = ss->ref.image;
+    int size = (ref->width < ref->height ? ref->width : ref->height) / 6;
+    size = size < 8 ? (ref->width < 8 || ref->height < 8 ? (ref->width < ref->height ? ref->width : ref->height) : 8)
+                    : size;
+    int zoom = size >= 160 ? 1 : 160 / size, x0, y0;
+    lucent_status s = lucent_compare_worst_region(img, ref, ss->mask, size, &x0, &y0);
+    lucent_image *a = NULL, *b = NULL, *out = NULL;
+    if (s == LUCENT_OK) s = lucent_image_clone(ref, &a);
+    if (s == LUCENT_OK) s = lucent_image_clone(img, &b);
+    if (s == LUCENT_OK) s = lucent_image_create(3 * size * zoom + 2 * CROP_GAP, size * zoom, 3, &out);
+    if (s == LUCENT_OK) {
+        lucent_tonemap_desc tr = eval_tonemap(&ss->scene->render), tm = eval_tonemap(rs);
+        lucent_image_tonemap(a, &tr);
+        lucent_image_tonemap(b, &tm);
+        for (size_t i = 0; i < (size_t)out->width * (size_t)out->height * 3; i++) out->data[i] = 1; /* white gaps */
+        paste_crop(a, x0, y0, size, zoom, 0, out);
+        paste_crop(b, x0, y0, size, zoom, 1, out);
+        paste_crop(heat, x0, y0, size, zoom, 2, out);
+    }
+    char path[EVAL_PATH_SIZE];
+    if (s == LUCENT_OK) s = eval_path_printf(path, sizeof path, "%s/%s-worst.png", ss->dir, stem);
+    if (s == LUCENT_OK) s = eval_wrote(r->d.on_event, r->d.user, lucent_image_write(path, out, NULL), path);
+    if (s == LUCENT_OK) s = eval_path_printf(ms->crop_image, sizeof ms->crop_image, "%s/%s-worst.png", ss->stem, stem);
+    row->crop[0] = x0, row->crop[1] = y0, row->crop[2] = size;
+    lucent_image_destroy(a), lucent_image_destroy(b), lucent_image_destroy(out);
+    return s;
+}
+
+/* Relative RMS errors over the mask, the signed error map and the worst region's crops. */
+static lucent_status measure(const run *r, scene_store *ss, const lucent_image *img, const lucent_render_settings *rs,
+                             int m)
 {
     lucent_compare_method *row = &ss->rows[m];
     method_store *ms = &ss->methods[m];
@@ -169,6 +218,7 @@ static lucent_status measure(const run *r, scene_store *ss, const lucent_image *
     s = lucent_compare_error_map(img, ss->ref.image, ss->mask, &heat);
     if (s == LUCENT_OK) s = eval_path_printf(path, sizeof path, "%s/%s-error.png", ss->dir, stem);
     if (s == LUCENT_OK) s = eval_wrote(r->d.on_event, r->d.user, lucent_image_write(path, heat, NULL), path);
+    if (s == LUCENT_OK) s = write_crop(r, ss, img, heat, rs, m, stem);
     lucent_image_destroy(heat);
     return s;
 }
@@ -185,7 +235,7 @@ static lucent_status run_method(const run *r, scene_store *ss, lucent_renderer *
     char stem[EVAL_NAME_SIZE];
     eval_file_stem(method, stem, sizeof stem);
     if (s == LUCENT_OK) s = write_image(r, ss, stem, res.image, &rs);
-    if (s == LUCENT_OK) s = measure(r, ss, res.image, m);
+    if (s == LUCENT_OK) s = measure(r, ss, res.image, &rs, m);
     if (s == LUCENT_OK) s = time_frames(r, rend, &rs, &ss->rows[m], &ss->times[m]);
     ss->rows[m].setup_ms = res.times.setup_ms;
     snprintf(ms->image, sizeof ms->image, "%s/%s.png", ss->stem, stem);
@@ -227,7 +277,12 @@ static void fill_report(scene_store *ss, lucent_compare_scene *dest)
         method_store *m = &ss->methods[i];
         ss->rows[i].name = m->name, ss->rows[i].image = m->image, ss->rows[i].error_image = m->error_image;
         ss->rows[i].settings = m->settings;
+        ss->rows[i].crop_image = m->crop_image[0] ? m->crop_image : NULL;
     }
+    /* below LUCENT_COMPARE_MIN_SPP the variance of the reference's mean cannot be estimated */
+    double noise = ss->ref.spp >= LUCENT_COMPARE_MIN_SPP
+                       ? lucent_compare_reference_noise(ss->ref.image, ss->ref.variance, ss->mask)
+                       : NAN;
     *dest = (lucent_compare_scene){.name = ss->stem,
                                    .description = ss->scene->description,
                                    .width = ss->ref.image->width,
@@ -235,8 +290,9 @@ static void fill_report(scene_store *ss, lucent_compare_scene *dest)
                                    .reference_image = ss->reference,
                                    .reference_spp = (int)ss->ref.spp,
                                    .reference_seconds = ss->ref.seconds,
-                                   .reference_noise =
-                                       lucent_compare_reference_noise(ss->ref.image, ss->ref.variance, ss->mask),
+                                   .reference_noise = noise,
+                                   .error_scale_image = ss->dir[0] ? "error-scale.png" : NULL,
+                                   .error_scale = LUCENT_COMPARE_ERROR_MAP_SCALE,
                                    .device = ss->device,
                                    .chart = ss->chart,
                                    .scene_json = ss->scene->json,
@@ -300,6 +356,14 @@ static lucent_status compare_all(run *r, lucent_compare_result *dest)
         if (r->d.on_event)
             r->d.on_event(&(lucent_eval_event){.kind = LUCENT_EVAL_SCENE_DONE, .name = st->scenes[i].stem, .index = i},
                           r->d.user);
+    }
+    if (s == LUCENT_OK && r->d.out) { /* the error maps' colour bar, once */
+        lucent_image *bar = NULL;
+        char path[EVAL_PATH_SIZE];
+        s = eval_path_printf(path, sizeof path, "%s/error-scale.png", r->d.out);
+        if (s == LUCENT_OK) s = lucent_compare_error_scale_image(&bar);
+        if (s == LUCENT_OK) s = eval_wrote(r->d.on_event, r->d.user, lucent_image_write(path, bar, NULL), path);
+        lucent_image_destroy(bar);
     }
     if (s == LUCENT_OK && r->d.out)
         s = lucent_compare_write_reports(r->d.out, r->d.title, dest, r->d.on_event, r->d.user);

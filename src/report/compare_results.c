@@ -1,16 +1,26 @@
 /* compare's results.json, and every report of a compare run written into one folder. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "base/json.h"
 #include "lucent/eval.h"
 
-static cJSON *method_json(const lucent_compare_method *m, const lucent_frame_times *times, double noise)
+static cJSON *method_json(const lucent_compare_method *m, const lucent_frame_times *times, double noise, int rank,
+                          double vs_lambert)
 {
     cJSON *j = cJSON_CreateObject();
     cJSON_AddStringToObject(j, "method", m->name);
     cJSON_AddNumberToObject(j, "rel_rms", m->rel_rms);
-    cJSON_AddNumberToObject(j, "rel_rms_net", lucent_compare_net_error(m->rel_rms, noise));
+    if (isfinite(noise))
+        cJSON_AddNumberToObject(j, "rel_rms_net", lucent_compare_net_error(m->rel_rms, noise));
+    else
+        cJSON_AddNullToObject(j, "rel_rms_net");
+    if (rank > 0)
+        cJSON_AddNumberToObject(j, "rank", rank);
+    else
+        cJSON_AddNullToObject(j, "rank");
+    if (isfinite(vs_lambert)) cJSON_AddNumberToObject(j, "frame_vs_lambert", vs_lambert);
     lucent_json_add_numbers(j, "rel_rms_rgb", m->rel_rms_rgb, 3);
     cJSON_AddNumberToObject(j, "frame_ms", m->frame_ms);
     cJSON_AddNumberToObject(j, "setup_ms", m->setup_ms);
@@ -29,13 +39,27 @@ static cJSON *scene_json(const lucent_compare_scene_result *sr)
     cJSON_AddNumberToObject(sc, "width", r->width), cJSON_AddNumberToObject(sc, "height", r->height);
     cJSON_AddNumberToObject(sc, "reference_spp", r->reference_spp);
     cJSON_AddNumberToObject(sc, "reference_seconds", r->reference_seconds);
-    cJSON_AddNumberToObject(sc, "reference_noise", r->reference_noise);
+    bool known = lucent_compare_noise_known(r);
+    if (known)
+        cJSON_AddNumberToObject(sc, "reference_noise", r->reference_noise);
+    else
+        cJSON_AddNullToObject(sc, "reference_noise"); /* unknown: fewer than LUCENT_COMPARE_MIN_SPP */
+    cJSON_AddBoolToObject(sc, "ranked", known);
+    int order[LUCENT_COMPARE_MAX_METHODS], rank[LUCENT_COMPARE_MAX_METHODS];
+    int n = r->method_count < LUCENT_COMPARE_MAX_METHODS ? r->method_count : LUCENT_COMPARE_MAX_METHODS;
+    lucent_compare_scene clipped = *r;
+    clipped.method_count = n;
+    lucent_compare_rank(&clipped, order, rank);
+    int l = lucent_compare_lambert_index(r);
     cJSON_AddNumberToObject(sc, "object_pixels", (double)sr->object_pixels);
     cJSON_AddStringToObject(sc, "device", r->device);
     cJSON_AddItemToObject(sc, "scene", cJSON_Parse(r->scene_json));
     methods = cJSON_AddArrayToObject(sc, "methods");
-    for (int k = 0; methods && k < r->method_count; k++)
-        cJSON_AddItemToArray(methods, method_json(&r->methods[k], &sr->times[k], r->reference_noise));
+    for (int k = 0; methods && k < n; k++) {
+        double q = l >= 0 && r->methods[l].frame_ms > 0 ? r->methods[k].frame_ms / r->methods[l].frame_ms : NAN;
+        cJSON_AddItemToArray(methods,
+                             method_json(&r->methods[k], &sr->times[k], known ? r->reference_noise : NAN, rank[k], q));
+    }
     return sc;
 }
 

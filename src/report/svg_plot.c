@@ -9,8 +9,12 @@
 enum { MARGIN_LEFT = 72, MARGIN_RIGHT = 16, MARGIN_TOP = 36, MARGIN_BOTTOM = 48, MAX_TICKS = 8 };
 enum { LOG_MAX_DECADES = 12 };
 
-static const char *const k_palette[] = {"#c0392b", "#27ae60", "#2e64c8", "#8e44ad",
-                                        "#d68910", "#17a589", "#5d6d7e", "#cb4335"};
+/* Twelve hues that stay apart (Paul Tol's bright and muted schemes, mixed; no two reds or greens). */
+enum { PALETTE = 12, MARKERS = 8 };
+static const char *const k_palette[PALETTE] = {"#c0392b", "#27ae60", "#2e64c8", "#8e44ad", "#d68910", "#17a5a5",
+                                               "#5d6d7e", "#e377c2", "#000000", "#8c564b", "#bcbd22", "#1f3a93"};
+
+int lucent_plot_marker_count(void) { return MARKERS; }
 
 /* The data rectangle of one panel, in SVG pixels, and its value ranges. */
 typedef struct frame {
@@ -49,6 +53,8 @@ static void fit_ranges(const lucent_plot_panel *p, frame *f)
             ymin = fmin(ymin, y), ymax = fmax(ymax, y);
         }
     if (!(xmax >= xmin)) xmin = 0, xmax = 1, ymin = p->log_y ? 0.1 : 0, ymax = 1;
+    if (p->band_y0 != 0 || p->band_y1 != 0) /* the band shows whole */
+        ymin = fmin(ymin, fmin(p->band_y0, p->band_y1)), ymax = fmax(ymax, fmax(p->band_y0, p->band_y1));
     if (p->x_min != 0 || p->x_max != 0) {
         xmin = p->x_min, xmax = p->x_max;
     } else if (xmax > xmin) { /* open x: widen to whole ticks */
@@ -166,6 +172,48 @@ static void draw_band(lucent_strbuf *b, const frame *f, const lucent_plot_panel 
     }
 }
 
+/* Marker shape k (lucent_plot_series.marker) centred at (x, y). */
+static void draw_marker(lucent_strbuf *b, int k, double x, double y, const char *color)
+{
+    const double r = 4.5;
+    switch (((k % MARKERS) + MARKERS) % MARKERS) {
+    case 1:
+        lucent_strbuf_printf(b, "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" fill=\"%s\"/>\n",
+                             x - r * 0.8, y - r * 0.8, 1.6 * r, 1.6 * r, color);
+        return;
+    case 2:
+    case 4: {
+        double d = k % MARKERS == 2 ? 1 : -1;
+        lucent_strbuf_printf(b, "<polygon points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f\" fill=\"%s\"/>\n", x, y - d * r,
+                             x - r, y + d * 0.8 * r, x + r, y + d * 0.8 * r, color);
+        return;
+    }
+    case 3:
+        lucent_strbuf_printf(b, "<polygon points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f %.2f,%.2f\" fill=\"%s\"/>\n", x, y - r,
+                             x + r, y, x, y + r, x - r, y, color);
+        return;
+    case 5:
+    case 6: {
+        double a = k % MARKERS == 5 ? 0.75 * r : 0, c = k % MARKERS == 5 ? 0.75 * r : r;
+        lucent_strbuf_printf(b,
+                             "<path d=\"M%.2f %.2fL%.2f %.2fM%.2f %.2fL%.2f %.2f\" stroke=\"%s\" "
+                             "stroke-width=\"2.2\" fill=\"none\"/>\n",
+                             x - c, y - a, x + c, y + a, x - a, y + c, x + a, y - c, color);
+        return;
+    }
+    case 7:
+        lucent_strbuf_printf(b, "<polygon points=\"");
+        for (int i = 0; i < 10; i++) {
+            double rr = i % 2 ? 0.45 * r : 1.15 * r, t = M_PI * i / 5;
+            lucent_strbuf_printf(b, "%.2f,%.2f ", x + rr * sin(t), y - rr * cos(t));
+        }
+        lucent_strbuf_printf(b, "\" fill=\"%s\"/>\n", color);
+        return;
+    default:
+        lucent_strbuf_printf(b, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"%s\"/>\n", x, y, k ? r : 2.2, color);
+    }
+}
+
 /* The curve as polylines, broken where points cannot be drawn. */
 static void draw_series(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p, const lucent_plot_series *s,
                         const char *color)
@@ -184,9 +232,10 @@ static void draw_series(lucent_strbuf *b, const frame *f, const lucent_plot_pane
     }
     if (open) lucent_strbuf_printf(b, "\"/>\n");
     for (int i = 0; s->markers && i < s->count; i++)
-        if (usable(p, s->x[i], s->y[i]))
-            lucent_strbuf_printf(b, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"2.2\" fill=\"%s\"/>\n", px(f, s->x[i]),
-                                 py(f, s->y[i]), color);
+        if (usable(p, s->x[i], s->y[i])) draw_marker(b, s->marker, px(f, s->x[i]), py(f, s->y[i]), color);
+    for (int i = 0; s->point_labels && i < s->count; i++)
+        if (usable(p, s->x[i], s->y[i]) && s->point_labels[i])
+            axis_label(b, px(f, s->x[i]) + 7, py(f, s->y[i]) - 5, "start", 0, s->point_labels[i]);
 }
 
 static void draw_legend(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p)
@@ -195,14 +244,40 @@ static void draw_legend(lucent_strbuf *b, const frame *f, const lucent_plot_pane
     for (int s = 0; s < p->series_count; s++) {
         const lucent_plot_series *ser = &p->series[s];
         if (!ser->label) continue;
-        const char *color = ser->color ? ser->color : k_palette[s % 8];
+        const char *color = ser->color ? ser->color : k_palette[s % PALETTE];
         double x = f->left + f->width - 150, y = f->top + 14 + 16 * row++;
-        lucent_strbuf_printf(b,
-                             "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
-                             "stroke-width=\"2\"%s/>\n",
-                             x, y - 4, x + 22, y - 4, color, ser->dashed ? " stroke-dasharray=\"6 4\"" : "");
+        if (ser->markers && ser->count == 1) /* a lone point: its marker stands for it */
+            draw_marker(b, ser->marker ? ser->marker : 0, x + 11, y - 4, color);
+        else
+            lucent_strbuf_printf(b,
+                                 "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
+                                 "stroke-width=\"2\"%s/>\n",
+                                 x, y - 4, x + 22, y - 4, color, ser->dashed ? " stroke-dasharray=\"6 4\"" : "");
         axis_label(b, x + 28, y, "start", 0, ser->label);
     }
+    if (p->band_label && (p->band_y0 != 0 || p->band_y1 != 0)) {
+        double x = f->left + f->width - 150, y = f->top + 14 + 16 * row;
+        lucent_strbuf_printf(b,
+                             "<rect x=\"%.1f\" y=\"%.1f\" width=\"22\" height=\"9\" fill=\"#888\" "
+                             "fill-opacity=\"0.25\"/>\n",
+                             x, y - 9);
+        axis_label(b, x + 28, y, "start", 0, p->band_label);
+    }
+}
+
+/* The panel's horizontal band (below the series). */
+static void draw_hband(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p)
+{
+    if (p->band_y0 == 0 && p->band_y1 == 0) return;
+    double lo = fmin(p->band_y0, p->band_y1), hi = fmax(p->band_y0, p->band_y1);
+    if (p->log_y && lo <= 0) lo = pow(10, f->y0);
+    double y0 = py(f, hi), y1 = py(f, lo);
+    y0 = fmax(y0, f->top), y1 = fmin(y1, f->top + f->height);
+    if (y1 > y0)
+        lucent_strbuf_printf(b,
+                             "<rect x=\"%.1f\" y=\"%.2f\" width=\"%.1f\" height=\"%.2f\" fill=\"#888\" "
+                             "fill-opacity=\"0.25\"/>\n",
+                             f->left, y0, f->width, y1 - y0);
 }
 
 static void draw_panel(lucent_strbuf *b, const lucent_plot_desc *d, int index, double top)
@@ -223,8 +298,9 @@ static void draw_panel(lucent_strbuf *b, const lucent_plot_desc *d, int index, d
     lucent_strbuf_printf(b, "<rect class=\"frame\" x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\"/>\n", f.left,
                          f.top, f.width, f.height);
     lucent_strbuf_printf(b, "<g clip-path=\"url(#clip%d)\">\n", index);
+    draw_hband(b, &f, p);
     for (int s = 0; s < p->series_count; s++)
-        draw_series(b, &f, p, &p->series[s], p->series[s].color ? p->series[s].color : k_palette[s % 8]);
+        draw_series(b, &f, p, &p->series[s], p->series[s].color ? p->series[s].color : k_palette[s % PALETTE]);
     lucent_strbuf_printf(b, "</g>\n");
     draw_legend(b, &f, p);
     if (p->title) axis_label(b, f.left + f.width / 2, f.top - 12, "middle", 0, p->title);
