@@ -29,6 +29,8 @@ static const method_case k_methods[] = {
     {"cdrf+transl.", "cdrf+translucency", NULL},
     {"ssss", "ssss", NULL},
     {"ssss no transl.", "ssss", "render.translucency=false"},
+    {"ssss transl. slab", "ssss", "render.transmittance=slab"},
+    {"cdrf no tail", "cdrf", "render.cdrf_tail=false"},
 };
 enum { METHODS = sizeof k_methods / sizeof k_methods[0] };
 
@@ -142,12 +144,7 @@ static double lambert_analytic(const lucent_scene *sc, int x, int y, double radi
     lucent_material_derive(&sc->objects[0].material, &md);
     rd = 0.2126 * md.rd[0] + 0.7152 * md.rd[1] + 0.0722 * md.rd[2];
     double eta = sc->objects[0].material.eta, ci = fmax(n[0], 0), co = -(n[0] * d[0] + n[1] * d[1] + n[2] * d[2]);
-    static double mean_t = 0;
-    if (mean_t == 0) /* 2 int_0^1 (1 - F(mu)) mu dmu */
-        for (int k = 0; k < 2000; k++) {
-            double mu = (k + 0.5) / 2000;
-            mean_t += 2 * (1 - lucent_fresnel_dielectric(mu, eta, NULL)) * mu / 2000;
-        }
+    double mean_t = lucent_fresnel_mean_transmittance(eta); /* 2 int_0^1 (1 - F(mu)) mu dmu */
     double f = 1;
     if (fresnel & 1) f *= (1 - lucent_fresnel_dielectric(fmax(ci, 1e-6), eta, NULL)) / mean_t;
     if (fresnel & 2) f *= (1 - lucent_fresnel_dielectric(fmax(co, 1e-6), eta, NULL)) / mean_t;

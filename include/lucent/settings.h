@@ -101,6 +101,8 @@ typedef struct lucent_cdrf_settings {
     bool lut;                    /* the LUT texture (true) or the closed form */
     lucent_sigma0_source sigma0; /* where sigma0 comes from when an object does not give it */
     int curvature_smooth;        /* n-ring smoothing of the per-vertex curvature */
+    bool tail;                   /* past the terminator, the material's profile (a sum of Gaussians)
+                                    where it exceeds Kubo's one Gaussian of sigma0 */
 } lucent_cdrf_settings;
 
 typedef struct lucent_points_settings {

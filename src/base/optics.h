@@ -30,6 +30,7 @@
 
 #include <math.h>
 #include <stdbool.h>
+#include <stddef.h>
 
 #include "base/vec3.h"
 
@@ -91,6 +92,20 @@ static inline double lucent_fresnel_dielectric(double cos_i, double eta, double 
     if (cos_t) *cos_t = ct;
     double rs = (cos_i - eta * ct) / (cos_i + eta * ct), rp = (ct - eta * cos_i) / (ct + eta * cos_i);
     return 0.5 * (rs * rs + rp * rp);
+}
+
+/* The cosine-weighted hemispherical mean of the transmittance 1 - F of light arriving from the outside,
+ * 2 int_0^1 (1 - F(mu)) mu dmu (midpoint rule, 512 steps; 1 for eta == 1): the factor that
+ * normalises F_t(w) in Jensen et al. 2001's S_d = F_t(w_i) R_d F_t(w_o) / pi, so that the diffuse
+ * reflectance of uniform light stays the material's R_d. */
+static inline double lucent_fresnel_mean_transmittance(double eta)
+{
+    double sum = 0;
+    for (int k = 0; k < 512; k++) {
+        double mu = (k + 0.5) / 512;
+        sum += (1.0 - lucent_fresnel_dielectric(mu, eta, NULL)) * mu;
+    }
+    return 2.0 * sum / 512;
 }
 
 /* Refracts the travel direction d (unit) through a surface with unit normal m on the incident

@@ -33,15 +33,22 @@ static const lucent_setting k_cdrf[] = {
     SETTING_CHOICE("sigma0", cdrf.sigma0, "fit", sigma0_names,
                    "sigma0 when an object gives none: fitted to Monte Carlo spheres, or d_c^2 (Kubo Eq. 6)"),
     SETTING_INT("curvature_smooth", cdrf.curvature_smooth, 1, 0, 16, 0, "n-ring smoothing of the vertex curvature"),
+    SETTING_BOOL("cdrf_tail", cdrf.tail, true,
+                 "past the terminator the material's profile (a sum of Gaussians) where it exceeds Kubo's Gaussian "
+                 "of sigma0: the tail; objects that give sigma0 keep Kubo's alone"),
 };
 
 const lucent_settings_group gl_cdrf_settings = SETTINGS_GROUP("cdrf", "the curvature-dependent reflectance", k_cdrf);
 
 /* ---- the method ---- */
 
+enum { CDRF_SOG = 8 };
+
 typedef struct cdrf_object {
-    double sigma0[3];        /* mm */
-    const char *sigma0_from; /* "scene", "fit", "fit (cache)", "diffuse" */
+    double sigma0[3];                              /* mm */
+    const char *sigma0_from;                       /* "scene", "fit", "fit (cache)", "diffuse" */
+    int sog_count;                                 /* Gaussians of the tail (0: Kubo's one of sigma0) */
+    float sog_sd[CDRF_SOG][3], sog_w[CDRF_SOG][3]; /* standard deviations (mm) and weights summing to 1 */
 } cdrf_object;
 
 typedef struct cdrf_state {
@@ -100,6 +107,42 @@ static lucent_status objects_sigma0(lucent_renderer *r, cdrf_state *st, const lu
     return LUCENT_OK;
 }
 
+/* The tail (cdrf_tail): the material's profile as a sum of Gaussians with shared variances (d'Eon &
+ * Luebke 2007, baked: lucent_sog_fit). A 2-D Gaussian of variance v convolved with light that varies
+ * along one direction of the surface is the 1-D Gaussian of the same variance along it, so on the arc
+ * of a sphere of curvature kappa the profile gives sum_k w_k CDRF(theta, sqrt(v_k) kappa) (Kubo Eq. 4-5
+ * with each Gaussian's sigma0 = sqrt(v_k)), the weights normalised to 1 (the albedo is applied apart). */
+static lucent_status objects_sog(lucent_renderer *r, cdrf_state *st, const lucent_render_settings *s)
+{
+    const lucent_scene *sc = r->scene;
+    bool any = false;
+    for (int i = 0; i < sc->object_count; i++) {
+        st->objects[i].sog_count = 0;
+        any |= s->cdrf.tail && sc->objects[i].visible && !sc->objects[i].sigma0_set;
+    }
+    if (!any) return LUCENT_OK;
+    lucent_bake_desc d = gl_renderer_bake_desc(r, s, LUCENT_BAKE_SOG);
+    d.sog_count = CDRF_SOG < 6 ? CDRF_SOG : 6;
+    lucent_status e = gl_tables_bake(&r->tables, &d, r->cache);
+    if (e != LUCENT_OK) return lucent_error_context(e, "cdrf tail");
+    for (int i = 0; i < sc->object_count; i++) {
+        const lucent_scene_object *o = &sc->objects[i];
+        cdrf_object *c = &st->objects[i];
+        if (!o->visible || o->sigma0_set) continue;
+        const lucent_sog *g = &gl_tables_of(&r->tables, i)->sog;
+        c->sog_count = g->count < CDRF_SOG ? g->count : CDRF_SOG;
+        for (int ch = 0; ch < 3; ch++) {
+            double total = 0;
+            for (int k = 0; k < c->sog_count; k++) total += g->weight[ch][k];
+            for (int k = 0; k < c->sog_count; k++) {
+                c->sog_sd[k][ch] = (float)sqrt(g->variance[ch][k]);
+                c->sog_w[k][ch] = (float)(total > 0 ? g->weight[ch][k] / total : k == 0);
+            }
+        }
+    }
+    return LUCENT_OK;
+}
+
 static lucent_status prepare(lucent_renderer *r, void *state, const lucent_render_settings *s, bool translucency)
 {
     cdrf_state *st = state;
@@ -111,6 +154,7 @@ static lucent_status prepare(lucent_renderer *r, void *state, const lucent_rende
     lucent_status e = gl_meshes_curvature(&r->meshes, r->scene, s->cdrf.curvature_smooth, r->desc.pool);
     if (e == LUCENT_OK) e = prepare_lut(r, st, s);
     if (e == LUCENT_OK) e = objects_sigma0(r, st, s);
+    if (e == LUCENT_OK) e = objects_sog(r, st, s);
     if (e == LUCENT_OK && translucency) e = gl_translucency_prepare(r, s);
     char defines[96];
     snprintf(defines, sizeof defines, "#define CDRF_LUT %d\n#define CDRF_VARIANT %d\n#define TRANSLUCENCY %d\n",
@@ -137,11 +181,24 @@ static void object_uniforms(const lucent_renderer *r, const void *state, const l
     const double *sigma0 = st->objects[i].sigma0;
     bool map_sigma0 = r->meshes.mesh[i].albedo_map && !o->sigma0_set && s->cdrf.sigma0 == LUCENT_SIGMA0_DIFFUSE;
     double reach = map_sigma0 ? 1 : fmax(sigma0[0], fmax(sigma0[1], sigma0[2]));
+    const cdrf_object *c = &st->objects[i];
+    int n = map_sigma0 ? 0 : c->sog_count;
+    double tail = 0; /* the tail's reach: three of its widest standard deviations that carry light */
+    for (int k = 0; k < n; k++)
+        for (int ch = 0; ch < 3; ch++)
+            if (c->sog_w[k][ch] > 0.01f) tail = fmax(tail, 3.0 * c->sog_sd[k][ch]);
+    glUniform1i(glGetUniformLocation(p, "u_sog_count"), n);
+    if (n) {
+        glUniform3fv(glGetUniformLocation(p, "u_sog_sd"), n, &c->sog_sd[0][0]);
+        glUniform3fv(glGetUniformLocation(p, "u_sog_w"), n, &c->sog_w[0][0]);
+    }
+    glUniform1f(glGetUniformLocation(p, "u_tail_reach"), (float)tail);
     glUniform3f(glGetUniformLocation(p, "u_sigma0"), (float)sigma0[0], (float)sigma0[1], (float)sigma0[2]);
     glUniform1i(glGetUniformLocation(p, "u_sigma0_from_map"), map_sigma0);
     glUniform1f(glGetUniformLocation(p, "u_cdrf_reach"), (float)(2 * reach)); /* two standard deviations, mm */
     glUniform1f(glGetUniformLocation(p, "u_lut_sigma_max"), (float)st->lut_sigma_max);
     gl_translucency_uniforms(r, s, i, p, false);
+    glUniform1f(glGetUniformLocation(p, "u_convex_carried"), 1.0f); /* sigma0 is fitted to whole spheres */
 }
 
 static lucent_status draw(lucent_renderer *r, void *state, const lucent_render_settings *s)
@@ -184,7 +241,7 @@ static unsigned bakes_translucent(const lucent_renderer *r, const lucent_render_
 
 const gl_method gl_method_cdrf = {
     .name = "cdrf",
-    .settings = (const char *const[]){"cdrf_variant", "cdrf_lut", "sigma0", "curvature_smooth", NULL},
+    .settings = (const char *const[]){"cdrf_variant", "cdrf_lut", "sigma0", "curvature_smooth", "cdrf_tail", NULL},
     .state_size = sizeof(cdrf_state),
     .bakes = bakes_plain,
     .prepare = prepare_plain,
@@ -195,8 +252,8 @@ const gl_method gl_method_cdrf = {
 
 const gl_method gl_method_cdrf_translucency = {
     .name = "cdrf+translucency",
-    .settings = (const char *const[]){"cdrf_variant", "cdrf_lut", "sigma0", "curvature_smooth", "transmittance",
-                                      "translucency_curvature", NULL},
+    .settings = (const char *const[]){"cdrf_variant", "cdrf_lut", "sigma0", "curvature_smooth", "cdrf_tail",
+                                      "transmittance", "translucency_curvature", NULL},
     .state_size = sizeof(cdrf_state),
     .bakes = bakes_translucent,
     .prepare = prepare_translucent,

@@ -1,6 +1,7 @@
 /* The surface and compose passes shared by the mesh methods (surface.h). */
 #include <string.h>
 
+#include "base/optics.h"
 #include "gl/methods/surface.h"
 
 lucent_status gl_surface_program(lucent_renderer *r, const char *frag, const char *defines, GLuint *dest)
@@ -17,7 +18,8 @@ static void common_uniforms(const lucent_renderer *r, int i, GLuint p)
     glUniform3f(glGetUniformLocation(p, "u_albedo"), (float)o->albedo[0], (float)o->albedo[1], (float)o->albedo[2]);
     glUniform1i(glGetUniformLocation(p, "u_use_map"), g->albedo_map != 0);
     glUniform1f(glGetUniformLocation(p, "u_roughness"), (float)o->roughness);
-    glUniform1f(glGetUniformLocation(p, "u_f0"), (float)o->specular_f0);
+    glUniform1f(glGetUniformLocation(p, "u_eta"), (float)o->material.eta);
+    glUniform1f(glGetUniformLocation(p, "u_mean_ft"), (float)lucent_fresnel_mean_transmittance(o->material.eta));
     glUniform1f(glGetUniformLocation(p, "u_material"), (float)r->tables.object_material[i]);
     glUniform1f(glGetUniformLocation(p, "u_object"), (float)i);
     glUniform1f(glGetUniformLocation(p, "u_shadow_offset"), 1.5f);

@@ -18,7 +18,8 @@ const char *lucent_transmittance_name(lucent_transmittance_model model)
 static const lucent_setting k_translucency[] = {
     SETTING_BOOL("translucency", translucency.enabled, true, "ssss: light through thin parts (shadow-map thickness)"),
     SETTING_CHOICE("transmittance", translucency.transmittance, "slab", transmittance_names,
-                   "how much light passes a thickness: the Monte Carlo slab, or the profile's tail (Jimenez)"),
+                   "how much light passes a thickness of a thin part: the Monte Carlo slab, or the profile's tail "
+                   "(Jimenez); through a convex body always the profile's tail"),
     SETTING_REAL("translucency_curvature", translucency.curvature, 1, -100, 100,
                  "cdrf+translucency: transmitted light times 1 + this x sigma0 x curvature (the CDRF blog)"),
 };
@@ -26,10 +27,18 @@ static const lucent_setting k_translucency[] = {
 const lucent_settings_group gl_translucency_settings =
     SETTINGS_GROUP("translucency", "light through thin parts", k_translucency);
 
+/* The convex body's transmittance (surface.glsl, transmitted): the profile's power outside radius s,
+ * for the profile as a sum of Gaussians sum_k w_k exp(-s^2 / (2 v_k)) / sum_k w_k (Jimenez et al.
+ * 2010's transmittance function with the material's own fit, lucent_sog_fit), needs the vertex
+ * curvature and the material's Gaussians. */
+enum { TRANSLUCENCY_SOG = 6 };
+
 lucent_status gl_translucency_prepare(lucent_renderer *r, const lucent_render_settings *s)
 {
-    lucent_bake_desc d = gl_renderer_bake_desc(r, s, LUCENT_BAKE_TRANSMITTANCE);
-    lucent_status st = gl_tables_bake(&r->tables, &d, r->cache);
+    lucent_bake_desc d = gl_renderer_bake_desc(r, s, LUCENT_BAKE_TRANSMITTANCE | LUCENT_BAKE_SOG);
+    d.sog_count = TRANSLUCENCY_SOG;
+    lucent_status st = gl_meshes_curvature(&r->meshes, r->scene, s->cdrf.curvature_smooth, r->desc.pool);
+    if (st == LUCENT_OK) st = gl_tables_bake(&r->tables, &d, r->cache);
     return st == LUCENT_OK ? gl_tables_upload_transmittance(&r->tables) : st;
 }
 
@@ -42,6 +51,19 @@ void gl_translucency_uniforms(const lucent_renderer *r, const lucent_render_sett
                 (float)((r->tables.object_material[i] + 0.5) / r->tables.count));
     glUniform1i(glGetUniformLocation(p, "u_transmit_albedo"), s->translucency.transmittance == LUCENT_TRANSMIT_PROFILE);
     glUniform1f(glGetUniformLocation(p, "u_curvature_gain"), (float)s->translucency.curvature);
+    float var[TRANSLUCENCY_SOG][3] = {{0}}, w[TRANSLUCENCY_SOG][3] = {{0}};
+    int n = b->sog.count < TRANSLUCENCY_SOG ? b->sog.count : TRANSLUCENCY_SOG;
+    for (int c = 0; c < 3; c++) {
+        double total = 0;
+        for (int k = 0; k < n; k++) total += b->sog.weight[c][k];
+        for (int k = 0; k < n; k++)
+            var[k][c] = (float)b->sog.variance[c][k], w[k][c] = (float)(total > 0 ? b->sog.weight[c][k] / total : 0);
+    }
+    glUniform1i(glGetUniformLocation(p, "u_tr_sog_count"), n);
+    if (n) {
+        glUniform3fv(glGetUniformLocation(p, "u_tr_sog_var"), n, &var[0][0]);
+        glUniform3fv(glGetUniformLocation(p, "u_tr_sog_w"), n, &w[0][0]);
+    }
 }
 
 double gl_translucency_range(const lucent_renderer *r, int i) { return gl_tables_of(&r->tables, i)->transmit_range; }

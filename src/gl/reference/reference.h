@@ -1,6 +1,6 @@
 /* The CPU references of the renderer's passes, written separately in double precision and free of
  * GL: the scene pass's shading (shading.c: what one surface point gives for Lambert and the CDRF,
- * LUT or function, with the Kelemen/Szirmay-Kalos specular; the tests feed it the GPU's own normal,
+ * LUT or function, with the boundary's GGX reflection (the tracer's); the tests feed it the GPU's own normal,
  * curvature and position and compare pixel by pixel) and the separable blur (blur_cpu.c:
  * lucent_ssss_blur_cpu of lucent/render.h). */
 #ifndef LUCENT_SRC_GL_REFERENCE_REFERENCE_H
@@ -23,7 +23,7 @@ typedef struct gl_ref_point {
 typedef struct gl_ref_material {
     double albedo[3];
     double sigma0[3];
-    double roughness, f0;
+    double roughness, eta; /* the boundary: GGX alpha and the material's index */
 } gl_ref_material;
 
 /* Bilinear read of the CDRF LUT (lucent_cdrf_lut_build's layout: samples on the end points). */

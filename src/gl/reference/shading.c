@@ -1,6 +1,7 @@
-/* CPU reference of the Lambert and CDRF shading with the specular lobe (see reference.h). */
+/* CPU reference of the Lambert and CDRF shading with the boundary's reflection (see reference.h). */
 #include <math.h>
 
+#include "base/optics.h"
 #include "base/vec3.h"
 #include "gl/reference/reference.h"
 
@@ -32,16 +33,18 @@ static double incident(const lucent_light *l, const double *p, double *dir)
     return l->intensity / d2;
 }
 
-/* Beckmann D, Schlick F, visibility 1 / |l + v|^2 (Kelemen & Szirmay-Kalos), times cos_i. */
-static double ksk(const double *n, const double *v, const double *l, double alpha, double f0)
+/* The rough boundary's reflection times cos_i, the tracer's (src/trace/bsdf.c, rough_reflect):
+ * F(o.m) D(m) G1(i) G1(o) / (4 cos_i cos_o) (Walter et al. 2007 eqs. 20, 23, 33, 34) from
+ * base/optics.h, alpha at least 1e-3 as the shader has it. */
+static double boundary_reflection(const double *n, const double *v, const double *l, double alpha, double eta)
 {
-    double h[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]}, hh = dot3(h, h), ndl = dot3(n, l);
-    if (ndl <= 0 || dot3(n, v) <= 0 || hh < 1e-8) return 0;
-    double hn[3] = {h[0] / sqrt(hh), h[1] / sqrt(hh), h[2] / sqrt(hh)};
-    double c = fmax(dot3(n, hn), 1e-4), a2 = fmax(alpha * alpha, 1e-6);
-    double tan2 = (1 - c * c) / (c * c), d = exp(-tan2 / a2) / (M_PI * a2 * pow(c, 4));
-    double f = f0 + (1 - f0) * pow(1 - fmin(fmax(dot3(hn, v), 0), 1), 5);
-    return d * f / hh * ndl;
+    double ci = dot3(n, l), co = dot3(n, v), h[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]}, hh = dot3(h, h);
+    if (ci <= 0 || co <= 0 || hh < 1e-12) return 0;
+    double m[3] = {h[0] / sqrt(hh), h[1] / sqrt(hh), h[2] / sqrt(hh)}, om = dot3(v, m), a = fmax(alpha, 1e-3);
+    if (om <= 0) return 0;
+    double f = lucent_fresnel_dielectric(om, eta, NULL) * lucent_ggx_d(dot3(n, m), a) * lucent_ggx_g1(ci, a) *
+               lucent_ggx_g1(co, a) / (4 * ci * co);
+    return f * ci;
 }
 
 static double cdrf_value(lucent_cdrf_variant variant, const lucent_image *lut, double sigma_max, double ndl,
@@ -67,7 +70,8 @@ void gl_ref_shade(const lucent_scene *scene, lucent_render_method method, lucent
             continue;
         }
         double dir[3], e = incident(l, p->position, dir), ndl = dot3(p->normal, dir);
-        double vis = p->visibility ? p->visibility[k] : 1, s = ksk(p->normal, v, dir, m->roughness, m->f0);
+        double vis = p->visibility ? p->visibility[k] : 1,
+               s = boundary_reflection(p->normal, v, dir, m->roughness, m->eta);
         for (int c = 0; c < 3; c++) {
             double f = method == LUCENT_METHOD_LAMBERT
                            ? fmax(ndl, 0)
@@ -77,8 +81,11 @@ void gl_ref_shade(const lucent_scene *scene, lucent_render_method method, lucent
         }
         k++;
     }
+    /* the diffuse light leaves toward the viewer with F_t(w_o) / its hemispherical mean (Jensen 2001) */
+    double ft = (1 - lucent_fresnel_dielectric(fmin(fmax(dot3(p->normal, v), 0), 1), m->eta, NULL)) /
+                fmax(lucent_fresnel_mean_transmittance(m->eta), 1e-3);
     for (int c = 0; c < 3; c++) {
-        diffuse[c] = m->albedo[c] * (e_sum[c] / M_PI + ambient[c]);
+        diffuse[c] = ft * m->albedo[c] * (e_sum[c] / M_PI + ambient[c]);
         specular[c] = spec[c];
     }
 }

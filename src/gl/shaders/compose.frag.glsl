@@ -1,5 +1,6 @@
 // Final pass (Freude 4.2, pass 4): the blurred diffuse blended with the unblurred one by the
-// per-pixel strength, then the specular added after the blur; background where nothing was drawn.
+// per-pixel strength, times the boundary's transmittance toward the viewer (where the light leaves),
+// then the specular added after the blur; background where nothing was drawn.
 layout(binding = 0) uniform sampler2D u_diffuse;  // rgb diffuse, a: strength
 layout(binding = 1) uniform sampler2D u_blurred;  // the blur's sum over kernel passes
 layout(binding = 2) uniform sampler2D u_specular;
@@ -19,5 +20,6 @@ void main()
     }
     vec4 d = texelFetch(u_diffuse, p, 0);
     vec3 diffuse = u_blurred_valid != 0 ? mix(d.rgb, texelFetch(u_blurred, p, 0).rgb, d.a) : d.rgb;
-    o_color = vec4(diffuse + texelFetch(u_specular, p, 0).rgb, 1.0);
+    vec4 s = texelFetch(u_specular, p, 0); // a: the diffuse light's Fresnel transmittance toward the eye
+    o_color = vec4(diffuse * s.a + s.rgb, 1.0);
 }

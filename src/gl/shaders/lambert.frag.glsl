@@ -1,4 +1,4 @@
-// Lambert diffuse with the Kelemen/Szirmay-Kalos specular lobe (the baseline; Kubo Table 1).
+// Lambert diffuse with the boundary's GGX reflection (the baseline; Kubo Table 1).
 #include "surface.glsl"
 
 float method_visibility(int i, vec3 n, vec3 l, float ndl, float offset)

@@ -75,18 +75,57 @@ vec3 transmittance(float s)
     return texture(u_transmit, vec2(u, u_transmit_v)).rgb;
 }
 
-// Kelemen & Szirmay-Kalos specular (d'Eon & Luebke 2007, GPU Gems 3 ch. 14): Beckmann D with alpha =
-// roughness, Schlick's Fresnel with f0, and KSK's visibility 1 / |l + v|^2 in place of
-// G / (4 cos_i cos_o); returns f_s cos_i, the factor of the light's irradiance.
-float specular_ksk(vec3 n, vec3 v, vec3 l, float roughness, float f0)
+// The boundary's optics, as the path tracer has them (src/base/optics.h, src/trace/bsdf.c): the one
+// GLSL copy, used by every method.
+// Unpolarised Fresnel reflectance of a dielectric boundary for incidence cosine cos_i and eta = n_t /
+// n_i (Born & Wolf 1.5.2 eqs. 20-21; lucent_fresnel_dielectric): 1 under total internal reflection.
+float fresnel_dielectric(float cos_i, float eta)
 {
-    float ndl = dot(n, l);
+    float st2 = (1.0 - cos_i * cos_i) / (eta * eta);
+    if (st2 >= 1.0) return 1.0;
+    float ct = sqrt(1.0 - st2);
+    float rs = (cos_i - eta * ct) / (cos_i + eta * ct), rp = (ct - eta * cos_i) / (ct + eta * cos_i);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+// GGX D(m) and Smith G1 (Walter et al. 2007 eqs. 33-34; lucent_ggx_d, lucent_ggx_g1).
+float ggx_d(float cos_m, float alpha)
+{
+    if (cos_m <= 0.0) return 0.0;
+    float a2 = alpha * alpha, k = cos_m * cos_m * (a2 - 1.0) + 1.0;
+    return a2 / (PI * k * k);
+}
+
+float ggx_g1(float c, float alpha)
+{
+    c = abs(c);
+    if (c >= 1.0) return 1.0;
+    if (c <= 0.0) return 0.0;
+    float tan2 = (1.0 - c * c) / (c * c);
+    return 2.0 / (1.0 + sqrt(1.0 + alpha * alpha * tan2));
+}
+
+// The rough boundary's reflection (Walter et al. 2007 eq. 20, separable Smith G = G1(i) G1(o), eq. 23),
+// f_r = F(o.m) D(m) G / (4 |n.i| |n.o|) with m the half vector, times cos_i: the factor of the light's
+// irradiance. alpha: the object's roughness (the tracer's GGX alpha), eta: the material's index.
+float boundary_reflection(vec3 n, vec3 v, vec3 l, float alpha, float eta)
+{
+    float ci = dot(n, l), co = dot(n, v);
     vec3 h = l + v;
     float hh = dot(h, h);
-    if (ndl <= 0.0 || dot(n, v) <= 0.0 || hh < 1e-8) return 0.0;
-    vec3 hn = h * inversesqrt(hh);
-    float c = max(dot(n, hn), 1e-4), c2 = c * c, a2 = max(roughness * roughness, 1e-6);
-    float d = exp((c2 - 1.0) / (c2 * a2)) / (PI * a2 * c2 * c2);
-    float f = f0 + (1.0 - f0) * pow(1.0 - clamp(dot(hn, v), 0.0, 1.0), 5.0);
-    return d * f / hh * ndl;
+    if (ci <= 0.0 || co <= 0.0 || hh < 1e-12) return 0.0;
+    vec3 m = h * inversesqrt(hh);
+    float om = dot(v, m);
+    if (om <= 0.0) return 0.0;
+    float a = max(alpha, 1e-3); // the tracer's smooth limit is a delta: no highlight a pixel could see
+    float f = fresnel_dielectric(om, eta) * ggx_d(dot(n, m), a) * ggx_g1(ci, a) * ggx_g1(co, a) / (4.0 * ci * co);
+    return f * ci;
+}
+
+// The boundary's reflection for an object described by its normal-incidence reflectance f0: the same
+// lobe, eta from f0 = ((eta - 1) / (eta + 1))^2 (kept under this name for the point methods' shaders).
+float specular_ksk(vec3 n, vec3 v, vec3 l, float roughness, float f0)
+{
+    float r = sqrt(clamp(f0, 0.0, 0.99));
+    return boundary_reflection(n, v, l, roughness, (1.0 + r) / (1.0 - r));
 }

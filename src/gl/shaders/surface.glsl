@@ -17,7 +17,8 @@ uniform vec3 u_sigma0;          // mm (cdrf)
 uniform int u_use_map;          // albedo from u_albedo_map (linear RGB)
 uniform int u_sigma0_from_map;  // sigma0 = d_c^2 (Kubo Eq. 6) from the diffuse map
 uniform float u_roughness;
-uniform float u_f0;
+uniform float u_eta;           // the material's index of refraction (the boundary's Fresnel)
+uniform float u_mean_ft;       // 2 int (1 - F(mu)) mu dmu (lucent_fresnel_mean_transmittance)
 uniform float u_strength;       // ssss: the blur's share here (object's sss_strength x settings)
 uniform float u_material;       // material index (kernel and transmittance row)
 uniform float u_object;
@@ -26,7 +27,7 @@ uniform int u_transmit_albedo;  // 1: T is the profile's T(s) / T(0), times the 
 uniform float u_shadow_offset;  // normal offset, in shadow-map texels
 
 layout(location = 0) out vec4 o_diffuse;  // rgb: diffuse radiance; a: blur strength
-layout(location = 1) out vec4 o_specular; // rgb: specular radiance
+layout(location = 1) out vec4 o_specular; // rgb: specular radiance; a: the diffuse light's way out
 layout(location = 2) out vec2 o_depth;    // x: linear depth (mm, 0 = background); y: material
 #if AOV
 layout(location = 3) out vec4 o_aov_normal;   // xyz: shading normal; w: curvature
@@ -41,14 +42,43 @@ float method_visibility(int i, vec3 n, vec3 l, float ndl, float offset);
 vec3 method_irradiance(vec3 e, float ndl, vec3 sigma0);
 vec3 method_transmission(vec3 sigma0);
 
+uniform int u_tr_sog_count; // the material's profile as Gaussians (translucency.c): variances (mm^2)
+uniform vec3 u_tr_sog_var[6];
+uniform vec3 u_tr_sog_w[6]; // and weights summing to 1 per channel
+uniform float u_convex_carried; // 1: the method's own diffusion carries the light through convex bodies
+                                // (the CDRF, fitted to Monte Carlo spheres whose dark side holds it)
+
+// The profile's power outside radius s over its total, sum_k w_k exp(-s^2 / (2 v_k)) (Jimenez 2010).
+vec3 profile_tail(float s)
+{
+    vec3 t = vec3(0.0);
+    for (int k = 0; k < u_tr_sog_count; k++) t += u_tr_sog_w[k] * exp(-s * s / (2.0 * u_tr_sog_var[k]));
+    return t;
+}
+
 // Light reaching the back of a thin part and leaving here: E max(-n.l, 0) T(s) (Jimenez 2010; T the
 // Monte Carlo slab transmittance or the material's own profile, docs/render.md), times the method's
-// factor (the curvature modulation of the CDRF blog for cdrf+translucency).
-vec3 transmitted(int i, vec3 n, vec3 e, float ndl, float offset, vec3 sigma0)
+// factor (the curvature modulation of the CDRF blog for cdrf+translucency). T of a slab is the light
+// of a back face lit over its whole extent; through a convex body the lit face curves away and the
+// light that crosses near the terminator is the diffusion the blur (or the CDRF) already carries
+// round it, so there T is the profile's power beyond the chord, the light that reaches s mm from where
+// it entered. Which case a point is in the shadow map's chord tells: on a body that the point's
+// osculating sphere (radius 1 / kappa, kappa the mean curvature) describes, the chord along l is
+// 2 |n.l| / kappa; a chord much shorter (a thin sheet, kappa ~ 0) is a thin part. The weight of the
+// convex case is smoothstep(0.25, 0.75, s kappa / (2 |n.l|)); a method whose diffusion already holds
+// the light through convex bodies (u_convex_carried) adds none there. Returns the radiance factor of E / pi
+// before the albedo (the profile's part carries it here).
+vec3 transmitted(int i, vec3 n, vec3 e, float ndl, float offset, vec3 sigma0, vec3 albedo)
 {
     vec3 m = method_transmission(sigma0);
     if (ndl >= 0.0 || all(equal(m, vec3(0.0)))) return vec3(0.0);
-    return e * -ndl * transmittance(shadow_thickness(i, v_position - n * offset)) * m;
+    float s = shadow_thickness(i, v_position - n * offset);
+    if (s < 0.0) return vec3(0.0);
+    vec3 thin = transmittance(s) * (u_transmit_albedo != 0 ? albedo : vec3(1.0));
+    float convex = u_tr_sog_count > 0 ? smoothstep(0.25, 0.75, s * max(v_curvature, 0.0) / (2.0 * max(-ndl, 1e-3)))
+                                      : 0.0;
+    vec3 t = mix(thin, albedo * profile_tail(s) * (1.0 - u_convex_carried), convex);
+    return e * -ndl * t * m;
 }
 
 void main()
@@ -65,13 +95,20 @@ void main()
         float ndl = dot(n, l), offset = u_light_texel[i].x * u_shadow_offset;
         float vis = method_visibility(i, n, l, ndl, offset);
         irradiance += method_irradiance(e, ndl, sigma0) * vis;
-        transmitted_e += transmitted(i, n, e, ndl, offset, sigma0);
-        specular += e * specular_ksk(n, v, l, u_roughness, u_f0) * vis;
+        transmitted_e += transmitted(i, n, e, ndl, offset, sigma0, albedo);
+        specular += e * boundary_reflection(n, v, l, u_roughness, u_eta) * vis;
         if (i == 0) vis0 = vis;
     }
-    vec3 through = transmitted_e / PI * (u_transmit_albedo != 0 ? albedo : vec3(1.0));
+    vec3 through = transmitted_e / PI;
     o_diffuse = vec4(albedo * (irradiance / PI + u_ambient.rgb) + through, u_strength);
-    o_specular = vec4(specular, 1.0);
+    // Diffuse light leaves through the boundary toward the viewer with F_t(w_o) = 1 - F(n.v), normalised
+    // by its hemispherical mean (Jensen et al. 2001, S_d's F_t(w_o) / the mean); the compose pass applies
+    // it after any blur, where the light leaves. F_t(w_i) is left out: the rough boundary (GGX) lets in
+    // more at grazing incidence than the smooth F_t says, and the equator bench's subsurface-only
+    // reference agrees with F_t(w_o) alone within 5% from 25 to 65 degrees, with both within 10%
+    // (docs/compare.md).
+    float ft_out = (1.0 - fresnel_dielectric(clamp(dot(n, v), 0.0, 1.0), u_eta)) / max(u_mean_ft, 1e-3);
+    o_specular = vec4(specular, ft_out);
     o_depth = vec2(dot(v_position - u_eye.xyz, u_forward.xyz), u_material);
 #if AOV
     o_aov_normal = vec4(n, v_curvature);
