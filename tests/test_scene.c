@@ -97,9 +97,8 @@ TEST(minimal_scene_gets_the_documented_defaults)
     CHECK(sc->render.view.method == LUCENT_METHOD_SSSS && sc->render.ssss.kernel == LUCENT_KERNEL_PREINT);
     CHECK(sc->render.ssss.taps == d.ssss.taps && d.ssss.taps == 17);
     CHECK(sc->render.translucency.curvature == 1 && d.translucency.curvature == 1);
-    /* the profile's tail since issue 12 (the slab's T counts light a convex body's diffusion carries) */
-    CHECK(sc->render.translucency.transmittance == LUCENT_TRANSMIT_PROFILE &&
-          d.translucency.transmittance == LUCENT_TRANSMIT_PROFILE);
+    CHECK(sc->render.translucency.transmittance == LUCENT_TRANSMIT_SLAB &&
+          d.translucency.transmittance == LUCENT_TRANSMIT_SLAB);
     CHECK(sc->render.cdrf.tail && d.cdrf.tail);
     CHECK(sc->light_count == 1 && sc->lights[0].shadows && sc->lights[0].intensity == 1);
     CHECK_NEAR(sc->camera.up[1], 1, 0);
