@@ -134,6 +134,15 @@ printf 'async material marble\nframes 1\nquit\n' >"$TMP/async.txt"
 check "frames are drawn while a new material bakes" -- eval \
   '"$LUCENT" view "$SPHERE" --script "$TMP/async.txt" --headless --no-cache | grep -q "^frame 1: redraw .* while baking"'
 
+# A progressive trace in the background becomes the reference; its noise, and so the error of the
+# method against it, falls as samples come (the trace's own noise goes as 1/sqrt(spp)).
+printf 'trace-start\ntrace-wait 2\nprint\ntrace-wait 48\nprint\ntrace-stop\nquit\n' >"$TMP/trace.txt"
+"$LUCENT" view "$SPHERE" --script "$TMP/trace.txt" --headless --no-cache >"$TMP/trace.out" 2>&1
+e1=$(grep '^view:' "$TMP/trace.out" | sed -n '1s/.*rel_rms \([0-9.e+-]*\),.*/\1/p')
+e2=$(grep '^view:' "$TMP/trace.out" | sed -n '2s/.*rel_rms \([0-9.e+-]*\),.*/\1/p')
+check "the progressive trace is the reference, and the error falls with its samples ($e1 then $e2)" -- eval \
+  'grep -q "reference progressive trace, [0-9]* spp" "$TMP/trace.out" && awk -v a="$e1" -v b="$e2" "BEGIN { exit !(b > 0 && b < a) }"'
+
 # Hot reload: the scene file changes on disk, the viewer reads it again (here: another method).
 cp "$SPHERE" "$TMP/watched.json"
 printf 'print\nwait-reload 60\nprint\nquit\n' >"$TMP/reload.txt"

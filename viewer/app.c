@@ -228,6 +228,7 @@ lucent_status viewer_redraw(viewer *v)
         viewer_panel(v);
     }
     viewer_step(v);
+    viewer_trace_poll(v);
     int rect[4];
     viewer_view_rect(v, rect);
     lucent_status st = LUCENT_OK;

@@ -83,12 +83,15 @@ static void append(char *dest, size_t size, const char *fmt, const char *key, co
     snprintf(dest + n, size - n, fmt, key, value);
 }
 
-lucent_status viewer_save_scene(viewer *v, const char *path)
+/* The scene as the viewer shows it, as JSON text (free with free()), and what differs from the file
+ * as --set options into set. */
+static lucent_status scene_text(viewer *v, char **dest, char *set, size_t set_size)
 {
     const lucent_scene *sc = v->scene;
     cJSON *root = sc->json ? cJSON_Parse(sc->json) : NULL;
-    if (!root) return lucent_error(LUCENT_ERR_INTERNAL, "%s: the scene's JSON is not at hand", path);
-    char set[sizeof v->set_form] = "", value[4096];
+    if (!root) return lucent_error(LUCENT_ERR_INTERNAL, "the scene's JSON is not at hand");
+    char value[4096];
+    set[0] = '\0';
     const lucent_camera *c = &sc->camera;
     cJSON *cam = cJSON_CreateObject();
     put(cam, "position", numbers(c->position, 3));
@@ -98,7 +101,7 @@ lucent_status viewer_save_scene(viewer *v, const char *path)
     put(cam, "near", cJSON_CreateNumber(c->near_plane));
     put(cam, "far", cJSON_CreateNumber(c->far_plane));
     char *ct = cJSON_PrintUnformatted(cam);
-    if (ct && memcmp(c, &v->home, sizeof *c)) append(set, sizeof set, " --set '%s=%s'", "camera", ct);
+    if (ct && memcmp(c, &v->home, sizeof *c)) append(set, set_size, " --set '%s=%s'", "camera", ct);
     free(ct);
     put(root, "camera", cam);
     cJSON *lights = cJSON_GetObjectItemCaseSensitive(root, "lights");
@@ -115,7 +118,7 @@ lucent_status viewer_save_scene(viewer *v, const char *path)
         char *is = cJSON_PrintUnformatted(item), k[64];
         cJSON_Delete(item);
         snprintf(k, sizeof k, "lights[%d].%s", i, key);
-        if (is) append(set, sizeof set, " --set '%s=%s'", k, is);
+        if (is) append(set, set_size, " --set '%s=%s'", k, is);
         free(is);
         put(lo, key, numbers(now, 3));
     }
@@ -134,7 +137,7 @@ lucent_status viewer_save_scene(viewer *v, const char *path)
         if (was && is && strcmp(was, is)) {
             char k[64];
             snprintf(k, sizeof k, "objects[%d].material", i);
-            append(set, sizeof set, cJSON_IsString(m) ? " --set %s=%s" : " --set '%s=%s'", k,
+            append(set, set_size, cJSON_IsString(m) ? " --set %s=%s" : " --set '%s=%s'", k,
                    cJSON_IsString(m) ? m->valuestring : is);
         }
         free(was), free(is);
@@ -158,15 +161,28 @@ lucent_status viewer_save_scene(viewer *v, const char *path)
                 char k[64];
                 snprintf(k, sizeof k, "render.%s", st->key);
                 snprintf(value, sizeof value, "%s", a);
-                append(set, sizeof set, strpbrk(value, " ,[]{}'\"") ? " --set '%s=%s'" : " --set %s=%s", k, value);
+                append(set, set_size, strpbrk(value, " ,[]{}'\"") ? " --set '%s=%s'" : " --set %s=%s", k, value);
             }
         }
     }
-    char *text = cJSON_Print(root);
+    *dest = cJSON_Print(root);
     cJSON_Delete(root);
-    if (!text) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
-    size_t n = strlen(text);
-    lucent_status st = lucent_write_file(path, text, n);
+    return *dest ? LUCENT_OK : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+}
+
+lucent_status viewer_scene_text(viewer *v, char **dest)
+{
+    static char set[sizeof v->set_form];
+    return scene_text(v, dest, set, sizeof set);
+}
+
+lucent_status viewer_save_scene(viewer *v, const char *path)
+{
+    const lucent_scene *sc = v->scene;
+    char set[sizeof v->set_form - LUCENT_SCENE_PATH_SIZE - 16], *text = NULL;
+    lucent_status st = scene_text(v, &text, set, sizeof set);
+    if (st != LUCENT_OK) return lucent_error_context(st, "%s", path);
+    st = lucent_write_file(path, text, strlen(text));
     free(text);
     if (st != LUCENT_OK) return st;
     snprintf(v->set_form, sizeof v->set_form, "lucent render %s%s", sc->path, set);
@@ -262,6 +278,7 @@ lucent_status viewer_export_taps(viewer *v, const char *path, const char *format
 
 void viewer_drop_reference(viewer *v)
 {
+    viewer_trace_stop(v);
     lucent_image_destroy(v->reference);
     lucent_image_destroy(v->error_map);
     v->reference = v->error_map = NULL;

@@ -298,6 +298,14 @@ static void reference(viewer *v)
     if (ui_button("load")) {
         if (viewer_load_reference(v, v->ref_input) != LUCENT_OK) viewer_status(v, true, "%s", lucent_last_error());
     }
+    if (!v->trace.running && ui_button("start a progressive trace") && viewer_trace_start(v) != LUCENT_OK)
+        viewer_status(v, true, "%s", lucent_last_error());
+    ui_tooltip("path-trace the scene as it is now (camera, lights, materials, settings) at the frame's size on a "
+               "thread of its own; each pass becomes the reference");
+    if (v->trace.running) {
+        ui_same_line();
+        if (ui_button("stop the trace")) viewer_trace_stop(v);
+    }
     if (!v->reference) return;
     ui_text("%s (%dx%d)", v->reference_path, v->reference->width, v->reference->height);
     if (ui_checkbox("render at its size", &v->match_reference)) v->gen++;

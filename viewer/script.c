@@ -143,6 +143,25 @@ static lucent_status wait_reload(viewer *v, char **w, int n)
     return st;
 }
 
+/* trace-wait SPP [SECONDS]: redraws until the progressive trace has SPP samples per pixel. */
+static lucent_status trace_wait(viewer *v, char **w, int n)
+{
+    double x[2] = {1, 600};
+    lucent_status st = need(n, 2, 3, "trace-wait SPP [SECONDS]");
+    if (st == LUCENT_OK) st = numbers(w + 1, n - 1, x, "trace-wait 4 60");
+    if (st == LUCENT_OK && !v->trace.running)
+        st = lucent_error(LUCENT_ERR_PARSE, "trace-wait: no trace runs (trace-start)");
+    double end = lucent_clock_seconds() + x[1];
+    while (st == LUCENT_OK && v->trace.running && v->trace_spp < x[0] && lucent_clock_seconds() < end) {
+        st = viewer_redraw(v);
+        nanosleep(&(struct timespec){0, 20000000}, NULL);
+    }
+    if (st == LUCENT_OK && v->trace_spp < x[0])
+        st = lucent_error(LUCENT_ERR_INTERNAL, "trace-wait: %llu of %g spp after %g s",
+                          (unsigned long long)v->trace_spp, x[0], x[1]);
+    return st;
+}
+
 static lucent_status action(viewer *v, char **w, int n)
 {
     const char *a = w[0];
@@ -213,20 +232,25 @@ static lucent_status action(viewer *v, char **w, int n)
         return viewer_resize(v, (int)x[0], (int)x[1]);
     }
     if (!strcmp(a, "print")) {
-        printf("view: %s, frame %dx%d, camera %.17g %.17g %.17g, rel_rms %.6g\n",
+        printf("view: %s, frame %dx%d, camera %.17g %.17g %.17g, rel_rms %.6g, reference %s\n",
                lucent_render_method_name(v->applied.view.method), v->frame_w, v->frame_h, v->scene->camera.position[0],
-               v->scene->camera.position[1], v->scene->camera.position[2], v->rel_rms);
+               v->scene->camera.position[1], v->scene->camera.position[2], v->rel_rms,
+               v->reference ? v->reference_path : "none");
         fflush(stdout); /* a watching process reads it now */
         return need(n, 1, 1, "print");
     }
     if (!strcmp(a, "bench")) return bench(v, w, n);
     if (!strcmp(a, "frames")) return frames(v, w, n);
+    if (!strcmp(a, "trace-start")) return (st = need(n, 1, 1, "trace-start")) != LUCENT_OK ? st : viewer_trace_start(v);
+    if (!strcmp(a, "trace-stop"))
+        return (st = need(n, 1, 1, "trace-stop")) != LUCENT_OK ? st : (viewer_trace_stop(v), LUCENT_OK);
+    if (!strcmp(a, "trace-wait")) return trace_wait(v, w, n);
     if (!strcmp(a, "wait-reload")) return wait_reload(v, w, n);
     if (!strcmp(a, "quit")) return v->quit = true, need(n, 1, 1, "quit");
     return lucent_error(LUCENT_ERR_PARSE,
                         "unknown action '%s' (orbit, pan, zoom, reset, light, set, method, method-b, layout, object, "
                         "material, load-reference, show, save-scene, screenshot, window-shot, export-taps, resize, "
-                        "print, bench, frames, wait-reload, quit)",
+                        "print, bench, frames, wait-reload, trace-start, trace-wait, trace-stop, quit)",
                         a);
 }
 
@@ -251,7 +275,8 @@ lucent_status viewer_script_run(viewer *v, const char *path)
         bool async = !strcmp(words[0], "async") && n > 1; /* do not wait for the bakes it starts */
         st = action(v, words + async, n - async);
         if (async && st == LUCENT_OK) viewer_step(v);
-        bool no_wait = async || !strcmp(words[0], "frames") || !strcmp(words[0], "wait-reload");
+        bool no_wait =
+            async || !strcmp(words[0], "frames") || !strcmp(words[0], "wait-reload") || !strcmp(words[0], "trace-wait");
         if (st == LUCENT_OK && !no_wait) {
             viewer_settle(v);
             st = viewer_redraw(v);

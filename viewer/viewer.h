@@ -5,7 +5,8 @@
  *
  * Files: app.c (the window, the frame, input, layout, hot reload), state.c (camera, lights,
  * materials, the background bakes), panel.c (the panel built from the settings table), script.c,
- * output.c (saved scenes, screenshots, taps, the reference and its error). */
+ * output.c (saved scenes, screenshots, taps, the reference and its error), trace.c (a progressive
+ * trace as the reference). */
 #ifndef LUCENT_VIEWER_VIEWER_H
 #define LUCENT_VIEWER_VIEWER_H
 
@@ -63,6 +64,25 @@ typedef struct viewer_job {
     char error[1024];
 } viewer_job;
 
+/* A progressive path trace of the scene as it stood when it started, on a thread of its own: each
+ * pass of one sample per pixel becomes the reference. */
+typedef struct viewer_trace {
+    pthread_t thread;
+    bool running;     /* started and not yet joined */
+    atomic_bool stop; /* asked to stop after the pass under way */
+    atomic_bool done; /* the thread finished */
+    char *json;       /* the scene it traces */
+    char base_dir[VIEWER_PATH];
+    lucent_pool *pool;
+    pthread_mutex_t lock; /* guards image, spp, seconds, fresh */
+    lucent_image *image;  /* the latest estimate, not yet taken */
+    uint64_t spp;
+    double seconds;
+    bool fresh;
+    lucent_status status;
+    char error[1024];
+} viewer_trace;
+
 typedef struct viewer {
     viewer_options opt;
     lucent_scene *scene;
@@ -105,6 +125,8 @@ typedef struct viewer {
     lucent_image *error_map;
     double rel_rms;
     unsigned long error_gen;
+    viewer_trace trace;
+    uint64_t trace_spp; /* of the reference, when it is the progressive trace */
     viewer_show show;
     unsigned show_tex;
     unsigned long show_gen;
@@ -151,12 +173,18 @@ void viewer_panel(viewer *v);
 
 /* output.c */
 lucent_status viewer_save_scene(viewer *v, const char *path);
+lucent_status viewer_scene_text(viewer *v, char **dest); /* the scene as shown, JSON */
 lucent_status viewer_screenshot(viewer *v, const char *path);
 lucent_status viewer_window_shot(viewer *v, const char *path);
 lucent_status viewer_export_taps(viewer *v, const char *path, const char *format);
 lucent_status viewer_load_reference(viewer *v, const char *path);
 void viewer_drop_reference(viewer *v);
 lucent_status viewer_update_error(viewer *v); /* the error map of A against the reference */
+
+/* trace.c */
+lucent_status viewer_trace_start(viewer *v); /* of the scene as it is now, at the frame's size */
+void viewer_trace_stop(viewer *v);
+void viewer_trace_poll(viewer *v); /* takes a new estimate as the reference */
 
 /* script.c */
 lucent_status viewer_script_run(viewer *v, const char *path);
