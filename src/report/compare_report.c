@@ -108,9 +108,11 @@ static void html_figure(lucent_strbuf *b, const char *image, const char *caption
     lucent_strbuf_printf(b, "</figcaption></figure>\n");
 }
 
-static void html_table(lucent_strbuf *b, const lucent_compare_scene *sc)
+static void html_table(lucent_strbuf *b, const lucent_compare_scene *scene)
 {
-    int order[64], rank[64], n = sc->method_count < 64 ? sc->method_count : 64;
+    lucent_compare_scene clipped = *scene; /* the table holds 64 methods at most */
+    const lucent_compare_scene *sc = &clipped;
+    int order[64], rank[64], n = clipped.method_count = scene->method_count < 64 ? scene->method_count : 64;
     bool ranked = lucent_compare_rank(sc, order, rank);
     lucent_strbuf_printf(b, "<table><tr><th>rank</th><th>method</th><th>relative RMS error</th><th>net of the "
                             "reference's noise</th><th>R</th><th>G</th><th>B</th><th>frame (ms, GPU)</th><th>frame / "
