@@ -132,6 +132,34 @@ TEST(sums_of_gaussians)
     lucent_baked_free(&b);
 }
 
-TEST_MAIN(TEST_ENTRY(parts_equal_their_modules_and_rebuild_only_when_needed),
+/* A copy holds the same parts bit for bit, stands alone (the original freed), and a bake started from
+ * it rebuilds only what changed. */
+TEST(copies_stand_alone)
+{
+    lucent_material m = skin();
+    lucent_render_settings s = lucent_render_settings_defaults();
+    lucent_baked b = {0}, c = {0};
+    CHECK_OK(lucent_material_bake(&m, &(lucent_bake_desc){.what = LUCENT_BAKE_TAPS, .settings = &s}, NULL, &b));
+    lucent_baked keep = b; /* the original's scalars and keys (its pointers are not read after the free) */
+    size_t bins = (size_t)b.profile->count, taps = (size_t)b.taps->count * (size_t)b.taps->rank;
+    double *value = malloc(bins * sizeof *value), *weight = malloc(taps * sizeof *weight);
+    memcpy(value, b.profile->value[2], bins * sizeof *value);
+    memcpy(weight, b.taps->weight[0], taps * sizeof *weight);
+    double sign = b.taps->sign[0][0];
+    CHECK_OK(lucent_baked_copy(&b, &c));
+    CHECK(c.profile != b.profile && c.taps != b.taps);
+    lucent_baked_free(&b);
+    CHECK(c.have == keep.have && !strcmp(c.taps_key, keep.taps_key) && !strcmp(c.profile_key, keep.profile_key));
+    CHECK(c.profile->count == (int)bins && !memcmp(c.profile->value[2], value, bins * sizeof *value));
+    CHECK(!memcmp(c.taps->weight[0], weight, taps * sizeof *weight) && c.taps->sign[0][0] == sign);
+    const lucent_profile *p = c.profile;
+    s.ssss.taps = 9;
+    CHECK_OK(lucent_material_bake(&m, &(lucent_bake_desc){.what = LUCENT_BAKE_TAPS, .settings = &s}, NULL, &c));
+    CHECK(c.profile == p && c.taps->count == 9); /* the profile kept, the taps rebuilt */
+    lucent_baked_free(&c);
+    free(value), free(weight);
+}
+
+TEST_MAIN(TEST_ENTRY(parts_equal_their_modules_and_rebuild_only_when_needed), TEST_ENTRY(copies_stand_alone),
           TEST_ENTRY(profile_transmittance_is_normalised_and_falls),
           TEST_ENTRY(monte_carlo_parts_come_back_from_the_cache_bit_for_bit), TEST_ENTRY(sums_of_gaussians))

@@ -1,7 +1,8 @@
 /* GL tests (label gl): the renderer on llvmpipe. The CDRF and Lambert passes against the CPU shading
  * reference (src/gl/reference.c) at every covered pixel; symmetry of a sphere lit along the view
  * axis; translucency through a thin disc lit from behind (brighter, and red for skin); timings,
- * masks, rebuilds; context and shader errors that name their cause. */
+ * masks, rebuilds; a scene changed under a renderer and bakes adopted from elsewhere; context and
+ * shader errors that name their cause. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -353,6 +354,104 @@ TEST(settings_change_between_frames)
     lucent_scene_destroy(sc);
 }
 
+/* ---- the scene changed under a renderer (the viewer): the same pixels as a renderer made for the
+ * changed scene, which is the independent computation here ---- */
+
+static lucent_scene *sphere_of(const char *material, const char *direction)
+{
+    char json[1024];
+    snprintf(json, sizeof json,
+             "{\"camera\": {\"position\": [0, 0, 60], \"target\": [0, 0, 0], \"fov_y\": 30},"
+             " \"lights\": [{\"type\": \"directional\", \"direction\": %s, \"intensity\": 3},"
+             "              {\"type\": \"environment\", \"intensity\": 0.05}],"
+             " \"objects\": [{\"mesh\": {\"primitive\": \"icosphere\", \"radius\": 10, \"subdivisions\": 3},"
+             "               \"material\": \"%s\", \"sigma0\": [3, 2, 1]}],"
+             " \"render\": {\"width\": 48, \"height\": 40, \"shadow_map_size\": 256, \"taps\": 11}}",
+             direction, material);
+    return scene_from(json);
+}
+
+/* Renders sc with a renderer of its own (ssss). */
+static lucent_image *fresh_render(lucent_scene *sc)
+{
+    lucent_renderer *r = renderer_of(sc);
+    lucent_render_result res = {0};
+    if (r) CHECK_OK(lucent_render(r, NULL, &res));
+    lucent_renderer_destroy(r);
+    lucent_image_destroy(res.mask);
+    return res.image;
+}
+
+static bool same_image(const lucent_image *a, const lucent_image *b)
+{
+    return a && b && a->width == b->width && a->height == b->height &&
+           !memcmp(a->data, b->data, lucent_image_value_count(a) * sizeof *a->data);
+}
+
+TEST(scene_changes_and_adopted_bakes_give_a_fresh_renderers_pixels)
+{
+    lucent_scene *sc = sphere_of("skin1", "[0, 0, -1]"), *marble = sphere_of("marble", "[0, 0, -1]");
+    lucent_scene *turned = sphere_of("marble", "[0.5, -0.3, -0.8]");
+    lucent_renderer *r = renderer_of(sc);
+    lucent_image *want_marble = fresh_render(marble), *want_turned = fresh_render(turned);
+    if (r && want_marble && want_turned) {
+        lucent_render_result a = {0}, b = {0}, c = {0};
+        CHECK_OK(lucent_render(r, NULL, &a)); /* skin1 baked and uploaded */
+        /* the material changed in the scene (with its albedo, the dipole Rd, as the loader sets it) */
+        sc->objects[0].material = marble->objects[0].material;
+        memcpy(sc->objects[0].albedo, marble->objects[0].albedo, sizeof sc->objects[0].albedo);
+        CHECK_OK(lucent_renderer_scene_changed(r, LUCENT_RENDERER_MATERIALS));
+        CHECK_OK(lucent_render(r, NULL, &b));
+        CHECK(same_image(b.image, want_marble) && !same_image(a.image, b.image));
+        /* a light turned */
+        memcpy(sc->lights[0].direction, turned->lights[0].direction, sizeof sc->lights[0].direction);
+        CHECK_OK(lucent_renderer_scene_changed(r, LUCENT_RENDERER_LIGHTS));
+        CHECK_OK(lucent_render(r, NULL, &c));
+        CHECK(same_image(c.image, want_turned));
+        lucent_render_result_free(&a), lucent_render_result_free(&b), lucent_render_result_free(&c);
+    }
+    lucent_renderer_destroy(r);
+    /* parts baked elsewhere (a copy of them) are adopted: the frame bakes nothing and draws the same */
+    lucent_renderer *m = renderer_of(marble);
+    if (m) {
+        lucent_renderer_desc rd = lucent_renderer_defaults();
+        lucent_baked b = {0}, copy = {0};
+        unsigned what = lucent_renderer_bakes(m, &marble->render);
+        CHECK(what == LUCENT_BAKE_TAPS || what == (LUCENT_BAKE_TAPS | LUCENT_BAKE_TRANSMITTANCE));
+        CHECK_OK(lucent_material_bake(&marble->objects[0].material,
+                                      &(lucent_bake_desc){.what = what,
+                                                          .settings = &marble->render,
+                                                          .profile_photons = rd.profile_photons,
+                                                          .transmit_photons = rd.transmit_photons,
+                                                          .sigma0_photons = rd.sigma0_photons},
+                                      NULL, &b));
+        CHECK_OK(lucent_baked_copy(&b, &copy));
+        lucent_baked_free(&b); /* the copy stands alone */
+        CHECK_OK(lucent_renderer_adopt_baked(m, &marble->objects[0].material, &copy));
+        const lucent_taps *adopted = m->tables.baked[0].taps;
+        lucent_render_result res = {0};
+        CHECK_OK(lucent_render(m, NULL, &res));
+        CHECK(m->tables.baked[0].taps == adopted); /* not baked again */
+        CHECK(same_image(res.image, want_marble));
+        lucent_render_result_free(&res);
+        lucent_material other;
+        lucent_material_preset_find("ketchup", &other);
+        CHECK_ERR(lucent_renderer_adopt_baked(m, &other, &copy), LUCENT_ERR_NOT_FOUND, "Ketchup");
+        /* what each method bakes: lambert nothing; cdrf no sigma0 fit where the scene gives sigma0 */
+        lucent_render_settings s = marble->render;
+        s.view.method = LUCENT_METHOD_LAMBERT;
+        CHECK(lucent_renderer_bakes(m, &s) == 0);
+        s.view.method = LUCENT_METHOD_CDRF, s.cdrf.sigma0 = LUCENT_SIGMA0_FIT;
+        CHECK(lucent_renderer_bakes(m, &s) == 0);
+        marble->objects[0].sigma0_set = false;
+        CHECK(lucent_renderer_bakes(m, &s) == LUCENT_BAKE_SIGMA0);
+        lucent_baked_free(&copy);
+    }
+    lucent_renderer_destroy(m);
+    lucent_image_destroy(want_marble), lucent_image_destroy(want_turned);
+    lucent_scene_destroy(sc), lucent_scene_destroy(marble), lucent_scene_destroy(turned);
+}
+
 /* ---- errors ---- */
 
 TEST(context_errors_name_their_cause)
@@ -420,6 +519,7 @@ int main(int argc, char **argv)
                                       TEST_ENTRY(slab_translucency_matches_monte_carlo_transmittance),
                                       TEST_ENTRY(timings_name_every_pass),
                                       TEST_ENTRY(settings_change_between_frames),
+                                      TEST_ENTRY(scene_changes_and_adopted_bakes_give_a_fresh_renderers_pixels),
                                       TEST_ENTRY(context_errors_name_their_cause),
                                       TEST_ENTRY(shader_errors_name_file_and_line)};
     int rc = test_run(cases, (int)(sizeof cases / sizeof cases[0]), argc, argv);
