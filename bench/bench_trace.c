@@ -270,7 +270,8 @@ static void reference_scene(const char *file, const char *const *sets, int nsets
     lucent_scene_destroy(sc);
 }
 
-/* BENCH_REFERENCE_SECONDS (default 60): each estimator's CPU seconds over the threads per scene. */
+/* BENCH_REFERENCE_SECONDS (default 60): each estimator's CPU seconds over the threads per scene;
+ * BENCH_REFERENCE_SCENES: the scenes (names separated by commas; default all four). */
 static void references(lucent_pool *pool)
 {
     const char *env = getenv("BENCH_REFERENCE_SECONDS");
@@ -281,10 +282,13 @@ static void references(lucent_pool *pool)
            budget, g_threads);
     const char *square[] = {"render.width=256", "render.height=256"},
                *wide[] = {"render.width=384", "render.height=128"};
-    reference_scene("dragon-marble.json", square, 2, budget, pool);
-    reference_scene("bunny-skin.json", square, 2, budget, pool);
-    reference_scene("bunny-jade.json", square, 2, budget, pool);
-    reference_scene("spheres-skin.json", wide, 2, budget, pool);
+    const char *files[] = {"dragon-marble.json", "bunny-skin.json", "bunny-jade.json", "spheres-skin.json"};
+    const char *only = getenv("BENCH_REFERENCE_SCENES"); /* e.g. "dragon-marble,bunny-jade" (default: all) */
+    for (int i = 0; i < 4; i++) {
+        char stem[64];
+        snprintf(stem, sizeof stem, "%.*s", (int)(strlen(files[i]) - 5), files[i]);
+        if (!only || strstr(only, stem)) reference_scene(files[i], i == 3 ? wide : square, 2, budget, pool);
+    }
 }
 
 int main(int argc, char **argv)

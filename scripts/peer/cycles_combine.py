@@ -45,9 +45,10 @@ def main():
         'band_rows': first['band_rows'],
         'bins': bins,
     }
+    head = json.dumps({k: v for k, v in out.items() if k != 'bins'}, indent=1)[:-2]
+    rows = ',\n  '.join(json.dumps(b) for b in bins)
     with open(sys.argv[1], 'w') as f:
-        json.dump(out, f, indent=1)
-        f.write('\n')
+        f.write(head + ',\n "bins": [\n  ' + rows + '\n ]\n}\n')
 
 
 main()

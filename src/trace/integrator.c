@@ -186,7 +186,9 @@ static void scatter_direction(tr_path *p, const tr_object *ob, v3 x, const tr_tr
  * estimation from a vertex at depth d (a lower bound from the sphere) reaches the boundary through at
  * least d of medium, so it contributes at most about exp(-sigma_min d) of a shallow vertex's; it is
  * made with probability P = min(1, exp(1 - sigma_min d)) and weighted by 1 / P (Russian roulette on
- * an estimator: unbiased, and its weighted value stays below a shallow vertex's). */
+ * an estimator: unbiased, and its weighted value stays below a shallow vertex's). Both only in dense
+ * media (tr_object.dense, TR_DENSE_ALBEDO): elsewhere walks are short and the queries cost more than
+ * they save. */
 #define SAFE_MFP_MAX 16.0 /* a distance query looks this many mean free paths far at most */
 #define SAFE_MFP_MIN 2.0  /* spheres smaller than this (in mean free paths) are not worth their query */
 
@@ -210,7 +212,7 @@ static double safe_depth(const tr_path *p, v3 x)
 static void refresh_safe(tr_path *p, const tr_object *ob, v3 x)
 {
     double mfp = 1.0 / ob->sigma_t_min;
-    if (p->tr->desc.plain_flights || (p->safe_r > 0 && safe_depth(p, x) >= 0.5 * p->safe_r)) return;
+    if (p->tr->desc.plain_flights || !ob->dense || (p->safe_r > 0 && safe_depth(p, x) >= 0.5 * p->safe_r)) return;
     p->safe_r = 0;
     if (!(p->gap >= SAFE_MFP_MIN * mfp)) return;
     double r = tr_distance_bound(p->tr->geometry, x, SAFE_MFP_MAX * mfp) - 4.0 * p->tr->eps;

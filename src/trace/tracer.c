@@ -66,6 +66,9 @@ static void build_object(const lucent_scene_object *o, int index, int model, tr_
     }
     dest->g_mean = (dest->g[0] + dest->g[1] + dest->g[2]) / 3.0;
     dest->sigma_t_min = fmax(fmin(dest->sigma_t[0], fmin(dest->sigma_t[1], dest->sigma_t[2])), 1e-12);
+    dest->dense = true;
+    for (int c = 0; c < 3; c++)
+        dest->dense &= dest->sigma_s[c] >= TR_DENSE_ALBEDO * dest->sigma_t[c] && dest->sigma_t[c] > 0;
 }
 
 /* Ray offsets: a few thousand float ulps of the scene's largest coordinate. */
