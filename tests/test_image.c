@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include "lucent/image.h"
 #include "test.h"
@@ -530,6 +531,72 @@ TEST(exr_malformed)
     CHECK(out == NULL);
 }
 
+/* ---- Image bombs (issue 17) ---- */
+
+static void put_be32(unsigned char *p, uint32_t v)
+{
+    p[0] = (unsigned char)(v >> 24), p[1] = (unsigned char)(v >> 16), p[2] = (unsigned char)(v >> 8);
+    p[3] = (unsigned char)v;
+}
+
+/* A 57-byte PNG whose IHDR declares 12000 x 12000 RGB pixels (137 Mpixels; 2.3 GB as float RGBA): refused
+ * by the read limit from the header, before a byte of it is decoded; a lowered limit refuses a small one. */
+TEST(png_bomb_refused_from_the_header)
+{
+    unsigned char f[57] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    put_be32(f + 8, 13);
+    memcpy(f + 12, "IHDR", 4);
+    put_be32(f + 16, 12000), put_be32(f + 20, 12000);
+    f[24] = 8, f[25] = 2, f[26] = 0, f[27] = 0, f[28] = 0; /* 8-bit RGB, deflate, no filter, no interlace */
+    put_be32(f + 29, (uint32_t)crc32(0, f + 12, 17));
+    put_be32(f + 33, 0);
+    memcpy(f + 37, "IDAT", 4);
+    put_be32(f + 41, (uint32_t)crc32(0, f + 37, 4));
+    put_be32(f + 45, 0);
+    memcpy(f + 49, "IEND", 4);
+    put_be32(f + 53, (uint32_t)crc32(0, f + 49, 4));
+    write_bytes(test_path("bomb.png"), f, sizeof f);
+    lucent_image *out = NULL;
+    CHECK(lucent_image_read_limit() == LUCENT_IMAGE_DEFAULT_READ_PIXELS || getenv("LUCENT_IMAGE_MAX_PIXELS"));
+    CHECK_ERR(lucent_image_load(test_path("bomb.png"), &out), LUCENT_ERR_PARSE, "bomb.png",
+              "declares 12000x12000 pixels", "above the read limit of 64 Mpixels");
+    CHECK(out == NULL);
+    lucent_image *img = make_image(24, 40, 3, 0, 4);
+    CHECK_OK(lucent_image_write(test_path("small.png"), img, NULL));
+    CHECK_OK(lucent_image_write(test_path("small.exr"), img, NULL));
+    lucent_image_destroy(img);
+    lucent_image_set_read_limit(24 * 40 - 1);
+    CHECK_ERR(lucent_image_load(test_path("small.png"), &out), LUCENT_ERR_PARSE, "small.png", "24x40");
+    CHECK_ERR(lucent_image_load(test_path("small.exr"), &out), LUCENT_ERR_PARSE, "small.exr", "24x40");
+    lucent_image_set_read_limit(0);
+    CHECK_OK(lucent_image_load(test_path("small.png"), &out));
+    lucent_image_destroy(out);
+}
+
+/* An EXR whose data window is enlarged in place to 8000 x 8000 (64 Mpixels, under the read limit) while the
+ * file keeps its 24 x 40 chunk table: the table cannot fit the file, refused before the 1 GB image is
+ * allocated. */
+TEST(exr_chunk_table_checked_before_allocating)
+{
+    lucent_image *img = make_image(24, 40, 3, 0, 4), *out = NULL;
+    CHECK_OK(lucent_image_write(test_path("win.exr"), img, NULL));
+    lucent_image_destroy(img);
+    char *data;
+    size_t n;
+    CHECK_OK(lucent_read_file(test_path("win.exr"), &data, &n));
+    if (!data) return;
+    char *at = memmem(data, n, "dataWindow\0box2i\0", 17);
+    CHECK(at != NULL);
+    if (at) {
+        int32_t win[4] = {0, 0, 7999, 7999};
+        memcpy(at + 17 + 4, win, sizeof win); /* after the 4-byte attribute size; little endian as the file */
+        write_bytes(test_path("win.exr"), data, n);
+        CHECK_ERR(lucent_image_load(test_path("win.exr"), &out), LUCENT_ERR_PARSE, "win.exr", "chunk table");
+        CHECK(out == NULL);
+    }
+    free(data);
+}
+
 /* ---- PFM ---- */
 
 TEST(pfm_roundtrip_exact)
@@ -771,7 +838,8 @@ TEST(image_stats)
     lucent_image_destroy(img);
 }
 
-TEST_MAIN(TEST_ENTRY(create_access_and_limits), TEST_ENTRY(convert_channels), TEST_ENTRY(srgb_curve_known_values),
+TEST_MAIN(TEST_ENTRY(png_bomb_refused_from_the_header), TEST_ENTRY(exr_chunk_table_checked_before_allocating),
+          TEST_ENTRY(create_access_and_limits), TEST_ENTRY(convert_channels), TEST_ENTRY(srgb_curve_known_values),
           TEST_ENTRY(tonemap_operators), TEST_ENTRY(png_roundtrips), TEST_ENTRY(png_palette_written_by_libpng),
           TEST_ENTRY(png_grey_formats_written_by_libpng), TEST_ENTRY(png_malformed),
           TEST_ENTRY(exr_float_and_half_roundtrips), TEST_ENTRY(exr_grey_and_rgb),

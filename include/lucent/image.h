@@ -20,6 +20,15 @@ extern "C" {
 #define LUCENT_IMAGE_MAX_PIXELS (1ull << 28)
 #define LUCENT_IMAGE_MAX_SIDE (1 << 20)
 
+/* The most pixels an image file may declare to be read (PNG, EXR, PFM), checked against the header
+ * before any pixel is decoded or allocated, so that a small file declaring a huge image (a
+ * decompression bomb) is refused: "<file>: declares 30000x30000 pixels (900 Mpixels), above the read
+ * limit of 64 Mpixels". Default 2^26 (64 Mpixels: 1 GiB as float RGBA), or the environment variable
+ * LUCENT_IMAGE_MAX_PIXELS; at most LUCENT_IMAGE_MAX_PIXELS. */
+#define LUCENT_IMAGE_DEFAULT_READ_PIXELS (1ull << 26)
+void lucent_image_set_read_limit(uint64_t pixels); /* 0: back to the default */
+uint64_t lucent_image_read_limit(void);
+
 typedef struct lucent_image {
     int width;
     int height;

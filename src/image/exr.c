@@ -43,6 +43,7 @@ typedef struct exr_reader {
     bool grey_alpha; /* Y and A: replicate Y into G and B afterwards */
     lucent_image *img;
     float *scratch; /* one decoded chunk, a plane per image channel */
+    uint64_t file_size;
     size_t scratch_size;
 } exr_reader;
 
@@ -182,6 +183,40 @@ static lucent_status read_tiles(exr_reader *r)
     return LUCENT_OK;
 }
 
+/* Before anything is allocated for the pixels: the chunk table must fit the file (8 bytes an entry), and
+ * for scanline images every chunk must lie inside the file and its unpacked size be one that its packed
+ * bytes can give (no EXR codec expands more than deflate's 1032:1; 2048 leaves room), so that a 648-byte
+ * file cannot make the reader allocate gigabytes. */
+static lucent_status check_chunk_table(exr_reader *r, exr_storage_t storage)
+{
+    int32_t count = 0;
+    exr_result_t rv = exr_get_chunk_count(r->ctx, 0, &count);
+    if (rv != EXR_ERR_SUCCESS) return corrupt(r, rv);
+    if (count < 1 || (uint64_t)count * 8 > r->file_size)
+        return lucent_error(LUCENT_ERR_PARSE,
+                            "%s: corrupt OpenEXR data (a chunk table of %d entries in a %llu-byte file)", r->path,
+                            count, (unsigned long long)r->file_size);
+    if (storage != EXR_STORAGE_SCANLINE) return LUCENT_OK;
+    int32_t lines;
+    rv = exr_get_scanlines_per_chunk(r->ctx, 0, &lines);
+    if (rv != EXR_ERR_SUCCESS || lines < 1) return corrupt(r, rv);
+    for (int64_t y = r->dw.min.y; y <= r->dw.max.y; y += lines) {
+        exr_chunk_info_t ci;
+        rv = exr_read_scanline_chunk_info(r->ctx, 0, (int)y, &ci);
+        if (rv != EXR_ERR_SUCCESS)
+            return lucent_error(LUCENT_ERR_PARSE, "%s: corrupt OpenEXR chunk table (%s)", r->path, exr_message(rv));
+        if (ci.data_offset > r->file_size || ci.packed_size > r->file_size - ci.data_offset ||
+            ci.unpacked_size > 2048 * ci.packed_size + 4096)
+            return lucent_error(
+                LUCENT_ERR_PARSE,
+                "%s: corrupt OpenEXR chunk table (the chunk at line %lld claims %llu bytes at offset %llu, "
+                "%llu unpacked, in a %llu-byte file)",
+                r->path, (long long)y, (unsigned long long)ci.packed_size, (unsigned long long)ci.data_offset,
+                (unsigned long long)ci.unpacked_size, (unsigned long long)r->file_size);
+    }
+    return LUCENT_OK;
+}
+
 /* Reads the header facts of part 0 and allocates the image. */
 static lucent_status prepare(exr_reader *r, exr_storage_t *storage)
 {
@@ -195,7 +230,8 @@ static lucent_status prepare(exr_reader *r, exr_storage_t *storage)
     int channels = 0;
     lucent_status s = map_channels(r, cl, &channels);
     int64_t w = (int64_t)r->dw.max.x - r->dw.min.x + 1, h = (int64_t)r->dw.max.y - r->dw.min.y + 1;
-    if (s == LUCENT_OK) s = image_check_size(r->path, w, h, channels, LUCENT_ERR_PARSE);
+    if (s == LUCENT_OK) s = image_check_read(r->path, w, h, channels);
+    if (s == LUCENT_OK) s = check_chunk_table(r, *storage);
     if (s == LUCENT_OK) s = lucent_image_create((int)w, (int)h, channels, &r->img);
     return s;
 }
@@ -207,10 +243,11 @@ static void replicate_grey(lucent_image *img)
 }
 
 /* Opens the file to tell a missing file and a wrong magic number from a corrupt header. */
-static lucent_status probe_magic(const char *path)
+static lucent_status probe_magic(const char *path, uint64_t *size)
 {
-    FILE *fp = fopen(path, "rb");
-    if (!fp) return lucent_error(LUCENT_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    FILE *fp;
+    lucent_status st = lucent_fopen_regular(path, &fp, size);
+    if (st != LUCENT_OK) return st;
     unsigned char m[4] = {0};
     size_t got = fread(m, 1, 4, fp);
     fclose(fp);
@@ -223,9 +260,10 @@ static lucent_status probe_magic(const char *path)
 lucent_status lucent_image_load_exr(const char *path, lucent_image **dest)
 {
     *dest = NULL;
-    lucent_status s = probe_magic(path);
+    uint64_t size = 0;
+    lucent_status s = probe_magic(path, &size);
     if (s != LUCENT_OK) return s;
-    exr_reader r = {.path = path};
+    exr_reader r = {.path = path, .file_size = size};
     exr_context_initializer_t init = exr_init();
     t_exr_msg[0] = '\0';
     exr_result_t rv = exr_start_read(&r.ctx, path, &init);

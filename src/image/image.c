@@ -18,6 +18,38 @@ lucent_status image_check_size(const char *what, int64_t width, int64_t height, 
     return LUCENT_OK;
 }
 
+static _Atomic uint64_t g_read_limit;
+
+void lucent_image_set_read_limit(uint64_t pixels)
+{
+    g_read_limit = pixels > LUCENT_IMAGE_MAX_PIXELS ? LUCENT_IMAGE_MAX_PIXELS : pixels;
+}
+
+uint64_t lucent_image_read_limit(void)
+{
+    uint64_t l = g_read_limit;
+    if (l) return l;
+    const char *env = getenv("LUCENT_IMAGE_MAX_PIXELS");
+    char *end;
+    unsigned long long v = env ? strtoull(env, &end, 10) : 0;
+    if (env && *env && !*end && v > 0) return v > LUCENT_IMAGE_MAX_PIXELS ? LUCENT_IMAGE_MAX_PIXELS : v;
+    return LUCENT_IMAGE_DEFAULT_READ_PIXELS;
+}
+
+lucent_status image_check_read(const char *path, int64_t width, int64_t height, int channels)
+{
+    lucent_status s = image_check_size(path, width, height, channels, LUCENT_ERR_PARSE);
+    if (s != LUCENT_OK) return s;
+    uint64_t limit = lucent_image_read_limit(), n = (uint64_t)width * (uint64_t)height;
+    if (n > limit)
+        return lucent_error(LUCENT_ERR_PARSE,
+                            "%s: declares %lldx%lld pixels (%.0f Mpixels), above the read limit of %.0f Mpixels (the "
+                            "environment variable LUCENT_IMAGE_MAX_PIXELS raises it)",
+                            path, (long long)width, (long long)height, (double)n / 1048576.0,
+                            (double)limit / 1048576.0);
+    return LUCENT_OK;
+}
+
 lucent_status lucent_image_create(int width, int height, int channels, lucent_image **dest)
 {
     *dest = NULL;

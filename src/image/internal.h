@@ -7,6 +7,8 @@
 /* Checks a size read from a file or asked for by a caller against the limits in image.h.
  * what names the source in the message ("x.pfm", or "image"); bad is the status to fail with. */
 lucent_status image_check_size(const char *what, int64_t width, int64_t height, int channels, lucent_status bad);
+/* image_check_size, and the declared size against lucent_image_read_limit (a file being read). */
+lucent_status image_check_read(const char *path, int64_t width, int64_t height, int channels);
 
 /* Resolves the zero fields of desc (NULL: all defaults). */
 lucent_image_write_desc image_resolve_desc(const lucent_image_write_desc *desc);

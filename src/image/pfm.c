@@ -54,7 +54,7 @@ static lucent_status read_header(const char *path, FILE *fp, pfm_header *h)
         h->scale == 0.0)
         return lucent_error(LUCENT_ERR_PARSE, "%s: PFM header: bad scale (a non-zero number; negative: little endian)",
                             path);
-    return image_check_size(path, h->width, h->height, h->channels, LUCENT_ERR_PARSE);
+    return image_check_read(path, h->width, h->height, h->channels);
 }
 
 /* Checks that the file holds at least the pixel data the header announces. */
@@ -92,8 +92,9 @@ static lucent_status read_pixels(const char *path, FILE *fp, const pfm_header *h
 lucent_status lucent_image_load_pfm(const char *path, lucent_image **dest)
 {
     *dest = NULL;
-    FILE *fp = fopen(path, "rb");
-    if (!fp) return lucent_error(LUCENT_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    FILE *fp;
+    lucent_status st = lucent_fopen_regular(path, &fp, NULL);
+    if (st != LUCENT_OK) return st;
     pfm_header h = {0};
     lucent_status s = read_header(path, fp, &h);
     if (s == LUCENT_OK) s = check_length(path, fp, &h);

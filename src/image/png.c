@@ -122,7 +122,7 @@ static lucent_status read_body(png_job *job)
     png_uint_32 h = png_get_image_height(job->png, job->info);
     int in_ch = png_get_channels(job->png, job->info);
     int bits = png_get_bit_depth(job->png, job->info);
-    lucent_status s = image_check_size(job->path, w, h, in_ch == 1 ? 1 : in_ch == 3 ? 3 : 4, LUCENT_ERR_PARSE);
+    lucent_status s = image_check_read(job->path, w, h, in_ch == 1 ? 1 : in_ch == 3 ? 3 : 4);
     if (s != LUCENT_OK) return s;
     size_t rowbytes = png_get_rowbytes(job->png, job->info);
     job->buf = malloc(rowbytes * h);
@@ -155,8 +155,8 @@ lucent_status lucent_image_load_png(const char *path, lucent_image **dest)
 {
     *dest = NULL;
     png_job job = {.path = path};
-    job.fp = fopen(path, "rb");
-    if (!job.fp) return lucent_error(LUCENT_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    lucent_status st = lucent_fopen_regular(path, &job.fp, NULL);
+    if (st != LUCENT_OK) return st;
     lucent_status s = check_signature(&job);
     if (s == LUCENT_OK) {
         job.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &job, on_png_error, on_png_warning);
