@@ -4,14 +4,15 @@
 #   make        build build/lucent and the library
 #   make setup  install Debian packages and fetch the sample meshes
 #   make bench  run the benchmarks in bench/
-#   make fuzz   fuzz the parsers (clang's libFuzzer; FUZZ_SECONDS per target)
+#   make fuzz   fuzz the parsers (clang's libFuzzer; FUZZ_SECONDS per target; docs/fuzzing.md)
+#   make fuzz-smoke  30 s per fuzz target (not part of make test)
 BUILD      ?= build
 ASAN_BUILD ?= build-asan
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 DEMO_OUT   ?= out/demo
 
-.PHONY: all build setup test test-fast test-asan demo bench fuzz clean distclean
+.PHONY: all build setup test test-fast test-asan demo bench fuzz fuzz-smoke clean distclean
 
 all: build
 
@@ -50,6 +51,9 @@ bench: build
 FUZZ_SECONDS ?= 60
 fuzz:
 	fuzz/build.sh $(FUZZ_SECONDS)
+
+fuzz-smoke:
+	fuzz/build.sh 30
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) build-fuzz

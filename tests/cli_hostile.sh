@@ -30,3 +30,25 @@ printf '{"name":"white","units":"mm^-1","sigma_a":[0,0,0],"sigma_s":[1,1,1],"g":
 out=$("$LUCENT" profile "$TMP/white.json" --model mc --photons 1000 --out "$TMP/white" 2>&1)
 expect_true "profile of a non-absorbing medium warns: photons reached the step limit, results are lower bounds" -- \
   grep -q "photons reached the step limit (1048576 steps): the medium barely absorbs; results are lower bounds" <<<"$out"
+
+# Found by hand (issue 17 item 7).
+# compare on the project's own fixture whose reference cannot be made: an error, not a crash (a NULL mask).
+expect_fail 1 "trace-smooth.json: lights[0]" -- "$LUCENT" compare "$FIXTURES/scenes/trace-smooth.json" --out "$TMP/cmp-smooth"
+# --set with an index past int: no wrap to objects[0].
+expect_fail 1 "override 'objects[4294967296].material=jade': index beyond the end of the array" -- \
+  "$LUCENT" trace "$FIXTURES/scenes/trace-small.json" --set 'objects[4294967296].material=jade' --out "$TMP/wrap.png"
+expect_no_file "$TMP/wrap.png"
+# Names that are not UTF-8 are refused where they are read, so no JSON output can carry them.
+printf '{"name":"bad\xff\xfename","units":"mm^-1","sigma_a":[0.1,0.1,0.1],"sigma_s":[1,1,1],"g":0,"eta":1.3}\n' >"$TMP/latin1.json"
+expect_fail 1 "latin1.json: name: not valid UTF-8 text" -- "$LUCENT" materials "$TMP/latin1.json" --json
+printf '{"name":"caf\xc3\xa9","units":"mm^-1","sigma_a":[0.1,0.1,0.1],"sigma_s":[1,1,1],"g":0,"eta":1.3}\n' >"$TMP/utf8.json"
+expect_ok -- "$LUCENT" materials "$TMP/utf8.json" --json
+expect_true "a UTF-8 name passes into materials --json as valid JSON" -- python3 -c "import json,sys; json.loads(sys.argv[1])" "$OUT"
+
+# Outputs that name an input or the same file twice are refused before anything runs.
+cp "$FIXTURES/scenes/trace-small.json" "$TMP/keep.json"
+expect_fail 2 "--json '$TMP/keep.json' names the input" -- "$LUCENT" trace "$TMP/keep.json" --out "$TMP/k.png" --json "$TMP/keep.json"
+expect_true "the scene survives --json naming it" -- cmp "$TMP/keep.json" "$FIXTURES/scenes/trace-small.json"
+expect_fail 2 "name the same file" -- "$LUCENT" trace "$TMP/keep.json" --out "$TMP/k.png" --exr "$TMP/k.exr" --variance "$TMP/./k.exr"
+expect_fail 2 "names the input" -- "$LUCENT" render "$TMP/keep.json" --out "$TMP/k.png" --json "$TMP/../$(basename "$TMP")/keep.json"
+expect_no_file "$TMP/k.png"

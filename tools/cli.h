@@ -43,6 +43,11 @@ int cli_fail(void);
  * "lucent: ..."); returns CLI_USAGE. */
 int cli_usage_error(const char *command, const char *fmt, ...) LUCENT_PRINTF(2, 3);
 
+/* Refuses (a usage error, exit 2) outputs that name an input or the same file twice: flags[i] names
+ * outputs[i] in the message ("--json"); NULL entries are skipped. */
+int cli_check_outputs(const char *command, const char *const *inputs, int input_count, const char *const *outputs,
+                      const char *const *flags, int output_count);
+
 /* Prints an informational line to stdout unless --quiet. */
 void cli_info(const char *fmt, ...) LUCENT_PRINTF(1, 2);
 

@@ -325,6 +325,9 @@ int cmd_render(int argc, char **argv)
     char json_path[4096];
     sidecar_path(&o, json_path, sizeof json_path);
     const char *outs[4] = {o.out, o.exr, o.mask, o.out ? json_path : NULL};
+    static const char *const flags[4] = {"--out", "--exr", "--mask", "--json"};
+    const char *ins[1] = {o.scene};
+    if ((rc = cli_check_outputs("render", ins, 1, outs, flags, 4)) != CLI_OK) return rc;
     for (int i = 0; i < 4; i++)
         if (check_dir(outs[i]) != LUCENT_OK) return cli_fail();
     lucent_scene *scene = NULL;

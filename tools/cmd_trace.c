@@ -240,5 +240,11 @@ int cmd_trace(int argc, char **argv)
     trace_options o = {0};
     int rc = parse_args(argc, argv, &o);
     if (rc != CLI_OK) return rc;
+    char *json = sidecar_path(&o);
+    const char *outs[4] = {o.out, o.exr, o.variance, json}, *ins[1] = {o.scene};
+    static const char *const flags[4] = {"--out", "--exr", "--variance", "--json"};
+    rc = cli_check_outputs("trace", ins, 1, outs, flags, 4);
+    free(json);
+    if (rc != CLI_OK) return rc;
     return run(&o) == LUCENT_OK ? CLI_OK : cli_fail();
 }

@@ -217,11 +217,33 @@ lucent_status lucent_json_numbers(const lucent_json_node *n, const char *key, in
     return LUCENT_OK;
 }
 
+/* True when s is UTF-8 as RFC 3629 defines it: no overlong forms, no surrogates, nothing past U+10FFFF. JSON
+ * text is UTF-8 (RFC 8259 section 8.1); a string that is not would make every JSON output invalid. */
+static bool valid_utf8(const unsigned char *s)
+{
+    while (*s) {
+        unsigned c = *s++;
+        if (c < 0x80) continue;
+        int n = c >= 0xf0 ? 3 : c >= 0xe0 ? 2 : c >= 0xc2 ? 1 : -1;
+        if (n < 0 || c > 0xf4) return false;
+        unsigned cp = c & (0x3fu >> n);
+        for (int i = 0; i < n; i++, s++) {
+            if ((*s & 0xc0) != 0x80) return false;
+            cp = cp << 6 | (*s & 0x3fu);
+        }
+        if ((n == 2 && cp < 0x800) || (n == 3 && cp < 0x10000) || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff))
+            return false;
+    }
+    return true;
+}
+
 lucent_status lucent_json_string_or(const lucent_json_node *n, const char *key, const char *def, const char **dest)
 {
     lucent_json_node m;
     lucent_status s = member_of_type(n, key, def == NULL, cJSON_IsString, "a string", &m);
     if (s != LUCENT_OK) return s;
+    if (m.json && !valid_utf8((const unsigned char *)m.json->valuestring))
+        return lucent_json_fail(&m, NULL, LUCENT_ERR_PARSE, "not valid UTF-8 text");
     *dest = m.json ? m.json->valuestring : def;
     return LUCENT_OK;
 }

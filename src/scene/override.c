@@ -1,6 +1,7 @@
 /* `--set key=value`: overrides applied to a scene document before it is read, so that a changed
  * value is checked exactly like one written in the file. */
 #include <ctype.h>
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -40,6 +41,8 @@ static lucent_status walk_indices(const char **pp, cJSON **node, const char *fil
         char *end;
         long i = strtol(p + 1, &end, 10);
         if (end == p + 1 || *end != ']' || i < 0) return bad(file, ov, "expected [index]");
+        /* cJSON indexes with an int: a larger index must not wrap (4294967296 to 0). */
+        if (i > INT_MAX) return bad(file, ov, "index beyond the end of the array");
         if (!cJSON_IsArray(*node)) return bad(file, ov, "indexes something that is not an array");
         cJSON *e = cJSON_GetArrayItem(*node, (int)i);
         if (!e) return bad(file, ov, "index beyond the end of the array");

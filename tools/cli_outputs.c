@@ -1,0 +1,45 @@
+/* cli_check_outputs (cli.h): a command's outputs must be distinct files, none of them an input. */
+#include <libgen.h>
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli.h"
+
+/* The file a path names: the same inode when both exist, else the same canonical path (the folder
+ * resolved by realpath, then the name). */
+static int same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    if (stat(a, &sa) == 0 && stat(b, &sb) == 0) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    char ca[PATH_MAX + 256], cb[PATH_MAX + 256];
+    const char *paths[2] = {a, b};
+    char *dest[2] = {ca, cb};
+    for (int i = 0; i < 2; i++) {
+        char d[PATH_MAX], n[PATH_MAX], real[PATH_MAX];
+        snprintf(d, sizeof d, "%s", paths[i]);
+        snprintf(n, sizeof n, "%s", paths[i]);
+        const char *dir = dirname(d), *base = basename(n);
+        if (!realpath(dir, real)) snprintf(real, sizeof real, "%s", dir);
+        snprintf(dest[i], PATH_MAX + 256, "%s/%s", real, base);
+    }
+    return strcmp(ca, cb) == 0;
+}
+
+int cli_check_outputs(const char *command, const char *const *inputs, int input_count, const char *const *outputs,
+                      const char *const *flags, int output_count)
+{
+    for (int i = 0; i < output_count; i++) {
+        if (!outputs[i]) continue;
+        for (int j = 0; j < input_count; j++)
+            if (inputs[j] && same_file(outputs[i], inputs[j]))
+                return cli_usage_error(command, "%s '%s' names the input '%s': it would be overwritten", flags[i],
+                                       outputs[i], inputs[j]);
+        for (int j = 0; j < i; j++)
+            if (outputs[j] && same_file(outputs[i], outputs[j]))
+                return cli_usage_error(command, "%s '%s' and %s '%s' name the same file", flags[j], outputs[j],
+                                       flags[i], outputs[i]);
+    }
+    return CLI_OK;
+}
