@@ -198,7 +198,7 @@ static void plots(viewer *v)
     }
     ui_series s[3];
     for (int c = 0; c < 3; c++) s[c] = (ui_series){x, y[c], n, rgb[c], false};
-    char label[160];
+    char label[LUCENT_BAKE_KEY_SIZE + 64];
     snprintf(label, sizeof label, "profile r R(r), %s (log)", p->model);
     ui_plot(label, s, 3, 90, true);
     const lucent_taps *t = b->taps;
