@@ -170,6 +170,28 @@ lucent_pool *cli_pool(void)
     return g_pool;
 }
 
+extern const char lucent_cli_revision[]; /* generated/revision.c (cmake/revision.cmake) */
+
+/* `lucent --version`: the version, the git revision it was built from, and what it links. */
+static int print_version(void)
+{
+    printf("lucent %s\n", LUCENT_VERSION_STRING);
+    printf("revision  %s\n", lucent_cli_revision);
+    printf("embree    %s\n", lucent_trace_embree_version());
+    printf("openexr   %s\n", lucent_image_openexr_version());
+    lucent_log_set_sink(NULL, NULL, LUCENT_LOG_ERROR);
+    lucent_gl_context *gl = NULL;
+    if (lucent_gl_create(NULL, &gl) == LUCENT_OK) {
+        lucent_gl_info info;
+        lucent_gl_get_info(gl, &info);
+        printf("gl        %s; %s (%s)\n", info.renderer, info.version, info.platform);
+        lucent_gl_destroy(gl);
+    } else {
+        printf("gl        none: %s\n", lucent_last_error());
+    }
+    return CLI_OK;
+}
+
 static const cli_command *find_command(const char *name)
 {
     for (int i = 0; i < COMMAND_COUNT; i++)
@@ -278,8 +300,7 @@ static int run_command(int argc, char **argv)
         return argc < 2 ? CLI_USAGE : CLI_OK;
     }
     if (strcmp(argv[1], "--version") == 0 || strcmp(argv[1], "version") == 0) {
-        printf("lucent %s\n", LUCENT_VERSION_STRING);
-        return CLI_OK;
+        return print_version();
     }
     const cli_command *cmd = find_command(argv[1]);
     if (!cmd) {

@@ -107,6 +107,9 @@ typedef struct lucent_image_write_desc {
 /* Returns the write defaults with every field resolved. */
 lucent_image_write_desc lucent_image_write_defaults(void);
 
+/* The version of the OpenEXR core library linked, e.g. "3.1.5" (its exr_get_library_version). */
+const char *lucent_image_openexr_version(void);
+
 /* Tells the format from a path's extension (case-insensitive .png, .exr, .pfm);
  * LUCENT_ERR_UNSUPPORTED with a message naming the path otherwise. */
 lucent_status lucent_image_format_from_path(const char *path, lucent_image_format *dest);
