@@ -35,14 +35,15 @@ for f in empty truncated garbage; do
   expect_no_file "$TMP/$f.ply"
 done
 expect_fail 1 "$TMP/missing.ply: cannot open" -- "$LUCENT" curvature "$TMP/missing.ply"
-expect_fail 1 "$TMP/nodir/c.csv" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/nodir/c.csv"
-expect_no_file "$TMP/nodir/c.csv"
+expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/newdir/curv/c.csv"
+expect_true "curvature creates the folder of --out" -- test -s "$TMP/newdir/curv/c.csv"
 expect_fail 2 "--method must be rusinkiewicz, meyer or garimella" -- \
   "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --method taubin
 expect_fail 2 "--smooth needs a whole number" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --smooth -1
 expect_fail 2 "--out must end in .ply, .csv or .png" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out x.jpg
 expect_fail 2 "--size needs WIDTHxHEIGHT" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --size 64 --out "$TMP/s.png"
 expect_fail 2 "--view needs AZIMUTH,ELEVATION" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --view 0,95 --out "$TMP/s.png"
-expect_fail 1 "$TMP/nodir/c.png" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/nodir/c.png"
-expect_no_file "$TMP/s.png" "$TMP/nodir/c.png"
+expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/newdir/curv/c.png"
+expect_true "curvature creates the folder of a picture" -- test -s "$TMP/newdir/curv/c.png"
+expect_no_file "$TMP/s.png"
 expect_fail 2 "expected a mesh file" -- "$LUCENT" curvature --method meyer

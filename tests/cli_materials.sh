@@ -46,8 +46,8 @@ expect_ok -- "$LUCENT" materials skin2 "$MAT/jade.json" "$MAT/two.json#soap" --o
 expect_true "materials --out says what it wrote" -- grep -q "^wrote $TMP/picked.json$" <<<"$OUT"
 expect_true "materials --out wrote the 3 named materials" -- \
   test "$(grep -c '"name":' "$TMP/picked.json")" = 3
-expect_fail 1 "$TMP/missing/x.json" -- "$LUCENT" materials --out "$TMP/missing/x.json"
-expect_no_file "$TMP/missing/x.json"
+expect_ok -- "$LUCENT" materials --out "$TMP/newdir/mat/x.json"
+expect_true "materials creates the folder of --out" -- test -s "$TMP/newdir/mat/x.json"
 mkdir -p "$TMP/ro" && chmod 555 "$TMP/ro"
 expect_fail 1 "$TMP/ro/x.json: cannot create: Permission denied" -- \
   as_nobody "$LUCENT" materials --out "$TMP/ro/x.json"
@@ -95,6 +95,6 @@ expect_true "the Skin1 swatch shows Rd (0.436 red, 0.131 blue)" -- \
 expect_ok -- "$LUCENT" materials --swatches "$TMP/all.png"
 expect_ok -- "$LUCENT" image info "$TMP/all.png"
 expect_true "11 swatches make a 1152x112 image" -- grep -q "1152x112" <<<"$OUT"
-expect_fail 1 "$TMP/missing/s.png: cannot create" -- "$LUCENT" materials --swatches "$TMP/missing/s.png"
-expect_no_file "$TMP/missing/s.png"
+expect_ok -- "$LUCENT" materials --swatches "$TMP/newdir/mat/s.png"
+expect_true "materials creates the folder of --swatches" -- test -s "$TMP/newdir/mat/s.png"
 expect_fail 2 "--swatches needs an image file name" -- "$LUCENT" materials --swatches
