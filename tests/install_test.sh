@@ -38,4 +38,23 @@ cmake -S "$inc" -B "$tmp/cm" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_C_COMPILER="$
   -DCMAKE_CXX_COMPILER="$cxx" >"$tmp/cm.log" 2>&1 || { cat "$tmp/cm.log"; fail "cmake configure"; }
 cmake --build "$tmp/cm" >"$tmp/cmb.log" 2>&1 || { cat "$tmp/cmb.log"; fail "cmake build"; }
 "$tmp/cm/consumer_c" && "$tmp/cm/consumer_cpp" || fail "programs built with CMake"
+# Python: the package installed beside the library finds it with only PYTHONPATH set; and
+# `pip install ./python` works offline (its build backend needs no index).
+if command -v python3 >/dev/null 2>&1; then
+  site=$prefix/lib/python3/site-packages
+  [ -f "$site/lucent/__init__.py" ] || fail "the Python package is not installed"
+  got=$(cd "$tmp" && env -u LUCENT_LIBRARY PYTHONPATH="$site" python3 -c \
+    "import lucent; print(lucent.library_path); print(lucent.profile('skin1', model='dipole').rd_total)") ||
+    fail "python3 -c 'import lucent' with PYTHONPATH=$site"
+  case $(head -1 <<<"$got") in "$prefix"/lib/liblucent.so*) ;; *) fail "python loaded $(head -1 <<<"$got")" ;; esac
+  # Skin1's dipole Rd, red (Jensen et al. 2001's closed form, as consumer.c computes it): 0.43596
+  grep -q "^(0\.4359" <<<"$(tail -1 <<<"$got")" || fail "python: Skin1's dipole rd_total: $got"
+  if python3 -m pip --version >/dev/null 2>&1; then
+    LUCENT_BUILD_DIR=$build python3 -m pip install --quiet --no-index --no-deps --target "$tmp/pip" "$src/python" \
+      >"$tmp/pip.log" 2>&1 || { cat "$tmp/pip.log"; fail "pip install ./python (offline)"; }
+    (cd "$tmp" && env -u LUCENT_LIBRARY PYTHONPATH="$tmp/pip" python3 -c \
+      "import lucent, sys; sys.exit(not lucent.library_path.startswith('$tmp/pip/lucent/'))") ||
+      fail "the pip-installed package does not load its own liblucent.so"
+  fi
+fi
 echo "install test: ok ($soname)"

@@ -70,7 +70,10 @@ static int parse_valued(options *o, const char *name, const char *v)
     if (!v) return usage("%s needs a value", name);
     if (!strcmp(name, "--engine")) {
         o->have_engine = true;
-        o->engine = !strcmp(v, "glsl") ? ENGINE_GLSL : !strcmp(v, "hlsl") ? ENGINE_HLSL : !strcmp(v, "json") ? ENGINE_JSON : -1;
+        o->engine = !strcmp(v, "glsl")   ? ENGINE_GLSL
+                    : !strcmp(v, "hlsl") ? ENGINE_HLSL
+                    : !strcmp(v, "json") ? ENGINE_JSON
+                                         : -1;
         return o->engine >= 0 ? CLI_OK : usage("unknown engine '%s' (glsl, hlsl, json)", v);
     }
     if (!strcmp(name, "--lut-size"))
@@ -79,8 +82,9 @@ static int parse_valued(options *o, const char *name, const char *v)
                    ? CLI_OK
                    : usage("--lut-size needs WxH, 2..4096 each, got '%s'", v);
     if (!strcmp(name, "--kappa-max"))
-        return cli_parse_double(v, &o->kappa_max) && o->kappa_max > 0 ? CLI_OK
-                                                                       : usage("--kappa-max needs a number > 0 (1/mm), got '%s'", v);
+        return cli_parse_double(v, &o->kappa_max) && o->kappa_max > 0
+                   ? CLI_OK
+                   : usage("--kappa-max needs a number > 0 (1/mm), got '%s'", v);
     if (!strcmp(name, "--sigma0-photons") || !strcmp(name, "--transmit-photons"))
         return cli_parse_int(v, name[2] == 's' ? &o->sigma0_photons : &o->transmit_photons) &&
                        (name[2] == 's' ? o->sigma0_photons : o->transmit_photons) > 0
@@ -97,9 +101,8 @@ static int parse_valued(options *o, const char *name, const char *v)
 
 static int parse_args(int argc, char **argv, options *o)
 {
-    static const char *const valued[] = {"--engine", "--lut-size",       "--set",
-                                         "--cache",  "--out",            "--kappa-max",
-                                         "--sigma0-photons", "--transmit-photons"};
+    static const char *const valued[] = {
+        "--engine", "--lut-size", "--set", "--cache", "--out", "--kappa-max", "--sigma0-photons", "--transmit-photons"};
     for (int i = 1; i < argc; i++) {
         const char *v = NULL;
         int matched = -1;
@@ -160,10 +163,10 @@ static void json_triple(FILE *f, const char *key, const double v[3], bool comma)
 
 /* The camera quantities of the printed width. */
 typedef struct screen {
-    double radius_mm;   /* the kernel's half-width */
-    double depth_mm;    /* where the width is measured */
-    double px_per_mm;   /* at that depth */
-    double width_px;    /* 2 radius px_per_mm */
+    double radius_mm;    /* the kernel's half-width */
+    double depth_mm;     /* where the width is measured */
+    double px_per_mm;    /* at that depth */
+    double width_px;     /* 2 radius px_per_mm */
     double scale_at_1mm; /* pixels per mm at depth 1 mm: what the blur divides by the depth */
     int height;          /* pixels */
     double fov;          /* degrees */
@@ -293,20 +296,23 @@ static void cdrf_snippet(FILE *f, bool hlsl, const lucent_material *m, const luc
     triple(f, vec3, b->kd);
     fprintf(f, ";\n%s float LUCENT_CDRF_KAPPA_MAX = %.9g; // 1/mm\n\n", konst, o->kappa_max);
     if (hlsl)
-        fputs("float3 lucent_cdrf(Texture2D<float4> lut, SamplerState linear_clamp, float n_dot_l, float kappa_per_mm)\n"
-              "{\n"
-              "    uint w, h;\n"
-              "    lut.GetDimensions(w, h);\n"
-              "    float2 size = float2(w, h);\n"
-              "    float2 f = float2((clamp(n_dot_l, -1.0, 1.0) + 1.0) * 0.5, saturate(kappa_per_mm / LUCENT_CDRF_KAPPA_MAX));\n"
-              "    return LUCENT_CDRF_KD * lut.SampleLevel(linear_clamp, (0.5 + f * (size - 1.0)) / size, 0).rgb;\n"
-              "}\n",
-              f);
+        fputs(
+            "float3 lucent_cdrf(Texture2D<float4> lut, SamplerState linear_clamp, float n_dot_l, float kappa_per_mm)\n"
+            "{\n"
+            "    uint w, h;\n"
+            "    lut.GetDimensions(w, h);\n"
+            "    float2 size = float2(w, h);\n"
+            "    float2 f = float2((clamp(n_dot_l, -1.0, 1.0) + 1.0) * 0.5, saturate(kappa_per_mm / "
+            "LUCENT_CDRF_KAPPA_MAX));\n"
+            "    return LUCENT_CDRF_KD * lut.SampleLevel(linear_clamp, (0.5 + f * (size - 1.0)) / size, 0).rgb;\n"
+            "}\n",
+            f);
     else
         fputs("vec3 lucent_cdrf(sampler2D lut, float n_dot_l, float kappa_per_mm)\n"
               "{\n"
               "    vec2 size = vec2(textureSize(lut, 0));\n"
-              "    vec2 f = vec2((clamp(n_dot_l, -1.0, 1.0) + 1.0) * 0.5, clamp(kappa_per_mm / LUCENT_CDRF_KAPPA_MAX, 0.0, 1.0));\n"
+              "    vec2 f = vec2((clamp(n_dot_l, -1.0, 1.0) + 1.0) * 0.5, clamp(kappa_per_mm / LUCENT_CDRF_KAPPA_MAX, "
+              "0.0, 1.0));\n"
               "    return LUCENT_CDRF_KD * textureLod(lut, (0.5 + f * (size - 1.0)) / size, 0.0).rgb;\n"
               "}\n",
               f);
@@ -376,19 +382,23 @@ static void constants_json(FILE *f, const options *o, const lucent_material *m, 
     json_triple(f, "g", m->g, true);
     fprintf(f, "  \"eta\": %.9g,\n", m->eta);
     json_triple(f, "diffuse_rd", d->rd, true);
-    fprintf(f, "  \"kernel\": {\"model\": \"%s\", \"rank\": %d, \"taps\": %d, \"profile\": \"%s\", \"radius_mm\": %.9g},\n",
-            lucent_kernel_model_name((lucent_kernel_model)rs->ssss.kernel), t->rank, t->count, rs->ssss.profile,
-            sc->radius_mm);
+    fprintf(
+        f, "  \"kernel\": {\"model\": \"%s\", \"rank\": %d, \"taps\": %d, \"profile\": \"%s\", \"radius_mm\": %.9g},\n",
+        lucent_kernel_model_name((lucent_kernel_model)rs->ssss.kernel), t->rank, t->count, rs->ssss.profile,
+        sc->radius_mm);
     fprintf(f,
             "  \"screen\": {\"width_px\": %d, \"height_px\": %d, \"fov_y_deg\": %.9g, \"depth_mm\": %.9g, "
             "\"pixels_per_mm_at_1mm\": %.9g, \"pixels_per_mm\": %.9g, \"kernel_width_px\": %.9g},\n",
             o->view.width, o->view.height, o->view.fov, sc->depth_mm, sc->scale_at_1mm, sc->px_per_mm, sc->width_px);
-    fprintf(f, "  \"cdrf\": {\"variant\": \"%s\", \"sigma0_mm\": [%.9g, %.9g, %.9g], \"kd\": [%.9g, %.9g, %.9g], "
-               "\"lut\": \"cdrf-lut.exr\", \"lut_width\": %d, \"lut_height\": %d, \"kappa_max_per_mm\": %.9g, "
-               "\"columns\": \"cos theta from -1 to 1\", \"rows\": \"kappa from 0 (top row) to kappa_max\"},\n",
+    fprintf(f,
+            "  \"cdrf\": {\"variant\": \"%s\", \"sigma0_mm\": [%.9g, %.9g, %.9g], \"kd\": [%.9g, %.9g, %.9g], "
+            "\"lut\": \"cdrf-lut.exr\", \"lut_width\": %d, \"lut_height\": %d, \"kappa_max_per_mm\": %.9g, "
+            "\"columns\": \"cos theta from -1 to 1\", \"rows\": \"kappa from 0 (top row) to kappa_max\"},\n",
             lucent_cdrf_variant_name((lucent_cdrf_variant)rs->cdrf.variant), b->sigma0[0], b->sigma0[1], b->sigma0[2],
             b->kd[0], b->kd[1], b->kd[2], o->lut_w, o->lut_h, o->kappa_max);
-    fprintf(f, "  \"translucency\": {\"model\": \"%s\", \"range_mm\": %.9g, \"samples\": %d, \"table\": \"transmittance.csv\"}\n}\n",
+    fprintf(f,
+            "  \"translucency\": {\"model\": \"%s\", \"range_mm\": %.9g, \"samples\": %d, \"table\": "
+            "\"transmittance.csv\"}\n}\n",
             lucent_transmittance_name(rs->translucency.transmittance), b->transmit_range, LUCENT_BAKE_TRANSMIT_SIZE);
 }
 
@@ -446,7 +456,8 @@ static lucent_status apply_sets(const options *o, lucent_render_settings *rs)
         memcpy(key, o->sets[i], n);
         key[n] = '\0';
         const lucent_setting *st = lucent_setting_find(key, NULL);
-        if (!st) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "--set: no render setting '%s' (docs/scenes.md)", key);
+        if (!st)
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "--set: no render setting '%s' (docs/scenes.md)", key);
         lucent_status s = lucent_setting_set(rs, st, eq + 1);
         if (s != LUCENT_OK) return s;
     }
@@ -538,7 +549,10 @@ static lucent_status run(const options *o)
         if (o->out)
             snprintf(dir, sizeof dir, "%s", o->out);
         else
-            snprintf(dir, sizeof dir, "%s-%s", m.name, o->engine == ENGINE_GLSL ? "glsl" : o->engine == ENGINE_HLSL ? "hlsl" : "json");
+            snprintf(dir, sizeof dir, "%s-%s", m.name,
+                     o->engine == ENGINE_GLSL   ? "glsl"
+                     : o->engine == ENGINE_HLSL ? "hlsl"
+                                                : "json");
         int written = 0;
         s = write_pack(o, dir, &m, &b, &rs, &sc, &written);
         if (s == LUCENT_OK) {
@@ -557,8 +571,7 @@ int cmd_pack(int argc, char **argv)
         fputs(k_usage, stdout);
         return CLI_OK;
     }
-    options o = {.engine = -1, .view = cli_view_defaults(), .kappa_max = 1,
-                 .lut_w = 64, .lut_h = 64};
+    options o = {.engine = -1, .view = cli_view_defaults(), .kappa_max = 1, .lut_w = 64, .lut_h = 64};
     int rc = parse_args(argc, argv, &o);
     if (rc != CLI_OK) return rc;
     return run(&o) == LUCENT_OK ? CLI_OK : cli_fail();
