@@ -18,7 +18,7 @@ expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --fast --out "$TMP/f
 # A picture of the colour-mapped mesh (Kubo Fig. 10a), at the size asked for.
 expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --size 64x48 --view 30,-10 --out "$TMP/tetra.png"
 expect_ok -- "$LUCENT" image info "$TMP/tetra.png"
-expect_true "curvature --out .png paints a 64x48 picture" -- grep -q "64x48, 3 channels" <<<"$OUT"
+expect_true "curvature --out .png paints a 64x48 picture and its colour bar (64 more)" -- grep -q "128x48, 3 channels" <<<"$OUT"
 
 # A sample mesh when present (make setup fetches them): the bunny, all finite.
 BUNNY="$(dirname "$FIXTURES")/../data/meshes/bunny.ply"
@@ -47,3 +47,9 @@ expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/newdir/c
 expect_true "curvature creates the folder of a picture" -- test -s "$TMP/newdir/curv/c.png"
 expect_no_file "$TMP/s.png"
 expect_fail 2 "expected a mesh file" -- "$LUCENT" curvature --method meyer
+
+# The picture carries a colour bar with its values in mm^-1 beside the mesh (64 pixels wider).
+expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --size 200x160 --out "$TMP/bar.png"
+expect_true "curvature picture: 200 + 64 x 160 with its colour bar" -- \
+  bash -c "'$LUCENT' image info '$TMP/bar.png' | grep -q '264x160'"
+

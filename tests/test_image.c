@@ -771,6 +771,24 @@ TEST(image_stats)
     lucent_image_destroy(img);
 }
 
+/* Labels: a minus sign is the middle row of its 5 x 7 cell (row 3), scaled by whole pixels; text is
+ * clipped at the image's edges; widths are 6 pixels a glyph less the last gap. */
+TEST(draw_text)
+{
+    lucent_image *img;
+    CHECK_OK(lucent_image_create(20, 20, 3, &img));
+    static const float white[3] = {1, 1, 1};
+    lucent_image_draw_text(img, 1, 1, 2, white, "-");
+    int set = 0, inside = 0;
+    for (int y = 0; y < 20; y++)
+        for (int x = 0; x < 20; x++)
+            if (lucent_image_get(img, x, y, 1) == 1) set++, inside += x >= 1 && x < 11 && y >= 7 && y < 9;
+    CHECK(set == 20 && inside == 20);
+    lucent_image_draw_text(img, -7, 15, 3, white, "Skin1 mm^-1"); /* runs off both edges: clipped */
+    CHECK(lucent_image_text_width("ab", 2) == 22 && lucent_image_text_width("", 3) == 0);
+    lucent_image_destroy(img);
+}
+
 TEST_MAIN(TEST_ENTRY(create_access_and_limits), TEST_ENTRY(convert_channels), TEST_ENTRY(srgb_curve_known_values),
           TEST_ENTRY(tonemap_operators), TEST_ENTRY(png_roundtrips), TEST_ENTRY(png_palette_written_by_libpng),
           TEST_ENTRY(png_grey_formats_written_by_libpng), TEST_ENTRY(png_malformed),
@@ -780,4 +798,4 @@ TEST_MAIN(TEST_ENTRY(create_access_and_limits), TEST_ENTRY(convert_channels), TE
           TEST_ENTRY(pfm_malformed), TEST_ENTRY(write_into_missing_directory),
           TEST_ENTRY(write_into_read_only_directory), TEST_ENTRY(write_replaces_only_when_complete),
           TEST_ENTRY(rms_hand_computed), TEST_ENTRY(compare_size_mismatch), TEST_ENTRY(difference_error_map_heatmap),
-          TEST_ENTRY(image_stats))
+          TEST_ENTRY(image_stats), TEST_ENTRY(draw_text))
