@@ -55,3 +55,11 @@ expect_fail 1 "$FIXTURES/materials/negative.json: sigma_a[1]: must be >= 0" -- \
   "$LUCENT" pack "$FIXTURES/materials/negative.json" --engine glsl --out "$TMP/packs/none"
 expect_no_file "$TMP/packs/none"
 unset LUCENT_CACHE_DIR
+
+# `lucent --version`: the version, the git revision, and what it links (Embree 3, OpenEXR 3, the GL
+# renderer or why there is none).
+expect_ok -- "$LUCENT" --version
+expect_true "--version names the revision" -- grep -q "^revision  [0-9a-f]\{7,\}\|^revision  unknown" <<<"$OUT"
+expect_true "--version names Embree 3" -- grep -q "^embree    3\.[0-9]*\.[0-9]*$" <<<"$OUT"
+expect_true "--version names OpenEXR 3" -- grep -q "^openexr   3\.[0-9]*\.[0-9]*" <<<"$OUT"
+expect_true "--version names the GL renderer" -- grep -q "^gl        " <<<"$OUT"
