@@ -86,6 +86,11 @@ void cli_print_kernel_width(FILE *out, double radius_mm, const cli_view *v);
 /* "1.8m", "180cm", "1800mm", "1.8" (m): a length > 0 in mm. */
 bool cli_parse_length_mm(const char *text, double *mm);
 
+/* The prefix of a command that writes PREFIX.json, .csv, .svg (profile, cdrf-fit): --out as given;
+ * or, when --out ends in '/' or names a folder, that folder and the default name inside it; or the
+ * default name here (out NULL). */
+void cli_out_prefix(const char *out, const char *default_name, char *dest, size_t size);
+
 /* "WxH", each 1..65536. */
 bool cli_parse_size(const char *text, int *w, int *h);
 
