@@ -58,15 +58,15 @@ unset LUCENT_CACHE_DIR
 
 # `lucent --version`: the version, the git revision, and what it links (Embree 3, OpenEXR 3, the GL
 # renderer or why there is none).
-expect_ok -- "$LUCENT" --version
+expect_ok -- "${GLRUN[@]}" --version
 expect_true "--version names the revision" -- grep -q "^revision  [0-9a-f]\{7,\}\|^revision  unknown" <<<"$OUT"
 expect_true "--version names Embree 3" -- grep -q "^embree    3\.[0-9]*\.[0-9]*$" <<<"$OUT"
 expect_true "--version names OpenEXR 3" -- grep -q "^openexr   3\.[0-9]*\.[0-9]*" <<<"$OUT"
 expect_true "--version names the GL renderer" -- grep -q "^gl        " <<<"$OUT"
 
-# --out as a folder for the commands that write several files with a prefix: a trailing '/' (made)
-# or an existing folder puts the default names inside.
+# --out as a folder for the commands that write several files with a prefix: a trailing '/' puts the
+# default names inside (the folder is made).
 expect_ok -- "$LUCENT" profile skin1 --model dipole --out "$TMP/outdir/profiles/"
 expect_true "profile --out DIR/ writes Skin1-dipole.* inside" -- test -s "$TMP/outdir/profiles/Skin1-dipole.json"
-expect_ok -- "$LUCENT" cdrf-fit marble --radii 3 --photons 200 --bins 4 --out "$TMP/outdir/profiles"
-expect_true "cdrf-fit --out EXISTING writes Marble-cdrf.* inside" -- test -s "$TMP/outdir/profiles/Marble-cdrf.csv"
+expect_ok -- "$LUCENT" cdrf-fit marble --radii 3 --photons 200 --bins 4 --out "$TMP/outdir/profiles/"
+expect_true "cdrf-fit --out DIR/ writes Marble-cdrf.* inside" -- test -s "$TMP/outdir/profiles/Marble-cdrf.csv"

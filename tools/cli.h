@@ -87,8 +87,8 @@ void cli_print_kernel_width(FILE *out, double radius_mm, const cli_view *v);
 bool cli_parse_length_mm(const char *text, double *mm);
 
 /* The prefix of a command that writes PREFIX.json, .csv, .svg (profile, cdrf-fit): --out as given;
- * or, when --out ends in '/' or names a folder, that folder and the default name inside it; or the
- * default name here (out NULL). */
+ * or, when --out ends in '/', that folder and the default name inside it; or the default name here
+ * (out NULL). */
 void cli_out_prefix(const char *out, const char *default_name, char *dest, size_t size);
 
 /* "WxH", each 1..65536. */

@@ -53,7 +53,7 @@ static const char k_fit_usage[] =
     "  --variant V        kubo (default) or collomb, the function fitted\n"
     "  --sigma0-max MM    upper end of the sigma0 search (default 20)\n"
     "  --seed S           seed (default 1)\n"
-    "  --out PREFIX|DIR/  output prefix (default NAME-cdrf); a folder (ending in '/', or existing):\n"
+    "  --out PREFIX|DIR/  output prefix (default NAME-cdrf); ending in '/': a folder, with\n"
     "                     NAME-cdrf inside it\n"
     "  -h, --help         show this help\n"
     "\n"

@@ -3,7 +3,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -126,12 +125,11 @@ bool cli_parse_size(const char *text, int *w, int *h)
 
 void cli_out_prefix(const char *out, const char *default_name, char *dest, size_t size)
 {
-    struct stat st;
     size_t n = out ? strlen(out) : 0;
     if (!out)
         snprintf(dest, size, "%s", default_name);
-    else if (out[n - 1] == '/' || (stat(out, &st) == 0 && S_ISDIR(st.st_mode)))
-        snprintf(dest, size, "%s%s%s", out, out[n - 1] == '/' ? "" : "/", default_name);
+    else if (out[n - 1] == '/')
+        snprintf(dest, size, "%s%s", out, default_name);
     else
         snprintf(dest, size, "%s", out);
 }
