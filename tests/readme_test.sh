@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Runs the README's examples as a user would on a fresh clone (issue 16 item 4): every line of a
-# ```sh block that starts with `lucent ` (continuation lines joined), in the order of the README,
+# ```sh block that starts with `lucent ` (continuation lines joined), and `for ...; do lucent ...;
+# done` loops (run as written), in the order of the README,
 # from a scratch folder that holds the repository's data/, docs/ and tests/ (so outputs stay out of
 # the tree), with the build's lucent first on PATH. An example may use files an earlier example wrote.
 #
 # Sizes: unless LUCENT_README_FULL=1, small-size options are appended per subcommand (the table
 # below: later options win), so that the whole README runs in a minute or two. A line that cannot
-# run here ends with `# readme-test: skip (why)`; one that needs the fetched meshes is skipped when
+# run here says `readme-test: skip (why)` in its comment; one that needs the fetched meshes is skipped when
 # data/meshes lacks them. Usage: readme_test.sh LUCENT SOURCE_DIR [CACHE_DIR]
 set -u
 lucent=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
@@ -37,11 +38,11 @@ small_options() { # SUBCOMMAND: what makes its example small
 examples=$(awk '/^```sh[[:space:]]*$/ {inblock = 1; next} /^```/ {inblock = 0; next}
   inblock { line = (cont ? cont " " : "") $0; cont = "";
             if (line ~ /\\$/) { sub(/\\$/, "", line); cont = line; next }
-            sub(/^[[:space:]]+/, "", line); if (line ~ /^lucent /) print line }' "$src/README.md")
+            sub(/^[[:space:]]+/, "", line); if (line ~ /^lucent / || line ~ /^for .*; do lucent .*; done/) print line }' "$src/README.md")
 passed=0 failed=0 skipped=0
 while IFS= read -r line; do
   [ -n "$line" ] || continue
-  if [[ "$line" == *"# readme-test: skip"* ]]; then skipped=$((skipped + 1)); echo "skip $line"; continue; fi
+  if [[ "$line" == *"readme-test: skip"* ]]; then skipped=$((skipped + 1)); echo "skip $line"; continue; fi
   cmd=${line%%#*}                     # the shell comment goes
   sub=$(awk '{print $2}' <<<"$cmd")
   if [[ "$cmd" == *data/meshes/* ]]; then
@@ -50,7 +51,7 @@ while IFS= read -r line; do
     if [ "$missing" = 1 ]; then skipped=$((skipped + 1)); echo "skip (no meshes: make setup) $line"; continue; fi
   fi
   extra=""
-  [ "${LUCENT_README_FULL:-0}" = 1 ] || extra=$(small_options "$sub")
+  [ "${LUCENT_README_FULL:-0}" = 1 ] || [[ "$cmd" != lucent* ]] || extra=$(small_options "$sub")
   if out=$(cd "$work" && bash -c "$cmd $extra" 2>&1 </dev/null); then
     passed=$((passed + 1)); echo "ok   $line"
   else
