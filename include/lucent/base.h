@@ -187,14 +187,8 @@ void lucent_rng_jump(lucent_rng *r);
 typedef struct lucent_atomic_file lucent_atomic_file;
 
 /* Opens a temporary file beside `path` for writing; *out receives its FILE*.
- * Fails (with a message naming path) when the directory is missing or not writable; with
- * lucent_files_create_parents(true) a missing directory is made first (mkdir -p). */
+ * Fails (with a message naming path) when the directory is missing or not writable. */
 lucent_status lucent_atomic_open(const char *path, lucent_atomic_file **dest, FILE **out);
-
-/* Whether lucent_atomic_open (and so every writer of the library) creates the missing folders above
- * its target. Off by default; the `lucent` command turns it on, so that every command creates the
- * parent folder of its outputs. Set it before writing starts (it is not synchronised). */
-void lucent_files_create_parents(bool on);
 
 /* Flushes, syncs and renames the temporary file onto its target, then frees af.
  * On failure the temporary is removed and the target is left as it was. */

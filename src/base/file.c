@@ -8,6 +8,7 @@
 
 #include "base/dist_internal.h"
 #include "lucent/dist.h"
+#include "lucent/output.h"
 
 struct lucent_atomic_file {
     FILE *fp;
