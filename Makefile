@@ -2,6 +2,7 @@
 #   make demo   install what is needed, build, run the main job
 #   make test   install, build, run every test (then again under ASan + UBSan)
 #   make        build build/lucent and the library
+#   make install PREFIX=dir   install the command, headers, libraries, pkg-config, CMake and Python packages
 #   make setup  install Debian packages and fetch the sample meshes
 #   make bench  run the benchmarks in bench/
 #   make fuzz   fuzz the parsers (clang's libFuzzer; FUZZ_SECONDS per target; docs/fuzzing.md)
@@ -11,8 +12,9 @@ ASAN_BUILD ?= build-asan
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 DEMO_OUT   ?= out/demo
+PREFIX     ?= /usr/local
 
-.PHONY: all build setup test test-fast test-asan demo bench fuzz fuzz-smoke clean distclean
+.PHONY: all build install setup test test-fast test-asan demo bench fuzz fuzz-smoke clean distclean
 
 all: build
 
@@ -21,6 +23,9 @@ $(BUILD)/CMakeCache.txt:
 
 build: $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
+
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 setup:
 	scripts/setup.sh

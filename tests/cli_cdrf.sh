@@ -19,8 +19,9 @@ expect_fail 2 "--variant must be kubo or collomb" -- "$LUCENT" cdrf-lut --varian
 expect_fail 2 "--width needs a whole number from 2 to 8192" -- "$LUCENT" cdrf-lut --width 1 --out "$TMP/x.exr"
 expect_fail 2 "--out '$TMP/x.png': use .exr, .pfm or .c" -- "$LUCENT" cdrf-lut --out "$TMP/x.png"
 expect_fail 2 "is not a C identifier" -- "$LUCENT" cdrf-lut --name 9lives --out "$TMP/x.c"
-expect_fail 1 "$TMP/nodir/lut.exr" -- "$LUCENT" cdrf-lut --width 8 --height 4 --out "$TMP/nodir/lut.exr"
-expect_no_file "$TMP/nodir/lut.exr" "$TMP/x.png" "$TMP/x.exr"
+expect_ok -- "$LUCENT" cdrf-lut --width 8 --height 4 --out "$TMP/newdir/lut.exr"
+expect_true "cdrf-lut creates the folder of --out" -- test -s "$TMP/newdir/lut.exr"
+expect_no_file "$TMP/x.png" "$TMP/x.exr"
 
 # The fit (issue acceptance): Skin1's sigma0 comes out red > green > blue, and the fitted CDRF's RMS
 # error against the simulated spheres is below Lambert's in every channel (small run: the margins
@@ -49,5 +50,5 @@ expect_fail 2 "unknown option '--frob'" -- "$LUCENT" cdrf-fit skin1 --frob
 expect_fail 1 "$FIXTURES/materials/negative.json: sigma_a[1]: must be >= 0" -- \
   "$LUCENT" cdrf-fit "$FIXTURES/materials/negative.json" --radii 2 --photons 100 --out "$TMP/neg"
 expect_no_file "$TMP/neg.json" "$TMP/neg.csv" "$TMP/neg.svg"
-expect_fail 1 "$TMP/nodir/f.json" -- "$LUCENT" cdrf-fit marble --radii 3 --photons 200 --bins 4 --out "$TMP/nodir/f"
-expect_no_file "$TMP/nodir/f.json"
+expect_ok -- "$LUCENT" cdrf-fit marble --radii 3 --photons 200 --bins 4 --out "$TMP/newdir/fit/f"
+expect_true "cdrf-fit creates the folder of --out" -- test -s "$TMP/newdir/fit/f.json"

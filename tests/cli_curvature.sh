@@ -18,7 +18,7 @@ expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --fast --out "$TMP/f
 # A picture of the colour-mapped mesh (Kubo Fig. 10a), at the size asked for.
 expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --size 64x48 --view 30,-10 --out "$TMP/tetra.png"
 expect_ok -- "$LUCENT" image info "$TMP/tetra.png"
-expect_true "curvature --out .png paints a 64x48 picture" -- grep -q "64x48, 3 channels" <<<"$OUT"
+expect_true "curvature --out .png paints a 64x48 picture and its colour bar (64 more)" -- grep -q "128x48, 3 channels" <<<"$OUT"
 
 # A sample mesh when present (make setup fetches them): the bunny, all finite.
 BUNNY="$(dirname "$FIXTURES")/../data/meshes/bunny.ply"
@@ -35,14 +35,21 @@ for f in empty truncated garbage; do
   expect_no_file "$TMP/$f.ply"
 done
 expect_fail 1 "$TMP/missing.ply: cannot open" -- "$LUCENT" curvature "$TMP/missing.ply"
-expect_fail 1 "$TMP/nodir/c.csv" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/nodir/c.csv"
-expect_no_file "$TMP/nodir/c.csv"
+expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/newdir/curv/c.csv"
+expect_true "curvature creates the folder of --out" -- test -s "$TMP/newdir/curv/c.csv"
 expect_fail 2 "--method must be rusinkiewicz, meyer or garimella" -- \
   "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --method taubin
 expect_fail 2 "--smooth needs a whole number" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --smooth -1
 expect_fail 2 "--out must end in .ply, .csv or .png" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out x.jpg
 expect_fail 2 "--size needs WIDTHxHEIGHT" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --size 64 --out "$TMP/s.png"
 expect_fail 2 "--view needs AZIMUTH,ELEVATION" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --view 0,95 --out "$TMP/s.png"
-expect_fail 1 "$TMP/nodir/c.png" -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/nodir/c.png"
-expect_no_file "$TMP/s.png" "$TMP/nodir/c.png"
+expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/newdir/curv/c.png"
+expect_true "curvature creates the folder of a picture" -- test -s "$TMP/newdir/curv/c.png"
+expect_no_file "$TMP/s.png"
 expect_fail 2 "expected a mesh file" -- "$LUCENT" curvature --method meyer
+
+# The picture carries a colour bar with its values in mm^-1 beside the mesh (64 pixels wider).
+expect_ok -- "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --size 200x160 --out "$TMP/bar.png"
+expect_true "curvature picture: 200 + 64 x 160 with its colour bar" -- \
+  bash -c "'$LUCENT' image info '$TMP/bar.png' | grep -q '264x160'"
+

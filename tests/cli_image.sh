@@ -46,7 +46,10 @@ expect_fail 1 "mask is 3x1" -- "$LUCENT" image diff "$img/a.pfm" "$img/a.png" --
 expect_fail 1 "x.tga: unknown image format" -- "$LUCENT" image convert "$img/a.pfm" "$img/x.tga"
 
 # ---- outputs: complete or absent ----
-expect_fail 1 "missing/x.png: cannot create" -- "$LUCENT" image convert "$img/a.pfm" "$img/missing/x.png"
+expect_ok -- "$LUCENT" image convert "$img/a.pfm" "$img/missing/x.png"
+expect_true "image convert creates the output's folder" -- test -s "$img/missing/x.png"
+: > "$img/plain"
+expect_fail 1 "plain/x.png: cannot create: Not a directory" -- "$LUCENT" image convert "$img/a.pfm" "$img/plain/x.png"
 expect_no_file "$img/missing"
 mkdir -p "$img/ro" && chmod 755 "$img" && chmod 555 "$img/ro"
 expect_fail 1 "ro/x.exr: cannot create" -- as_nobody "$LUCENT" image convert "$img/a.pfm" "$img/ro/x.exr"

@@ -32,7 +32,8 @@ expect_fail 1 "$FIXTURES/materials/negative.json: sigma_a[1]: must be >= 0" -- \
 expect_no_file "$TMP/neg.json"
 expect_fail 1 "rank must be 1" -- "$LUCENT" kernel skin1 --model preint --rank 2
 expect_fail 1 "taps: count must be odd" -- "$LUCENT" kernel skin1 --taps 16
-expect_fail 1 "$TMP/nodir/k.json" -- "$LUCENT" kernel skin1 --out "$TMP/nodir/k.json"
+expect_ok -- "$LUCENT" kernel skin1 --out "$TMP/newdir/kernel/k.json"
+expect_true "kernel creates the folder of --out" -- test -s "$TMP/newdir/kernel/k.json"
 expect_fail 2 "unknown model 'svd2'" -- "$LUCENT" kernel skin1 --model svd2
 expect_fail 2 "unknown export format 'wgsl'" -- "$LUCENT" kernel skin1 --export wgsl
 expect_fail 2 "expected a material" -- "$LUCENT" kernel --model svd

@@ -28,7 +28,8 @@ expect_ok -- "$LUCENT" kernel-eval skin2 --models preint --signal "$TMP/eval-sha
 expect_true "kernel-eval reads a user image" -- test -s "$TMP/eval-image/preint.exr"
 
 # Bad input and usage.
-expect_fail 1 "$TMP/nodir/out" -- "$LUCENT" kernel-eval skin1 --size 32 --out "$TMP/nodir/out"
+: > "$TMP/plainfile"
+expect_fail 1 "$TMP/plainfile" -- "$LUCENT" kernel-eval skin1 --size 32 --out "$TMP/plainfile/out"
 expect_fail 1 "potato" -- "$LUCENT" kernel-eval potato2 --out "$TMP/eval-bad"
 expect_fail 2 "expected a material" -- "$LUCENT" kernel-eval
 expect_fail 2 "unknown model 'svd3'" -- "$LUCENT" kernel-eval skin1 --models svd,svd3

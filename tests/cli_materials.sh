@@ -46,8 +46,8 @@ expect_ok -- "$LUCENT" materials skin2 "$MAT/jade.json" "$MAT/two.json#soap" --o
 expect_true "materials --out says what it wrote" -- grep -q "^wrote $TMP/picked.json$" <<<"$OUT"
 expect_true "materials --out wrote the 3 named materials" -- \
   test "$(grep -c '"name":' "$TMP/picked.json")" = 3
-expect_fail 1 "$TMP/missing/x.json" -- "$LUCENT" materials --out "$TMP/missing/x.json"
-expect_no_file "$TMP/missing/x.json"
+expect_ok -- "$LUCENT" materials --out "$TMP/newdir/mat/x.json"
+expect_true "materials creates the folder of --out" -- test -s "$TMP/newdir/mat/x.json"
 mkdir -p "$TMP/ro" && chmod 555 "$TMP/ro"
 expect_fail 1 "$TMP/ro/x.json: cannot create: Permission denied" -- \
   as_nobody "$LUCENT" materials --out "$TMP/ro/x.json"
@@ -84,17 +84,19 @@ expect_fail 2 "unknown option '--frobnicate'" -- "$LUCENT" materials --frobnicat
 expect_fail 2 "--out needs a file name" -- "$LUCENT" materials --out
 
 # ---- swatches ----
-# One Skin1 swatch (96x96 at Rd) on a 112x112 backdrop of 0.18: the Rd values appear as the
-# red maximum and the blue minimum (Jensen 2001: 0.436 and 0.131, +-0.001).
+# One Skin1 swatch (96x96 at Rd) on a 112x126 backdrop of 0.18 (its name in the strip below): the
+# pixel at (56, 56) holds Rd (Jensen 2001: 0.436, 0.227, 0.131, +-0.001), read from the PFM
+# (little-endian floats, rows bottom-up, after its three header lines).
 expect_ok -- "$LUCENT" materials skin1 --swatches "$TMP/skin1.pfm"
 expect_true "materials --swatches says what it wrote" -- grep -q "^wrote $TMP/skin1.pfm" <<<"$OUT"
 expect_ok -- "$LUCENT" image info "$TMP/skin1.pfm"
-expect_true "the swatch image is 112x112 RGB" -- grep -q "112x112, 3 channels" <<<"$OUT"
-expect_true "the Skin1 swatch shows Rd (0.436 red, 0.131 blue)" -- \
-  near3 "$(awk '$1=="R"{r=$3} $1=="B"{b=$2} END{print r, b, 0}' <<<"$OUT")" "0.436 0.131 0" 0.001
+expect_true "the swatch image is 112x126 RGB" -- grep -q "112x126, 3 channels" <<<"$OUT"
+hdr=$(head -n 3 "$TMP/skin1.pfm" | wc -c)
+px=$(od -A n -t f4 -j $((hdr + ((126 - 1 - 56) * 112 + 56) * 12)) -N 12 "$TMP/skin1.pfm")
+expect_true "the Skin1 swatch shows Rd (0.436, 0.227, 0.131)" -- near3 "$px" "0.436 0.227 0.131" 0.001
 expect_ok -- "$LUCENT" materials --swatches "$TMP/all.png"
 expect_ok -- "$LUCENT" image info "$TMP/all.png"
-expect_true "11 swatches make a 1152x112 image" -- grep -q "1152x112" <<<"$OUT"
-expect_fail 1 "$TMP/missing/s.png: cannot create" -- "$LUCENT" materials --swatches "$TMP/missing/s.png"
-expect_no_file "$TMP/missing/s.png"
+expect_true "11 swatches make a 1152x126 image" -- grep -q "1152x126" <<<"$OUT"
+expect_ok -- "$LUCENT" materials --swatches "$TMP/newdir/mat/s.png"
+expect_true "materials creates the folder of --swatches" -- test -s "$TMP/newdir/mat/s.png"
 expect_fail 2 "--swatches needs an image file name" -- "$LUCENT" materials --swatches

@@ -68,8 +68,8 @@ bad_mci bad_number.mci "line 8: expected the number of photons, got '2e5x'"
 bad_mci extra_data.mci "line 17: unexpected data after the last of 1 run"
 expect_true "no output for malformed input" -- test -z "$(ls -A "$TMP/bad")"
 expect_fail 1 "$MCI/absent.mci" -- "$LUCENT" mcml "$MCI/absent.mci"
-expect_fail 1 "$TMP/missing/vanhulst.mco" -- "$LUCENT" mcml "$MCI/vanhulst.mci" --out-dir "$TMP/missing"
-expect_no_file "$TMP/missing/vanhulst.mco"
+: > "$TMP/plainfile-mcml"
+expect_fail 1 "$TMP/plainfile-mcml" -- "$LUCENT" mcml "$MCI/vanhulst.mci" --out-dir "$TMP/plainfile-mcml"
 
 # ---- usage ----
 expect_fail 2 "missing the input file" -- "$LUCENT" mcml
@@ -112,7 +112,8 @@ expect_fail 1 "$TMP/cmp/bad.mco: line 37: A_z: value 2: expected a number, got '
   "$LUCENT" mcml --compare "$TMP/cmp/bad.mco" --json "$TMP/cmp/x.json"
 expect_no_file "$TMP/cmp/x.csv" "$TMP/cmp/x.json"
 expect_fail 1 "$MCO/absent.mco" -- "$LUCENT" mcml --compare "$MCO/absent.mco"
-expect_fail 1 "$TMP/missing/c.csv" -- "$LUCENT" mcml --compare "$MCO/gcontrast_small.mco" --csv "$TMP/missing/c.csv"
+: > "$TMP/plainfile-csv"
+expect_fail 1 "$TMP/plainfile-csv/c.csv" -- "$LUCENT" mcml --compare "$MCO/gcontrast_small.mco" --csv "$TMP/plainfile-csv/c.csv"
 expect_fail 2 "--csv goes with --compare" -- "$LUCENT" mcml "$MCI/vanhulst.mci" --csv "$TMP/cmp/x.csv"
 expect_fail 2 "--out-dir does not go with --compare" -- "$LUCENT" mcml --compare "$MCO/gcontrast_small.mco" --out-dir "$TMP"
 expect_fail 2 "--photons needs a whole number in [1, 1e12]" -- "$LUCENT" mcml --compare "$MCO/gcontrast_small.mco" --photons 0

@@ -37,8 +37,8 @@ expect_fail 1 "multipole: give the slab --thickness" -- "$LUCENT" profile skin1 
 expect_fail 1 "$FIXTURES/materials/negative.json: sigma_a[1]: must be >= 0" -- \
   "$LUCENT" profile "$FIXTURES/materials/negative.json" --model dipole --out "$TMP/neg"
 expect_no_file "$TMP/neg.json" "$TMP/neg.csv" "$TMP/neg.svg"
-expect_fail 1 "$TMP/nodir/p.json: cannot create" -- "$LUCENT" profile skin1 --model dipole --out "$TMP/nodir/p"
-expect_no_file "$TMP/nodir/p.json"
+expect_ok -- "$LUCENT" profile skin1 --model dipole --out "$TMP/newdir/prof/p"
+expect_true "profile creates the folder of --out" -- test -s "$TMP/newdir/prof/p.json"
 expect_fail 1 "only the last layer may be 'inf'" -- "$LUCENT" profile --layers skin1:inf,skin2:1
 expect_fail 1 "thickness must be > 0" -- "$LUCENT" profile --layers skin1:-1
 expect_fail 2 "unknown model 'dipol'" -- "$LUCENT" profile skin1 --model dipol

@@ -54,8 +54,9 @@ fi
 if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ]; then
   expect_fail 1 "no OpenGL window" -- "${RENDER[@]}" render "$SC/sphere.json" --window --out "$TMP/f10.png"
 fi
-expect_fail 1 "$TMP/nodir/x.png: cannot write into $TMP/nodir" -- "${RENDER[@]}" render "$SC/sphere.json" --out "$TMP/nodir/x.png"
-expect_no_file "$TMP"/f{1,2,3,4,5,6,7,8,9,10}.png "$TMP"/f{1,2,3,4,5,6,7,8,9,10}.json "$TMP/nodir/x.png"
+: > "$TMP/plainfile-render"
+expect_fail 1 "$TMP/plainfile-render/x.png" -- "${RENDER[@]}" render "$SC/sphere.json" --out "$TMP/plainfile-render/x.png"
+expect_no_file "$TMP"/f{1,2,3,4,5,6,7,8,9,10}.png "$TMP"/f{1,2,3,4,5,6,7,8,9,10}.json
 
 # Bad usage: exit 2.
 expect_fail 2 "expected a scene file" -- "${RENDER[@]}" render --out "$TMP/u.png"

@@ -70,7 +70,7 @@ as_nobody() {
 }
 
 # ---- the command itself ----
-expect_ok -- "$LUCENT" --version
+expect_ok -- "${GLRUN[@]}" --version # it opens a GL context to name the renderer
 expect_true "--version prints the version" -- grep -q "^lucent [0-9]\+\.[0-9]\+\.[0-9]\+$" <<<"$OUT"
 expect_ok -- "$LUCENT" --help
 for cmd in $(awk '/^commands:/{f=1;next} f&&/^$/{exit} f{print $1}' <<<"$OUT"); do

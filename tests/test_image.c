@@ -838,9 +838,28 @@ TEST(image_stats)
     lucent_image_destroy(img);
 }
 
-TEST_MAIN(TEST_ENTRY(png_bomb_refused_from_the_header), TEST_ENTRY(exr_chunk_table_checked_before_allocating),
-          TEST_ENTRY(create_access_and_limits), TEST_ENTRY(convert_channels), TEST_ENTRY(srgb_curve_known_values),
-          TEST_ENTRY(tonemap_operators), TEST_ENTRY(png_roundtrips), TEST_ENTRY(png_palette_written_by_libpng),
+/* Labels: a minus sign is the middle row of its 5 x 7 cell (row 3), scaled by whole pixels; text is
+ * clipped at the image's edges; widths are 6 pixels a glyph less the last gap. */
+TEST(draw_text)
+{
+    lucent_image *img;
+    CHECK_OK(lucent_image_create(20, 20, 3, &img));
+    static const float white[3] = {1, 1, 1};
+    lucent_image_draw_text(img, 1, 1, 2, white, "-");
+    int set = 0, inside = 0;
+    for (int y = 0; y < 20; y++)
+        for (int x = 0; x < 20; x++)
+            if (lucent_image_get(img, x, y, 1) == 1) set++, inside += x >= 1 && x < 11 && y >= 7 && y < 9;
+    CHECK(set == 20 && inside == 20);
+    lucent_image_draw_text(img, -7, 15, 3, white, "Skin1 mm^-1"); /* runs off both edges: clipped */
+    CHECK(lucent_image_text_width("ab", 2) == 22 && lucent_image_text_width("", 3) == 0);
+    lucent_image_destroy(img);
+}
+
+TEST_MAIN(TEST_ENTRY(draw_text), TEST_ENTRY(png_bomb_refused_from_the_header),
+          TEST_ENTRY(exr_chunk_table_checked_before_allocating), TEST_ENTRY(create_access_and_limits),
+          TEST_ENTRY(convert_channels), TEST_ENTRY(srgb_curve_known_values), TEST_ENTRY(tonemap_operators),
+          TEST_ENTRY(png_roundtrips), TEST_ENTRY(png_palette_written_by_libpng),
           TEST_ENTRY(png_grey_formats_written_by_libpng), TEST_ENTRY(png_malformed),
           TEST_ENTRY(exr_float_and_half_roundtrips), TEST_ENTRY(exr_grey_and_rgb),
           TEST_ENTRY(exr_tiled_written_by_openexr), TEST_ENTRY(exr_uint_channel_written_by_openexr),
@@ -848,4 +867,4 @@ TEST_MAIN(TEST_ENTRY(png_bomb_refused_from_the_header), TEST_ENTRY(exr_chunk_tab
           TEST_ENTRY(pfm_malformed), TEST_ENTRY(write_into_missing_directory),
           TEST_ENTRY(write_into_read_only_directory), TEST_ENTRY(write_replaces_only_when_complete),
           TEST_ENTRY(rms_hand_computed), TEST_ENTRY(compare_size_mismatch), TEST_ENTRY(difference_error_map_heatmap),
-          TEST_ENTRY(image_stats))
+          TEST_ENTRY(image_stats), TEST_ENTRY(draw_text))

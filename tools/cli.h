@@ -63,6 +63,42 @@ bool cli_wants_help(int argc, char **argv);
  * value, and returns true; otherwise returns false and changes nothing. */
 bool cli_option(int argc, char **argv, int *i, const char *name, const char **value);
 
+/* The screen an engine draws a kernel on (lucent pack, lucent kernel): --screen WxH (default
+ * 1920x1080), --fov DEG (vertical, default 45), --object-height H (default 1.8m: the object fills the
+ * screen's height) or --distance D (its depth); lengths take m, cm or mm (bare: m). */
+typedef struct cli_view {
+    int width, height;
+    double fov;              /* degrees */
+    double object_height_mm; /* > 0 */
+    double distance_mm;      /* 0: from object_height_mm */
+    bool given;              /* one of the options was given */
+} cli_view;
+
+cli_view cli_view_defaults(void);
+
+/* Matches argv[*i] against the options above. Returns CLI_OK (taken, *i moved past its value),
+ * CLI_USAGE (after a message naming command), or -1: not one of them. */
+int cli_view_option(const char *command, int argc, char **argv, int *i, cli_view *v);
+
+/* The depth (mm) the width is measured at: distance_mm, else where an object of object_height_mm
+ * fills the screen's height, object_height / (2 tan(fov / 2)). */
+double cli_view_depth_mm(const cli_view *v);
+
+/* Prints "kernel width: W px (2 x R mm at depth Z mm; WxH, fov_y F deg)" for a kernel of half-width
+ * radius_mm: W = 2 R lucent_screen_pixels_per_mm(H, F, Z), the renderer's scale (ssss.c). */
+void cli_print_kernel_width(FILE *out, double radius_mm, const cli_view *v);
+
+/* "1.8m", "180cm", "1800mm", "1.8" (m): a length > 0 in mm. */
+bool cli_parse_length_mm(const char *text, double *mm);
+
+/* The prefix of a command that writes PREFIX.json, .csv, .svg (profile, cdrf-fit): --out as given;
+ * or, when --out ends in '/', that folder and the default name inside it; or the default name here
+ * (out NULL). */
+void cli_out_prefix(const char *out, const char *default_name, char *dest, size_t size);
+
+/* "WxH", each 1..65536. */
+bool cli_parse_size(const char *text, int *w, int *h);
+
 /* The pool shared by the command's work, sized by --threads (created on first use). */
 lucent_pool *cli_pool(void);
 
@@ -76,6 +112,7 @@ int cmd_cdrf_lut(int argc, char **argv);
 int cmd_cdrf_fit(int argc, char **argv);
 int cmd_kernel(int argc, char **argv);
 int cmd_kernel_eval(int argc, char **argv);
+int cmd_pack(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int cmd_trace(int argc, char **argv);
 int cmd_compare(int argc, char **argv);

@@ -53,7 +53,8 @@ static const char k_fit_usage[] =
     "  --variant V        kubo (default) or collomb, the function fitted\n"
     "  --sigma0-max MM    upper end of the sigma0 search (default 20)\n"
     "  --seed S           seed (default 1)\n"
-    "  --out PREFIX       output prefix (default NAME-cdrf)\n"
+    "  --out PREFIX|DIR/  output prefix (default NAME-cdrf); ending in '/': a folder, with\n"
+    "                     NAME-cdrf inside it\n"
     "  -h, --help         show this help\n"
     "\n"
     "example:\n"
@@ -274,11 +275,9 @@ static lucent_status run_fit(fit_options *o)
                                         .sigma0_max = o->sigma0_max,
                                         .pool = cli_pool()};
     s = lucent_cdrf_fit_material(&fd, &fit, &sp);
-    char prefix[512], path[600];
-    if (o->out)
-        snprintf(prefix, sizeof prefix, "%s", o->out);
-    else
-        snprintf(prefix, sizeof prefix, "%s-cdrf", o->material.name);
+    char prefix[512], path[600], name[128];
+    snprintf(name, sizeof name, "%s-cdrf", o->material.name);
+    cli_out_prefix(o->out, name, prefix, sizeof prefix);
     static const char *const exts[] = {"json", "csv", "svg"};
     lucent_cdrf_fit_report report = {.material = &o->material,
                                      .spheres = sp,

@@ -51,6 +51,7 @@ typedef struct options {
     lucent_curvature_method method;
     int smooth, fast;
     double mm_per_unit, range, view[2];
+    bool scale_given; /* --mm-per-unit: curvature in mm^-1, else per mesh unit */
     int size[2];
     char default_out[1024];
 } options;
@@ -65,6 +66,7 @@ static int parse_value_option(int argc, char **argv, int *i, options *o)
         if (!cli_parse_int(v, &o->smooth) || o->smooth > 1000)
             return cli_usage_error("curvature", "--smooth needs a whole number of rings from 0 to 1000");
     } else if (cli_option(argc, argv, i, "--mm-per-unit", &v)) {
+        o->scale_given = true;
         if (!cli_parse_double(v, &o->mm_per_unit) || !(o->mm_per_unit > 0))
             return cli_usage_error("curvature", "--mm-per-unit needs a scale > 0");
     } else if (cli_option(argc, argv, i, "--range", &v)) {
@@ -194,6 +196,39 @@ static void colour(double h, double range, int invalid, uint8_t *rgb)
     rgb[2] = (uint8_t)lrint(255 * (0.2 + 0.8 * b));
 }
 
+/* The picture with a colour bar at its right: the map from -range (concave, blue) through 0 to +range
+ * (convex, red), labelled in mm^-1 (per mesh unit without --mm-per-unit). */
+static lucent_status add_colour_bar(lucent_image **img, double range, bool mm)
+{
+    lucent_image *src = *img, *dst = NULL;
+    int s = src->height >= 600 ? 2 : 1, margin = 64 * s, w = src->width + margin, h = src->height;
+    lucent_status st = lucent_image_create(w, h, 3, &dst);
+    if (st != LUCENT_OK) return st;
+    for (int c = 0; c < 3; c++) lucent_image_fill(dst, c, 0.05f); /* the painter's background */
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < src->width; x++)
+            for (int c = 0; c < 3; c++) lucent_image_set(dst, x, y, c, lucent_image_get(src, x, y, c));
+    int x0 = src->width + 4 * s, y0 = h / 8 + 20 * s, y1 = h - h / 8, bw = 10 * s;
+    for (int y = y0; y <= y1; y++) {
+        uint8_t rgb[3];
+        colour(range * (1 - 2.0 * (y - y0) / (y1 - y0)), range, 0, rgb);
+        for (int x = x0; x < x0 + bw; x++)
+            for (int c = 0; c < 3; c++) lucent_image_set(dst, x, y, c, lucent_srgb_decode(rgb[c] / 255.0f));
+    }
+    static const float white[3] = {0.8f, 0.8f, 0.8f};
+    char text[32];
+    lucent_image_draw_text(dst, x0, h / 8 - 2 * s, s, white, "mean H");
+    lucent_image_draw_text(dst, x0, h / 8 + 8 * s, s, white, mm ? "mm^-1" : "1/unit");
+    snprintf(text, sizeof text, "%+.3g", range);
+    lucent_image_draw_text(dst, x0 + bw + 3 * s, y0, s, white, text);
+    lucent_image_draw_text(dst, x0 + bw + 3 * s, (y0 + y1) / 2 - 3 * s, s, white, "0");
+    snprintf(text, sizeof text, "%+.3g", -range);
+    lucent_image_draw_text(dst, x0 + bw + 3 * s, y1 - 7 * s, s, white, text);
+    lucent_image_destroy(src);
+    *img = dst;
+    return LUCENT_OK;
+}
+
 /* The colour-mapped mesh as a PLY (with the values as vertex properties) or as a picture. */
 static lucent_status write_colours(const char *path, const options *o, const lucent_mesh *m, const lucent_curvature *c,
                                    double range)
@@ -212,6 +247,7 @@ static lucent_status write_colours(const char *path, const options *o, const luc
                                     .colors = rgb,
                                     .background = {0.05f, 0.05f, 0.05f}};
         s = lucent_mesh_paint(m, &d, &img);
+        if (s == LUCENT_OK) s = add_colour_bar(&img, range, o->scale_given);
         if (s == LUCENT_OK) s = lucent_image_write(path, img, NULL);
         lucent_image_destroy(img);
     } else {

@@ -28,7 +28,7 @@ static const char k_usage[] =
     "\n"
     "options:\n"
     "  --rank N           passes for svd and sog (1..16, default 1)\n"
-    "  --taps N           taps per pass (odd, 3..255, default 17)\n"
+    "  --taps N           taps per pass (odd, 3..255, default 17: the renderer's ssss.taps)\n"
     "  --range MM         taps' half-width in mm (default: the model's; jimenez 2)\n"
     "  --k K --b B        guided: weight exponent (default 1) and axis damping (default 0)\n"
     "  --normalize        svd: scale the kernel to the ground truth's 1-norm\n"
@@ -37,6 +37,10 @@ static const char k_usage[] =
     "  --seed S           mc: seed (default 1)\n"
     "  --export F         glsl, hlsl, c or json (default json)\n"
     "  --out FILE         write there (atomically) instead of stdout\n"
+    "  --screen WxH --fov DEG --object-height H | --distance D\n"
+    "                     print the kernel's width in pixels on that screen (defaults 1920x1080,\n"
+    "                     45 degrees, an object of 1.8m filling the height; lengths m, cm or mm); printed\n"
+    "                     with --out too (to stderr when the export goes to stdout)\n"
     "  -q, --quiet        no informational lines\n";
 
 typedef struct options {
@@ -46,6 +50,7 @@ typedef struct options {
     lucent_kernel_format format;
     bool have_k;
     int photons, seed;
+    cli_view view;
 } options;
 
 static bool parse_triple(const char *text, double dest[3])
@@ -121,6 +126,9 @@ static int parse_args(int argc, char **argv, options *o)
                 if (rc != CLI_OK) return rc;
             }
         if (matched) continue;
+        int view = cli_view_option("kernel", argc, argv, &i, &o->view);
+        if (view == CLI_USAGE) return CLI_USAGE;
+        if (view == CLI_OK) continue;
         if (!strcmp(argv[i], "--normalize"))
             o->desc.normalize = true;
         else if (argv[i][0] == '-')
@@ -176,6 +184,10 @@ static lucent_status run(options *o)
     if (s == LUCENT_OK) s = lucent_taps_export(t, o->format, label, &text);
     if (s == LUCENT_OK) s = write_out(o, text);
     if (s == LUCENT_OK) report(o, k, gt, o->spec ? m.name : "skin");
+    /* The width on screen: with the export on stdout, on stderr (and only when a screen was given). */
+    if (s == LUCENT_OK && !g_cli.quiet && (o->out || o->view.given))
+        cli_print_kernel_width(o->out ? stdout : stderr, o->taps.range > 0 ? o->taps.range : lucent_taps_radius(t),
+                               &o->view);
     free(text);
     lucent_taps_destroy(t);
     lucent_kernel_destroy(k);
@@ -194,7 +206,8 @@ int cmd_kernel(int argc, char **argv)
                  .desc = {.model = LUCENT_KERNEL_PREINT},
                  .format = LUCENT_KERNEL_JSON,
                  .photons = 1000000,
-                 .seed = 1};
+                 .seed = 1,
+                 .view = cli_view_defaults()};
     int rc = parse_args(argc, argv, &o);
     if (rc != CLI_OK) return rc;
     return run(&o) == LUCENT_OK ? CLI_OK : cli_fail();

@@ -209,9 +209,9 @@ static lucent_status emit_json(const options *o)
 
 /* ---- swatches ---- */
 
-enum { SWATCH_SIZE = 96, SWATCH_GAP = 8 };
+enum { SWATCH_SIZE = 96, SWATCH_GAP = 8, SWATCH_LABEL = 14 };
 
-/* Draws one swatch: the material's dipole Rd as a linear RGB colour. */
+/* Draws one swatch: the material's dipole Rd as a linear RGB colour, its name below. */
 static void draw_swatch(lucent_image *img, int index, const lucent_material *m)
 {
     lucent_material_derived d;
@@ -220,13 +220,16 @@ static void draw_swatch(lucent_image *img, int index, const lucent_material *m)
     for (int y = SWATCH_GAP; y < SWATCH_GAP + SWATCH_SIZE; y++)
         for (int x = x0; x < x0 + SWATCH_SIZE; x++)
             for (int c = 0; c < 3; c++) lucent_image_set(img, x, y, c, (float)d.rd[c]);
+    static const float ink[3] = {0.85f, 0.85f, 0.85f};
+    int tw = lucent_image_text_width(m->name, 1);
+    lucent_image_draw_text(img, x0 + (SWATCH_SIZE - tw) / 2, SWATCH_GAP + SWATCH_SIZE + 4, 1, ink, m->name);
 }
 
 static lucent_status write_swatches(const options *o)
 {
     lucent_image *img;
     int width = SWATCH_GAP + o->count * (SWATCH_SIZE + SWATCH_GAP);
-    lucent_status s = lucent_image_create(width, SWATCH_SIZE + 2 * SWATCH_GAP, 3, &img);
+    lucent_status s = lucent_image_create(width, SWATCH_SIZE + 2 * SWATCH_GAP + SWATCH_LABEL, 3, &img);
     if (s != LUCENT_OK) return s;
     for (int c = 0; c < 3; c++) lucent_image_fill(img, c, 0.18f); /* middle grey backdrop */
     for (int i = 0; i < o->count; i++) draw_swatch(img, i, &o->list[i]);

@@ -40,7 +40,8 @@ static const char k_usage[] =
     "  --dr D             radial bin width in mm  } default: Freude 2014, Table 6.1:\n"
     "  --bins N           number of radial bins   } dr = min l'/20, N = 32 max l'/dr\n"
     "  --sog N            also fit N Gaussians per channel (d'Eon & Luebke 2007), to JSON\n"
-    "  --out PREFIX       output prefix (default: NAME-MODEL, or NAME-compare)\n"
+    "  --out PREFIX|DIR/  output prefix (default: NAME-MODEL, or NAME-compare); ending in '/': a\n"
+    "                     folder, with the default names inside it\n"
     "  -h, --help         show this help\n"
     "\n"
     "examples:\n"
@@ -372,11 +373,9 @@ static lucent_status run(options *o)
 {
     lucent_profile *profiles[MODEL_COUNT] = {NULL};
     lucent_status s = LUCENT_OK;
-    char prefix[512];
-    if (o->out)
-        snprintf(prefix, sizeof prefix, "%s", o->out);
-    else
-        default_prefix(o, prefix, sizeof prefix);
+    char prefix[512], name[256];
+    default_prefix(o, name, sizeof name);
+    cli_out_prefix(o->out, name, prefix, sizeof prefix);
     for (int i = 0; i < o->model_count && s == LUCENT_OK; i++)
         s = make_profile(o, o->models[i], &o->grid, &profiles[i]);
     if (s == LUCENT_OK) s = write_outputs(o, prefix, profiles);

@@ -149,13 +149,17 @@ static int check_image_path(const char *opt, const char *path, bool png_ok)
     return CLI_OK;
 }
 
-/* Fails (before any rendering) when an output's folder is missing or not writable. */
+/* Creates an output's folder, and fails (before any rendering) when it is not writable. */
 static lucent_status check_dir(const char *path)
 {
     if (!path) return LUCENT_OK;
     char copy[4096];
     snprintf(copy, sizeof copy, "%s", path);
     const char *dir = dirname(copy);
+    if (access(dir, F_OK) != 0) {
+        lucent_status s = lucent_mkdir_p(dir);
+        if (s != LUCENT_OK) return lucent_error_context(s, "%s", path);
+    }
     if (access(dir, W_OK) != 0)
         return lucent_error(LUCENT_ERR_IO, "%s: cannot write into %s: %s", path, dir, strerror(errno));
     return LUCENT_OK;

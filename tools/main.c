@@ -1,5 +1,6 @@
 /* lucent: the command-line front end. `lucent <command> [options]`. */
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -19,6 +20,7 @@ static const cli_command k_commands[] = {
     {"cdrf-lut", "the curvature-dependent reflectance look-up table (Kubo et al.)", cmd_cdrf_lut},
     {"cdrf-fit", "fit the CDRF's sigma0 to Monte Carlo spheres of a material", cmd_cdrf_fit},
     {"kernel", "separable subsurface-scattering kernels for a material, with taps and shader exports", cmd_kernel},
+    {"pack", "an engine pack for a material: taps, blur pass, CDRF LUT and snippet, T(s), constants, glTF", cmd_pack},
     {"kernel-eval", "evaluate every kernel model of a material against the exact 2-D convolution", cmd_kernel_eval},
     {"render", "render a scene with OpenGL: Lambert, CDRF, CDRF + translucency, screen-space SSS", cmd_render},
     {"trace", "path-traced reference of a scene (Embree): media, rough or smooth boundaries", cmd_trace},
@@ -103,6 +105,69 @@ bool cli_parse_double(const char *text, double *dest)
     return true;
 }
 
+bool cli_parse_length_mm(const char *text, double *mm)
+{
+    if (!text || !*text) return false;
+    char *end;
+    errno = 0;
+    double v = strtod(text, &end);
+    double unit = !strcmp(end, "") || !strcmp(end, "m") ? 1000 : !strcmp(end, "cm") ? 10 : !strcmp(end, "mm") ? 1 : 0;
+    if (errno || !(unit > 0) || !(v > 0) || !isfinite(v) || v > 1e12) return false;
+    *mm = v * unit;
+    return true;
+}
+
+bool cli_parse_size(const char *text, int *w, int *h)
+{
+    char tail;
+    return text && sscanf(text, "%dx%d%c", w, h, &tail) == 2 && *w > 0 && *h > 0 && *w <= 65536 && *h <= 65536;
+}
+
+void cli_out_prefix(const char *out, const char *default_name, char *dest, size_t size)
+{
+    size_t n = out ? strlen(out) : 0;
+    if (!out)
+        snprintf(dest, size, "%s", default_name);
+    else if (out[n - 1] == '/')
+        snprintf(dest, size, "%s%s", out, default_name);
+    else
+        snprintf(dest, size, "%s", out);
+}
+
+cli_view cli_view_defaults(void)
+{
+    return (cli_view){.width = 1920, .height = 1080, .fov = 45, .object_height_mm = 1800};
+}
+
+int cli_view_option(const char *command, int argc, char **argv, int *i, cli_view *v)
+{
+    static const char *const names[] = {"--screen", "--fov", "--object-height", "--distance"};
+    static const char *const wants[] = {"WxH in pixels", "degrees in (0, 180)", "a length > 0 (m, cm or mm)",
+                                        "a length > 0 (m, cm or mm)"};
+    const char *t = NULL;
+    int n = 0;
+    while (n < 4 && !cli_option(argc, argv, i, names[n], &t)) n++;
+    if (n == 4) return -1;
+    bool ok = n == 0   ? cli_parse_size(t, &v->width, &v->height)
+              : n == 1 ? cli_parse_double(t, &v->fov) && v->fov > 0 && v->fov < 180
+              : n == 2 ? cli_parse_length_mm(t, &v->object_height_mm)
+                       : cli_parse_length_mm(t, &v->distance_mm);
+    v->given = true;
+    return ok ? CLI_OK : cli_usage_error(command, "%s needs %s, got '%s'", names[n], wants[n], t ? t : "");
+}
+
+double cli_view_depth_mm(const cli_view *v)
+{
+    return v->distance_mm > 0 ? v->distance_mm : v->object_height_mm / (2 * tan(0.5 * v->fov * M_PI / 180));
+}
+
+void cli_print_kernel_width(FILE *out, double radius_mm, const cli_view *v)
+{
+    double z = cli_view_depth_mm(v), w = 2 * radius_mm * lucent_screen_pixels_per_mm(v->height, v->fov, z);
+    fprintf(out, "kernel width: %.2f px (2 x %.6g mm at depth %.6g mm; %dx%d, fov_y %.6g deg)\n", w, radius_mm, z,
+            v->width, v->height, v->fov);
+}
+
 bool cli_wants_help(int argc, char **argv)
 {
     for (int i = 1; i < argc; i++)
@@ -160,6 +225,7 @@ int cli_common_options(int *argc, char **argv)
     }
     if (lucent_dist_rank() != 0) g_cli.quiet = true; /* rank 0 speaks for the job */
     if (!g_cli.quiet && isatty(STDERR_FILENO)) lucent_progress_set_output(stderr);
+    lucent_files_create_parents(true); /* every command creates the folder of its outputs */
     lucent_log_set_sink(lucent_log_stderr_sink, stderr, g_cli.quiet ? LUCENT_LOG_WARN : LUCENT_LOG_INFO);
     return CLI_OK;
 }
@@ -168,6 +234,28 @@ lucent_pool *cli_pool(void)
 {
     if (!g_pool) g_pool = lucent_pool_create(g_cli.threads);
     return g_pool;
+}
+
+extern const char lucent_cli_revision[]; /* generated/revision.c (cmake/revision.cmake) */
+
+/* `lucent --version`: the version, the git revision it was built from, and what it links. */
+static int print_version(void)
+{
+    printf("lucent %s\n", LUCENT_VERSION_STRING);
+    printf("revision  %s\n", lucent_cli_revision);
+    printf("embree    %s\n", lucent_trace_embree_version());
+    printf("openexr   %s\n", lucent_image_openexr_version());
+    lucent_log_set_sink(NULL, NULL, LUCENT_LOG_ERROR);
+    lucent_gl_context *gl = NULL;
+    if (lucent_gl_create(NULL, &gl) == LUCENT_OK) {
+        lucent_gl_info info;
+        lucent_gl_get_info(gl, &info);
+        printf("gl        %s; %s (%s)\n", info.renderer, info.version, info.platform);
+        lucent_gl_destroy(gl);
+    } else {
+        printf("gl        none: %s\n", lucent_last_error());
+    }
+    return CLI_OK;
 }
 
 static const cli_command *find_command(const char *name)
@@ -278,8 +366,7 @@ static int run_command(int argc, char **argv)
         return argc < 2 ? CLI_USAGE : CLI_OK;
     }
     if (strcmp(argv[1], "--version") == 0 || strcmp(argv[1], "version") == 0) {
-        printf("lucent %s\n", LUCENT_VERSION_STRING);
-        return CLI_OK;
+        return print_version();
     }
     const cli_command *cmd = find_command(argv[1]);
     if (!cmd) {

@@ -68,6 +68,7 @@ typedef struct lucent_baked {
     float transmittance[LUCENT_BAKE_TRANSMIT_SIZE * 3];
     double transmit_range; /* mm */
     double sigma0[3];      /* mm */
+    double kd[3];          /* the fit's albedo scale k_d with sigma0 (lucent_cdrf_fit.kd) */
     bool sigma0_cached;    /* read from the disk cache */
     lucent_sog sog;        /* the profile as a sum of Gaussians with shared variances */
     /* What each part was built from ("dipole", "dipole/preint/1/17", ...): a part is rebuilt when its

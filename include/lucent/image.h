@@ -116,6 +116,21 @@ typedef struct lucent_image_write_desc {
 /* Returns the write defaults with every field resolved. */
 lucent_image_write_desc lucent_image_write_defaults(void);
 
+/* ---- Labels ---------------------------------------------------------------
+ * A 5 x 7 pixel font (src/image/text.c): upper-case letters, the lower-case letters of Lucent's
+ * labels (others are drawn upper case), digits and . , - + / ^ ( ) : = %. Each glyph is 6 x 8
+ * pixels with its spacing, times scale. */
+
+/* Draws text with its top-left corner at (x, y), scale pixels per font pixel (>= 1), in linear RGB
+ * (images of 3 or 4 channels; others are left alone); what falls outside the image is clipped. */
+void lucent_image_draw_text(lucent_image *img, int x, int y, int scale, const float rgb[3], const char *text);
+
+/* The width in pixels that text takes at scale (no spacing after the last glyph). */
+int lucent_image_text_width(const char *text, int scale);
+
+/* The version of the OpenEXR core library linked, e.g. "3.1.5" (its exr_get_library_version). */
+const char *lucent_image_openexr_version(void);
+
 /* Tells the format from a path's extension (case-insensitive .png, .exr, .pfm);
  * LUCENT_ERR_UNSUPPORTED with a message naming the path otherwise. */
 lucent_status lucent_image_format_from_path(const char *path, lucent_image_format *dest);

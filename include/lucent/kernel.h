@@ -149,13 +149,27 @@ typedef struct lucent_taps {
     double sign[3][LUCENT_KERNEL_MAX_RANK]; /* per pass */
 } lucent_taps;
 
+/* The default taps per pass, shared by `lucent kernel`, `lucent pack` and the renderer's ssss.taps. */
+enum { LUCENT_KERNEL_DEFAULT_TAPS = 17 };
+
 typedef struct lucent_taps_desc {
-    int count;    /* taps; 0: 17; odd, 3..255 */
+    int count;    /* taps; 0: LUCENT_KERNEL_DEFAULT_TAPS; odd, 3..255 */
     double range; /* half-width, mm; 0: the model's (Jimenez: 2, or 3 above 20 taps) */
 } lucent_taps_desc;
 
 /* Returns the defaults a zero lucent_taps_desc stands for (17 taps; range 0: the model's). */
 lucent_taps_desc lucent_taps_defaults(void);
+
+/* The largest |offset| of a tap set (mm): the kernel's half-width, and the depth range of the
+ * renderer's follow-surface test (times ssss.width_scale). */
+double lucent_taps_radius(const lucent_taps *t);
+
+/* Pixels per mm on screen of a surface at linear depth depth_mm (mm) seen by a perspective camera
+ * with vertical field of view fov_y_deg (degrees) that renders height_px rows (square pixels):
+ *   height / (2 tan(fov_y / 2) depth).
+ * A tap at offset o (mm) lands o times this many pixels from the centre; depth 1 gives the scale
+ * the renderer's blur divides by the depth (src/gl/shaders/blur.frag.glsl). */
+double lucent_screen_pixels_per_mm(int height_px, double fov_y_deg, double depth_mm);
 
 /* Samples k into taps. Free with lucent_taps_destroy. */
 lucent_status lucent_kernel_taps(const lucent_kernel *k, const lucent_taps_desc *desc, lucent_taps **dest);

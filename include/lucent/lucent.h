@@ -12,6 +12,7 @@
 #include "lucent/mc.h"
 #include "lucent/mcml.h"
 #include "lucent/mesh.h"
+#include "lucent/output.h"
 #include "lucent/profile.h"
 #include "lucent/render.h"
 #include "lucent/report.h"

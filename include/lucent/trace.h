@@ -140,6 +140,10 @@ lucent_status lucent_tracer_render(lucent_tracer *tracer, const lucent_trace_des
 /* Frees the images of a result (and zeroes it). */
 void lucent_trace_result_free(lucent_trace_result *result);
 
+/* The version of the Embree library linked, e.g. "3.13.5" (asked of a new Embree device: RTC_DEVICE_PROPERTY_VERSION);
+ * "unknown" when no device can be made. */
+const char *lucent_trace_embree_version(void);
+
 /* What a trace's JSON sidecar records (docs/trace.md); a zero field means the default. */
 typedef struct lucent_trace_sidecar_desc {
     const lucent_scene *scene;         /* required: its JSON after overrides is recorded */

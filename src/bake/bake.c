@@ -167,7 +167,8 @@ static lucent_status bake_sigma0(const lucent_material *m, const lucent_bake_des
     b->have &= ~(unsigned)LUCENT_BAKE_SIGMA0, b->sigma0_key[0] = '\0';
     char key[640];
     sigma0_cache_key(m, v, d->sigma0_photons, key, sizeof key);
-    b->sigma0_cached = lucent_cache_get(cache, "sigma0", key, "sigma0_mm", 3, b->sigma0);
+    b->sigma0_cached = lucent_cache_get(cache, "sigma0", key, "sigma0_mm", 3, b->sigma0) &&
+                       lucent_cache_get(cache, "sigma0", key, "kd", 3, b->kd);
     if (!b->sigma0_cached) {
         double t0 = lucent_clock_seconds();
         lucent_cdrf_fit fit;
@@ -181,6 +182,7 @@ static lucent_status bake_sigma0(const lucent_material *m, const lucent_bake_des
         lucent_status s = lucent_cdrf_fit_material(&fd, &fit, NULL);
         if (s != LUCENT_OK) return s;
         memcpy(b->sigma0, fit.sigma0, sizeof b->sigma0);
+        memcpy(b->kd, fit.kd, sizeof b->kd);
         lucent_log(LUCENT_LOG_INFO, "sigma0 of %s (%s): %.3g %.3g %.3g mm, fitted in %.1f s", m->name,
                    lucent_cdrf_variant_name(v), b->sigma0[0], b->sigma0[1], b->sigma0[2], lucent_clock_seconds() - t0);
         lucent_cache_field f[4] = {

@@ -8,12 +8,30 @@
 
 #include "base/dist_internal.h"
 #include "lucent/dist.h"
+#include "lucent/output.h"
 
 struct lucent_atomic_file {
     FILE *fp;
     char *path;
     char *tmp;
 };
+
+static bool g_create_parents;
+
+void lucent_files_create_parents(bool on) { g_create_parents = on; }
+
+/* mkdir -p of path's folder, when it is missing. */
+static lucent_status make_parent(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash || slash == path) return LUCENT_OK;
+    char *dir = strndup(path, (size_t)(slash - path));
+    if (!dir) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
+    struct stat st;
+    lucent_status s = stat(dir, &st) == 0 ? LUCENT_OK : lucent_mkdir_p(dir);
+    free(dir);
+    return s == LUCENT_OK ? s : lucent_error_context(s, "%s", path);
+}
 
 static mode_t current_umask(void)
 {
@@ -53,6 +71,10 @@ lucent_status lucent_atomic_open(const char *path, lucent_atomic_file **dest, FI
     struct stat st;
     if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
         return lucent_error(LUCENT_ERR_IO, "%s: cannot write: is a directory", path);
+    if (g_create_parents) {
+        lucent_status ps = make_parent(path);
+        if (ps != LUCENT_OK) return ps;
+    }
     lucent_atomic_file *af = calloc(1, sizeof *af);
     size_t n = strlen(path);
     if (af) af->path = strdup(path);

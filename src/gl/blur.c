@@ -26,9 +26,7 @@ lucent_status gl_blur_init(gl_blur *b)
 
 double gl_taps_radius(const lucent_taps *t, double width_scale)
 {
-    double r = 0;
-    for (int k = 0; k < t->count; k++) r = fmax(r, fabs(t->offset[k]));
-    return (width_scale > 0 ? width_scale : 1) * fmax(r, 1e-6);
+    return (width_scale > 0 ? width_scale : 1) * fmax(lucent_taps_radius(t), 1e-6);
 }
 
 /* One texel row per (material, pass): count taps (rgb weight, offset mm), then (R, positive), then

@@ -398,3 +398,13 @@ lucent_status lucent_image_write_exr(const char *path, const lucent_image *img, 
     }
     return lucent_atomic_commit(af);
 }
+
+const char *lucent_image_openexr_version(void)
+{
+    static char text[48];
+    int major = 0, minor = 0, patch = 0;
+    const char *extra = NULL;
+    exr_get_library_version(&major, &minor, &patch, &extra);
+    snprintf(text, sizeof text, "%d.%d.%d%s", major, minor, patch, extra ? extra : "");
+    return text;
+}

@@ -81,7 +81,20 @@ static double default_range(const lucent_kernel *k, int count)
     return k->range;
 }
 
-lucent_taps_desc lucent_taps_defaults(void) { return (lucent_taps_desc){.count = 17}; }
+lucent_taps_desc lucent_taps_defaults(void) { return (lucent_taps_desc){.count = LUCENT_KERNEL_DEFAULT_TAPS}; }
+
+double lucent_taps_radius(const lucent_taps *t)
+{
+    double r = 0;
+    for (int k = 0; t && k < t->count; k++) r = fmax(r, fabs(t->offset[k]));
+    return r;
+}
+
+/* The pinhole projection: a length l at depth z spans l / (2 z tan(fov_y / 2)) of the image height. */
+double lucent_screen_pixels_per_mm(int height_px, double fov_y_deg, double depth_mm)
+{
+    return height_px / (2 * tan(0.5 * fov_y_deg * M_PI / 180) * depth_mm);
+}
 
 lucent_status lucent_kernel_taps(const lucent_kernel *k, const lucent_taps_desc *desc, lucent_taps **dest)
 {

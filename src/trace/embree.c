@@ -246,3 +246,15 @@ double tr_distance_bound(const tr_geometry *g, v3 p, double rmax)
     rtcPointQuery(g->scene, &query, &ctx, on_point_query, &q);
     return sqrt(q.d2);
 }
+
+const char *lucent_trace_embree_version(void)
+{
+    static char text[32] = "unknown";
+    RTCDevice device = rtcNewDevice(NULL);
+    if (device) {
+        long v = (long)rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_VERSION); /* e.g. 31305 */
+        if (v > 0) snprintf(text, sizeof text, "%ld.%ld.%ld", v / 10000, v / 100 % 100, v % 100);
+        rtcReleaseDevice(device);
+    }
+    return text;
+}

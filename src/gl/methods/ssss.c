@@ -64,7 +64,8 @@ static const lucent_setting k_ssss[] = {
      .parse = parse_kernel,
      .doc = "the separable kernel model (Freude ch. 5); svd3, sog4 give a rank too"},
     SETTING_INT("rank", ssss.rank, 1, 1, LUCENT_KERNEL_MAX_RANK, 0, "passes of the separable model (svd, sog)"),
-    SETTING_INT("taps", ssss.taps, 17, 1, LUCENT_KERNEL_MAX_TAPS, LUCENT_SETTING_ODD, "taps per 1-D pass"),
+    SETTING_INT("taps", ssss.taps, LUCENT_KERNEL_DEFAULT_TAPS, 1, LUCENT_KERNEL_MAX_TAPS, LUCENT_SETTING_ODD,
+                "taps per 1-D pass"),
     SETTING_TEXT("profile", ssss.profile, "dipole", lucent_profile_source_name,
                  "the radial profile the kernel is built from"),
     SETTING_REAL("strength", ssss.strength, 1, 0, 1,
@@ -127,7 +128,7 @@ static lucent_status draw(lucent_renderer *r, void *state, const lucent_render_s
 {
     ssss_state *st = state;
     gl_surface_draw(r, st->program, 0, s, object_uniforms, st);
-    double scale = r->targets.height / (2 * tan(0.5 * r->scene->camera.fov_y * M_PI / 180)) * s->ssss.width_scale;
+    double scale = lucent_screen_pixels_per_mm(r->targets.height, r->scene->camera.fov_y, 1) * s->ssss.width_scale;
     gl_blur_run(&st->blur, r->targets.diffuse, r->targets.depth, scale, s->ssss.depth_filter, &r->timer);
     gl_compose(r, s, st->blur.sum_tex);
     return LUCENT_OK;

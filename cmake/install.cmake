@@ -1,0 +1,56 @@
+# Installation (issue 16 item 1): `cmake --install build --prefix P` or `make install PREFIX=P` puts
+#   P/bin/lucent                          the command (linked statically against the library)
+#   P/include/lucent/*.h                  the public headers (C11 and C++)
+#   P/lib/liblucent.so.X.Y.Z, .a          the shared library (soname liblucent.so.X.Y) and the static one
+#   P/lib/pkgconfig/lucent.pc             pkg-config: `pkg-config --cflags --libs lucent` (shared),
+#                                         `pkg-config --static --libs lucent` (static, with the private deps)
+#   P/lib/cmake/Lucent/                   find_package(Lucent) -> Lucent::lucent (the shared library)
+#   P/lib/python3/site-packages/lucent/   the Python package (ctypes over liblucent.so), when present
+# Everything is relocatable: lucent.pc finds its prefix from its own place (${pcfiledir}), the CMake
+# package from its own, the Python package looks for ../../../liblucent.so.
+include(CMakePackageConfigHelpers)
+
+# The header's version must be the project's.
+file(STRINGS ${CMAKE_SOURCE_DIR}/include/lucent/base.h LUCENT_HEADER_VERSION
+     REGEX "#define LUCENT_VERSION_STRING")
+if(NOT LUCENT_HEADER_VERSION MATCHES "\"${PROJECT_VERSION}\"")
+  message(FATAL_ERROR "include/lucent/base.h says ${LUCENT_HEADER_VERSION}, CMakeLists.txt ${PROJECT_VERSION}")
+endif()
+
+install(TARGETS lucent RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS lucent_lib ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(TARGETS lucent_shared EXPORT LucentTargets
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} NAMELINK_COMPONENT Unspecified)
+install(DIRECTORY ${CMAKE_SOURCE_DIR}/include/lucent DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+        FILES_MATCHING PATTERN "*.h")
+
+# pkg-config. Libs carry an rpath to the prefix's lib so that a program built against a prefix
+# outside the loader's path runs as built (no LD_LIBRARY_PATH).
+get_filename_component(LUCENT_OPENEXR_CORE_NAME ${OPENEXR_CORE_LIBRARY} NAME_WE)
+string(REGEX REPLACE "^lib" "" LUCENT_OPENEXR_CORE_NAME ${LUCENT_OPENEXR_CORE_NAME})
+file(RELATIVE_PATH LUCENT_PC_TO_PREFIX ${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR}/pkgconfig
+     ${CMAKE_INSTALL_PREFIX})
+set(LUCENT_PC_MPI "")
+if(LUCENT_MPI)
+  set(LUCENT_PC_MPI " ompi-c") # Open MPI's C library (Debian: libopenmpi-dev)
+endif()
+configure_file(${CMAKE_SOURCE_DIR}/cmake/lucent.pc.in ${CMAKE_BINARY_DIR}/lucent.pc @ONLY)
+install(FILES ${CMAKE_BINARY_DIR}/lucent.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+
+# CMake package.
+set_target_properties(lucent_shared PROPERTIES EXPORT_NAME lucent)
+install(EXPORT LucentTargets NAMESPACE Lucent:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/Lucent)
+configure_package_config_file(${CMAKE_SOURCE_DIR}/cmake/LucentConfig.cmake.in
+                              ${CMAKE_BINARY_DIR}/LucentConfig.cmake
+                              INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/Lucent)
+write_basic_package_version_file(${CMAKE_BINARY_DIR}/LucentConfigVersion.cmake
+                                 VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_BINARY_DIR}/LucentConfig.cmake ${CMAKE_BINARY_DIR}/LucentConfigVersion.cmake
+        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/Lucent)
+
+# Python package (python/lucent), pure Python: installed beside the library it loads.
+if(EXISTS ${CMAKE_SOURCE_DIR}/python/lucent)
+  install(DIRECTORY ${CMAKE_SOURCE_DIR}/python/lucent
+          DESTINATION ${CMAKE_INSTALL_LIBDIR}/python3/site-packages
+          FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
+endif()

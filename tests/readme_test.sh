@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Runs the README's examples as a user would on a fresh clone (issue 16 item 4): every line of a
+# ```sh block that starts with `lucent ` (continuation lines joined), and `for ...; do lucent ...;
+# done` loops (run as written), in the order of the README,
+# from a scratch folder that holds the repository's data/, docs/ and tests/ (so outputs stay out of
+# the tree), with the build's lucent first on PATH. An example may use files an earlier example wrote.
+#
+# Sizes: unless LUCENT_README_FULL=1, small-size options are appended per subcommand (the table
+# below: later options win), so that the whole README runs in a minute or two. A line that cannot
+# run here says `readme-test: skip (why)` in its comment; one that needs the fetched meshes is skipped when
+# data/meshes lacks them. Usage: readme_test.sh LUCENT SOURCE_DIR [CACHE_DIR]
+set -u
+lucent=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+src=$(cd "$2" && pwd)
+work=$(mktemp -d "${TMPDIR:-/tmp}/lucent-readme-XXXXXX")
+trap 'rm -rf "$work"' EXIT
+mkdir -p "$work/bin"
+ln -s "$lucent" "$work/bin/lucent"
+for d in data docs tests; do ln -s "$src/$d" "$work/$d"; done
+export PATH=$work/bin:$PATH LUCENT_CACHE_DIR=${3:-$work/cache}
+
+small_options() { # SUBCOMMAND: what makes its example small
+  case $1 in
+    render) echo "--set render.width=32 --set render.height=24 --set render.shadow_map_size=256" ;;
+    trace) echo "--set render.width=32 --set render.height=24 --spp 2 --time 5" ;;
+    compare) echo "--set render.width=32 --set render.height=24 --set render.shadow_map_size=256 --spp 2 --time 5" ;;
+    profile) echo "--photons 5000" ;;
+    kernel) echo "--photons 5000" ;;
+    kernel-eval) echo "--size 32" ;;
+    cdrf-fit) echo "--photons 2000 --bins 6" ;;
+    cdrf-lut) echo "--width 16 --height 8" ;;
+    pack) echo "--sigma0-photons 2000 --transmit-photons 500" ;;
+    *) echo "" ;;
+  esac
+}
+
+# The examples, one per line (backslash continuations joined).
+examples=$(awk '/^```sh[[:space:]]*$/ {inblock = 1; next} /^```/ {inblock = 0; next}
+  inblock { line = (cont ? cont " " : "") $0; cont = "";
+            if (line ~ /\\$/) { sub(/\\$/, "", line); cont = line; next }
+            sub(/^[[:space:]]+/, "", line); if (line ~ /^lucent / || line ~ /^for .*; do lucent .*; done/) print line }' "$src/README.md")
+passed=0 failed=0 skipped=0
+while IFS= read -r line; do
+  [ -n "$line" ] || continue
+  if [[ "$line" == *"readme-test: skip"* ]]; then skipped=$((skipped + 1)); echo "skip $line"; continue; fi
+  cmd=${line%%#*}                     # the shell comment goes
+  sub=$(awk '{print $2}' <<<"$cmd")
+  if [[ "$cmd" == *data/meshes/* ]]; then
+    missing=0
+    for f in $(grep -o 'data/meshes/[^ ]*' <<<"$cmd"); do [ -e "$src/$f" ] || missing=1; done
+    if [ "$missing" = 1 ]; then skipped=$((skipped + 1)); echo "skip (no meshes: make setup) $line"; continue; fi
+  fi
+  extra=""
+  [ "${LUCENT_README_FULL:-0}" = 1 ] || [[ "$cmd" != lucent* ]] || extra=$(small_options "$sub")
+  if out=$(cd "$work" && bash -c "$cmd $extra" 2>&1 </dev/null); then
+    passed=$((passed + 1)); echo "ok   $line"
+  else
+    failed=$((failed + 1)); echo "FAIL $line"; printf '%s\n' "$out" | tail -5 | sed 's/^/     /'
+  fi
+done <<<"$examples"
+echo "$passed passed, $failed failed, $skipped skipped"
+[ "$passed" -gt 0 ] && [ "$failed" = 0 ]
