@@ -56,6 +56,7 @@ session() { # MODE (window or headless) RUNNER...
     echo "orbit 35 -12"
     echo "zoom 0.9"
     for m in $methods; do echo "method $m"; echo "print"; done
+    echo "method ssss" # the taps exported below come with ssss, whatever the last method listed
     echo "light 0 25 10"
     echo "set width_scale=1.7"
     echo "material skin2"

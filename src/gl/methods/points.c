@@ -636,6 +636,14 @@ static void sidecar(const lucent_renderer *r, const void *state, const lucent_re
     }
 }
 
+static unsigned bakes(const lucent_renderer *r, const lucent_render_settings *s)
+{
+    (void)r;
+    if (s->points.style != LUCENT_POINTS_DIFFUSION) return 0;
+    return (s->points.sog_source == LUCENT_SOG_FIT ? LUCENT_BAKE_SOG : 0u) |
+           (s->translucency.enabled ? LUCENT_BAKE_TRANSMITTANCE : 0u);
+}
+
 const gl_method gl_method_points = {
     .name = "points",
     .settings = (const char *const[]){"splats", "radius_scale", "depth_epsilon", "cutoff", "sog", "sog_source",
@@ -643,6 +651,7 @@ const gl_method gl_method_points = {
                                       "translucency", "transmittance", NULL},
     .variant = variant,
     .variant_doc = "sog<N> (a fit of N Gaussians), deon (d'Eon's skin table), brdf, disks",
+    .bakes = bakes,
     .state_size = sizeof(points_state),
     .prepare = prepare,
     .draw = draw,
