@@ -33,7 +33,7 @@ expect_true "profile of a non-absorbing medium warns: photons reached the step l
 
 # Found by hand (issue 17 item 7).
 # compare on the project's own fixture whose reference cannot be made: an error, not a crash (a NULL mask).
-expect_fail 1 "trace-smooth.json: lights[0]" -- "$LUCENT" compare "$FIXTURES/scenes/trace-smooth.json" --out "$TMP/cmp-smooth"
+expect_fail 1 "trace-smooth.json: lights[0]" -- "${GLRUN[@]}" compare "$FIXTURES/scenes/trace-smooth.json" --out "$TMP/cmp-smooth"
 # --set with an index past int: no wrap to objects[0].
 expect_fail 1 "override 'objects[4294967296].material=jade': index beyond the end of the array" -- \
   "$LUCENT" trace "$FIXTURES/scenes/trace-small.json" --set 'objects[4294967296].material=jade' --out "$TMP/wrap.png"
