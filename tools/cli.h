@@ -99,6 +99,10 @@ void cli_out_prefix(const char *out, const char *default_name, char *dest, size_
 /* "WxH", each 1..65536. */
 bool cli_parse_size(const char *text, int *w, int *h);
 
+/* The disk cache folder of the bakes: none with --no-cache, else --cache DIR, $LUCENT_CACHE_DIR,
+ * $XDG_CACHE_HOME/lucent or ~/.cache/lucent (written into buf); NULL when none can be named. */
+const char *cli_cache_dir(const char *option, bool none, char *buf, size_t size);
+
 /* The pool shared by the command's work, sized by --threads (created on first use). */
 lucent_pool *cli_pool(void);
 

@@ -430,21 +430,6 @@ static void gltf(FILE *f, const lucent_material *m, const lucent_material_derive
 
 /* ---- the command ---- */
 
-static const char *cache_dir(const options *o, char *buf, size_t size)
-{
-    const char *env = getenv("LUCENT_CACHE_DIR"), *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
-    if (o->no_cache) return NULL;
-    if (o->cache) return o->cache;
-    if (env && *env) return env;
-    if (xdg && *xdg)
-        snprintf(buf, size, "%s/lucent", xdg);
-    else if (home && *home)
-        snprintf(buf, size, "%s/.cache/lucent", home);
-    else
-        return NULL;
-    return buf;
-}
-
 static lucent_status apply_sets(const options *o, lucent_render_settings *rs)
 {
     for (int i = 0; i < o->set_count; i++) {
@@ -529,7 +514,7 @@ static lucent_status run(const options *o)
     if (s == LUCENT_OK) s = apply_sets(o, &rs);
     lucent_cache *cache = NULL;
     char buf[4096];
-    const char *cdir = cache_dir(o, buf, sizeof buf);
+    const char *cdir = cli_cache_dir(o->cache, o->no_cache, buf, sizeof buf);
     if (s == LUCENT_OK && cdir) s = lucent_cache_create(cdir, &cache);
     lucent_baked b = {0};
     lucent_bake_desc bd = {.what = LUCENT_BAKE_TAPS | LUCENT_BAKE_TRANSMITTANCE | LUCENT_BAKE_SIGMA0,

@@ -276,21 +276,6 @@ static void summary(const lucent_gl_context *ctx, const lucent_render_settings *
              res->times.gpu_ms, passes, res->times.cpu_ms, res->times.setup_ms);
 }
 
-static const char *cache_dir(const options *o, char *buf, size_t size)
-{
-    const char *env = getenv("LUCENT_CACHE_DIR"), *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
-    if (o->no_cache) return NULL;
-    if (o->cache) return o->cache;
-    if (env && *env) return env;
-    if (xdg && *xdg)
-        snprintf(buf, size, "%s/lucent", xdg);
-    else if (home && *home)
-        snprintf(buf, size, "%s/.cache/lucent", home);
-    else
-        return NULL;
-    return buf;
-}
-
 static lucent_status run(const options *o, lucent_scene *scene)
 {
     lucent_gl_context *ctx = NULL;
@@ -299,7 +284,7 @@ static lucent_status run(const options *o, lucent_scene *scene)
     char cache[4096];
     lucent_renderer_desc rd = lucent_renderer_defaults();
     rd.pool = cli_pool();
-    rd.cache_dir = cache_dir(o, cache, sizeof cache);
+    rd.cache_dir = cli_cache_dir(o->cache, o->no_cache, cache, sizeof cache);
     lucent_gl_desc gd = o->gl;
     gd.width = scene->render.view.width, gd.height = scene->render.view.height, gd.title = "Lucent";
     lucent_status st = lucent_gl_create(&gd, &ctx);

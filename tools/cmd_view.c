@@ -36,21 +36,6 @@ static const char k_usage[] =
     "  lucent view data/scenes/bunny-skin.json\n"
     "  lucent view data/scenes/bunny-skin.json --script tune.txt --headless\n";
 
-static const char *cache_dir(const char *opt, bool none, char *buf, size_t size)
-{
-    const char *env = getenv("LUCENT_CACHE_DIR"), *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
-    if (none) return NULL;
-    if (opt) return opt;
-    if (env && *env) return env;
-    if (xdg && *xdg)
-        snprintf(buf, size, "%s/lucent", xdg);
-    else if (home && *home)
-        snprintf(buf, size, "%s/.cache/lucent", home);
-    else
-        return NULL;
-    return buf;
-}
-
 int cmd_view(int argc, char **argv)
 {
     if (cli_wants_help(argc, argv)) return fputs(k_usage, stdout), CLI_OK;
@@ -90,7 +75,7 @@ int cmd_view(int argc, char **argv)
     if (o.headless && !o.script) return cli_usage_error("view", "--headless needs --script (there is nothing to see)");
     char buf[4096];
     o.sets = sets, o.set_count = set_count;
-    o.cache_dir = cache_dir(cache, no_cache, buf, sizeof buf);
+    o.cache_dir = cli_cache_dir(cache, no_cache, buf, sizeof buf);
     o.pool = cli_pool();
     return viewer_run(&o) == LUCENT_OK ? CLI_OK : cli_fail();
 }

@@ -230,6 +230,21 @@ int cli_common_options(int *argc, char **argv)
     return CLI_OK;
 }
 
+const char *cli_cache_dir(const char *option, bool none, char *buf, size_t size)
+{
+    const char *env = getenv("LUCENT_CACHE_DIR"), *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+    if (none) return NULL;
+    if (option) return option;
+    if (env && *env) return env;
+    if (xdg && *xdg)
+        snprintf(buf, size, "%s/lucent", xdg);
+    else if (home && *home)
+        snprintf(buf, size, "%s/.cache/lucent", home);
+    else
+        return NULL;
+    return buf;
+}
+
 lucent_pool *cli_pool(void)
 {
     if (!g_pool) g_pool = lucent_pool_create(g_cli.threads);
