@@ -85,7 +85,7 @@ static void check_against_peer(const char *name, const lucent_mc_result *r, cons
         check_3se(name, what, r->a_layer[i], r->a_layer_se[i], cJSON_GetArrayItem(a_layer, i));
     }
     check_rings(name, "Rd", r->rd_r, r->rd_r_se, dr, cJSON_GetObjectItem(p, "rd_ring"));
-    double tt, tt_se;
+    double tt = 0, tt_se = 0;
     CHECK(pair(cJSON_GetObjectItem(p, "tt"), &tt, &tt_se));
     if (tt > 0) {
         check_3se(name, "Tt", r->tt, r->tt_se, cJSON_GetObjectItem(p, "tt"));
