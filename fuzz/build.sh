@@ -4,7 +4,7 @@
 # target from tests/fixtures, and runs each target in turn:
 #   fuzz/build.sh [SECONDS_PER_TARGET] [TARGET...]     (make fuzz FUZZ_SECONDS=600)
 # Targets: mesh (PLY/OBJ/STL/OFF/glTF import), ply (the PLY property API), material, scene (+ --set),
-# mcml (.mci/.mco), image (PNG/EXR/PFM). Findings land in build-fuzz/artifacts_<target>/; each run's
+# mcml (.mci/.mco), image (PNG/EXR/PFM), part (the part files of --part K/N that lucent merge reads). Findings land in build-fuzz/artifacts_<target>/; each run's
 # last lines (executions, coverage) in build-fuzz/fuzz_<target>.log. Exit status 1 when a target found
 # a crash, a leak or a timeout.
 set -euo pipefail
@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 secs=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(mesh ply material scene mcml image)
+[ ${#targets[@]} -gt 0 ] || targets=(mesh ply material scene mcml image part)
 command -v clang >/dev/null || { echo "fuzz: clang is needed (Debian: clang)"; exit 1; }
 out=build-fuzz
 cmake -S . -B "$out" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DLUCENT_FUZZ=ON -DLUCENT_MPI=OFF \
@@ -47,6 +47,12 @@ mkdir -p "$out/corpus_image"
 for f in tests/fixtures/images/*.png; do [ -f "$f" ] && { printf '\0'; cat "$f"; } >"$out/corpus_image/$(basename "$f")"; done
 for f in tests/fixtures/images/*.exr; do [ -f "$f" ] && { printf '\1'; cat "$f"; } >"$out/corpus_image/$(basename "$f")"; done
 for f in tests/fixtures/images/*.pfm; do [ -f "$f" ] && { printf '\2'; cat "$f"; } >"$out/corpus_image/$(basename "$f")"; done
+# a part file (src/base/dist.c's layout, little-endian): part 1 of 1 of `mcml x.mci`, an int64 tally of
+# 2 values and a uint32 tally of 1
+mkdir -p "$out/corpus_part"
+tallies='\0\0\0\0\2\0\0\0\0\0\0\0\7\0\0\0\0\0\0\0\11\0\0\0\0\0\0\0\2\0\0\0\1\0\0\0\0\0\0\0\3\0\0\0'
+printf 'LUCENT-PART v1\n\0\4\3\2\1\1\0\0\0\1\0\0\0\2\0\0\0\4\0\0\0mcml\5\0\0\0x.mci\2\0\0\0'"$tallies" \
+  >"$out/corpus_part/mcml-1-of-1"
 status=0
 for t in "${targets[@]}"; do
   mkdir -p "$out/artifacts_$t"

@@ -19,6 +19,7 @@
 
 #ifdef LUCENT_HAVE_MPI
 #include <mpi.h>
+#include <time.h>
 #endif
 
 #define PART_MAGIC "LUCENT-PART v1\n"
@@ -118,6 +119,24 @@ void dist_note_failed_chunk(uint64_t chunk) { g.failed_chunk = chunk; }
 
 static lucent_status agreed_error(void) { return lucent_error(g.status, "%s", g.message); }
 
+#ifdef LUCENT_HAVE_MPI
+/* Waits for a request without spinning. Open MPI's blocking collectives busy-poll, so a rank that
+ * has finished its share of a pass would burn a core while the others work: with more ranks than
+ * free cores (a shared machine, oversubscription) the waiting ranks take the time of the working
+ * ones. Naps of 50 us growing to 1 ms cost at most 1 ms per agreement (once per pass or sum). */
+static void wait_gently(MPI_Request *request)
+{
+    int done = 0;
+    struct timespec nap = {0, 50000};
+    MPI_Test(request, &done, MPI_STATUS_IGNORE);
+    while (!done) {
+        nanosleep(&nap, NULL);
+        if (nap.tv_nsec < 1000000) nap.tv_nsec *= 2;
+        MPI_Test(request, &done, MPI_STATUS_IGNORE);
+    }
+}
+#endif
+
 lucent_status lucent_dist_agree(lucent_status status)
 {
     if (g.failed) return agreed_error();
@@ -132,7 +151,9 @@ lucent_status lucent_dist_agree(lucent_status status)
         int rank;
     } in = {LONG_MAX, g.rank}, out;
     if (status != LUCENT_OK) in.key = chunk < (uint64_t)LONG_MAX - 1 ? (long)chunk : LONG_MAX - 1;
-    MPI_Allreduce(&in, &out, 1, MPI_LONG_INT, MPI_MINLOC, MPI_COMM_WORLD);
+    MPI_Request request;
+    MPI_Iallreduce(&in, &out, 1, MPI_LONG_INT, MPI_MINLOC, MPI_COMM_WORLD, &request);
+    wait_gently(&request);
     if (out.key == LONG_MAX) return LUCENT_OK;
     struct {
         int status;
@@ -174,6 +195,8 @@ int lucent_dist_finish(int rc)
     for (int i = 0; i < g.argc; i++) free(g.argv[i]);
     free(g.argv);
     free(g.first_output);
+    g.tallies = NULL, g.tally_count = g.tally_cap = g.merge_next = 0;
+    g.argv = NULL, g.argc = 0, g.first_output = NULL, g.merge = false; /* a later load starts afresh */
     return rc;
 }
 
