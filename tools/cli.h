@@ -112,6 +112,7 @@ int cmd_image(int argc, char **argv);
 int cmd_profile(int argc, char **argv);
 int cmd_mcml(int argc, char **argv);
 int cmd_curvature(int argc, char **argv);
+int cmd_mesh_uv(int argc, char **argv);
 int cmd_cdrf_lut(int argc, char **argv);
 int cmd_cdrf_fit(int argc, char **argv);
 int cmd_kernel(int argc, char **argv);

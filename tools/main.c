@@ -17,6 +17,7 @@ static const cli_command k_commands[] = {
     {"mcml", "run MCML input files (.mci), write MCML output (.mco)", cmd_mcml},
     {"profile", "radial diffuse reflectance profiles: Monte Carlo and analytic models", cmd_profile},
     {"curvature", "per-vertex mesh curvature (Rusinkiewicz, Meyer, Garimella)", cmd_curvature},
+    {"mesh-uv", "a mesh's texture atlas (its own, or Lucent's charts), as OBJ or glTF with a picture", cmd_mesh_uv},
     {"cdrf-lut", "the curvature-dependent reflectance look-up table (Kubo et al.)", cmd_cdrf_lut},
     {"cdrf-fit", "fit the CDRF's sigma0 to Monte Carlo spheres of a material", cmd_cdrf_fit},
     {"kernel", "separable subsurface-scattering kernels for a material, with taps and shader exports", cmd_kernel},

@@ -25,6 +25,12 @@ typedef struct lucent_mesh {
     double *positions;
     double *normals; /* unit, area-weighted; zero for vertices without a face of non-zero area */
     uint32_t *faces;
+    /* Texture coordinates per face corner: (u, v) of corners 0, 1, 2 of face f at uvs[6 f ..
+     * 6 f + 5]; NULL when the mesh has none. Per corner, so that a seam needs no split vertex: the
+     * mesh stays welded (normals, curvature) and the GPU splits where corners differ. Imported
+     * from OBJ / glTF / PLY texture coordinates, analytic on the UV sphere and ellipsoid, made by
+     * lucent_mesh_uv_atlas otherwise. malloc'd; lucent_mesh_destroy frees it. */
+    double *uvs;
 } lucent_mesh;
 
 /* Allocates a mesh with room for the given counts (contents zeroed). */
@@ -140,9 +146,71 @@ typedef struct lucent_mesh_ply_extra {
 
 lucent_status lucent_mesh_write_ply(const char *path, const lucent_mesh *mesh, const lucent_mesh_ply_extra *extra);
 
-/* ---- A picture of a mesh (no GPU) ------------------------------------------ */
-
 typedef struct lucent_image lucent_image; /* lucent/image.h */
+
+/* Writes the mesh as Wavefront OBJ (v, vn, and vt per corner when it has texture coordinates). */
+lucent_status lucent_mesh_write_obj(const char *path, const lucent_mesh *mesh);
+
+/* Writes the mesh as glTF 2.0 (.gltf, one buffer embedded as a base64 data URI): positions,
+ * normals, TEXCOORD_0 (vertices split where corners differ; v flipped to glTF's top-left origin). */
+lucent_status lucent_mesh_write_gltf(const char *path, const lucent_mesh *mesh);
+
+/* ---- Texture atlases (uv_atlas.c, docs/tsd.md) ------------------------------ */
+
+enum { LUCENT_UV_ATLAS_TEXTURE = 1024 };
+#define LUCENT_UV_ATLAS_ANGLE 40.0 /* degrees */
+#define LUCENT_UV_ATLAS_GUTTER 4.0 /* texels at texture_size */
+
+/* How to make an atlas; a zero field means the default. */
+typedef struct lucent_uv_atlas_desc {
+    double max_angle; /* a chart's faces lie within this angle of its seed face's normal (degrees) */
+    int texture_size; /* texels along a side, for the gutter */
+    double gutter;    /* texels between two charts at texture_size (half of it to the border) */
+} lucent_uv_atlas_desc;
+
+/* What a mesh's texture coordinates are like. */
+typedef struct lucent_uv_stats {
+    size_t chart_count; /* lucent_mesh_uv_atlas: charts made; else 0 */
+    double stretch_l2;  /* Sander et al. 2001's L2 stretch, area-weighted, 1 = isometric up to scale */
+    double stretch_max; /* the largest face's L-infinity stretch, on the same scale */
+    double uv_area;     /* the faces' total area in texture space */
+    double uv_min[2], uv_max[2];
+    size_t flipped_faces;    /* faces mirrored in texture space */
+    size_t degenerate_faces; /* faces of non-zero area with zero area in texture space */
+} lucent_uv_stats;
+
+/* Replaces mesh->uvs by an atlas: charts grown by normal cone, projected on their seed's plane
+ * (overlap-free by construction), packed on shelves in [0, 1]^2 with gutters. stats may be NULL.
+ * On failure the mesh is unchanged. */
+lucent_status lucent_mesh_uv_atlas(lucent_mesh *mesh, const lucent_uv_atlas_desc *desc, lucent_uv_stats *stats);
+
+/* Measures mesh->uvs (LUCENT_ERR_INVALID_ARGUMENT without them). */
+lucent_status lucent_mesh_uv_stats_compute(const lucent_mesh *mesh, lucent_uv_stats *dest);
+
+/* Rasterises every face into a size x size grid over [0, 1]^2 (texel centres strictly inside a
+ * face, by a thousandth of a texel): overlapping = texels inside two or more faces, covered =
+ * texels inside at least one. Either may be NULL. */
+lucent_status lucent_mesh_uv_overlaps(const lucent_mesh *mesh, int size, size_t *overlapping, size_t *covered);
+
+/* chart[f] (face_count entries): the chart of face f, charts being the components of faces joined
+ * by edges whose two corners have the same coordinates on both sides; count: how many. */
+lucent_status lucent_mesh_uv_charts(const lucent_mesh *mesh, uint32_t *chart, size_t *count);
+
+/* A size x size picture of the charts in texture space (v up), each chart its own colour. */
+lucent_status lucent_mesh_uv_paint(const lucent_mesh *mesh, int size, lucent_image **dest);
+
+/* The mesh's vertices split where their corners' coordinates differ (for the GPU and glTF). */
+typedef struct lucent_uv_split {
+    size_t count;     /* split vertices */
+    uint32_t *vertex; /* the mesh vertex of each */
+    double *uv;       /* 2 each */
+    uint32_t *faces;  /* 3 per face, into the split vertices */
+} lucent_uv_split;
+
+lucent_status lucent_mesh_uv_split(const lucent_mesh *mesh, lucent_uv_split *dest);
+void lucent_uv_split_free(lucent_uv_split *split);
+
+/* ---- A picture of a mesh (no GPU) ------------------------------------------ */
 
 /* How to paint a mesh; zero fields take the defaults. */
 typedef struct lucent_mesh_paint_desc {
@@ -164,7 +232,8 @@ lucent_status lucent_mesh_paint(const lucent_mesh *mesh, const lucent_mesh_paint
  * vertices no face uses; keeps the order of first use. Recomputes normals. */
 lucent_status lucent_mesh_weld(lucent_mesh *mesh);
 
-/* Replaces mesh by `levels` rounds of Loop subdivision (Loop 1987; boundaries as cubic B-splines),
+/* Replaces mesh by `levels` rounds of Loop subdivision (Loop 1987; boundaries as cubic B-splines;
+ * corner texture coordinates interpolated linearly),
  * 0 <= levels <= 6: each round turns every triangle into four and smooths the surface toward Loop's
  * limit surface (which shrinks convex shapes slightly). Vertices on non-manifold edges or where
  * boundaries meet stay in place. Normals are recomputed. On failure mesh is unchanged. */

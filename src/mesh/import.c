@@ -245,7 +245,9 @@ static void assimp_child(int fd, const void *data, size_t size, const char *form
         child_fail(fd, LUCENT_ERR_UNSUPPORTED, "more than 4294967295 vertices");
         _exit(0);
     }
-    child_header h = {CHILD_MAGIC, LUCENT_OK, nv, nf, 0};
+    int uvs = 1; /* texture coordinates when every part has them (message_len 1: 6 doubles per face follow) */
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) uvs = uvs && sc->mMeshes[i]->mTextureCoords[0];
+    child_header h = {CHILD_MAGIC, LUCENT_OK, nv, nf, (uint64_t)uvs};
     if (!write_all(fd, &h, sizeof h)) _exit(0);
     for (unsigned i = 0; i < sc->mNumMeshes; i++) {
         const struct aiMesh *am = sc->mMeshes[i];
@@ -265,6 +267,18 @@ static void assimp_child(int fd, const void *data, size_t size, const char *form
             if (!write_all(fd, t, sizeof t)) _exit(0);
         }
         v0 += am->mNumVertices;
+    }
+    for (unsigned i = 0; uvs && i < sc->mNumMeshes; i++) {
+        const struct aiMesh *am = sc->mMeshes[i];
+        for (unsigned f = 0; f < am->mNumFaces; f++) {
+            const struct aiFace *face = &am->mFaces[f];
+            if (face->mNumIndices != 3) continue;
+            double c[6];
+            for (int j = 0; j < 3; j++)
+                c[2 * j] = am->mTextureCoords[0][face->mIndices[j]].x,
+                      c[2 * j + 1] = am->mTextureCoords[0][face->mIndices[j]].y;
+            if (!write_all(fd, c, sizeof c)) _exit(0);
+        }
     }
     _exit(0);
 }
@@ -311,6 +325,15 @@ static lucent_status assimp_load(const void *data, size_t size, const char *name
                                !read_all(fds[0], (*dest)->faces, (size_t)h.face_count * 3 * sizeof(uint32_t)))) {
             lucent_mesh_destroy(*dest), *dest = NULL;
             got = 0;
+        }
+        if (s == LUCENT_OK && got && h.message_len == 1) { /* the corners' texture coordinates */
+            size_t n = (size_t)h.face_count * 6;
+            (*dest)->uvs = malloc(n * sizeof(double) + 1);
+            if (!(*dest)->uvs) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", name);
+            if (s == LUCENT_OK && !read_all(fds[0], (*dest)->uvs, n * sizeof(double))) got = 0;
+            for (size_t i = 0; s == LUCENT_OK && got && i < n; i++)
+                if (!isfinite((*dest)->uvs[i]))
+                    s = lucent_error(LUCENT_ERR_PARSE, "%s: face %zu: texture coordinate not finite", name, i / 6);
         }
     }
     close(fds[0]);

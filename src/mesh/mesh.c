@@ -27,7 +27,7 @@ lucent_status lucent_mesh_create(size_t vertex_count, size_t face_count, lucent_
 void lucent_mesh_destroy(lucent_mesh *mesh)
 {
     if (!mesh) return;
-    free(mesh->positions), free(mesh->normals), free(mesh->faces);
+    free(mesh->positions), free(mesh->normals), free(mesh->faces), free(mesh->uvs);
     free(mesh);
 }
 
@@ -90,6 +90,7 @@ static void weld_apply(lucent_mesh *m, uint32_t *remap, uint32_t *newidx)
     for (size_t f = 0; f < m->face_count; f++) {
         uint32_t a = remap[m->faces[3 * f]], b = remap[m->faces[3 * f + 1]], c = remap[m->faces[3 * f + 2]];
         if (a == b || b == c || a == c) continue;
+        if (m->uvs) memmove(m->uvs + 6 * nf, m->uvs + 6 * f, 6 * sizeof *m->uvs); /* corners follow faces */
         m->faces[3 * nf] = a, m->faces[3 * nf + 1] = b, m->faces[3 * nf + 2] = c;
         nf++;
     }

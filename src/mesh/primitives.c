@@ -1,6 +1,7 @@
 /* Primitives with analytic curvature, for tests: UV sphere / ellipsoid (one generator),
  * icosphere, torus. Jitter moves vertices in parameter space (or tangentially, then back onto
  * the sphere), so they stay exactly on the surface. */
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -29,6 +30,48 @@ static double jitter(lucent_rng *rng, double amount)
 static void quad(uint32_t *f, uint32_t a, uint32_t b, uint32_t c, uint32_t d)
 {
     f[0] = a, f[1] = b, f[2] = c, f[3] = a, f[4] = c, f[5] = d;
+}
+
+/* Per-corner texture coordinates from per-vertex ones that wrap at 1 (wrap[i]: coordinate i is
+ * periodic): a face across the seam gets 1 added to the corners below one half, so that it spans
+ * the seam instead of the whole texture. A corner at a pole (pole[v]) takes the mean u of the
+ * other two. */
+static lucent_status corner_uvs(lucent_mesh *m, const double *vertex_uv, const bool wrap[2], const uint8_t *pole)
+{
+    m->uvs = malloc(6 * m->face_count * sizeof *m->uvs + 1);
+    if (!m->uvs) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for texture coordinates");
+    for (size_t f = 0; f < m->face_count; f++) {
+        double *c = m->uvs + 6 * f;
+        for (int k = 0; k < 3; k++) memcpy(c + 2 * k, vertex_uv + 2 * m->faces[3 * f + k], 2 * sizeof *c);
+        for (int i = 0; i < 2; i++) {
+            double lo = fmin(c[i], fmin(c[2 + i], c[4 + i])), hi = fmax(c[i], fmax(c[2 + i], c[4 + i]));
+            for (int k = 0; wrap[i] && hi - lo > 0.5 && k < 3; k++)
+                if (c[2 * k + i] < 0.5 && !(pole && pole[m->faces[3 * f + k]])) c[2 * k + i] += 1;
+        }
+        for (int k = 0; pole && k < 3; k++)
+            if (pole[m->faces[3 * f + k]]) c[2 * k] = 0.5 * (c[2 * ((k + 1) % 3)] + c[2 * ((k + 2) % 3)]);
+    }
+    return LUCENT_OK;
+}
+
+/* The ellipsoid's analytic coordinates: u = phi / 2 pi about z, v = 1 - theta / pi (v = 1 at the
+ * north pole +z), from each vertex's position (jittered ones included). */
+static lucent_status ellipsoid_uvs(lucent_mesh *m, const double axes[3])
+{
+    double *uv = malloc(2 * m->vertex_count * sizeof *uv);
+    uint8_t *pole = calloc(m->vertex_count, 1);
+    lucent_status s = uv && pole ? LUCENT_OK : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    for (size_t v = 0; s == LUCENT_OK && v < m->vertex_count; v++) {
+        const double *p = m->positions + 3 * v;
+        double x = p[0] / axes[0], y = p[1] / axes[1], z = fmax(-1, fmin(1, p[2] / axes[2]));
+        double phi = atan2(y, x);
+        uv[2 * v] = (phi < 0 ? phi + 2 * M_PI : phi) / (2 * M_PI);
+        uv[2 * v + 1] = 1 - acos(z) / M_PI;
+        pole[v] = v == 0 || v == m->vertex_count - 1;
+    }
+    if (s == LUCENT_OK) s = corner_uvs(m, uv, (const bool[2]){true, false}, pole);
+    free(uv), free(pole);
+    return s;
 }
 
 /* Ellipsoid (a UV sphere when the axes are equal): poles on z, u_count slices, v_count stacks. */
@@ -64,7 +107,9 @@ static lucent_status make_ellipsoid(const lucent_primitive_desc *d, lucent_mesh 
         f[0] = last + (uint32_t)i, f[1] = south, f[2] = last + (b - 1), f += 3;
     }
     lucent_mesh_compute_normals(m);
-    return LUCENT_OK;
+    s = ellipsoid_uvs(m, d->axes);
+    if (s != LUCENT_OK) lucent_mesh_destroy(m), *dest = NULL;
+    return s;
 }
 
 /* Torus around z: major radius R, tube radius r; u around z, v around the tube. */
@@ -88,7 +133,21 @@ static lucent_status make_torus(const lucent_primitive_desc *d, lucent_mesh **de
             quad(m->faces + 6 * v, a, b, c, e);
         }
     lucent_mesh_compute_normals(m);
-    return LUCENT_OK;
+    /* u = the angle about z, v = the angle about the tube, both over 2 pi */
+    double *uv = malloc(2 * m->vertex_count * sizeof *uv);
+    if (!uv) {
+        lucent_mesh_destroy(m), *dest = NULL;
+        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    }
+    for (size_t v = 0; v < m->vertex_count; v++) {
+        const double *p = m->positions + 3 * v;
+        double a = atan2(p[1], p[0]), w = atan2(p[2], hypot(p[0], p[1]) - R);
+        uv[2 * v] = (a < 0 ? a + 2 * M_PI : a) / (2 * M_PI), uv[2 * v + 1] = (w < 0 ? w + 2 * M_PI : w) / (2 * M_PI);
+    }
+    s = corner_uvs(m, uv, (const bool[2]){true, true}, NULL);
+    free(uv);
+    if (s != LUCENT_OK) lucent_mesh_destroy(m), *dest = NULL;
+    return s;
 }
 
 lucent_status lucent_mesh_primitive(const lucent_primitive_desc *desc, lucent_mesh **dest)

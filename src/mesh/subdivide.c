@@ -136,6 +136,23 @@ static void split_faces(const lucent_mesh *m, const edge_table *t, uint32_t *des
     }
 }
 
+/* The children's corner coordinates, the parent's linearly interpolated (edge midpoints). */
+static lucent_status split_uvs(const lucent_mesh *m, lucent_mesh *dest)
+{
+    if (!m->uvs) return LUCENT_OK;
+    dest->uvs = malloc(24 * m->face_count * sizeof *dest->uvs + 1);
+    if (!dest->uvs) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    for (size_t f = 0; f < m->face_count; f++) {
+        const double *c = m->uvs + 6 * f;
+        double e[3][2]; /* the midpoint of edge (k, k + 1) */
+        for (int k = 0; k < 3; k++)
+            for (int i = 0; i < 2; i++) e[k][i] = 0.5 * (c[2 * k + i] + c[2 * ((k + 1) % 3) + i]);
+        const double *corner[12] = {c, e[0], e[2], c + 2, e[1], e[0], c + 4, e[2], e[1], e[0], e[1], e[2]};
+        for (int j = 0; j < 12; j++) memcpy(dest->uvs + 24 * f + 2 * j, corner[j], 2 * sizeof *dest->uvs);
+    }
+    return LUCENT_OK;
+}
+
 static lucent_status subdivide_once(const lucent_mesh *m, lucent_mesh **dest)
 {
     edge_table t = {0};
@@ -152,6 +169,8 @@ static lucent_status subdivide_once(const lucent_mesh *m, lucent_mesh **dest)
         edge_points(m, &t, (*dest)->positions + 3 * m->vertex_count);
         split_faces(m, &t, (*dest)->faces);
         lucent_mesh_compute_normals(*dest);
+        s = split_uvs(m, *dest);
+        if (s != LUCENT_OK) lucent_mesh_destroy(*dest), *dest = NULL;
     }
     free(ring);
     edge_table_free(&t);
