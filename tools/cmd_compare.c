@@ -21,7 +21,7 @@ static const char k_usage[] =
     "\n"
     "options:\n"
     "  --methods LIST   comma-separated methods (default " DEFAULT_METHODS ");\n"
-    "                   any of lambert, cdrf, cdrf+translucency, ssss, ssss:<model>[rank]\n"
+    "                   any of lambert, cdrf, cdrf+translucency, ssss, ssss:<model>[rank], tsd\n"
     "  --spp N          reference samples per pixel (default: the scene's render.spp)\n"
     "  --time S         at most S seconds per reference (default: no limit)\n"
     "  --frames N       GL frames timed per method; the median is reported (default 5)\n"

@@ -30,6 +30,8 @@ static const char k_usage[] =
     "                       (ssss:preint, ssss:svd3, ssss:jimenez, ...)\n"
     "  points[:VARIANT]     surfels: splatting and splat-based diffusion (Kim et al.; docs/points.md);\n"
     "                       points:sog4, points:deon (d'Eon's skin table), points:brdf, points:disks\n"
+    "  tsd                  d'Eon & Luebke's texture-space diffusion: irradiance in the texture atlas,\n"
+    "                       a chain of stretch-corrected Gaussian blurs (docs/tsd.md)\n"
     "\n"
     "options:\n"
     "  --method M          the method (same as --set render.method=M)\n"

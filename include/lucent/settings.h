@@ -10,6 +10,7 @@
  *   translucency  light through thin parts (src/gl/methods/translucency.c)
  *   cdrf          the curvature-dependent reflectance (src/gl/methods/cdrf.c)
  *   points        surfels, splatting and splat-based diffusion (src/gl/methods/points.c)
+ *   tsd           texture-space diffusion (src/gl/methods/tsd.c)
  *   trace         the path tracer (src/trace/settings.c)
  * In scene files every setting is a member of the "render" object under its key ("render.taps");
  * keys are unique across groups. `lucent render --settings` lists the table. */
@@ -36,6 +37,7 @@ typedef enum lucent_render_method {
     LUCENT_METHOD_CDRF_TRANSLUCENCY, /* the CDRF with depth-based transmission (the blog) */
     LUCENT_METHOD_SSSS,              /* screen-space separable subsurface scattering */
     LUCENT_METHOD_POINTS,            /* surfels: splatting and splat-based diffusion (Kim et al.) */
+    LUCENT_METHOD_TSD,               /* texture-space diffusion (d'Eon, Luebke & Enderton 2007) */
     LUCENT_METHOD_COUNT
 } lucent_render_method;
 
@@ -120,6 +122,12 @@ typedef struct lucent_points_settings {
     double filter_px;     /* radius of the screen-space prefilter, pixels */
     int impulse;          /* >= 0: only that surfel of each object is lit (the impulse response) */
 } lucent_points_settings;
+typedef struct lucent_tsd_settings {
+    int size;      /* texels along a side of each object's texture */
+    int gaussians; /* of the fitted sum of Gaussians */
+    int taps;      /* per 1-D pass, odd */
+    int sog;       /* 0 auto (d'Eon's table for skin, else the fit), 1 d'Eon's table, 2 the fit */
+} lucent_tsd_settings;
 
 typedef struct lucent_trace_settings {
     int spp; /* samples per pixel */
@@ -136,6 +144,7 @@ typedef struct lucent_render_settings {
     lucent_translucency_settings translucency;
     lucent_cdrf_settings cdrf;
     lucent_points_settings points;
+    lucent_tsd_settings tsd;
     lucent_trace_settings trace;
 } lucent_render_settings;
 

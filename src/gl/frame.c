@@ -12,7 +12,8 @@
 /* ---- the methods: the table indexed by lucent_render_method, and the names and variants of
  * lucent/settings.h read from it ---- */
 
-extern const gl_method gl_method_lambert, gl_method_cdrf, gl_method_cdrf_translucency, gl_method_ssss, gl_method_points;
+extern const gl_method gl_method_lambert, gl_method_cdrf, gl_method_cdrf_translucency, gl_method_ssss, gl_method_points,
+    gl_method_tsd;
 
 const gl_method *const gl_methods[LUCENT_METHOD_COUNT] = {
     [LUCENT_METHOD_LAMBERT] = &gl_method_lambert,
@@ -20,6 +21,7 @@ const gl_method *const gl_methods[LUCENT_METHOD_COUNT] = {
     [LUCENT_METHOD_CDRF_TRANSLUCENCY] = &gl_method_cdrf_translucency,
     [LUCENT_METHOD_SSSS] = &gl_method_ssss,
     [LUCENT_METHOD_POINTS] = &gl_method_points,
+    [LUCENT_METHOD_TSD] = &gl_method_tsd,
 };
 
 const char *lucent_render_method_name(lucent_render_method method)

@@ -1,0 +1,52 @@
+// tsd, the final shading (GPU Gems 3 14.4.4): the diffuse from the sum of Gaussians at the
+// fragment's texture coordinates, albedo (sum / pi + ambient), and the Kelemen/Szirmay-Kalos
+// specular of the other methods with the shadow map's visibility; the same targets as surface.glsl.
+#include "common.glsl"
+#include "lights.glsl"
+
+in vec3 v_position;
+in vec3 v_normal;
+in float v_curvature;
+in vec2 v_uv;
+
+layout(binding = 3) uniform sampler2D u_sum; // sum_i w_i G_i * E, per channel
+
+uniform vec3 u_albedo;
+uniform float u_roughness;
+uniform float u_f0;
+uniform float u_material;
+uniform float u_object;
+uniform float u_shadow_offset;
+
+layout(location = 0) out vec4 o_diffuse;
+layout(location = 1) out vec4 o_specular;
+layout(location = 2) out vec2 o_depth;
+#if AOV
+layout(location = 3) out vec4 o_aov_normal;
+layout(location = 4) out vec4 o_aov_position;
+layout(location = 5) out vec4 o_aov_light;
+#endif
+
+void main()
+{
+    float n2 = dot(v_normal, v_normal);
+    vec3 n = n2 > 0.0 ? v_normal * inversesqrt(n2) : vec3(0.0); // zero: a vertex without a face of area
+    if (!gl_FrontFacing) n = -n;
+    vec3 v = normalize(u_eye.xyz - v_position), specular = vec3(0.0);
+    float vis0 = 1.0;
+    for (int i = 0; i < u_counts.x; i++) {
+        vec3 l, e = light_incident(i, v_position, l);
+        float vis = shadow_visibility(i, v_position + n * u_light_texel[i].x * u_shadow_offset);
+        specular += e * specular_ksk(n, v, l, u_roughness, u_f0) * vis;
+        if (i == 0) vis0 = vis;
+    }
+    vec3 diffused = texture(u_sum, v_uv).rgb;
+    o_diffuse = vec4(u_albedo * (diffused / PI + u_ambient.rgb), 1.0);
+    o_specular = vec4(specular, 1.0);
+    o_depth = vec2(dot(v_position - u_eye.xyz, u_forward.xyz), u_material);
+#if AOV
+    o_aov_normal = vec4(n, v_curvature);
+    o_aov_position = vec4(v_position, u_object);
+    o_aov_light = vec4(vis0, 0.0, -1.0, 0.0);
+#endif
+}
