@@ -17,7 +17,8 @@
  *               the chart: no light from the unrelated charts packed beside it); the vertical pass
  *               also adds w_i G_i into the sum
  *   geometry    the mesh from the camera: diffuse albedo (sum / pi + ambient) from the sum at the
- *               fragment's texture coordinates, the Kelemen/Szirmay-Kalos specular of the others
+ *               fragment's texture coordinates (a face smaller than a texel, never rasterised into
+ *               the texture, keeps its own irradiance), the Kelemen/Szirmay-Kalos specular of the others
  *   compose     the house's compose pass
  * The variances and RGB weights: d'Eon's skin table (lucent_sog_deon_skin) or the bake room's fit
  * of the material's profile (LUCENT_BAKE_SOG), the weights normalised per channel (the albedo
@@ -366,6 +367,7 @@ static void final_pass(lucent_renderer *r, tsd_state *st)
         tsd_object *o = &st->objects[i];
         if (!r->scene->objects[i].visible) continue;
         object_uniforms(r, i, st->final);
+        glUniform1f(glGetUniformLocation(st->final, "u_gaussians"), (float)o->sog.count);
         glBindTextureUnit(3, o->sum);
         glBindVertexArray(o->vao);
         glDrawElements(GL_TRIANGLES, o->index_count, GL_UNSIGNED_INT, NULL);

@@ -17,6 +17,7 @@ uniform float u_f0;
 uniform float u_material;
 uniform float u_object;
 uniform float u_shadow_offset;
+uniform float u_gaussians; // of this object's sum
 
 layout(location = 0) out vec4 o_diffuse;
 layout(location = 1) out vec4 o_specular;
@@ -32,15 +33,21 @@ void main()
     float n2 = dot(v_normal, v_normal);
     vec3 n = n2 > 0.0 ? v_normal * inversesqrt(n2) : vec3(0.0); // zero: a vertex without a face of area
     if (!gl_FrontFacing) n = -n;
-    vec3 v = normalize(u_eye.xyz - v_position), specular = vec3(0.0);
+    vec3 v = normalize(u_eye.xyz - v_position), specular = vec3(0.0), local = vec3(0.0);
     float vis0 = 1.0;
     for (int i = 0; i < u_counts.x; i++) {
         vec3 l, e = light_incident(i, v_position, l);
         float vis = shadow_visibility(i, v_position + n * u_light_texel[i].x * u_shadow_offset);
         specular += e * specular_ksk(n, v, l, u_roughness, u_f0) * vis;
+        local += e * max(dot(n, l), 0.0) * vis;
         if (i == 0) vis0 = vis;
     }
-    vec3 diffused = texture(u_sum, v_uv).rgb;
+    // The sum's alpha counts the Gaussians summed at a texel: over u_gaussians it is the share of the
+    // bilinear look-up that fell on texels of a chart. A face smaller than a texel may have none (its
+    // chart was never rasterised): it keeps its own irradiance, undiffused.
+    vec4 t = texture(u_sum, v_uv);
+    float cover = t.a / u_gaussians;
+    vec3 diffused = cover > 0.01 ? t.rgb / cover : local;
     o_diffuse = vec4(u_albedo * (diffused / PI + u_ambient.rgb), 1.0);
     o_specular = vec4(specular, 1.0);
     o_depth = vec2(dot(v_position - u_eye.xyz, u_forward.xyz), u_material);

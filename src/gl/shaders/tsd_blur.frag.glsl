@@ -40,5 +40,5 @@ void main()
         kept += w0 + w1;
     }
     o_color = vec4(kept > 0.0 ? sum / kept : texelFetch(u_source, p, 0).rgb, 1.0);
-    o_sum = vec4(u_weight * o_color.rgb, 0.0);
+    o_sum = vec4(u_weight * o_color.rgb, 1.0); // a: the Gaussians summed here (the final pass's coverage)
 }
