@@ -2,7 +2,9 @@
  * flat plane (at two texture scales) and on a UV sphere with its analytic coordinates, diffused by
  * TSD, against the CPU convolution in object space of the same irradiance with the same sum of
  * Gaussians (d'Eon's skin table). The irradiance is Lambert's image of the same scene (the same
- * shadow map and filter); positions come from the renderer's auxiliary outputs. */
+ * shadow map and filter); positions come from the renderer's auxiliary outputs. The objects have roughness 0,
+ * so the boundary's GGX lobe shows no highlight (Lambert's image is then irradiance only, times the
+ * slowly varying F_t(w_o) that both methods apply after the diffusion). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -156,8 +158,8 @@ static double plane_x(const float *p) { return p[0]; }
 static const char k_plane_scene[] =
     "{\"camera\": {\"position\": [8, 40, 10], \"target\": [0, 0, 0], \"fov_y\": 40},"
     " \"lights\": [{\"type\": \"directional\", \"direction\": [1, -1, 0], \"intensity\": 3}],"
-    " \"objects\": [{\"mesh\": \"%s\", \"material\": \"skin1\", \"specular_f0\": 0},"
-    "              {\"mesh\": \"%s\", \"material\": \"skin1\", \"specular_f0\": 0}],"
+    " \"objects\": [{\"mesh\": \"%s\", \"material\": \"skin1\", \"roughness\": 0},"
+    "              {\"mesh\": \"%s\", \"material\": \"skin1\", \"roughness\": 0}],"
     " \"render\": {\"width\": 512, \"height\": 512, \"method\": \"tsd\", \"tsd_size\": 2048, \"tsd_sog\": \"deon\", "
     "\"translucency\": false}}";
 
@@ -238,8 +240,8 @@ TEST(sphere_edge_matches_object_space_convolution)
              "{\"camera\": {\"position\": [0, 45, 25], \"target\": [0, 20, 0], \"fov_y\": 50},"
              " \"lights\": [{\"type\": \"directional\", \"direction\": [0, -1, 0], \"intensity\": 3}],"
              " \"objects\": [{\"mesh\": {\"primitive\": \"uv_sphere\", \"radius\": 20, \"u_count\": 256, \"v_count\":"
-             " 128}, \"material\": \"skin1\", \"specular_f0\": 0},"
-             "              {\"mesh\": \"%s\", \"material\": \"skin1\", \"specular_f0\": 0}],"
+             " 128}, \"material\": \"skin1\", \"roughness\": 0},"
+             "              {\"mesh\": \"%s\", \"material\": \"skin1\", \"roughness\": 0}],"
              " \"render\": {\"width\": 1024, \"height\": 1024, \"method\": \"tsd\", \"tsd_size\": 2048, \"tsd_sog\": "
              "\"deon\", \"translucency\": false}}",
              roof);

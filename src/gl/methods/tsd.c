@@ -18,7 +18,8 @@
  *               also adds w_i G_i into the sum
  *   geometry    the mesh from the camera: diffuse albedo (sum / pi + ambient) from the sum at the
  *               fragment's texture coordinates (a face smaller than a texel, never rasterised into
- *               the texture, keeps its own irradiance), the Kelemen/Szirmay-Kalos specular of the others
+ *               the texture, keeps its own irradiance), the boundary's GGX reflection and
+ *               F_t(w_o) of the others
  *   compose     the house's compose pass
  * The variances and RGB weights: d'Eon's skin table (lucent_sog_deon_skin) or the bake room's fit
  * of the material's profile (LUCENT_BAKE_SOG), the weights normalised per channel (the albedo
@@ -29,6 +30,7 @@
 #include <strings.h>
 
 #include "base/json.h"
+#include "base/optics.h"
 #include "base/settings_table.h"
 #include "gl/methods/surface.h"
 #include "lucent/mesh.h"
@@ -343,7 +345,8 @@ static void object_uniforms(const lucent_renderer *r, int i, GLuint p)
     const lucent_scene_object *o = &r->scene->objects[i];
     glUniform3f(glGetUniformLocation(p, "u_albedo"), (float)o->albedo[0], (float)o->albedo[1], (float)o->albedo[2]);
     glUniform1f(glGetUniformLocation(p, "u_roughness"), (float)o->roughness);
-    glUniform1f(glGetUniformLocation(p, "u_f0"), (float)o->specular_f0);
+    glUniform1f(glGetUniformLocation(p, "u_eta"), (float)o->material.eta);
+    glUniform1f(glGetUniformLocation(p, "u_mean_ft"), (float)lucent_fresnel_mean_transmittance(o->material.eta));
     glUniform1f(glGetUniformLocation(p, "u_material"), (float)r->tables.object_material[i]);
     glUniform1f(glGetUniformLocation(p, "u_object"), (float)i);
     glUniform1f(glGetUniformLocation(p, "u_shadow_offset"), 1.5f);

@@ -101,14 +101,8 @@ void main()
     }
     vec3 through = transmitted_e / PI;
     o_diffuse = vec4(albedo * (irradiance / PI + u_ambient.rgb) + through, u_strength);
-    // Diffuse light leaves through the boundary toward the viewer with F_t(w_o) = 1 - F(n.v), normalised
-    // by its hemispherical mean (Jensen et al. 2001, S_d's F_t(w_o) / the mean); the compose pass applies
-    // it after any blur, where the light leaves. F_t(w_i) is left out: the rough boundary (GGX) lets in
-    // more at grazing incidence than the smooth F_t says, and the equator bench's subsurface-only
-    // reference agrees with F_t(w_o) alone within 5% from 25 to 65 degrees, with both within 10%
-    // (docs/compare.md).
-    float ft_out = (1.0 - fresnel_dielectric(clamp(dot(n, v), 0.0, 1.0), u_eta)) / max(u_mean_ft, 1e-3);
-    o_specular = vec4(specular, ft_out);
+    // The diffuse light's way out toward the viewer (lights.glsl), applied by the compose pass after any blur.
+    o_specular = vec4(specular, diffuse_exit(n, v, u_eta, u_mean_ft));
     o_depth = vec2(dot(v_position - u_eye.xyz, u_forward.xyz), u_material);
 #if AOV
     o_aov_normal = vec4(n, v_curvature);

@@ -1,6 +1,7 @@
 // tsd, the final shading (GPU Gems 3 14.4.4): the diffuse from the sum of Gaussians at the
-// fragment's texture coordinates, albedo (sum / pi + ambient), and the Kelemen/Szirmay-Kalos
-// specular of the other methods with the shadow map's visibility; the same targets as surface.glsl.
+// fragment's texture coordinates, albedo (sum / pi + ambient), the boundary's GGX reflection of the
+// other methods with the shadow map's visibility, and in the specular target's alpha the diffuse
+// light's way out toward the viewer (diffuse_exit); the same targets as surface.glsl.
 #include "common.glsl"
 #include "lights.glsl"
 
@@ -13,7 +14,8 @@ layout(binding = 3) uniform sampler2D u_sum; // sum_i w_i G_i * E, per channel
 
 uniform vec3 u_albedo;
 uniform float u_roughness;
-uniform float u_f0;
+uniform float u_eta;     // the material's index of refraction
+uniform float u_mean_ft; // lucent_fresnel_mean_transmittance(eta)
 uniform float u_material;
 uniform float u_object;
 uniform float u_shadow_offset;
@@ -38,7 +40,7 @@ void main()
     for (int i = 0; i < u_counts.x; i++) {
         vec3 l, e = light_incident(i, v_position, l);
         float vis = shadow_visibility(i, v_position + n * u_light_texel[i].x * u_shadow_offset);
-        specular += e * specular_ksk(n, v, l, u_roughness, u_f0) * vis;
+        specular += e * boundary_reflection(n, v, l, u_roughness, u_eta) * vis;
         local += e * max(dot(n, l), 0.0) * vis;
         if (i == 0) vis0 = vis;
     }
@@ -49,7 +51,7 @@ void main()
     float cover = t.a / u_gaussians;
     vec3 diffused = cover > 0.01 ? t.rgb / cover : local;
     o_diffuse = vec4(u_albedo * (diffused / PI + u_ambient.rgb), 1.0);
-    o_specular = vec4(specular, 1.0);
+    o_specular = vec4(specular, diffuse_exit(n, v, u_eta, u_mean_ft));
     o_depth = vec2(dot(v_position - u_eye.xyz, u_forward.xyz), u_material);
 #if AOV
     o_aov_normal = vec4(n, v_curvature);
