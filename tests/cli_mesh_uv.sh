@@ -20,7 +20,11 @@ expect_true "mesh-uv reads its glTF back with the coordinates" -- grep -q "its o
 expect_fail 1 "$FIXTURES/mesh/garbage.ply" -- "$LUCENT" mesh-uv "$FIXTURES/mesh/garbage.ply" "$TMP/g.obj"
 expect_no_file "$TMP/g.obj"
 expect_no_file "$TMP/g.png"
-expect_fail 1 "$TMP/nodir/q.obj" -- "$LUCENT" mesh-uv "$FIXTURES/mesh/quad-uv.obj" "$TMP/nodir/q.obj"
+# A missing folder is created (every command creates its output's folder); a plain file in its place fails.
+expect_ok -- "$LUCENT" mesh-uv "$FIXTURES/mesh/quad-uv.obj" "$TMP/newdir/q.obj"
+expect_true "mesh-uv creates the output's folder" -- test -s "$TMP/newdir/q.obj"
+: > "$TMP/plainfile-uv"
+expect_fail 1 "$TMP/plainfile-uv" -- "$LUCENT" mesh-uv "$FIXTURES/mesh/quad-uv.obj" "$TMP/plainfile-uv/q.obj"
 expect_fail 2 "OUT must end in .obj or .gltf" -- "$LUCENT" mesh-uv "$FIXTURES/mesh/tetra.ply" "$TMP/t.ply"
 expect_fail 2 "--angle needs degrees in (0, 90)" -- "$LUCENT" mesh-uv "$FIXTURES/mesh/tetra.ply" "$TMP/t.obj" --angle 90
 expect_fail 2 "expected a mesh and an output file" -- "$LUCENT" mesh-uv "$FIXTURES/mesh/tetra.ply"
