@@ -68,3 +68,16 @@ expect_fail 2 "--gl-platform must be" -- "${RENDER[@]}" render "$SC/sphere.json"
 expect_fail 2 "unknown option '--frob'" -- "${RENDER[@]}" render "$SC/sphere.json" --out "$TMP/u.png" --frob
 expect_no_file "$TMP/u.png" "$TMP/u.exr" "$TMP/u.txt"
 
+
+# Point clouds ("points": file.ply): a good one renders with points; a bad one (here a NaN) fails naming the
+# file, the vertex and the property, and nothing is written.
+printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\nproperty float nz\nend_header\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n1 1 0 0 0 1\n' > "$TMP/cloud.ply"
+sed 's/^1 1 0 0 0 1$/1 1 nan 0 0 1/' "$TMP/cloud.ply" > "$TMP/cloud-nan.ply"
+for c in cloud cloud-nan; do
+  printf '{"camera": {"position": [0.5, 0.5, 5], "target": [0.5, 0.5, 0]}, "lights": [{"type": "directional", "direction": [0, 0, -1]}], "objects": [{"points": "%s.ply", "material": "skin1"}], "render": {"width": 24, "height": 24, "method": "points"}}\n' "$c" > "$TMP/scene-$c.json"
+done
+expect_ok -- "${RENDER[@]}" render "$TMP/scene-cloud.json" --out "$TMP/cloud.png" --no-cache
+expect_true "a point cloud renders with points" -- test -s "$TMP/cloud.png"
+expect_fail 1 "cloud-nan.ply: vertex 3: z is not finite" -- "${RENDER[@]}" render "$TMP/scene-cloud-nan.json" --out "$TMP/cloud-nan.png" --no-cache
+expect_fail 1 "objects[0].points" -- "$LUCENT" trace "$TMP/scene-cloud-nan.json" --out "$TMP/cloud-nan-t.png"
+expect_no_file "$TMP/cloud-nan.png" "$TMP/cloud-nan.json" "$TMP/cloud-nan-t.png"

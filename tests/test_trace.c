@@ -580,6 +580,32 @@ TEST(meshes_with_holes_terminate)
     lucent_pool_destroy(pool);
 }
 
+/* A point cloud has no surface to trace: the tracer leaves it out, so a scene with a cloud inside
+ * the ball's bounds (the same bounds, the same photons) gives the ball's image bit for bit. */
+TEST(point_clouds_are_skipped)
+{
+    const char *cloud = test_path("cloud.ply");
+    FILE *f = fopen(cloud, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fprintf(f, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+               "property float nx\nproperty float ny\nproperty float nz\nend_header\n"
+               "0 0 0 0 0 1\n0.1 0 0 0 0 1\n0 0.1 0 0 0 1\n");
+    fclose(f);
+    const char *light = "{\"type\": \"directional\", \"direction\": [0, 0, -1]}";
+    char extra[1200];
+    snprintf(extra, sizeof extra, "}, {\"points\": \"%s\", \"material\": \"skin1\"", cloud);
+    lucent_scene *a = sphere_scene("\"marble\"", light, 12, NULL), *b = sphere_scene("\"marble\"", light, 12, extra);
+    lucent_trace_result ra = {0}, rb = {0};
+    CHECK(a && b);
+    if (b) CHECK(b->object_count == 2 && b->objects[1].points && b->objects[1].mesh->face_count == 0);
+    if (a && b) CHECK_OK(render(a, NULL, 4, 7, NULL, &ra));
+    if (a && b) CHECK_OK(render(b, NULL, 4, 7, NULL, &rb));
+    if (ra.image && rb.image) CHECK(!memcmp(ra.image->data, rb.image->data, (size_t)12 * 12 * 3 * sizeof(float)));
+    lucent_trace_result_free(&ra), lucent_trace_result_free(&rb);
+    lucent_scene_destroy(a), lucent_scene_destroy(b);
+}
+
 TEST(bad_input_is_named)
 {
     lucent_tracer *tr = NULL;
@@ -615,5 +641,5 @@ TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_ad
           TEST_ENTRY(agrees_with_the_light_traced_sphere), TEST_ENTRY(same_seed_same_image_on_one_and_two_threads),
           TEST_ENTRY(error_falls_as_one_over_sqrt_spp), TEST_ENTRY(framing_matches_the_camera_projection),
           TEST_ENTRY(refuses_delta_lights_through_smooth_boundaries), TEST_ENTRY(meshes_with_holes_terminate),
-          TEST_ENTRY(bad_input_is_named), TEST_ENTRY(distance_bounded_flights_change_nothing),
-          TEST_ENTRY(deep_nee_roulette_is_unbiased))
+          TEST_ENTRY(point_clouds_are_skipped), TEST_ENTRY(bad_input_is_named),
+          TEST_ENTRY(distance_bounded_flights_change_nothing), TEST_ENTRY(deep_nee_roulette_is_unbiased))

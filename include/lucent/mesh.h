@@ -101,6 +101,9 @@ size_t lucent_ply_face_count(const lucent_ply *ply);
 int lucent_ply_property_count(const lucent_ply *ply);
 const char *lucent_ply_property_name(const lucent_ply *ply, int i);
 int lucent_ply_property_index(const lucent_ply *ply, const char *name);
+/* The largest value of the i-th property's type when it is an integer type (uchar: 255, ushort: 65535,
+ * char: 127, ...), 0 for float and double: the scale of colours stored as integers. */
+double lucent_ply_property_integer_max(const lucent_ply *ply, int i);
 
 /* Faces: not read, read when the file has them, or required (an error naming the file when the file
  * has no face element: "holds points only"). */

@@ -19,6 +19,7 @@
 #include "lucent/material.h"
 #include "lucent/mesh.h"
 #include "lucent/settings.h"
+#include "lucent/surfels.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -87,8 +88,11 @@ typedef enum lucent_albedo_source {
 
 typedef struct lucent_scene_object {
     char name[LUCENT_SCENE_NAME_SIZE];
-    char mesh_source[LUCENT_SCENE_PATH_SIZE]; /* the resolved file, or "primitive:<kind>" */
-    lucent_mesh *mesh;                        /* in world mm (scaled and transformed when loaded) */
+    char mesh_source[LUCENT_SCENE_PATH_SIZE]; /* the resolved file (mesh or point cloud), or "primitive:<kind>" */
+    lucent_mesh *mesh;                        /* in world mm (scaled and transformed when loaded); for a
+                                                 point cloud its points without faces */
+    lucent_surfels *points;                   /* "points": the cloud's surfels (level 0 only, world mm),
+                                                 lucent_surfels_load; NULL for a mesh */
     double mm_per_unit;                       /* as in the file (default 1) */
     double to_world[16];                      /* column-major: mesh units to world mm (scale included) */
     lucent_material material;                 /* the medium inside the mesh */
@@ -105,7 +109,8 @@ typedef struct lucent_scene_object {
     double sss_strength;          /* ssss: this object's share of the blur, [0, 1], default 1 (per pixel) */
     bool visible;                 /* default true */
     bool as_points;               /* the points method splats it as surfels (one per vertex,
-                                     lucent/surfels.h); the other methods and the tracer see the mesh */
+                                     lucent/surfels.h); the other methods and the tracer see the mesh.
+                                     Always true for a point cloud, which only the points method draws */
 } lucent_scene_object;
 
 /* ---- The scene --------------------------------------------------------------------------------- */

@@ -17,6 +17,7 @@
 #ifndef LUCENT_SURFELS_H
 #define LUCENT_SURFELS_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -43,6 +44,7 @@ typedef struct lucent_surfels {
     float *normals;
     float *radii;
     float *colors;
+    bool radii_given; /* level 0's radii came with the points (else from the k nearest) */
     int level_count;
     lucent_surfel_level levels[LUCENT_SURFEL_MAX_LEVELS];
     /* Per surfel: its parent in the next level (global index), UINT32_MAX on the last level. */
@@ -71,6 +73,28 @@ lucent_status lucent_surfels_from_points(size_t count, const float *positions, c
 
 /* Surfels from a mesh: one per vertex with a non-zero normal (vertices without a face are left out). */
 lucent_status lucent_surfels_from_mesh(const lucent_mesh *mesh, const lucent_surfels_desc *desc, lucent_surfels **dest);
+
+/* Surfels from a point cloud in a PLY file (ASCII, binary, .ply.gz; faces, if any, are ignored), read
+ * by Lucent's PLY reader (lucent_ply_open):
+ *   - a plain cloud: vertex properties x y z nx ny nz, optionally red green blue (integer types scaled
+ *     by their largest value, floats taken as [0, 1]; sRGB-encoded, decoded to linear) and radius
+ *     (in the file's units; without it radii come from the k nearest, desc->neighbours);
+ *   - a 3D Gaussian splatting file (Kerbl et al. 2023: x y z nx ny nz f_dc_0..2 f_rest_* opacity
+ *     scale_0..2 rot_0..3, the normals written as zeros): the normal is the axis of the smallest scale
+ *     (the rotation's column; turned away from the cloud's centroid, since a splat has no side), the
+ *     radius twice the geometric mean of the two other scales (scales are stored as logs: two standard
+ *     deviations, the method's default cutoff), the colour 0.5 + 0.28209479 f_dc (the band-0 spherical
+ *     harmonic 1 / (2 sqrt(pi))), clamped to [0, 1] and decoded from sRGB. opacity and f_rest are not
+ *     used.
+ * Fails with LUCENT_ERR_PARSE and a message naming the file and, for bad values, the vertex and the
+ * property: no positions or no normals, fewer than two points, a value that is not finite, a zero
+ * normal, a radius <= 0, a truncated or malformed file. */
+lucent_status lucent_surfels_load(const char *path, const lucent_surfels_desc *desc, lucent_surfels **dest);
+
+/* Moves surfels by the affine column-major m: positions by m, normals by its inverse transpose
+ * (renormalised; turned with a mirroring map's sign so they keep their side), radii and spacings by
+ * the cube root of |det| (exact for uniform scales). */
+void lucent_surfels_transform(lucent_surfels *surfels, const double m[16]);
 
 /* Frees surfels (NULL is accepted). */
 void lucent_surfels_destroy(lucent_surfels *surfels);

@@ -128,7 +128,8 @@ lucent_status gl_meshes_curvature(gl_meshes *m, const lucent_scene *scene, int s
 {
     lucent_status s = LUCENT_OK;
     for (int i = 0; i < m->count && s == LUCENT_OK; i++)
-        if (m->mesh[i].curvature_smooth != smooth_rings && scene->objects[i].visible)
+        if (m->mesh[i].curvature_smooth != smooth_rings && scene->objects[i].visible &&
+            scene->objects[i].mesh->face_count > 0) /* a point cloud has no curvature to upload */
             s = one_curvature(&scene->objects[i], &m->mesh[i], smooth_rings, pool);
     return s == LUCENT_OK ? gl_check("uploading curvature") : s;
 }

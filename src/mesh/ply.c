@@ -255,6 +255,14 @@ int lucent_ply_property_index(const lucent_ply *ply, const char *name)
     return -1;
 }
 
+double lucent_ply_property_integer_max(const lucent_ply *ply, int i)
+{
+    if (i < 0 || i >= ply->scalar_count) return 0;
+    static const double k_max[] = {[T_I8] = 127,           [T_U8] = 255,           [T_I16] = 32767, [T_U16] = 65535,
+                                   [T_I32] = 2147483647.0, [T_U32] = 4294967295.0, [T_F32] = 0,     [T_F64] = 0};
+    return k_max[ply->elements[ply->vertex_el].props[ply->scalars[i]].type];
+}
+
 void lucent_ply_data_free(lucent_ply_data *data)
 {
     if (!data) return;

@@ -366,6 +366,7 @@ lucent_status lucent_surfels_from_points(size_t count, const float *pos, const f
         }
         s->child_start[count] = 0;
         if (colors) memcpy(s->colors, colors, 3 * count * sizeof *colors);
+        s->radii_given = radii != NULL;
         if (radii)
             memcpy(s->radii, radii, count * sizeof *radii);
         else
@@ -407,4 +408,25 @@ lucent_status lucent_surfels_from_mesh(const lucent_mesh *m, const lucent_surfel
     lucent_status s = lucent_surfels_from_points(n, pos, nrm, NULL, NULL, desc, dest);
     free(pos), free(nrm);
     return s;
+}
+
+void lucent_surfels_transform(lucent_surfels *sf, const double m[16])
+{
+    /* the cofactor matrix C of the linear part: M^-T = C / det, so normals go by C (times det's sign) */
+    double a = m[0], b = m[4], c = m[8], d = m[1], e = m[5], f = m[9], g = m[2], h = m[6], k = m[10];
+    double C[3][3] = {{e * k - f * h, -(d * k - f * g), d * h - e * g},
+                      {-(b * k - c * h), a * k - c * g, -(a * h - b * g)},
+                      {b * f - c * e, -(a * f - c * d), a * e - b * d}};
+    double det = a * C[0][0] + b * C[0][1] + c * C[0][2], scale = cbrt(fabs(det)), sign = det < 0 ? -1 : 1;
+    for (size_t i = 0; i < sf->count; i++) {
+        float *p = sf->positions + 3 * i, *n = sf->normals + 3 * i;
+        double q[3], r[3], len = 0;
+        for (int j = 0; j < 3; j++) q[j] = m[j] * p[0] + m[4 + j] * p[1] + m[8 + j] * p[2] + m[12 + j];
+        for (int j = 0; j < 3; j++)
+            r[j] = sign * (C[j][0] * n[0] + C[j][1] * n[1] + C[j][2] * n[2]), len += r[j] * r[j];
+        len = sqrt(len);
+        for (int j = 0; j < 3; j++) p[j] = (float)q[j], n[j] = len > 0 ? (float)(r[j] / len) : n[j];
+        sf->radii[i] = (float)(sf->radii[i] * scale);
+    }
+    for (int l = 0; l < sf->level_count; l++) sf->levels[l].spacing *= scale;
 }

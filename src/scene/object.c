@@ -11,9 +11,9 @@
 #include "material/internal.h"
 #include "scene/internal.h"
 
-static const char *const k_object_keys[] = {"name",         "mesh",           "mm_per_unit", "transform",   "material",
-                                            "albedo",       "albedo_texture", "roughness",   "specular_f0", "sigma0",
-                                            "sss_strength", "visible",        "subdivide",   "as_points",   NULL};
+static const char *const k_object_keys[] = {
+    "name",        "mesh",   "mm_per_unit",  "transform", "material",  "albedo",    "albedo_texture", "roughness",
+    "specular_f0", "sigma0", "sss_strength", "visible",   "subdivide", "as_points", "points",         NULL};
 
 /* ---- paths ---- */
 
@@ -82,12 +82,45 @@ static lucent_status load_mesh(const lucent_json_node *n, const char *base_dir, 
     return s;
 }
 
+/* "points": a point cloud (lucent_surfels_load) in place of a mesh; its surfels at level 0 only
+ * (the points method builds the levels with its own settings), its mesh the points without faces. */
+static lucent_status load_points(const lucent_json_node *n, const char *base_dir, bool skip, lucent_scene_object *o)
+{
+    if (lucent_json_has(n, "mesh"))
+        return lucent_json_fail(n, "points", LUCENT_ERR_PARSE, "give mesh or points, not both");
+    const char *file;
+    lucent_status s = lucent_json_string(n, "points", &file);
+    if (s != LUCENT_OK) return s;
+    join_path(base_dir, file, o->mesh_source, sizeof o->mesh_source);
+    o->as_points = true;
+    if (skip) return LUCENT_OK;
+    if (access(o->mesh_source, R_OK) != 0)
+        return lucent_json_fail(n, "points", LUCENT_ERR_NOT_FOUND, "cannot open %s: %s", o->mesh_source,
+                                strerror(errno));
+    s = lucent_surfels_load(o->mesh_source, &(lucent_surfels_desc){.max_levels = 1}, &o->points);
+    if (s != LUCENT_OK) return lucent_json_fail(n, "points", s, "%s", lucent_last_error());
+    size_t count = o->points->count;
+    if ((s = lucent_mesh_create(count, 0, &o->mesh)) != LUCENT_OK) return s;
+    for (size_t i = 0; i < 3 * count; i++) o->mesh->positions[i] = o->points->positions[i];
+    return LUCENT_OK;
+}
+
+/* The cloud moved into world mm, and its mesh with it (positions and the surfels' normals). */
+static void place_points(lucent_scene_object *o)
+{
+    lucent_surfels_transform(o->points, o->to_world);
+    for (size_t i = 0; i < 3 * o->points->count; i++)
+        o->mesh->positions[i] = o->points->positions[i], o->mesh->normals[i] = o->points->normals[i];
+}
+
 /* "subdivide": Loop subdivision levels, for coarse meshes whose facets would show (the path tracer
  * sees the true facets; the GL renderer interpolates normals across them). */
 static lucent_status subdivide(const lucent_json_node *n, lucent_scene_object *o)
 {
     int levels = 0;
     lucent_status s = scene_read_int(n, "subdivide", 0, 0, 4, &levels);
+    if (s == LUCENT_OK && levels > 0 && lucent_json_has(n, "points"))
+        return lucent_json_fail(n, "subdivide", LUCENT_ERR_PARSE, "a point cloud has no faces to subdivide");
     if (s == LUCENT_OK && o->mesh && levels > 0 && (s = lucent_mesh_subdivide(o->mesh, levels)) != LUCENT_OK)
         s = lucent_json_fail(n, "subdivide", s, "%s", lucent_last_error());
     return s;
@@ -256,10 +289,15 @@ lucent_status scene_read_object(const lucent_json_node *n, const char *base_dir,
     if (s == LUCENT_OK) s = read_transform(n, o->mm_per_unit, o->to_world);
     if (s == LUCENT_OK) s = read_material(n, &o->material);
     if (s == LUCENT_OK) s = read_surface(n, o);
-    if (s == LUCENT_OK) s = load_mesh(n, base_dir, skip_meshes, o);
+    if (s == LUCENT_OK)
+        s = lucent_json_has(n, "points") ? load_points(n, base_dir, skip_meshes, o)
+                                         : load_mesh(n, base_dir, skip_meshes, o);
     if (s == LUCENT_OK) s = subdivide(n, o);
     if (s == LUCENT_OK) s = read_albedo(n, base_dir, skip_meshes, o);
-    if (s == LUCENT_OK && o->mesh) transform_mesh(o->mesh, o->to_world);
+    if (s == LUCENT_OK && o->points)
+        place_points(o);
+    else if (s == LUCENT_OK && o->mesh)
+        transform_mesh(o->mesh, o->to_world);
     if (s == LUCENT_OK && !o->name[0]) snprintf(o->name, sizeof o->name, "%s", o->material.name);
     if (s != LUCENT_OK) scene_object_free(o);
     return s;
@@ -268,6 +306,8 @@ lucent_status scene_read_object(const lucent_json_node *n, const char *base_dir,
 void scene_object_free(lucent_scene_object *o)
 {
     lucent_mesh_destroy(o->mesh);
+    lucent_surfels_destroy(o->points);
+    o->points = NULL;
     lucent_image_destroy(o->albedo_texture);
     free(o->texcoords);
     o->mesh = NULL, o->albedo_texture = NULL, o->texcoords = NULL;

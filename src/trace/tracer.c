@@ -90,7 +90,7 @@ static lucent_status build(lucent_tracer *tr)
         return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory");
     }
     for (int i = 0; i < sc->object_count; i++)
-        if (sc->objects[i].visible) {
+        if (sc->objects[i].visible && !sc->objects[i].points) { /* a point cloud has no surface to trace */
             map[tr->object_count] = i;
             build_object(&sc->objects[i], i, tr->render.trace.boundary_model, &tr->objects[tr->object_count]);
             tr->has_matched |= tr->objects[tr->object_count++].boundary.kind == TR_BOUNDARY_MATCHED;

@@ -172,7 +172,12 @@ static lucent_status build_surfels(lucent_renderer *r, points_state *st, const l
     size_t total = 0, child_total = 0;
     for (int i = 0; i < sc->object_count && e == LUCENT_OK; i++) {
         if (!splatted(sc, i)) continue;
-        e = lucent_surfels_from_mesh(sc->objects[i].mesh, &d, &sf[i]);
+        const lucent_surfels *cloud = sc->objects[i].points;
+        if (cloud)
+            e = lucent_surfels_from_points(cloud->levels[0].count, cloud->positions, cloud->normals,
+                                           cloud->radii_given ? cloud->radii : NULL, cloud->colors, &d, &sf[i]);
+        else
+            e = lucent_surfels_from_mesh(sc->objects[i].mesh, &d, &sf[i]);
         if (e != LUCENT_OK) {
             e = lucent_error_context(e, "object \"%s\": surfels", sc->objects[i].name);
             break;
