@@ -210,7 +210,9 @@ static void assimp_child(int fd, const void *data, size_t size, const char *form
     /* A crash kills the child plainly: the parent's handlers (a sanitizer's, a fuzzer's) must not report it
      * as their own. A hang becomes SIGALRM / SIGXCPU; memory is bounded where no sanitizer reserves shadow
      * memory. */
-    static const int crashes[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTRAP, SIGALRM, SIGXCPU};
+    static const int crashes[] = {
+        SIGSEGV, SIGBUS,  SIGFPE, SIGILL,  SIGABRT, SIGTRAP,
+        SIGALRM, SIGXCPU, SIGINT, SIGTERM, SIGHUP}; /* the parent's output cleanup is the parent's */
     for (size_t i = 0; i < sizeof crashes / sizeof crashes[0]; i++) signal(crashes[i], SIG_DFL);
     /* assimp prints (assertions, its logger): nothing of it reaches the user's terminal. */
     int null = open("/dev/null", O_WRONLY);
