@@ -7,6 +7,11 @@ for f in "$FIXTURES"/bad-meshes/*; do
   expect_fail 1 "$f: " -- "$LUCENT" curvature "$f" --out "$TMP/bad-mesh.csv"
 done
 expect_no_file "$TMP/bad-mesh.csv"
+# A .ply.gz cut in its gzip trailer, or with a wrong CRC, holds every vertex and face yet is an error.
+expect_fail 1 "hand-gz-trailer-cut.ply.gz: truncated gzip data" -- \
+  "$LUCENT" curvature "$FIXTURES/bad-meshes/hand-gz-trailer-cut.ply.gz" --out "$TMP/x.csv"
+expect_fail 1 "hand-gz-bad-crc.ply.gz: corrupt gzip data after 269 inflated bytes: incorrect data check" -- \
+  "$LUCENT" curvature "$FIXTURES/bad-meshes/hand-gz-bad-crc.ply.gz" --out "$TMP/x.csv"
 expect_fail 1 "points only" -- "$LUCENT" curvature "$FIXTURES/bad-meshes/hand-segv-ply-no-faces.ply" --out "$TMP/x.csv"
 mkfifo "$TMP/fifo.ply" 2>/dev/null &&
   expect_fail 1 "$TMP/fifo.ply: cannot read: a FIFO" -- timeout 10 "$LUCENT" curvature "$TMP/fifo.ply" --out "$TMP/x.csv"

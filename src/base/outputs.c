@@ -158,8 +158,7 @@ static lucent_status claim(lucent_atomic_file *af)
     if (!g_set.open) return LUCENT_OK;
     if (is_input(af->path))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "%s: the output names a file this command reads: refusing to overwrite an input",
-                            af->path);
+                            "%s: the output names a file this command reads: refusing to overwrite an input", af->path);
     char *canon = canonical(af->path);
     if (!canon) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", af->path);
     if (find_claim(canon) != (size_t)-1) {
@@ -235,7 +234,8 @@ static lucent_status rename_all(lucent_atomic_file *list)
         if (rename(af->tmp, af->path) != 0) {
             int e = errno;
             unlink(af->tmp);
-            if (s == LUCENT_OK) s = lucent_error(LUCENT_ERR_IO, "%s: cannot rename into place: %s", af->path, strerror(e));
+            if (s == LUCENT_OK)
+                s = lucent_error(LUCENT_ERR_IO, "%s: cannot rename into place: %s", af->path, strerror(e));
         }
     for (lucent_atomic_file *af = list; af; af = af->next) outputs_untrack(af->slot), af->slot = -1;
     atomic_store(&g_phase, PHASE_IDLE);
