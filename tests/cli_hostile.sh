@@ -7,6 +7,11 @@ for f in "$FIXTURES"/bad-meshes/*; do
   expect_fail 1 "$f: " -- "$LUCENT" curvature "$f" --out "$TMP/bad-mesh.csv"
 done
 expect_no_file "$TMP/bad-mesh.csv"
+# Scene files the fuzzers found: refused by `lucent trace`, naming the file.
+for f in "$FIXTURES"/bad-scenes/*; do
+  expect_fail 1 "$(basename "$f"): " -- "$LUCENT" trace "$f" --out "$TMP/bad-scene.png"
+done
+expect_no_file "$TMP/bad-scene.png"
 # A .ply.gz cut in its gzip trailer, or with a wrong CRC, holds every vertex and face yet is an error.
 expect_fail 1 "hand-gz-trailer-cut.ply.gz: truncated gzip data" -- \
   "$LUCENT" curvature "$FIXTURES/bad-meshes/hand-gz-trailer-cut.ply.gz" --out "$TMP/x.csv"

@@ -34,6 +34,7 @@ static const char *const k_primitive_keys[] = {"primitive", "radius",  "major_ra
 static lucent_status read_primitive(const lucent_json_node *n, lucent_primitive_desc *d, const char **kind)
 {
     memset(d, 0, sizeof *d);
+    *kind = ""; /* named in the mesh source even when a key is refused before "primitive" is read */
     lucent_status s = lucent_json_check_keys(n, k_primitive_keys);
     if (s == LUCENT_OK) s = lucent_json_string(n, "primitive", kind);
     int k = -1;
