@@ -71,9 +71,9 @@ static lucent_status load_mesh(const lucent_json_node *n, const char *base_dir, 
     const char *file;
     if (!cJSON_IsString(m.json))
         return lucent_json_fail(&m, NULL, LUCENT_ERR_PARSE, "expected a file name or {\"primitive\": ...}");
-    s = lucent_json_string(n, "mesh", &file);
+    if ((s = lucent_json_string(n, "mesh", &file)) != LUCENT_OK) return s; /* e.g. not UTF-8: no name */
     join_path(base_dir, file, o->mesh_source, sizeof o->mesh_source);
-    if (s != LUCENT_OK || skip) return s;
+    if (skip) return s;
     if (access(o->mesh_source, R_OK) != 0)
         return lucent_json_fail(&m, NULL, LUCENT_ERR_NOT_FOUND, "cannot open %s: %s%s", o->mesh_source, strerror(errno),
                                 strstr(o->mesh_source, "meshes/") ? " (run `make setup` to fetch the sample meshes)"
