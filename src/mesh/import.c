@@ -232,8 +232,11 @@ static void assimp_child(int fd, const void *data, size_t size, const char *form
     /* assimp prints (assertions, its logger): nothing of it reaches the user's terminal. */
     int null = open("/dev/null", O_WRONLY);
     if (null >= 0) dup2(null, 1), dup2(null, 2), close(null);
-    alarm(60);
-    struct rlimit cpu = {50, 55};
+    /* Time in proportion to the input: assimp reads tens of MB a second, so 1 s plus 1 s per 2 MiB is ample;
+     * fuzz_mesh found a 127-byte glTF on which assimp's importer spins (it ran into the 60 s of before). */
+    unsigned secs = 1 + (unsigned)(size >> 21);
+    alarm(secs);
+    struct rlimit cpu = {secs, secs + 1};
     setrlimit(RLIMIT_CPU, &cpu);
     if (__sanitizer_set_death_callback) __sanitizer_set_death_callback(child_death);
 #ifndef IMPORT_SANITIZED
