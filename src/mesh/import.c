@@ -15,6 +15,7 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/resource.h>
+#include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -232,11 +233,12 @@ static void assimp_child(int fd, const void *data, size_t size, const char *form
     /* assimp prints (assertions, its logger): nothing of it reaches the user's terminal. */
     int null = open("/dev/null", O_WRONLY);
     if (null >= 0) dup2(null, 1), dup2(null, 2), close(null);
-    /* Time in proportion to the input: assimp reads tens of MB a second, so 1 s plus 1 s per 2 MiB is ample;
-     * fuzz_mesh found a 127-byte glTF on which assimp's importer spins (it ran into the 60 s of before). */
-    unsigned secs = 1 + (unsigned)(size >> 21);
-    alarm(secs);
-    struct rlimit cpu = {secs, secs + 1};
+    /* Time in proportion to the input: assimp reads tens of MB a second, so 0.7 s plus 1 s per 2 MiB is
+     * ample; fuzz_mesh found a 127-byte glTF on which assimp's importer spins (it ran into the 60 s of before). */
+    unsigned secs = (unsigned)(size >> 21);
+    struct itimerval timer = {.it_value = {.tv_sec = secs, .tv_usec = 700000}};
+    setitimer(ITIMER_REAL, &timer, NULL);
+    struct rlimit cpu = {secs + 1, secs + 2};
     setrlimit(RLIMIT_CPU, &cpu);
     if (__sanitizer_set_death_callback) __sanitizer_set_death_callback(child_death);
 #ifndef IMPORT_SANITIZED
