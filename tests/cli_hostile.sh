@@ -7,6 +7,16 @@ for f in "$FIXTURES"/bad-meshes/*; do
   expect_fail 1 "$f: " -- "$LUCENT" curvature "$f" --out "$TMP/bad-mesh.csv"
 done
 expect_no_file "$TMP/bad-mesh.csv"
+# Scene files the fuzzers found: refused by `lucent trace`, naming the file.
+for f in "$FIXTURES"/bad-scenes/*; do
+  expect_fail 1 "$(basename "$f"): " -- "$LUCENT" trace "$f" --out "$TMP/bad-scene.png"
+done
+expect_no_file "$TMP/bad-scene.png"
+# A .ply.gz cut in its gzip trailer, or with a wrong CRC, holds every vertex and face yet is an error.
+expect_fail 1 "hand-gz-trailer-cut.ply.gz: truncated gzip data" -- \
+  "$LUCENT" curvature "$FIXTURES/bad-meshes/hand-gz-trailer-cut.ply.gz" --out "$TMP/x.csv"
+expect_fail 1 "hand-gz-bad-crc.ply.gz: corrupt gzip data after 269 inflated bytes: incorrect data check" -- \
+  "$LUCENT" curvature "$FIXTURES/bad-meshes/hand-gz-bad-crc.ply.gz" --out "$TMP/x.csv"
 expect_fail 1 "points only" -- "$LUCENT" curvature "$FIXTURES/bad-meshes/hand-segv-ply-no-faces.ply" --out "$TMP/x.csv"
 mkfifo "$TMP/fifo.ply" 2>/dev/null &&
   expect_fail 1 "$TMP/fifo.ply: cannot read: a FIFO" -- timeout 10 "$LUCENT" curvature "$TMP/fifo.ply" --out "$TMP/x.csv"
@@ -52,3 +62,43 @@ expect_true "the scene survives --json naming it" -- cmp "$TMP/keep.json" "$FIXT
 expect_fail 2 "name the same file" -- "$LUCENT" trace "$TMP/keep.json" --out "$TMP/k.png" --exr "$TMP/k.exr" --variance "$TMP/./k.exr"
 expect_fail 2 "names the input" -- "$LUCENT" render "$TMP/keep.json" --out "$TMP/k.png" --json "$TMP/../$(basename "$TMP")/keep.json"
 expect_no_file "$TMP/k.png"
+
+# Interruption (issue 17 item 5): SIGTERM or SIGINT mid-run ends the command by the signal, leaves no
+# temporary, and every previous output byte for byte. mcml of two runs: the signal lands in the second,
+# while the first run's new output waits, complete, for the command's end (its temporary must go too).
+two_runs() { # two_runs PHOTONS_1 PHOTONS_2
+  printf '1.0\n2\n'
+  for k in 1 2; do
+    printf '%s.mco A\n%s\n0.01 0.01\n10 10 5\n1\n1.0\n1.0 1 9 0.75 0.02\n1.0\n' "$k" "$([ $k = 1 ] && echo "$1" || echo "$2")"
+  done
+}
+two_runs 2000 2000 >"$TMP/sig-short.mci"
+expect_ok -- "$LUCENT" mcml "$TMP/sig-short.mci" --out-dir "$TMP/sig"
+cp "$TMP/sig/1.mco" "$TMP/sig-1.before" && cp "$TMP/sig/2.mco" "$TMP/sig-2.before"
+two_runs 3000 2000000000 >"$TMP/sig-long.mci"
+for sig in TERM INT; do
+  "$LUCENT" mcml "$TMP/sig-long.mci" --out-dir "$TMP/sig" >/dev/null 2>&1 &
+  pid=$!
+  for _ in $(seq 100); do compgen -G "$TMP/sig/1.mco.tmp*" >/dev/null && break; sleep 0.1; done
+  expect_true "SIG$sig: the first run's output waits as a temporary while the second runs" -- \
+    compgen -G "$TMP/sig/1.mco.tmp*"
+  kill -$sig $pid
+  wait $pid
+  rc=$?
+  expect_true "SIG$sig ends mcml by the signal (exit $rc)" -- test "$rc" -eq $((128 + $(kill -l $sig)))
+  expect_true "SIG$sig leaves no temporary" -- test "$(ls -A "$TMP/sig")" = "$(printf '1.mco\n2.mco')"
+  expect_true "SIG$sig leaves the previous outputs intact" -- \
+    eval 'cmp "$TMP/sig/1.mco" "$TMP/sig-1.before" && cmp "$TMP/sig/2.mco" "$TMP/sig-2.before"'
+done
+# trace: the signal during the render, the PNG, EXR and sidecar of the last run kept as they were.
+expect_ok -- "$LUCENT" trace "$FIXTURES/scenes/trace-small.json" --spp 2 --out "$TMP/sigt/t.png" --exr "$TMP/sigt/t.exr"
+mkdir -p "$TMP/sigt-before" && cp "$TMP"/sigt/* "$TMP/sigt-before/"
+"$LUCENT" trace "$FIXTURES/scenes/trace-small.json" --spp 16777216 --out "$TMP/sigt/t.png" --exr "$TMP/sigt/t.exr" \
+  >/dev/null 2>&1 &
+pid=$!
+sleep 1
+kill -INT $pid
+wait $pid
+rc=$?
+expect_true "SIGINT ends trace by the signal (exit $rc)" -- test "$rc" -eq 130
+expect_true "SIGINT leaves trace's previous outputs and nothing else" -- diff -r "$TMP/sigt" "$TMP/sigt-before"

@@ -25,6 +25,12 @@ run() { # NAME -- command...: exit 1, stderr names the file, peak RSS < 100 MB
 for f in "$FIXTURES"/bad-meshes/*; do
   run "$(basename "$f")" -- "$LUCENT" curvature "$f" --out "$TMP/x.csv"
 done
+for f in "$FIXTURES"/bad-scenes/*; do
+  run "$(basename "$f")" -- "$LUCENT" trace "$f" --out "$TMP/x.png"
+done
+for f in "$FIXTURES"/bad-images/*; do
+  [ -f "$f" ] && run "$(basename "$f")" -- "$LUCENT" image info "$f"
+done
 run dense-1e300.json -- "$LUCENT" profile "$FIXTURES/materials/dense-1e300.json" --model mc --out "$TMP/p"
 cp "$FIXTURES/mcml/drtiny.mci" "$TMP/"
 run drtiny.mci -- bash -c "cd '$TMP' && exec '$LUCENT' mcml drtiny.mci"

@@ -321,6 +321,12 @@ TEST(bad_fields_are_named)
               "nowhere/none.ply", "No such file");
     CHECK_ERR(parse_set("objects[0].mesh={\"primitive\": \"cube\"}", &sc), LUCENT_ERR_PARSE,
               "objects[0].mesh.primitive", "cube");
+    /* A primitive with an unknown key (fuzz_scene's first finding: the kind was then read uninitialised). */
+    CHECK_ERR(parse_set("objects[0].mesh={\"primitive\": \"icosphere\", \"subdiviseons\": 2}", &sc), LUCENT_ERR_PARSE,
+              "objects[0].mesh.subdiviseons", "unknown field");
+    CHECK_ERR(parse_set("objects[0].mesh={\"radius\": 1}", &sc), LUCENT_ERR_PARSE, "objects[0].mesh.primitive");
+    /* A mesh file name that is not UTF-8 (fuzz_scene's second finding: the name was then NULL, dereferenced). */
+    CHECK_ERR(parse_set("objects[0].mesh=\"no-such-mesh.\xf0ly\"", &sc), LUCENT_ERR_PARSE, "objects[0].mesh", "UTF-8");
     CHECK_ERR(parse_with(", \"transform\": {\"scale\": 0}", "", NULL, &sc), LUCENT_ERR_PARSE, "transform.scale");
     CHECK_ERR(parse_with(", \"albedo\": [0.5, 2, 0.1]", "", NULL, &sc), LUCENT_ERR_PARSE, "objects[0].albedo");
     CHECK_ERR(lucent_scene_parse("{\"camera\": {\"position\": [0,0,1], \"target\": [0,0,1]}, \"lights\": [], "

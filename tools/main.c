@@ -389,16 +389,20 @@ static int run_command(int argc, char **argv)
         fprintf(stderr, "lucent: unknown command '%s'\nTry 'lucent --help'.\n", argv[1]);
         return CLI_USAGE;
     }
-    if (!cmd->run) {
-        if (g_cli.part_n) return cli_usage_error(NULL, "--part does not go with merge");
-        return cmd_merge(argc - 1, argv + 1);
-    }
-    if (g_cli.part_n) return run_part(cmd, argc - 1, argv + 1);
-    return cmd->run(argc - 1, argv + 1);
+    if (!cmd->run && g_cli.part_n) return cli_usage_error(NULL, "--part does not go with merge");
+    if (strcmp(cmd->name, "view") == 0) return cmd->run(argc - 1, argv + 1); /* saves land when made */
+    /* Every output of the command lands together when it succeeds, none when it fails. */
+    lucent_outputs_begin();
+    int rc = !cmd->run      ? cmd_merge(argc - 1, argv + 1)
+             : g_cli.part_n ? run_part(cmd, argc - 1, argv + 1)
+                            : cmd->run(argc - 1, argv + 1);
+    if (lucent_outputs_end(rc == CLI_OK) != LUCENT_OK) rc = cli_fail();
+    return rc;
 }
 
 int main(int argc, char **argv)
 {
+    lucent_outputs_handle_signals(); /* an interrupted command leaves no temporary, its old outputs as they were */
     if (lucent_dist_init(&argc, &argv) != LUCENT_OK) return cli_fail();
     if (lucent_dist_rank() != 0) { /* rank 0 speaks for the job */
         FILE *quiet_out = freopen("/dev/null", "w", stdout);

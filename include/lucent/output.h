@@ -5,6 +5,8 @@
 
 #include <stdbool.h>
 
+#include "lucent/base.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -14,6 +16,22 @@ extern "C" {
  * fails, naming the path. The `lucent` command turns it on, so that every command creates the
  * folder of its outputs. Set it before writing starts (it is not synchronised). */
 void lucent_files_create_parents(bool on);
+
+/* The output set: from lucent_outputs_begin until lucent_outputs_end, lucent_atomic_commit completes each
+ * output's temporary (written, flushed, synced, closed) and leaves its target as it was; lucent_outputs_end
+ * (true) then renames every one of them onto its target, lucent_outputs_end(false) removes them all. A
+ * command that fails part-way (a full disk, an input found bad late, a signal) so leaves its previous
+ * outputs as they were, never a mix of new and old. While the set is open, an output naming a file the set
+ * already holds is refused, and so is one naming a file read (lucent_open_regular) since it began. The
+ * `lucent` command runs each command in a set (except `view`, whose saves land when made). Writes of the
+ * disk cache are not outputs: they land at once. */
+void lucent_outputs_begin(void);
+lucent_status lucent_outputs_end(bool commit);
+
+/* Handles SIGINT, SIGTERM and SIGHUP: removes the temporaries of every output being written or waiting in
+ * the set (their targets keep their previous contents), then ends the process by the same signal. A signal
+ * that comes while lucent_outputs_end renames is held until the last rename, so the set lands whole. */
+void lucent_outputs_handle_signals(void);
 
 #ifdef __cplusplus
 }

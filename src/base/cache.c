@@ -60,7 +60,7 @@ static void write_entry(const lucent_cache *c, const char *path, cJSON *json)
     if (lucent_mkdir_p(c->dir) != LUCENT_OK) {
         lucent_log(LUCENT_LOG_WARN, "cache: %s", lucent_last_error());
         lucent_clear_error();
-    } else if (lucent_json_write_file(path, json) != LUCENT_OK) {
+    } else if (lucent_json_write_file_direct(path, json) != LUCENT_OK) {
         lucent_log(LUCENT_LOG_WARN, "cache: %s", lucent_last_error());
         lucent_clear_error();
     }

@@ -6,15 +6,13 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <stdatomic.h>
+#include <time.h>
+
 #include "base/dist_internal.h"
+#include "base/file_internal.h"
 #include "lucent/dist.h"
 #include "lucent/output.h"
-
-struct lucent_atomic_file {
-    FILE *fp;
-    char *path;
-    char *tmp;
-};
 
 static bool g_create_parents;
 
@@ -33,15 +31,10 @@ static lucent_status make_parent(const char *path)
     return s == LUCENT_OK ? s : lucent_error_context(s, "%s", path);
 }
 
-static mode_t current_umask(void)
-{
-    mode_t m = umask(022);
-    umask(m);
-    return m;
-}
-
 static void atomic_free(lucent_atomic_file *af)
 {
+    outputs_untrack(af->slot);
+    outputs_release(af);
     free(af->path);
     free(af->tmp);
     free(af);
@@ -52,7 +45,7 @@ static void atomic_free(lucent_atomic_file *af)
 static lucent_status open_nowhere(const char *path, lucent_atomic_file **dest, FILE **out)
 {
     lucent_atomic_file *af = calloc(1, sizeof *af);
-    if (af) af->fp = fopen("/dev/null", "wb");
+    if (af) af->slot = -1, af->fp = fopen("/dev/null", "wb");
     if (!af || !af->fp) {
         free(af);
         return lucent_error(LUCENT_ERR_IO, "%s: cannot open /dev/null", path);
@@ -62,7 +55,42 @@ static lucent_status open_nowhere(const char *path, lucent_atomic_file **dest, F
     return LUCENT_OK;
 }
 
-lucent_status lucent_atomic_open(const char *path, lucent_atomic_file **dest, FILE **out)
+/* A fresh temporary name beside the target: path.tmpXXXXXX, from the process id, a counter and the clock. */
+static void temp_name(lucent_atomic_file *af, size_t size)
+{
+    static atomic_uint counter;
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    uint64_t h = ((uint64_t)getpid() << 32) ^ (uint64_t)ts.tv_nsec ^ ((uint64_t)atomic_fetch_add(&counter, 1) << 20);
+    h *= 0x9e3779b97f4a7c15ull; /* Fibonacci hashing: mixes the bits into the top */
+    static const char digits[] = "0123456789abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ";
+    char suffix[7];
+    for (int i = 0; i < 6; i++) suffix[i] = digits[(h >> (58 - 6 * i)) % 62];
+    suffix[6] = '\0';
+    snprintf(af->tmp, size, "%s.tmp%s", af->path, suffix);
+}
+
+/* Creates the temporary, named in the signal handler's table before it exists, so that a signal at any
+ * moment finds it there (O_EXCL: a name in use is never reused). */
+static int create_temp(lucent_atomic_file *af, size_t size)
+{
+    for (int attempt = 0; attempt < 100; attempt++) {
+        temp_name(af, size);
+        af->slot = outputs_track(af->tmp);
+        int fd = open(af->tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd >= 0 || errno != EEXIST) {
+            int e = errno;
+            if (fd < 0) outputs_untrack(af->slot), af->slot = -1;
+            errno = e;
+            return fd;
+        }
+        outputs_untrack(af->slot), af->slot = -1;
+    }
+    errno = EEXIST;
+    return -1;
+}
+
+static lucent_status atomic_open(const char *path, bool direct, lucent_atomic_file **dest, FILE **out)
 {
     *dest = NULL;
     *out = NULL;
@@ -77,20 +105,23 @@ lucent_status lucent_atomic_open(const char *path, lucent_atomic_file **dest, FI
     }
     lucent_atomic_file *af = calloc(1, sizeof *af);
     size_t n = strlen(path);
-    if (af) af->path = strdup(path);
+    if (af) af->slot = -1, af->direct = direct, af->path = strdup(path);
     if (af) af->tmp = malloc(n + 12);
     if (!af || !af->path || !af->tmp) {
         if (af) atomic_free(af);
         return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
     }
-    snprintf(af->tmp, n + 12, "%s.tmpXXXXXX", path);
-    int fd = mkstemp(af->tmp);
+    lucent_status cs = direct ? LUCENT_OK : outputs_claim(af);
+    if (cs != LUCENT_OK) {
+        atomic_free(af);
+        return cs;
+    }
+    int fd = create_temp(af, n + 12);
     if (fd < 0) {
         int e = errno;
         atomic_free(af);
         return lucent_error(LUCENT_ERR_IO, "%s: cannot create: %s", path, strerror(e));
     }
-    fchmod(fd, 0666 & ~current_umask());
     af->fp = fdopen(fd, "wb");
     if (!af->fp) {
         int e = errno;
@@ -104,6 +135,11 @@ lucent_status lucent_atomic_open(const char *path, lucent_atomic_file **dest, FI
     return LUCENT_OK;
 }
 
+lucent_status lucent_atomic_open(const char *path, lucent_atomic_file **dest, FILE **out)
+{
+    return atomic_open(path, false, dest, out);
+}
+
 lucent_status lucent_atomic_commit(lucent_atomic_file *af)
 {
     bool ok = fflush(af->fp) == 0 && !ferror(af->fp);
@@ -115,6 +151,7 @@ lucent_status lucent_atomic_commit(lucent_atomic_file *af)
         atomic_free(af);
         return LUCENT_OK;
     }
+    if (ok && !af->direct && outputs_defer(af)) return LUCENT_OK; /* renamed by lucent_outputs_end */
     if (ok && rename(af->tmp, af->path) != 0) ok = false, e = errno;
     if (!ok) {
         unlink(af->tmp);
@@ -132,11 +169,11 @@ void lucent_atomic_abort(lucent_atomic_file *af)
     atomic_free(af);
 }
 
-lucent_status lucent_write_file(const char *path, const void *data, size_t size)
+static lucent_status write_file(const char *path, bool direct, const void *data, size_t size)
 {
     lucent_atomic_file *af;
     FILE *fp;
-    lucent_status s = lucent_atomic_open(path, &af, &fp);
+    lucent_status s = atomic_open(path, direct, &af, &fp);
     if (s != LUCENT_OK) return s;
     if (size && fwrite(data, 1, size, fp) != size) {
         int e = errno;
@@ -144,6 +181,16 @@ lucent_status lucent_write_file(const char *path, const void *data, size_t size)
         return lucent_error(LUCENT_ERR_IO, "%s: write failed: %s", path, strerror(e));
     }
     return lucent_atomic_commit(af);
+}
+
+lucent_status lucent_write_file(const char *path, const void *data, size_t size)
+{
+    return write_file(path, false, data, size);
+}
+
+lucent_status base_write_file_direct(const char *path, const void *data, size_t size)
+{
+    return write_file(path, true, data, size);
 }
 
 lucent_status lucent_open_regular(const char *path, int *fd, uint64_t *size)
@@ -164,6 +211,7 @@ lucent_status lucent_open_regular(const char *path, int *fd, uint64_t *size)
     }
     int flags = fcntl(f, F_GETFL);
     if (flags >= 0) fcntl(f, F_SETFL, flags & ~O_NONBLOCK);
+    outputs_note_input(&st);
     *fd = f;
     if (size) *size = (uint64_t)st.st_size;
     return LUCENT_OK;

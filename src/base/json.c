@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/file_internal.h"
 #include "base/json.h"
 
 static void location(const char *text, const char *at, int *line, int *column)
@@ -287,7 +288,7 @@ lucent_status lucent_json_check_keys(const lucent_json_node *n, const char *cons
     return LUCENT_OK;
 }
 
-lucent_status lucent_json_write_file(const char *path, const cJSON *json)
+static lucent_status write_json(const char *path, const cJSON *json, bool direct)
 {
     char *text = cJSON_Print(json);
     if (!text) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory printing JSON", path);
@@ -298,9 +299,17 @@ lucent_status lucent_json_write_file(const char *path, const cJSON *json)
         return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory printing JSON", path);
     }
     with_newline[len] = '\n';
-    lucent_status s = lucent_write_file(path, with_newline, len + 1);
+    lucent_status s =
+        direct ? base_write_file_direct(path, with_newline, len + 1) : lucent_write_file(path, with_newline, len + 1);
     free(with_newline);
     return s;
+}
+
+lucent_status lucent_json_write_file(const char *path, const cJSON *json) { return write_json(path, json, false); }
+
+lucent_status lucent_json_write_file_direct(const char *path, const cJSON *json)
+{
+    return write_json(path, json, true);
 }
 
 /* cJSON prints numbers with 15 significant digits, which does not give every double back; this

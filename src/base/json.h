@@ -70,6 +70,8 @@ lucent_status lucent_json_check_keys(const lucent_json_node *n, const char *cons
 
 /* Writes json to path atomically, pretty-printed, with a final newline. */
 lucent_status lucent_json_write_file(const char *path, const cJSON *json);
+/* The same outside the command's output set (lucent/output.h), renamed at once: for the disk cache. */
+lucent_status lucent_json_write_file_direct(const char *path, const cJSON *json);
 
 /* A number item that reads back exactly (cJSON's own keeps 15 digits; non-finite: null). */
 cJSON *lucent_json_number_item(double value);

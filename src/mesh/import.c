@@ -15,6 +15,7 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/resource.h>
+#include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -204,21 +205,43 @@ static int scene_valid(const struct aiScene *sc)
     return 1;
 }
 
+#if defined(__SANITIZE_ADDRESS__)
+#define IMPORT_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define IMPORT_SANITIZED 1
+#endif
+#endif
+
+/* Under a sanitizer: the callback it runs before dying of an error it found. libFuzzer sets one that saves
+ * the input as a finding of its own; in the child, an error of assimp's must end the child only (the
+ * parent reports it), so the child replaces it. Weak: absent (NULL) without a sanitizer. */
+extern void __sanitizer_set_death_callback(void (*callback)(void)) __attribute__((weak));
+
+static void child_death(void) { _exit(70); }
+
 /* The child: import, then stream the triangles to fd. Never returns. */
 static void assimp_child(int fd, const void *data, size_t size, const char *format)
 {
     /* A crash kills the child plainly: the parent's handlers (a sanitizer's, a fuzzer's) must not report it
      * as their own. A hang becomes SIGALRM / SIGXCPU; memory is bounded where no sanitizer reserves shadow
      * memory. */
-    static const int crashes[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTRAP, SIGALRM, SIGXCPU};
+    static const int crashes[] = {
+        SIGSEGV, SIGBUS,  SIGFPE, SIGILL,  SIGABRT, SIGTRAP,
+        SIGALRM, SIGXCPU, SIGINT, SIGTERM, SIGHUP}; /* the parent's output cleanup is the parent's */
     for (size_t i = 0; i < sizeof crashes / sizeof crashes[0]; i++) signal(crashes[i], SIG_DFL);
     /* assimp prints (assertions, its logger): nothing of it reaches the user's terminal. */
     int null = open("/dev/null", O_WRONLY);
     if (null >= 0) dup2(null, 1), dup2(null, 2), close(null);
-    alarm(60);
-    struct rlimit cpu = {50, 55};
+    /* Time in proportion to the input: assimp reads tens of MB a second, so 0.7 s plus 1 s per 2 MiB is
+     * ample; fuzz_mesh found a 127-byte glTF on which assimp's importer spins (it ran into the 60 s of before). */
+    unsigned secs = (unsigned)(size >> 21);
+    struct itimerval timer = {.it_value = {.tv_sec = secs, .tv_usec = 700000}};
+    setitimer(ITIMER_REAL, &timer, NULL);
+    struct rlimit cpu = {secs + 1, secs + 2};
     setrlimit(RLIMIT_CPU, &cpu);
-#if !defined(__SANITIZE_ADDRESS__) && !defined(__has_feature)
+    if (__sanitizer_set_death_callback) __sanitizer_set_death_callback(child_death);
+#ifndef IMPORT_SANITIZED
     struct rlimit as = {((rlim_t)4 << 30) + (rlim_t)size * 64, ((rlim_t)4 << 30) + (rlim_t)size * 64};
     setrlimit(RLIMIT_AS, &as);
 #endif

@@ -626,6 +626,7 @@ lucent_status lucent_ply_read(lucent_ply *ply, const lucent_ply_read_desc *desc,
     for (int i = 0; s == LUCENT_OK && i < ply->element_count; i++)
         s = ply->format == FMT_ASCII ? ascii_element(&b, i) : binary_element(&b, i);
     if (s == LUCENT_OK && dest->vertex_count == 0 && ve->count > 0) s = LUCENT_ERR_INTERNAL;
+    if (s == LUCENT_OK) s = lucent_reader_finish(r); /* .ply.gz: the stream whole, its CRC checked */
     free(b.columns);
     free(b.row);
     free(b.poly);

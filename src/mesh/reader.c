@@ -196,6 +196,17 @@ lucent_status lucent_reader_fill(lucent_reader *r, size_t n)
     return LUCENT_OK;
 }
 
+lucent_status lucent_reader_finish(lucent_reader *r)
+{
+    while (r->gz && !r->stream_end) {
+        r->base += r->len, r->pos = r->len = 0; /* what is left is not needed, only checked */
+        lucent_status s = decode_more(r);
+        if (s != LUCENT_OK) return s;
+        if (r->eof && !r->stream_end) break;
+    }
+    return LUCENT_OK;
+}
+
 lucent_status lucent_reader_line(lucent_reader *r, char **line, size_t *length)
 {
     *line = NULL;

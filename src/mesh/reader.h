@@ -52,6 +52,11 @@ lucent_status lucent_reader_fill(lucent_reader *r, size_t n);
  * input. A line longer than LUCENT_READER_MAX_LINE is an error naming its number. Counts r->line. */
 lucent_status lucent_reader_line(lucent_reader *r, char **line, size_t *length);
 
+/* After the last byte a reader needs: for gzip input, inflates the rest of the stream (discarding it) so
+ * that a truncated or corrupt file, the CRC and length trailer included, is an error; nothing for plain
+ * input. */
+lucent_status lucent_reader_finish(lucent_reader *r);
+
 /* Copies n bytes to dest; LUCENT_ERR_PARSE "truncated" naming the offset when fewer remain. what names
  * the item being read in the message ("vertex 12 of 400"). */
 lucent_status lucent_reader_bytes(lucent_reader *r, void *dest, size_t n, const char *what);

@@ -34,6 +34,7 @@ static const char *const k_primitive_keys[] = {"primitive", "radius",  "major_ra
 static lucent_status read_primitive(const lucent_json_node *n, lucent_primitive_desc *d, const char **kind)
 {
     memset(d, 0, sizeof *d);
+    *kind = ""; /* named in the mesh source even when a key is refused before "primitive" is read */
     lucent_status s = lucent_json_check_keys(n, k_primitive_keys);
     if (s == LUCENT_OK) s = lucent_json_string(n, "primitive", kind);
     int k = -1;
@@ -70,9 +71,9 @@ static lucent_status load_mesh(const lucent_json_node *n, const char *base_dir, 
     const char *file;
     if (!cJSON_IsString(m.json))
         return lucent_json_fail(&m, NULL, LUCENT_ERR_PARSE, "expected a file name or {\"primitive\": ...}");
-    s = lucent_json_string(n, "mesh", &file);
+    if ((s = lucent_json_string(n, "mesh", &file)) != LUCENT_OK) return s; /* e.g. not UTF-8: no name */
     join_path(base_dir, file, o->mesh_source, sizeof o->mesh_source);
-    if (s != LUCENT_OK || skip) return s;
+    if (skip) return s;
     if (access(o->mesh_source, R_OK) != 0)
         return lucent_json_fail(&m, NULL, LUCENT_ERR_NOT_FOUND, "cannot open %s: %s%s", o->mesh_source, strerror(errno),
                                 strstr(o->mesh_source, "meshes/") ? " (run `make setup` to fetch the sample meshes)"
