@@ -54,6 +54,8 @@ static const lucent_setting k_points[] = {
     SETTING_REAL("filter_px", points.filter_px, 1, 0, 8, "radius of the screen-space prefilter, pixels"),
     SETTING_INT("impulse", points.impulse, -1, -1, 2000000000, 0,
                 "debug: only this surfel of each object is lit, radiance 1 (the diffusion's impulse response)"),
+    SETTING_BOOL("weights", points.weights, false,
+                 "debug: every channel is the splats' summed Gaussian weight before normalisation (0 uncovered)"),
 };
 
 const lucent_settings_group gl_points_settings =
@@ -570,6 +572,7 @@ static void pass_shade(lucent_renderer *r, points_state *st, const lucent_render
     glBindTextureUnit(6, st->g_tex[G_NORMAL]);
     glBindTextureUnit(7, st->g_tex[G_OBJECT]);
     set1i(p, "u_diffusion", s->points.style == LUCENT_POINTS_DIFFUSION);
+    set1i(p, "u_weights_out", s->points.weights);
     set1f(p, "u_shadow_offset", 1.5);
     glProgramUniform3f(p, glGetUniformLocation(p, "u_background"), (float)(bg[0] + amb[0]), (float)(bg[1] + amb[1]),
                        (float)(bg[2] + amb[2]));

@@ -12,7 +12,8 @@ layout(binding = 3) uniform sampler2D u_g_albedo;   // w Sum: albedo, roughness
 layout(binding = 0) uniform sampler2D u_diffused;   // the sum of the Gaussians' images
 layout(binding = 8) uniform sampler2D u_weights;    // the sum of their weights there
 
-uniform int u_diffusion; // 1: splat-based diffusion for splats
+uniform int u_diffusion;   // 1: splat-based diffusion for splats
+uniform int u_weights_out; // 1: the summed splat weight instead (the setting `weights`)
 uniform vec3 u_background;
 uniform float u_shadow_offset;
 
@@ -22,6 +23,10 @@ void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
     vec4 g = texelFetch(u_g_position, px, 0);
+    if (u_weights_out != 0) {
+        o_color = vec4(vec3(max(g.w, 0.0)), 1.0);
+        return;
+    }
     if (g.w <= 0.0) {
         o_color = vec4(u_background, 0.0);
         return;
