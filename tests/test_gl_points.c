@@ -5,6 +5,8 @@
  *   diffused radiance is s^2 sum_i w_i G(v_i, r) with the weights of each channel summing to 1 (d'Eon
  *   & Luebke 2007's sum of Gaussians, G(v, r) = exp(-r^2 / 2v) / (2 pi v)): the SoG the method was
  *   given, d'Eon's skin table (lucent_sog_deon_skin) or the bake's fit for marble (lucent/bake.h);
+ *   the diffused light leaves through the boundary with Jensen et al. 2001's F_t(w_o) / its
+ *   hemispherical mean, as in the mesh methods;
  *   uniform light on a plane gives the same radiance everywhere;
  *   the preparation runs in fixed chunks, so the thread count cannot change the image. */
 #include <math.h>
@@ -12,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "base/optics.h"
 #include "lucent/bake.h"
 #include "lucent/render.h"
 #include "lucent/surfels.h"
@@ -99,6 +102,15 @@ static double plane_radius(const lucent_scene *sc, int size, int x, int y)
     return hypot(o[0] + t * d[0], o[1] + t * d[1]);
 }
 
+/* The diffuse light's way out toward the eye at pixel (x, y) of the plane z = 0 (normal +z):
+ * (1 - F(n.v)) / (2 int (1 - F(mu)) mu dmu), Jensen et al. 2001's F_t(w_o) normalised by its mean. */
+static double exit_factor(const lucent_scene *sc, int size, int x, int y)
+{
+    double o[3], d[3], eta = sc->objects[0].material.eta;
+    lucent_camera_ray(&sc->camera, size, size, x + 0.5, y + 0.5, o, d);
+    return (1 - lucent_fresnel_dielectric(-d[2], eta, NULL)) / lucent_fresnel_mean_transmittance(eta);
+}
+
 /* The largest difference between the radially averaged image and s^2 sum_i w_i G(v_i, r), averaged
  * over the same pixels, in bins of one pixel out to r_max, relative to the peak of the expectation. */
 static double impulse_error(const char *what, const lucent_scene *sc, const lucent_image *img, int size, double s,
@@ -123,7 +135,7 @@ static double impulse_error(const char *what, const lucent_scene *sc, const luce
                 for (int k = 0; k < g->count; k++)
                     e += g->weight[c][k] / wsum[c] * exp(-r * r / (2 * g->variance[c][k])) /
                          (2 * M_PI * g->variance[c][k]);
-                got[b][c] += lucent_image_get(img, x, y, c), want[b][c] += s * s * e;
+                got[b][c] += lucent_image_get(img, x, y, c), want[b][c] += s * s * e * exit_factor(sc, size, x, y);
             }
         }
     for (int b = 0; b < BINS; b++)

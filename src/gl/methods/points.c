@@ -26,6 +26,7 @@
 
 #include "base/json.h"
 #include "base/mat4.h"
+#include "base/optics.h"
 #include "base/settings_table.h"
 #include "gl/methods/surface.h"
 #include "lucent/surfels.h"
@@ -371,6 +372,7 @@ static void draw_splats(const lucent_renderer *r, const points_state *st, GLuint
         set1f(p, "u_f0", so->specular_f0);
         set1f(p, "u_roughness", so->roughness);
         set1f(p, "u_object", i);
+        set1f(p, "u_material", r->tables.object_material[i]);
         glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)o->levels[0].count);
     }
 }
@@ -417,6 +419,7 @@ static void draw_meshes(const lucent_renderer *r, const points_state *st)
         set1f(p, "u_f0", o->specular_f0);
         set1f(p, "u_roughness", o->roughness);
         set1f(p, "u_object", i);
+        set1f(p, "u_material", r->tables.object_material[i]);
         gl_meshes_draw(&r->meshes, i);
     }
 }
@@ -573,6 +576,13 @@ static void pass_shade(lucent_renderer *r, points_state *st, const lucent_render
     glBindTextureUnit(7, st->g_tex[G_OBJECT]);
     set1i(p, "u_diffusion", s->points.style == LUCENT_POINTS_DIFFUSION);
     set1i(p, "u_weights_out", s->points.weights);
+    float eta[GLR_MAX_MATERIALS] = {0}, mean_ft[GLR_MAX_MATERIALS] = {0};
+    for (int m = 0; m < r->tables.count; m++) {
+        eta[m] = (float)r->tables.material[m].eta;
+        mean_ft[m] = (float)lucent_fresnel_mean_transmittance(r->tables.material[m].eta);
+    }
+    glProgramUniform1fv(p, glGetUniformLocation(p, "u_eta"), GLR_MAX_MATERIALS, eta);
+    glProgramUniform1fv(p, glGetUniformLocation(p, "u_mean_ft"), GLR_MAX_MATERIALS, mean_ft);
     set1f(p, "u_shadow_offset", 1.5);
     glProgramUniform3f(p, glGetUniformLocation(p, "u_background"), (float)(bg[0] + amb[0]), (float)(bg[1] + amb[1]),
                        (float)(bg[2] + amb[2]));
