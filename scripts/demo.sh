@@ -21,7 +21,7 @@ reference beside its frame time. This takes a few minutes on 2 cores.
 
 EOF
 
-methods=lambert,cdrf,cdrf+translucency,ssss:preint,ssss:svd1,ssss:svd3,ssss:guided,ssss:manual,ssss:jimenez
+methods=lambert,cdrf,cdrf+translucency,ssss:preint,ssss:svd1,ssss:svd3,ssss:guided,ssss:manual,ssss:jimenez,points
 "$lucent" compare data/scenes/spheres-skin.json data/scenes/bunny-skin.json data/scenes/dragon-marble.json \
   --methods "$methods" --spp 1000000 --time "$seconds" --scale "$scale" --out "$out/compare"
 

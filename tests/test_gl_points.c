@@ -5,6 +5,8 @@
  *   diffused radiance is s^2 sum_i w_i G(v_i, r) with the weights of each channel summing to 1 (d'Eon
  *   & Luebke 2007's sum of Gaussians, G(v, r) = exp(-r^2 / 2v) / (2 pi v)): the SoG the method was
  *   given, d'Eon's skin table (lucent_sog_deon_skin) or the bake's fit for marble (lucent/bake.h);
+ *   the diffused light leaves through the boundary with Jensen et al. 2001's F_t(w_o) / its
+ *   hemispherical mean, as in the mesh methods;
  *   uniform light on a plane gives the same radiance everywhere;
  *   the preparation runs in fixed chunks, so the thread count cannot change the image. */
 #include <math.h>
@@ -12,8 +14,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "base/optics.h"
 #include "lucent/bake.h"
 #include "lucent/render.h"
+#include "lucent/surfels.h"
 #include "test.h"
 
 static lucent_gl_context *g_ctx;
@@ -98,6 +102,15 @@ static double plane_radius(const lucent_scene *sc, int size, int x, int y)
     return hypot(o[0] + t * d[0], o[1] + t * d[1]);
 }
 
+/* The diffuse light's way out toward the eye at pixel (x, y) of the plane z = 0 (normal +z):
+ * (1 - F(n.v)) / (2 int (1 - F(mu)) mu dmu), Jensen et al. 2001's F_t(w_o) normalised by its mean. */
+static double exit_factor(const lucent_scene *sc, int size, int x, int y)
+{
+    double o[3], d[3], eta = sc->objects[0].material.eta;
+    lucent_camera_ray(&sc->camera, size, size, x + 0.5, y + 0.5, o, d);
+    return (1 - lucent_fresnel_dielectric(-d[2], eta, NULL)) / lucent_fresnel_mean_transmittance(eta);
+}
+
 /* The largest difference between the radially averaged image and s^2 sum_i w_i G(v_i, r), averaged
  * over the same pixels, in bins of one pixel out to r_max, relative to the peak of the expectation. */
 static double impulse_error(const char *what, const lucent_scene *sc, const lucent_image *img, int size, double s,
@@ -122,7 +135,7 @@ static double impulse_error(const char *what, const lucent_scene *sc, const luce
                 for (int k = 0; k < g->count; k++)
                     e += g->weight[c][k] / wsum[c] * exp(-r * r / (2 * g->variance[c][k])) /
                          (2 * M_PI * g->variance[c][k]);
-                got[b][c] += lucent_image_get(img, x, y, c), want[b][c] += s * s * e;
+                got[b][c] += lucent_image_get(img, x, y, c), want[b][c] += s * s * e * exit_factor(sc, size, x, y);
             }
         }
     for (int b = 0; b < BINS; b++)
@@ -188,7 +201,10 @@ static double relative_std(const lucent_image *img, int size, int c)
 
 TEST(uniformly_lit_plane_has_no_ripple)
 {
-    /* a jittered grid (irregular spacing, radii from the 8 nearest), lit straight on, all styles */
+    /* a jittered grid (irregular spacing, radii from the 8 nearest), lit straight on, all styles.
+     * Under uniform light every splat carries the same colour, so normalisation makes the colour even
+     * wherever a splat lands: this checks coverage and the normalisation, not the weights (see
+     * splat_weights_are_the_gaussians_they_should_be for those). */
     const char *ply = write_plane("jittered.ply", 81, 0.25, 0.6);
     const char *styles[3] = {"diffusion", "brdf", "disks"};
     for (int t = 0; t < 3 && ply; t++) {
@@ -201,6 +217,81 @@ TEST(uniformly_lit_plane_has_no_ripple)
             CHECK_MSG(rs < 0.01, "%s: channel %d has a relative std of %.3f%%", styles[t], c, 100 * rs);
             if (c == 0) printf("     %s: relative std of the normalised colour %.4f%%\n", styles[t], 100 * rs);
         }
+        lucent_image_destroy(img);
+        lucent_scene_destroy(sc);
+    }
+}
+
+/* The summed weight at plane point (x, y) of splats of Gaussian weight exp(-cutoff^2 d^2 / 2 r^2) on
+ * disks d <= r (the attribute pass, points_splat.frag.glsl, computed here on the CPU). */
+static double cpu_weight(const lucent_surfels *sf, double x, double y, double cutoff)
+{
+    double w = 0;
+    for (size_t j = 0; j < sf->levels[0].count; j++) {
+        double dx = x - sf->positions[3 * j], dy = y - sf->positions[3 * j + 1], r = sf->radii[j];
+        double d2 = (dx * dx + dy * dy) / (r * r);
+        if (d2 <= 1) w += exp(-0.5 * cutoff * cutoff * d2);
+    }
+    return w;
+}
+
+/* The CPU sum over one interior cell of the regular grid (64 x 64 points; the pixels see only 4 phases
+ * of the cell): its mean is the integral of the truncated Gaussian over the cell area,
+ * 2 pi sigma^2 (1 - e^-2) / s^2 = pi (1 - e^-2) with sigma = r / 2 = s / sqrt(2). */
+static void cell_check(const lucent_surfels *sf, double cutoff)
+{
+    double sum = 0, sum2 = 0, s = 0.25;
+    for (int a = 0; a < 64; a++)
+        for (int b = 0; b < 64; b++) {
+            double w = cpu_weight(sf, s * (a + 0.5) / 64, s * (b + 0.5) / 64, cutoff);
+            sum += w, sum2 += w * w;
+        }
+    double mean = sum / 4096, want = M_PI * (1 - exp(-2.0));
+    printf("     regular grid, one cell: mean %.4f (pi (1 - e^-2) = %.4f), ripple %.2f%%\n", mean, want,
+           100 * sqrt(fmax(sum2 / 4096 - mean * mean, 0)) / mean);
+    CHECK_NEAR(mean, want, 0.002 * want);
+}
+
+TEST(splat_weights_are_the_gaussians_they_should_be)
+{
+    /* The weight sum before normalisation (setting weights), on a regular and a jittered grid, against
+     * the same sum on the CPU at each pixel's plane point; the ripple of the sum (its relative std) is
+     * what normalisation removes (4.7% over a cell of the regular grid with the defaults, r = s sqrt(2)
+     * and cutoff 2; the 4 phases the pixels see give 6.7%). Coverage: every point
+     * lies within r of a surfel (test_surfels), so every pixel sums at least exp(-cutoff^2 / 2) = e^-2. */
+    const double jitter[2] = {0, 0.6};
+    for (int t = 0; t < 2; t++) {
+        const char *ply = write_plane(t ? "weights-jittered.ply" : "weights-regular.ply", 81, 0.25, jitter[t]);
+        lucent_scene *sc = ply ? plane_scene(ply, "skin1", 6, 64, ", \"splats\": \"brdf\", \"weights\": true") : NULL;
+        lucent_image *img = sc ? render(sc, NULL) : NULL;
+        lucent_surfels *sf = NULL;
+        if (img) CHECK_OK(lucent_surfels_from_mesh(sc->objects[0].mesh, &(lucent_surfels_desc){.max_levels = 1}, &sf));
+        double sum[2] = {0, 0}, sum2[2] = {0, 0}, worst = 0, least = INFINITY;
+        int n = 0;
+        for (int y = 16; sf && y < 48; y++)
+            for (int x = 16; x < 48; x++) {
+                double o[3], d[3];
+                lucent_camera_ray(&sc->camera, 64, 64, x + 0.5, y + 0.5, o, d);
+                double k = -o[2] / d[2], v[2] = {lucent_image_get(img, x, y, 0), 0};
+                v[1] = cpu_weight(sf, o[0] + k * d[0], o[1] + k * d[1], sc->render.points.cutoff);
+                for (int i = 0; i < 2; i++) sum[i] += v[i], sum2[i] += v[i] * v[i];
+                worst = fmax(worst, fabs(v[0] - v[1])), least = fmin(least, v[0]), n++;
+            }
+        if (sf) {
+            double mean[2], ripple[2];
+            for (int i = 0; i < 2; i++)
+                mean[i] = sum[i] / n, ripple[i] = sqrt(fmax(sum2[i] / n - mean[i] * mean[i], 0)) / mean[i];
+            printf("     %s grid: weight sum mean %.4f (CPU %.4f), ripple %.2f%% (CPU %.2f%%), least %.3f (e^-2 = "
+                   "%.3f), largest difference %.3f%% of the mean\n",
+                   t ? "jittered" : "regular", mean[0], mean[1], 100 * ripple[0], 100 * ripple[1], least, exp(-2.0),
+                   100 * worst / mean[1]);
+            CHECK_MSG(worst <= 0.01 * mean[1], "the weight sum differs from the CPU's by %.3f%% of the mean",
+                      100 * worst / mean[1]);
+            CHECK(fabs(ripple[0] - ripple[1]) < 0.002);
+            CHECK_MSG(least >= exp(-2.0) * (1 - 1e-4), "a pixel sums %.4f < e^-2: not covered", least);
+            if (t == 0) cell_check(sf, sc->render.points.cutoff);
+        }
+        lucent_surfels_destroy(sf);
         lucent_image_destroy(img);
         lucent_scene_destroy(sc);
     }
@@ -329,5 +420,6 @@ static void teardown(void)
 TEST(zz_teardown) { teardown(); }
 
 TEST_MAIN(TEST_ENTRY(impulse_response_is_the_sum_of_gaussians), TEST_ENTRY(uniformly_lit_plane_has_no_ripple),
+          TEST_ENTRY(splat_weights_are_the_gaussians_they_should_be),
           TEST_ENTRY(one_or_two_preparation_threads_give_the_same_image),
           TEST_ENTRY(cloud_without_30_percent_has_no_holes), TEST_ENTRY(zz_teardown))

@@ -354,8 +354,9 @@ TEST(bad_fields_are_named)
 TEST(default_scenes_are_valid)
 {
     /* Every scene in data/scenes reads and checks (meshes skipped: they are fetched at set-up). */
-    static const char *const names[] = {"dragon-marble", "bunny-skin", "bunny-jade", "spheres-skin"};
-    for (int i = 0; i < 4; i++) {
+    static const char *const names[] = {"dragon-marble", "bunny-skin", "bunny-jade", "spheres-skin",
+                                        "bunny-skin-points"};
+    for (int i = 0; i < 5; i++) {
         char path[1024];
         snprintf(path, sizeof path, "%s/data/scenes/%s.json", LUCENT_SOURCE_DIR, names[i]);
         lucent_scene *sc = NULL;

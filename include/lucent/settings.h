@@ -121,6 +121,7 @@ typedef struct lucent_points_settings {
     int neighbours;       /* k of the radii from the k nearest */
     double filter_px;     /* radius of the screen-space prefilter, pixels */
     int impulse;          /* >= 0: only that surfel of each object is lit (the impulse response) */
+    bool weights;         /* debug: the image is the splats' summed Gaussian weight before normalisation */
 } lucent_points_settings;
 typedef struct lucent_tsd_settings {
     int size;      /* texels along a side of each object's texture */

@@ -26,6 +26,7 @@
 
 #include "base/json.h"
 #include "base/mat4.h"
+#include "base/optics.h"
 #include "base/settings_table.h"
 #include "gl/methods/surface.h"
 #include "lucent/surfels.h"
@@ -54,6 +55,8 @@ static const lucent_setting k_points[] = {
     SETTING_REAL("filter_px", points.filter_px, 1, 0, 8, "radius of the screen-space prefilter, pixels"),
     SETTING_INT("impulse", points.impulse, -1, -1, 2000000000, 0,
                 "debug: only this surfel of each object is lit, radiance 1 (the diffusion's impulse response)"),
+    SETTING_BOOL("weights", points.weights, false,
+                 "debug: every channel is the splats' summed Gaussian weight before normalisation (0 uncovered)"),
 };
 
 const lucent_settings_group gl_points_settings =
@@ -369,6 +372,7 @@ static void draw_splats(const lucent_renderer *r, const points_state *st, GLuint
         set1f(p, "u_f0", so->specular_f0);
         set1f(p, "u_roughness", so->roughness);
         set1f(p, "u_object", i);
+        set1f(p, "u_material", r->tables.object_material[i]);
         glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)o->levels[0].count);
     }
 }
@@ -415,6 +419,7 @@ static void draw_meshes(const lucent_renderer *r, const points_state *st)
         set1f(p, "u_f0", o->specular_f0);
         set1f(p, "u_roughness", o->roughness);
         set1f(p, "u_object", i);
+        set1f(p, "u_material", r->tables.object_material[i]);
         gl_meshes_draw(&r->meshes, i);
     }
 }
@@ -570,6 +575,14 @@ static void pass_shade(lucent_renderer *r, points_state *st, const lucent_render
     glBindTextureUnit(6, st->g_tex[G_NORMAL]);
     glBindTextureUnit(7, st->g_tex[G_OBJECT]);
     set1i(p, "u_diffusion", s->points.style == LUCENT_POINTS_DIFFUSION);
+    set1i(p, "u_weights_out", s->points.weights);
+    float eta[GLR_MAX_MATERIALS] = {0}, mean_ft[GLR_MAX_MATERIALS] = {0};
+    for (int m = 0; m < r->tables.count; m++) {
+        eta[m] = (float)r->tables.material[m].eta;
+        mean_ft[m] = (float)lucent_fresnel_mean_transmittance(r->tables.material[m].eta);
+    }
+    glProgramUniform1fv(p, glGetUniformLocation(p, "u_eta"), GLR_MAX_MATERIALS, eta);
+    glProgramUniform1fv(p, glGetUniformLocation(p, "u_mean_ft"), GLR_MAX_MATERIALS, mean_ft);
     set1f(p, "u_shadow_offset", 1.5);
     glProgramUniform3f(p, glGetUniformLocation(p, "u_background"), (float)(bg[0] + amb[0]), (float)(bg[1] + amb[1]),
                        (float)(bg[2] + amb[2]));

@@ -11,11 +11,12 @@ uniform vec3 u_albedo;
 uniform float u_f0;
 uniform float u_roughness;
 uniform float u_object;
+uniform float u_material; // the renderer's material row (the shade pass's eta)
 
 layout(location = 0) out vec4 o_position;
 layout(location = 1) out vec4 o_normal;
 layout(location = 2) out vec4 o_albedo;
-layout(location = 3) out vec4 o_object; // object + 1, 1 (a mesh), 0, 1
+layout(location = 3) out vec4 o_object; // object + 1, 1 (a mesh), material, 1
 
 void main()
 {
@@ -24,5 +25,5 @@ void main()
     o_position = vec4(v_position, 1.0);
     o_normal = vec4(n, u_f0);
     o_albedo = vec4(u_albedo, u_roughness);
-    o_object = vec4(u_object + 1.0, 1.0, 0.0, 1.0);
+    o_object = vec4(u_object + 1.0, 1.0, u_material, 1.0);
 }

@@ -1,19 +1,23 @@
 // The last pass (Kim et al.'s fifth): the attributes normalised by the splats' summed weights, the
 // diffused radiance of the splat-based diffusion (or, for the BRDF and disk baselines and for meshes,
-// Lambert at the pixel), and the Kelemen/Szirmay-Kalos specular the paper uses, per light with
+// Lambert at the pixel) leaving through the boundary toward the eye as in the mesh methods
+// (diffuse_exit, lights.glsl), and the Kelemen/Szirmay-Kalos specular the paper uses, per light with
 // the shadow test. Background where no splat landed.
 #include "common.glsl"
 #include "lights.glsl"
 
 layout(binding = 5) uniform sampler2D u_g_position; // w Sum: position, w
 layout(binding = 6) uniform sampler2D u_g_normal;   // w Sum: normal, f0
-layout(binding = 7) uniform sampler2D u_g_object;   // object + 1, 1 for a mesh
+layout(binding = 7) uniform sampler2D u_g_object;   // object + 1, 1 for a mesh, material
 layout(binding = 3) uniform sampler2D u_g_albedo;   // w Sum: albedo, roughness
 layout(binding = 0) uniform sampler2D u_diffused;   // the sum of the Gaussians' images
 layout(binding = 8) uniform sampler2D u_weights;    // the sum of their weights there
 
-uniform int u_diffusion; // 1: splat-based diffusion for splats
+uniform int u_diffusion;   // 1: splat-based diffusion for splats
+uniform int u_weights_out; // 1: the summed splat weight instead (the setting `weights`)
 uniform vec3 u_background;
+uniform float u_eta[8];     // per material row (GLR_MAX_MATERIALS)
+uniform float u_mean_ft[8]; // 2 int (1 - F(mu)) mu dmu of each row's eta
 uniform float u_shadow_offset;
 
 layout(location = 0) out vec4 o_color; // rgb: radiance; a: coverage
@@ -22,6 +26,10 @@ void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
     vec4 g = texelFetch(u_g_position, px, 0);
+    if (u_weights_out != 0) {
+        o_color = vec4(vec3(max(g.w, 0.0)), 1.0);
+        return;
+    }
     if (g.w <= 0.0) {
         o_color = vec4(u_background, 0.0);
         return;
@@ -29,7 +37,9 @@ void main()
     vec4 gn = texelFetch(u_g_normal, px, 0), ga = texelFetch(u_g_albedo, px, 0);
     vec3 p = g.xyz / g.w, n = normalize(gn.xyz), albedo = ga.rgb / g.w, v = normalize(u_eye.xyz - p);
     float f0 = gn.w / g.w, roughness = ga.a / g.w;
-    bool mesh = texelFetch(u_g_object, px, 0).y > 0.5;
+    vec4 go = texelFetch(u_g_object, px, 0);
+    bool mesh = go.y > 0.5;
+    int m = clamp(int(go.z + 0.5), 0, 7);
     vec3 irradiance = vec3(0.0), specular = vec3(0.0);
     for (int i = 0; i < u_counts.x; i++) {
         vec3 l, e = light_incident(i, p, l);
@@ -40,5 +50,5 @@ void main()
     vec3 diffuse = albedo * (irradiance / PI + u_ambient.rgb), wsum = texelFetch(u_weights, px, 0).rgb;
     if (u_diffusion != 0 && !mesh && all(greaterThan(wsum, vec3(0.0))))
         diffuse = texelFetch(u_diffused, px, 0).rgb / max(wsum, vec3(1e-6));
-    o_color = vec4(diffuse + specular, 1.0);
+    o_color = vec4(diffuse * diffuse_exit(n, v, u_eta[m], u_mean_ft[m]) + specular, 1.0);
 }

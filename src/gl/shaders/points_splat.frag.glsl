@@ -17,6 +17,7 @@ uniform float u_cutoff;  // standard deviations at the radius
 uniform float u_f0;
 uniform float u_roughness;
 uniform float u_object;
+uniform float u_material; // the renderer's material row (the shade pass's eta)
 
 flat in vec3 v_c;
 flat in vec3 v_n;
@@ -28,7 +29,7 @@ flat in vec3 v_albedo;
 layout(location = 0) out vec4 o_position; // w Sum: position, w
 layout(location = 1) out vec4 o_normal;   // w Sum: normal, f0
 layout(location = 2) out vec4 o_albedo;   // w Sum: albedo, roughness
-layout(location = 3) out vec4 o_object;   // not blended: object + 1, 0 (a splat), 0, 1
+layout(location = 3) out vec4 o_object;   // not blended: object + 1, 0 (a splat), material, 1
 #endif
 
 void main()
@@ -55,6 +56,6 @@ void main()
     o_position = vec4(q, 1.0) * w;
     o_normal = vec4(v_n, u_f0) * w;
     o_albedo = vec4(v_albedo, u_roughness) * w;
-    o_object = vec4(u_object + 1.0, 0.0, 0.0, 1.0);
+    o_object = vec4(u_object + 1.0, 0.0, u_material, 1.0);
 #endif
 }
