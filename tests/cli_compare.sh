@@ -37,6 +37,15 @@ expect_true "1 spp: the HTML warns" -- grep -q 'class="warn"><b>Warning:</b> the
 expect_true "1 spp: no best in the HTML" -- bash -c '! grep -q "class=\"best\"" "$0"' "$TMP/cmp1/report.html"
 expect_true "1 spp: the JSON's noise is null" -- grep -q '"reference_noise":[[:space:]]*null' "$TMP/cmp1/results.json"
 
+# A method that cannot render a scene's material (the manual kernel's Table A.1 has no Skin2) is skipped
+# with a warning naming the method and the scene; the run goes on and reports the others (issue 12).
+expect_ok -- "${GLRUN[@]}" compare "$SC/sphere.json" --set 'objects[0].material=skin2' --methods ssss:manual,lambert \
+  --spp 8 --frames 1 --out "$TMP/cmp-skip"
+expect_true "skip: the terminal warns, naming method and scene" -- \
+  grep -q "warning: ssss:manual skipped (scene test-sphere: object .*no Table A.1 parameters for 'Skin2'" "$TMP/.stderr"
+expect_true "skip: the other method is reported" -- test "$(grep -c '^"test-sphere",' "$TMP/cmp-skip/report.csv")" = 1
+expect_true "skip: the skipped one is not" -- bash -c '! grep -q "ssss:manual" "$0"' "$TMP/cmp-skip/report.csv"
+
 # Failures: exit 1 (bad input) or 2 (bad usage), a message naming the cause, no report left behind.
 expect_fail 2 "--methods: unknown method 'phong'" -- "${GLRUN[@]}" compare "$SC/sphere.json" --methods lambert,phong --out "$TMP/c1"
 expect_fail 2 "give at least one scene file" -- "${GLRUN[@]}" compare --out "$TMP/c2"

@@ -61,7 +61,9 @@ static double shading_error(lucent_renderer *r, const lucent_scene *sc, const lu
     CHECK_OK(gl_renderer_read_aov(r, 1, &pos));
     const lucent_scene_object *o = &sc->objects[0];
     gl_ref_material m = {.roughness = o->roughness, .eta = o->material.eta};
-    for (int c = 0; c < 3; c++) m.albedo[c] = o->albedo[c], m.sigma0[c] = o->sigma0[c];
+    lucent_render_object_info info;
+    CHECK_OK(lucent_renderer_object_info(r, 0, &info)); /* the albedo it shaded with: the material's MC Rd */
+    for (int c = 0; c < 3; c++) m.albedo[c] = info.albedo[c], m.sigma0[c] = o->sigma0[c];
     for (size_t i = 0; res.image && nk && pos && i < (size_t)s->view.width * (size_t)s->view.height; i++) {
         if (res.mask->data[i] < 0.5f) continue;
         gl_ref_point p = {.curvature = nk->data[4 * i + 3]};
@@ -420,7 +422,9 @@ TEST(scene_changes_and_adopted_bakes_give_a_fresh_renderers_pixels)
         lucent_renderer_desc rd = lucent_renderer_defaults();
         lucent_baked b = {0}, copy = {0};
         unsigned what = lucent_renderer_bakes(m, &marble->render);
-        CHECK(what == LUCENT_BAKE_TAPS || what == (LUCENT_BAKE_TAPS | LUCENT_BAKE_TRANSMITTANCE));
+        /* the albedo (the material's Monte Carlo Rd) with every method */
+        CHECK(what == (LUCENT_BAKE_TAPS | LUCENT_BAKE_RD) ||
+              what == (LUCENT_BAKE_TAPS | LUCENT_BAKE_TRANSMITTANCE | LUCENT_BAKE_RD));
         CHECK_OK(lucent_material_bake(&marble->objects[0].material,
                                       &(lucent_bake_desc){.what = what,
                                                           .settings = &marble->render,
@@ -440,13 +444,16 @@ TEST(scene_changes_and_adopted_bakes_give_a_fresh_renderers_pixels)
         lucent_material other;
         lucent_material_preset_find("ketchup", &other);
         CHECK_ERR(lucent_renderer_adopt_baked(m, &other, &copy), LUCENT_ERR_NOT_FOUND, "Ketchup");
-        /* what each method bakes: lambert nothing; cdrf no sigma0 fit where the scene gives sigma0 */
+        /* what each method bakes: lambert only the albedo; cdrf no sigma0 fit where the scene gives
+         * sigma0; no albedo where the scene gives its colour */
         lucent_render_settings s = marble->render;
         s.view.method = LUCENT_METHOD_LAMBERT;
-        CHECK(lucent_renderer_bakes(m, &s) == 0);
+        CHECK(lucent_renderer_bakes(m, &s) == LUCENT_BAKE_RD);
         s.view.method = LUCENT_METHOD_CDRF, s.cdrf.sigma0 = LUCENT_SIGMA0_FIT;
-        CHECK(lucent_renderer_bakes(m, &s) == 0);
+        CHECK(lucent_renderer_bakes(m, &s) == LUCENT_BAKE_RD);
         marble->objects[0].sigma0_set = false;
+        CHECK(lucent_renderer_bakes(m, &s) == (LUCENT_BAKE_SIGMA0 | LUCENT_BAKE_RD));
+        marble->objects[0].albedo_source = LUCENT_ALBEDO_COLOR;
         CHECK(lucent_renderer_bakes(m, &s) == LUCENT_BAKE_SIGMA0);
         lucent_baked_free(&copy);
     }

@@ -158,6 +158,8 @@ static void on_event(const lucent_eval_event *e, void *user)
 {
     const lucent_compare_result *result = user;
     if (e->kind == LUCENT_EVAL_SCENE_DONE) print_scene(&result->scenes[e->index].report);
+    if (e->kind == LUCENT_EVAL_SKIPPED)
+        fprintf(stderr, "lucent compare: warning: %s skipped (%s)\n", e->name, e->reason);
 }
 
 int cmd_compare(int argc, char **argv)

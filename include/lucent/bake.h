@@ -10,7 +10,10 @@
  *                  profile for the "profile" model)            or lucent_profile_tail
  *   sigma0         cdrf.variant                                lucent_cdrf_fit_material (cached)
  *   sog            the profile, desc.sog_count                 lucent_sog_fit, variances shared by
- *                                                              the channels (d'Eon & Luebke 2007) */
+ *                                                              the channels (d'Eon & Luebke 2007)
+ *   rd             the material only                           lucent_profile_mc_total (cached): the
+ *                                                              Monte Carlo total diffuse reflectance,
+ *                                                              the real-time methods' albedo */
 #ifndef LUCENT_BAKE_H
 #define LUCENT_BAKE_H
 
@@ -32,7 +35,8 @@ enum {
     LUCENT_BAKE_TAPS = 1u << 1,          /* bakes the profile too */
     LUCENT_BAKE_TRANSMITTANCE = 1u << 2, /* bakes the profile too for the "profile" model */
     LUCENT_BAKE_SIGMA0 = 1u << 3,
-    LUCENT_BAKE_SOG = 1u << 4 /* bakes the profile too */
+    LUCENT_BAKE_SOG = 1u << 4, /* bakes the profile too */
+    LUCENT_BAKE_RD = 1u << 5
 };
 
 /* The defaults of lucent_bake_desc's photon counts, stated once. */
@@ -40,7 +44,9 @@ enum {
     LUCENT_BAKE_PROFILE_PHOTONS = 200000, /* ssss.profile "mc": per channel */
     LUCENT_BAKE_TRANSMIT_PHOTONS = 20000, /* slab transmittance: per channel and thickness */
     LUCENT_BAKE_SIGMA0_PHOTONS = 40000,   /* sigma0 fit: per channel and sphere */
-    LUCENT_BAKE_SIGMA0_BINS = 18          /* sigma0 fit: theta bins of each sphere */
+    LUCENT_BAKE_SIGMA0_BINS = 18,         /* sigma0 fit: theta bins of each sphere */
+    LUCENT_BAKE_RD_PHOTONS = 400000       /* total diffuse reflectance: per channel (Skin1's blue
+                                             0.113 +- 0.0005) */
 };
 
 enum { LUCENT_BAKE_TRANSMIT_SIZE = 256 }; /* samples of the transmittance table */
@@ -66,11 +72,13 @@ typedef struct lucent_baked {
     /* T(s) per channel at s = transmit_range j / (size - 1), [3 j + channel], the last entry 0: the
      * slab's own transmittance, or the profile's T(s) / T(0) (to be multiplied by the albedo). */
     float transmittance[LUCENT_BAKE_TRANSMIT_SIZE * 3];
-    double transmit_range; /* mm */
-    double sigma0[3];      /* mm */
-    double kd[3];          /* the fit's albedo scale k_d with sigma0 (lucent_cdrf_fit.kd) */
-    bool sigma0_cached;    /* read from the disk cache */
-    lucent_sog sog;        /* the profile as a sum of Gaussians with shared variances */
+    double transmit_range;  /* mm */
+    double sigma0[3];       /* mm */
+    double kd[3];           /* the fit's albedo scale k_d with sigma0 (lucent_cdrf_fit.kd) */
+    double rd[3], rd_se[3]; /* the half-space's Monte Carlo total diffuse reflectance and its error */
+    bool rd_cached;         /* read from the disk cache */
+    bool sigma0_cached;     /* read from the disk cache */
+    lucent_sog sog;         /* the profile as a sum of Gaussians with shared variances */
     /* What each part was built from ("dipole", "dipole/preint/1/17", ...): a part is rebuilt when its
      * key changes. */
     char profile_key[LUCENT_BAKE_KEY_SIZE], taps_key[LUCENT_BAKE_KEY_SIZE];

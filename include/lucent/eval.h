@@ -43,16 +43,18 @@ extern "C" {
 
 typedef enum lucent_eval_event_kind {
     LUCENT_EVAL_WROTE = 1, /* path: a file was written (complete, renamed into place) */
-    LUCENT_EVAL_SKIPPED,   /* name: a kernel model was left out; reason: why */
+    LUCENT_EVAL_SKIPPED,   /* name: a kernel model (kernel-eval) or a method (compare) was left out;
+                              reason: why (compare: it names the scene) */
     LUCENT_EVAL_SCENE_DONE /* index: compare's scene index is measured and its files written */
 } lucent_eval_event_kind;
 
 typedef struct lucent_eval_event {
     lucent_eval_event_kind kind;
     const char *path;   /* LUCENT_EVAL_WROTE */
-    const char *name;   /* LUCENT_EVAL_SKIPPED: the model; LUCENT_EVAL_SCENE_DONE: the scene */
+    const char *name;   /* LUCENT_EVAL_SKIPPED: the model or method; LUCENT_EVAL_SCENE_DONE: the scene */
     const char *reason; /* LUCENT_EVAL_SKIPPED */
-    int index;          /* LUCENT_EVAL_SKIPPED: the model's; LUCENT_EVAL_SCENE_DONE: the scene's */
+    int index;          /* LUCENT_EVAL_SKIPPED: the model's (compare: the scene's); LUCENT_EVAL_SCENE_DONE:
+                           the scene's */
 } lucent_eval_event;
 
 /* Called on the thread that runs the evaluation; the strings live until it returns. */

@@ -237,6 +237,14 @@ bool lucent_profile_source_known(const char *name);
 lucent_status lucent_profile_from_source(const lucent_profile_source_desc *desc, const lucent_material *m,
                                          lucent_profile **dest);
 
+/* The Monte Carlo total diffuse reflectance of a half-space of m per channel, lit at normal
+ * incidence (the specular reflection at entry excluded), with its standard error: the same walk
+ * as the "mc" profile (lucent/mc.h, Fresnel boundaries of m's eta), photons per channel (0: 200000),
+ * channel c seeded 4 seed + c. The albedo the real-time methods multiply their redistribution by
+ * (lucent/bake.h, LUCENT_BAKE_RD). */
+lucent_status lucent_profile_mc_total(const lucent_material *m, uint64_t photons, uint64_t seed, lucent_pool *pool,
+                                      double rd[3], double rd_se[3]);
+
 /* The name of profile source i (0: "dipole"); NULL past the last. */
 const char *lucent_profile_source_name(int index);
 

@@ -81,7 +81,9 @@ const char *lucent_light_type_name(lucent_light_type type);
 /* ---- Objects ------------------------------------------------------------------------------- */
 
 typedef enum lucent_albedo_source {
-    LUCENT_ALBEDO_FROM_MATERIAL = 0, /* the material's total diffuse reflectance (dipole Rd) */
+    LUCENT_ALBEDO_FROM_MATERIAL = 0, /* the material's total diffuse reflectance: albedo holds the dipole's
+                                        closed form, the GL renderer shades with the Monte Carlo Rd
+                                        (lucent/bake.h, LUCENT_BAKE_RD) */
     LUCENT_ALBEDO_COLOR,             /* the "albedo" colour of the object */
     LUCENT_ALBEDO_TEXTURE            /* the "albedo_texture" image (linear RGB once read) */
 } lucent_albedo_source;

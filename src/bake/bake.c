@@ -194,6 +194,26 @@ static lucent_status bake_sigma0(const lucent_material *m, const lucent_bake_des
     return LUCENT_OK;
 }
 
+/* ---- rd: the total diffuse reflectance of a half-space, by the profile's Monte Carlo ---- */
+
+static lucent_status bake_rd(const lucent_material *m, const lucent_bake_desc *d, lucent_cache *cache, lucent_baked *b)
+{
+    if (b->have & LUCENT_BAKE_RD) return LUCENT_OK;
+    char mat[512], key[640];
+    material_key(m, mat, sizeof mat);
+    snprintf(key, sizeof key, "%s photons %d seed 1", mat, (int)LUCENT_BAKE_RD_PHOTONS);
+    b->rd_cached =
+        lucent_cache_get(cache, "rd", key, "rd", 3, b->rd) && lucent_cache_get(cache, "rd", key, "rd_se", 3, b->rd_se);
+    if (!b->rd_cached) {
+        lucent_status s = lucent_profile_mc_total(m, LUCENT_BAKE_RD_PHOTONS, 1, d->pool, b->rd, b->rd_se);
+        if (s != LUCENT_OK) return lucent_error_context(s, "material %s: total diffuse reflectance", m->name);
+        lucent_cache_field f[2] = {{"rd", b->rd, 3}, {"rd_se", b->rd_se, 3}};
+        lucent_cache_put(cache, "rd", key, f, 2);
+    }
+    b->have |= LUCENT_BAKE_RD;
+    return LUCENT_OK;
+}
+
 /* ---- the profile as a sum of Gaussians (d'Eon & Luebke 2007: shared variances, RGB weights) ---- */
 
 static lucent_status bake_sog(const lucent_material *m, const lucent_bake_desc *d, lucent_baked *b)
@@ -224,6 +244,7 @@ lucent_status lucent_material_bake(const lucent_material *material, const lucent
     if (s == LUCENT_OK && (d.what & LUCENT_BAKE_TRANSMITTANCE)) s = bake_transmittance(material, &d, cache, baked);
     if (s == LUCENT_OK && (d.what & LUCENT_BAKE_SIGMA0)) s = bake_sigma0(material, &d, cache, baked);
     if (s == LUCENT_OK && (d.what & LUCENT_BAKE_SOG)) s = bake_sog(material, &d, baked);
+    if (s == LUCENT_OK && (d.what & LUCENT_BAKE_RD)) s = bake_rd(material, &d, cache, baked);
     return s;
 }
 

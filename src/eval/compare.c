@@ -36,6 +36,7 @@ typedef struct run {
     char method_text[1024]; /* the default list, split in place */
     const char *methods[LUCENT_COMPARE_MAX_METHODS];
     lucent_gl_context *gl;
+    int scene_index; /* the scene being measured */
 } run;
 
 lucent_compare_desc lucent_compare_defaults(void)
@@ -223,13 +224,28 @@ static lucent_status measure(const run *r, scene_store *ss, const lucent_image *
     return s;
 }
 
-static lucent_status run_method(const run *r, scene_store *ss, lucent_renderer *rend, int m)
+/* Renders and measures method i of the run into the scene's next row; a method that cannot render
+ * the scene's materials is skipped (an event names it and why) and takes no row. */
+static lucent_status run_method(const run *r, scene_store *ss, lucent_renderer *rend, int i)
 {
-    const char *method = r->d.methods[m];
+    const char *method = r->d.methods[i];
+    int m = ss->method_count;
     method_store *ms = &ss->methods[m];
     lucent_render_settings rs = ss->scene->render;
     lucent_render_result res = {0};
     lucent_status s = eval_method_settings(method, &rs);
+    char why[512];
+    if (s == LUCENT_OK && eval_method_unavailable(&rs, ss->scene, why, sizeof why)) {
+        char reason[EVAL_PATH_SIZE];
+        snprintf(reason, sizeof reason, "scene %s: %s", ss->stem, why);
+        if (r->d.on_event)
+            r->d.on_event(
+                &(lucent_eval_event){
+                    .kind = LUCENT_EVAL_SKIPPED, .name = method, .reason = reason, .index = r->scene_index},
+                r->d.user);
+        return LUCENT_OK;
+    }
+    ss->method_count++;
     snprintf(ms->name, sizeof ms->name, "%s", method);
     if (s == LUCENT_OK) s = lucent_render(rend, &rs, &res);
     char stem[EVAL_NAME_SIZE];
@@ -319,7 +335,7 @@ static lucent_status measure_scene(const run *r, const char *path, scene_store *
     if (s == LUCENT_OK)
         s = lucent_renderer_create(r->gl, ss->scene, &(lucent_renderer_desc){.pool = r->d.pool, .cache_dir = cache_dir},
                                    &rend);
-    for (int i = 0; i < r->d.method_count && s == LUCENT_OK; i++, ss->method_count++) s = run_method(r, ss, rend, i);
+    for (int i = 0; i < r->d.method_count && s == LUCENT_OK; i++) s = run_method(r, ss, rend, i);
     lucent_renderer_destroy(rend);
     return s;
 }
@@ -350,6 +366,7 @@ static lucent_status compare_all(run *r, lucent_compare_result *dest)
     lucent_status s = LUCENT_OK;
     for (int i = 0; i < r->d.scene_count && s == LUCENT_OK; i++) {
         st->count = i + 1;
+        r->scene_index = i;
         s = compare_scene(r, r->d.scenes[i], &st->scenes[i], &dest->scenes[i]);
         if (s != LUCENT_OK) break;
         dest->scene_count = i + 1;

@@ -5,10 +5,25 @@
 #include <stdio.h>
 
 #include "eval/internal.h"
+#include "lucent/kernel.h"
+#include "lucent/scene.h"
 
 lucent_status eval_method_settings(const char *method, lucent_render_settings *rs)
 {
     return lucent_render_method_parse(method, &rs->view.method, rs);
+}
+
+bool eval_method_unavailable(const lucent_render_settings *rs, const lucent_scene *scene, char *reason, size_t size)
+{
+    if (rs->view.method != LUCENT_METHOD_SSSS || rs->ssss.kernel != LUCENT_KERNEL_MANUAL) return false;
+    for (int i = 0; i < scene->object_count; i++) {
+        lucent_manual_params p;
+        if (lucent_manual_preset(scene->objects[i].material.name, &p) != LUCENT_OK) {
+            snprintf(reason, size, "object \"%s\": %s", scene->objects[i].name, lucent_last_error());
+            return true;
+        }
+    }
+    return false;
 }
 
 void eval_method_describe(const lucent_render_settings *rs, char *dest, size_t size)

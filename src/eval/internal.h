@@ -3,6 +3,7 @@
 #ifndef LUCENT_SRC_EVAL_INTERNAL_H
 #define LUCENT_SRC_EVAL_INTERNAL_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "lucent/eval.h"
@@ -28,6 +29,11 @@ lucent_status eval_wrote(lucent_eval_event_fn on_event, void *user, lucent_statu
 
 /* Applies method (a name lucent_render_method_parse reads) to settings. */
 lucent_status eval_method_settings(const char *method, lucent_render_settings *settings);
+
+/* True when the method of settings cannot render scene's materials (the manual kernel has Table A.1
+ * parameters for five materials only), with why in reason; a compare run skips it there. */
+bool eval_method_unavailable(const lucent_render_settings *settings, const lucent_scene *scene, char *reason,
+                             size_t size);
 
 /* What distinguishes a method's run, for the tables: "svd rank 3, 11 taps, ...". */
 void eval_method_describe(const lucent_render_settings *settings, char *dest, size_t size);

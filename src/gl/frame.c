@@ -91,8 +91,10 @@ unsigned lucent_renderer_bakes(const lucent_renderer *r, const lucent_render_set
 {
     const gl_method *m =
         s->view.method >= 0 && s->view.method < LUCENT_METHOD_COUNT ? gl_methods[s->view.method] : NULL;
-    if (m && m->bakes) return m->bakes(r, s);
-    return LUCENT_BAKE_PROFILE | LUCENT_BAKE_TAPS | LUCENT_BAKE_TRANSMITTANCE | LUCENT_BAKE_SIGMA0 | LUCENT_BAKE_SOG;
+    unsigned rd = gl_renderer_needs_rd(r) ? LUCENT_BAKE_RD : 0u;
+    if (m && m->bakes) return m->bakes(r, s) | rd;
+    return LUCENT_BAKE_PROFILE | LUCENT_BAKE_TAPS | LUCENT_BAKE_TRANSMITTANCE | LUCENT_BAKE_SIGMA0 | LUCENT_BAKE_SOG |
+           rd;
 }
 
 /* ---- the frame ---- */
@@ -148,6 +150,10 @@ static lucent_status prepare(lucent_renderer *r, const gl_method *m, void **stat
     if (st == LUCENT_OK && !*state) {
         *state = calloc(1, m->state_size ? m->state_size : 1);
         if (!*state) st = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    }
+    if (st == LUCENT_OK && gl_renderer_needs_rd(r)) { /* the albedo (gl_renderer_object_albedo) */
+        lucent_bake_desc d = gl_renderer_bake_desc(r, s, LUCENT_BAKE_RD);
+        st = gl_tables_bake(&r->tables, &d, r->cache);
     }
     if (st == LUCENT_OK && m->prepare) st = m->prepare(r, *state, s);
     return st;

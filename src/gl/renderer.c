@@ -24,6 +24,22 @@ lucent_bake_desc gl_renderer_bake_desc(const lucent_renderer *r, const lucent_re
                               .pool = r->desc.pool};
 }
 
+void gl_renderer_object_albedo(const lucent_renderer *r, int object, double dest[3])
+{
+    const lucent_scene_object *o = &r->scene->objects[object];
+    const lucent_baked *b = gl_tables_of(&r->tables, object);
+    bool mc = o->albedo_source == LUCENT_ALBEDO_FROM_MATERIAL && (b->have & LUCENT_BAKE_RD);
+    memcpy(dest, mc ? b->rd : o->albedo, 3 * sizeof *dest);
+}
+
+bool gl_renderer_needs_rd(const lucent_renderer *r)
+{
+    for (int i = 0; i < r->scene->object_count; i++)
+        if (r->scene->objects[i].visible && r->scene->objects[i].albedo_source == LUCENT_ALBEDO_FROM_MATERIAL)
+            return true;
+    return false;
+}
+
 void gl_renderer_draw_objects(const lucent_renderer *r)
 {
     for (int i = 0; i < r->scene->object_count; i++)
@@ -154,7 +170,7 @@ lucent_status lucent_renderer_object_info(const lucent_renderer *r, int index, l
     if (index < 0 || index >= r->scene->object_count)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "object %d of %d", index, r->scene->object_count);
     memset(dest, 0, sizeof *dest);
-    memcpy(dest->albedo, r->scene->objects[index].albedo, sizeof dest->albedo);
+    gl_renderer_object_albedo(r, index, dest->albedo);
     dest->sigma0_from = "";
     memcpy(dest->curvature_range, r->meshes.mesh[index].curvature_range, sizeof dest->curvature_range);
     dest->transmit_range = gl_tables_of(&r->tables, index)->transmit_range;

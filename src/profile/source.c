@@ -19,29 +19,50 @@ bool lucent_profile_source_known(const char *name)
     return false;
 }
 
+/* Channel c of m as a half-space, run on grid g (Freude Table 6.1's default grid). */
+static lucent_status mc_half_space(const lucent_material *m, int c, uint64_t photons, uint64_t seed, lucent_pool *pool,
+                                   const lucent_profile_grid *g, lucent_mc_result *r)
+{
+    static const char *const labels[] = {"Monte Carlo R", "Monte Carlo G", "Monte Carlo B"};
+    lucent_mc_layer layer = {
+        .n = m->eta, .sigma_a = m->sigma_a[c], .sigma_s = m->sigma_s[c], .g = m->g[c], .thickness = INFINITY};
+    lucent_mc_desc md = {.layers = &layer,
+                         .layer_count = 1,
+                         .photons = photons ? photons : 200000,
+                         .seed = 4 * seed + (uint64_t)c,
+                         .grid = {.dr = g->dr, .nr = g->count},
+                         .pool = pool,
+                         .label = labels[c]};
+    return lucent_mc_run(&md, r);
+}
+
 /* Monte Carlo R_d(r) of a half-space of m, per channel, on the default grid (Freude Table 6.1). */
 static lucent_status profile_mc(const lucent_profile_source_desc *d, const lucent_material *m, lucent_profile **dest)
 {
     lucent_profile_grid g;
     lucent_profile_grid_default(m, &g);
     lucent_status s = lucent_profile_create(&g, "mc", dest);
-    static const char *const labels[] = {"Monte Carlo R", "Monte Carlo G", "Monte Carlo B"};
     for (int c = 0; c < 3 && s == LUCENT_OK; c++) {
-        lucent_mc_layer layer = {
-            .n = m->eta, .sigma_a = m->sigma_a[c], .sigma_s = m->sigma_s[c], .g = m->g[c], .thickness = INFINITY};
-        lucent_mc_desc md = {.layers = &layer,
-                             .layer_count = 1,
-                             .photons = d->photons ? d->photons : 200000,
-                             .seed = 4 * d->seed + (uint64_t)c,
-                             .grid = {.dr = g.dr, .nr = g.count},
-                             .pool = d->pool,
-                             .label = labels[c]};
         lucent_mc_result r = {0};
-        if ((s = lucent_mc_run(&md, &r)) != LUCENT_OK) break;
+        if ((s = mc_half_space(m, c, d->photons, d->seed, d->pool, &g, &r)) != LUCENT_OK) break;
         for (int j = 0; j < g.count; j++) (*dest)->value[c][j] = r.rd_r[j], (*dest)->error[c][j] = r.rd_r_se[j];
         lucent_mc_result_free(&r);
     }
     if (s != LUCENT_OK) lucent_profile_destroy(*dest), *dest = NULL;
+    return s;
+}
+
+lucent_status lucent_profile_mc_total(const lucent_material *m, uint64_t photons, uint64_t seed, lucent_pool *pool,
+                                      double rd[3], double rd_se[3])
+{
+    lucent_profile_grid g;
+    lucent_profile_grid_default(m, &g);
+    lucent_status s = LUCENT_OK;
+    for (int c = 0; c < 3 && s == LUCENT_OK; c++) {
+        lucent_mc_result r = {0};
+        if ((s = mc_half_space(m, c, photons, seed, pool, &g, &r)) == LUCENT_OK) rd[c] = r.rd, rd_se[c] = r.rd_se;
+        lucent_mc_result_free(&r);
+    }
     return s;
 }
 

@@ -96,7 +96,9 @@ static lucent_status objects_sigma0(lucent_renderer *r, cdrf_state *st, const lu
             memcpy(c->sigma0, o->sigma0, sizeof c->sigma0);
             c->sigma0_from = "scene";
         } else if (s->cdrf.sigma0 == LUCENT_SIGMA0_DIFFUSE) {
-            for (int k = 0; k < 3; k++) c->sigma0[k] = lucent_cdrf_sigma0_from_diffuse(o->albedo[k]); /* Kubo Eq. 6 */
+            double a[3];
+            gl_renderer_object_albedo(r, i, a);
+            for (int k = 0; k < 3; k++) c->sigma0[k] = lucent_cdrf_sigma0_from_diffuse(a[k]); /* Kubo Eq. 6 */
             c->sigma0_from = "diffuse";
         } else {
             const lucent_baked *b = gl_tables_of(&r->tables, i);

@@ -198,7 +198,8 @@ static lucent_status build_surfels(lucent_renderer *r, points_state *st, const l
     for (int i = 0; i < sc->object_count && e == LUCENT_OK; i++) {
         const lucent_surfels *f = sf[i];
         if (!f) continue;
-        const double *albedo = sc->objects[i].albedo;
+        double albedo[3];
+        gl_renderer_object_albedo(r, i, albedo);
         size_t b = st->objects[i].base;
         for (size_t j = 0; j < f->count; j++) {
             float *q = data + 12 * (b + j);
@@ -414,8 +415,9 @@ static void draw_meshes(const lucent_renderer *r, const points_state *st)
     for (int i = 0; i < r->scene->object_count; i++) {
         const lucent_scene_object *o = &r->scene->objects[i];
         if (!o->visible || st->objects[i].splat) continue;
-        glProgramUniform3f(p, glGetUniformLocation(p, "u_albedo"), (float)o->albedo[0], (float)o->albedo[1],
-                           (float)o->albedo[2]);
+        double a[3];
+        gl_renderer_object_albedo(r, i, a);
+        glProgramUniform3f(p, glGetUniformLocation(p, "u_albedo"), (float)a[0], (float)a[1], (float)a[2]);
         set1f(p, "u_f0", o->specular_f0);
         set1f(p, "u_roughness", o->roughness);
         set1f(p, "u_object", i);

@@ -15,7 +15,9 @@ static void common_uniforms(const lucent_renderer *r, int i, GLuint p)
 {
     const lucent_scene_object *o = &r->scene->objects[i];
     const gl_mesh *g = &r->meshes.mesh[i];
-    glUniform3f(glGetUniformLocation(p, "u_albedo"), (float)o->albedo[0], (float)o->albedo[1], (float)o->albedo[2]);
+    double a[3];
+    gl_renderer_object_albedo(r, i, a);
+    glUniform3f(glGetUniformLocation(p, "u_albedo"), (float)a[0], (float)a[1], (float)a[2]);
     glUniform1i(glGetUniformLocation(p, "u_use_map"), g->albedo_map != 0);
     glUniform1f(glGetUniformLocation(p, "u_roughness"), (float)o->roughness);
     glUniform1f(glGetUniformLocation(p, "u_eta"), (float)o->material.eta);

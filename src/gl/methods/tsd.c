@@ -281,8 +281,9 @@ static void texture_pass(lucent_renderer *r, tsd_state *st, const lucent_render_
         glUniform1f(glGetUniformLocation(program, "u_shadow_offset"), 1.5f);
         if (irradiance) {
             gl_translucency_uniforms(r, s, i, program, s->translucency.enabled);
-            glUniform3f(glGetUniformLocation(program, "u_albedo"), (float)so->albedo[0], (float)so->albedo[1],
-                        (float)so->albedo[2]);
+            double a[3];
+            gl_renderer_object_albedo(r, i, a);
+            glUniform3f(glGetUniformLocation(program, "u_albedo"), (float)a[0], (float)a[1], (float)a[2]);
         }
         glBindVertexArray(o->vao);
         glDrawElements(GL_TRIANGLES, o->index_count, GL_UNSIGNED_INT, NULL);
@@ -343,7 +344,9 @@ static void blur_passes(lucent_renderer *r, tsd_state *st, int k)
 static void object_uniforms(const lucent_renderer *r, int i, GLuint p)
 {
     const lucent_scene_object *o = &r->scene->objects[i];
-    glUniform3f(glGetUniformLocation(p, "u_albedo"), (float)o->albedo[0], (float)o->albedo[1], (float)o->albedo[2]);
+    double a[3];
+    gl_renderer_object_albedo(r, i, a);
+    glUniform3f(glGetUniformLocation(p, "u_albedo"), (float)a[0], (float)a[1], (float)a[2]);
     glUniform1f(glGetUniformLocation(p, "u_roughness"), (float)o->roughness);
     glUniform1f(glGetUniformLocation(p, "u_eta"), (float)o->material.eta);
     glUniform1f(glGetUniformLocation(p, "u_mean_ft"), (float)lucent_fresnel_mean_transmittance(o->material.eta));
