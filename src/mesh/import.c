@@ -220,6 +220,49 @@ extern void __sanitizer_set_death_callback(void (*callback)(void)) __attribute__
 
 static void child_death(void) { _exit(70); }
 
+enum { CHILD_OUT_OF_MEMORY = 71, CHILD_MEMORY_MB = 48 };
+
+#ifdef IMPORT_SANITIZED
+/* Under a sanitizer the address-space limit cannot bound the child (the shadow memory alone exceeds any
+ * sensible one), so the child measures its resident set every 5 ms of CPU time and ends itself past its
+ * budget: CHILD_MEMORY_MB plus 64 bytes per input byte above what it started with (fuzz_mesh: a 127-byte
+ * glTF on which assimp allocates without end). Async-signal-safe: open, read, _exit. */
+static long child_rss_limit; /* pages */
+
+static long resident_pages(void)
+{
+    char buf[96];
+    int fd = open("/proc/self/statm", O_RDONLY);
+    if (fd < 0) return -1;
+    ssize_t n = read(fd, buf, sizeof buf - 1);
+    close(fd);
+    if (n <= 0) return -1;
+    buf[n] = '\0';
+    const char *p = buf;
+    while (*p && *p != ' ') p++; /* the second field: resident pages */
+    while (*p == ' ') p++;
+    long pages = 0;
+    while (*p >= '0' && *p <= '9') pages = pages * 10 + (*p++ - '0');
+    return pages;
+}
+
+static void child_rss_check(int sig)
+{
+    (void)sig;
+    if (resident_pages() > child_rss_limit) _exit(CHILD_OUT_OF_MEMORY);
+}
+
+static void child_bound_memory(size_t size)
+{
+    long page = sysconf(_SC_PAGESIZE);
+    child_rss_limit = resident_pages() + (long)((((size_t)CHILD_MEMORY_MB << 20) + size * 64) / (size_t)page);
+    struct sigaction sa = {.sa_handler = child_rss_check};
+    sigaction(SIGPROF, &sa, NULL);
+    struct itimerval every = {.it_interval = {0, 5000}, .it_value = {0, 5000}};
+    setitimer(ITIMER_PROF, &every, NULL);
+}
+#endif
+
 /* The child: import, then stream the triangles to fd. Never returns. */
 static void assimp_child(int fd, const void *data, size_t size, const char *format)
 {
@@ -241,7 +284,9 @@ static void assimp_child(int fd, const void *data, size_t size, const char *form
     struct rlimit cpu = {secs + 1, secs + 2};
     setrlimit(RLIMIT_CPU, &cpu);
     if (__sanitizer_set_death_callback) __sanitizer_set_death_callback(child_death);
-#ifndef IMPORT_SANITIZED
+#ifdef IMPORT_SANITIZED
+    child_bound_memory(size);
+#else
     struct rlimit as = {((rlim_t)4 << 30) + (rlim_t)size * 64, ((rlim_t)4 << 30) + (rlim_t)size * 64};
     setrlimit(RLIMIT_AS, &as);
 #endif
@@ -370,6 +415,10 @@ static lucent_status assimp_load(const void *data, size_t size, const char *name
                 LUCENT_ERR_PARSE, "%s: malformed %s mesh: the importer (assimp) %s on it (signal %d)", name, format,
                 WTERMSIG(wstatus) == SIGALRM || WTERMSIG(wstatus) == SIGXCPU ? "ran out of time" : "crashed",
                 WTERMSIG(wstatus));
+        else if (WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == CHILD_OUT_OF_MEMORY)
+            s = lucent_error(LUCENT_ERR_PARSE,
+                             "%s: malformed %s mesh: the importer (assimp) needed more than %zu MB for %zu bytes",
+                             name, format, (size_t)CHILD_MEMORY_MB + (size * 64 >> 20), size);
         else
             s = lucent_error(LUCENT_ERR_PARSE, "%s: malformed %s mesh: the importer (assimp) failed", name, format);
     }

@@ -40,7 +40,7 @@ static const lucent_setting k_points[] = {
     SETTING_CHOICE("splats", points.style, "diffusion", style_names,
                    "diffusion (Kim et al.), brdf (splatting with a BRDF), disks (flat opaque disks)"),
     SETTING_REAL("radius_scale", points.radius_scale, 1, 0.05, 20, "times every surfel's radius"),
-    SETTING_REAL("depth_epsilon", points.depth_epsilon, 1, 0, 100,
+    SETTING_REAL("depth_epsilon", points.depth_epsilon, 0.3, 0, 100,
                  "visibility splats pushed back along the view ray, in splat radii"),
     SETTING_REAL("cutoff", points.cutoff, 2, 0.5, 6, "a splat's radius in standard deviations of its Gaussian"),
     SETTING_INT("sog", points.sog, 6, 1, LUCENT_SOG_MAX, 0, "Gaussians of the sum-of-Gaussians fit (points:sog4)"),
