@@ -417,8 +417,8 @@ static lucent_status assimp_load(const void *data, size_t size, const char *name
                 WTERMSIG(wstatus));
         else if (WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == CHILD_OUT_OF_MEMORY)
             s = lucent_error(LUCENT_ERR_PARSE,
-                             "%s: malformed %s mesh: the importer (assimp) needed more than %zu MB for %zu bytes",
-                             name, format, (size_t)CHILD_MEMORY_MB + (size * 64 >> 20), size);
+                             "%s: malformed %s mesh: the importer (assimp) needed more than %zu MB for %zu bytes", name,
+                             format, (size_t)CHILD_MEMORY_MB + (size * 64 >> 20), size);
         else
             s = lucent_error(LUCENT_ERR_PARSE, "%s: malformed %s mesh: the importer (assimp) failed", name, format);
     }
