@@ -49,8 +49,8 @@ awk -v a="$a" -v b="$b" -v same="$same" 'BEGIN {
 scene="$here/skin1-sphere.json"
 echo "issue 18: a time-limited trace (--time $seconds): samples on 1 and 2 ranks x 1 thread (ranks share the passes)"
 for np in 1 2; do
-  "${MPI[@]}" -np "$np" "$lucent" trace "$scene" --time "$seconds" --spp 100000 --set render.width=64 \
-    --set render.height=64 --out "$tmp/t$np.png" --threads 1 --quiet
+  "${MPI[@]}" -np "$np" "$lucent" trace "$scene" --time "$seconds" --spp 100000 --set render.width=128 \
+    --set render.height=128 --out "$tmp/t$np.png" --threads 1 --quiet
   s=$(sed -n 's/.*"samples":[[:space:]]*\([0-9]*\).*/\1/p' "$tmp/t$np.json" | head -1)
   printf '  %d rank(s): %12s samples in %s s   load %s\n' "$np" "${s:-?}" "$seconds" "$(load)"
   echo "${s:-0}" >"$tmp/t$np.samples"
