@@ -56,4 +56,4 @@ for np in 1 2; do
   echo "${s:-0}" >"$tmp/t$np.samples"
 done
 awk -v a="$(cat "$tmp/t1.samples")" -v b="$(cat "$tmp/t2.samples")" \
-  'BEGIN { printf "  2 ranks / 1 rank: %.2f times the samples (ideal 2 on 2 free cores)\n", a > 0 ? b / a : 0 }'
+  'BEGIN { printf "  2 ranks / 1 rank: %.2f times the samples (ideal 2 on 2 free cores)\n", (a > 0 ? b / a : 0) }'
