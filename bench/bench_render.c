@@ -15,6 +15,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "bench_cache.h"
 #include "lucent/render.h"
 
 typedef struct method_case {
@@ -150,9 +151,7 @@ int main(int argc, char **argv)
     lucent_renderer *r = NULL;
     lucent_renderer_desc rd = lucent_renderer_defaults();
     char cache[1024];
-    const char *env = getenv("LUCENT_CACHE_DIR"), *home = getenv("HOME");
-    if (home) snprintf(cache, sizeof cache, "%s/.cache/lucent", home); /* as `lucent render` */
-    rd.cache_dir = env && *env ? env : home ? cache : NULL;
+    rd.cache_dir = bench_cache_dir(cache, sizeof cache);
     if (lucent_gl_create(NULL, &ctx) != LUCENT_OK) fail("GL context");
     if (lucent_renderer_create(ctx, sc, &rd, &r) != LUCENT_OK) fail("renderer");
     lucent_gl_info info;

@@ -11,20 +11,26 @@ lucent_status gl_surface_program(lucent_renderer *r, const char *frag, const cha
     return gl_programs_get(&r->programs, "scene.vert.glsl", frag, all, dest);
 }
 
-static void common_uniforms(const lucent_renderer *r, int i, GLuint p)
+void gl_surface_material_uniforms(const lucent_renderer *r, int i, GLuint p)
 {
     const lucent_scene_object *o = &r->scene->objects[i];
-    const gl_mesh *g = &r->meshes.mesh[i];
     double a[3];
     gl_renderer_object_albedo(r, i, a);
     glUniform3f(glGetUniformLocation(p, "u_albedo"), (float)a[0], (float)a[1], (float)a[2]);
-    glUniform1i(glGetUniformLocation(p, "u_use_map"), g->albedo_map != 0);
     glUniform1f(glGetUniformLocation(p, "u_roughness"), (float)o->roughness);
     glUniform1f(glGetUniformLocation(p, "u_eta"), (float)o->material.eta);
     glUniform1f(glGetUniformLocation(p, "u_mean_ft"), (float)lucent_fresnel_mean_transmittance(o->material.eta));
     glUniform1f(glGetUniformLocation(p, "u_material"), (float)r->tables.object_material[i]);
     glUniform1f(glGetUniformLocation(p, "u_object"), (float)i);
     glUniform1f(glGetUniformLocation(p, "u_shadow_offset"), 1.5f);
+}
+
+/* The material's uniforms and the albedo map (unit 0) of object i. */
+static void common_uniforms(const lucent_renderer *r, int i, GLuint p)
+{
+    const gl_mesh *g = &r->meshes.mesh[i];
+    gl_surface_material_uniforms(r, i, p);
+    glUniform1i(glGetUniformLocation(p, "u_use_map"), g->albedo_map != 0);
     glBindTextureUnit(0, g->albedo_map ? g->albedo_map : r->dummy_tex);
 }
 

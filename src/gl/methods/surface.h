@@ -14,6 +14,10 @@ typedef void (*gl_surface_object_fn)(const lucent_renderer *r, const void *state
 /* The program of the method's fragment shader `frag` with defines (the auxiliary outputs added). */
 lucent_status gl_surface_program(lucent_renderer *r, const char *frag, const char *defines, GLuint *dest);
 
+/* Object i's material uniforms, shared by every program that shades with surface.glsl's lights: the
+ * albedo (gl_renderer_object_albedo), roughness, eta and mean F_t, the material row, object index. */
+void gl_surface_material_uniforms(const lucent_renderer *r, int i, GLuint program);
+
 /* The surface pass (timed as "geometry"); table textures: unit 3 lut (0: none), 4 the transmittance. */
 void gl_surface_draw(lucent_renderer *r, GLuint program, GLuint lut, const lucent_render_settings *s,
                      gl_surface_object_fn fn, const void *state);

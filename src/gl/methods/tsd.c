@@ -30,7 +30,6 @@
 #include <strings.h>
 
 #include "base/json.h"
-#include "base/optics.h"
 #include "base/settings_table.h"
 #include "gl/methods/surface.h"
 #include "lucent/mesh.h"
@@ -341,20 +340,6 @@ static void blur_passes(lucent_renderer *r, tsd_state *st, int k)
     }
 }
 
-static void object_uniforms(const lucent_renderer *r, int i, GLuint p)
-{
-    const lucent_scene_object *o = &r->scene->objects[i];
-    double a[3];
-    gl_renderer_object_albedo(r, i, a);
-    glUniform3f(glGetUniformLocation(p, "u_albedo"), (float)a[0], (float)a[1], (float)a[2]);
-    glUniform1f(glGetUniformLocation(p, "u_roughness"), (float)o->roughness);
-    glUniform1f(glGetUniformLocation(p, "u_eta"), (float)o->material.eta);
-    glUniform1f(glGetUniformLocation(p, "u_mean_ft"), (float)lucent_fresnel_mean_transmittance(o->material.eta));
-    glUniform1f(glGetUniformLocation(p, "u_material"), (float)r->tables.object_material[i]);
-    glUniform1f(glGetUniformLocation(p, "u_object"), (float)i);
-    glUniform1f(glGetUniformLocation(p, "u_shadow_offset"), 1.5f);
-}
-
 /* The mesh from the camera into the scene targets, reading each object's sum. */
 static void final_pass(lucent_renderer *r, tsd_state *st)
 {
@@ -372,7 +357,7 @@ static void final_pass(lucent_renderer *r, tsd_state *st)
     for (int i = 0; i < st->object_count; i++) {
         tsd_object *o = &st->objects[i];
         if (!r->scene->objects[i].visible) continue;
-        object_uniforms(r, i, st->final);
+        gl_surface_material_uniforms(r, i, st->final);
         glUniform1f(glGetUniformLocation(st->final, "u_gaussians"), (float)o->sog.count);
         glBindTextureUnit(3, o->sum);
         glBindVertexArray(o->vao);
