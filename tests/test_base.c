@@ -1,13 +1,17 @@
 /* Tests of src/base: errors, logging, progress, thread pool, RNG streams, atomic files, mkdir -p,
- * JSON, the clocks, the vector and matrix helpers (the optics: test_optics.c). */
+ * JSON, the clocks, the vector and matrix helpers, %.Pg text and the radix sort (the optics:
+ * test_optics.c). */
+#include <float.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "base/format_g.h"
 #include "base/json.h"
 #include "base/mat4.h"
+#include "base/radix_sort.h"
 #include "base/vec3.h"
 #include "lucent/base.h"
 #include "lucent/dist.h"
@@ -637,6 +641,205 @@ TEST(mat4_multiplies_column_major)
     CHECK(f[14] == 12.0f && f[15] == 1.0f);
 }
 
+/* ---- number text and sorting (the curvature CSV, mesh statistics) ---- */
+
+/* lucent_format_g against glibc's snprintf "%.*g" (the independent reference): the same bytes,
+ * or the first difference is printed. Returns 1 when they agree. */
+static int format_g_agrees(double x, int p)
+{
+    char mine[LUCENT_FORMAT_G_MAX], libc[64];
+    int n = lucent_format_g(mine, x, p);
+    snprintf(libc, sizeof libc, "%.*g", p, x);
+    if (n == (int)strlen(libc) && strcmp(mine, libc) == 0) return 1;
+    TEST_FAIL_("%%.%dg of %a: '%s' (length %d), snprintf '%s'", p, x, mine, n, libc);
+    return 0;
+}
+
+TEST(format_g_matches_snprintf_on_edge_values)
+{
+    double edge[] = {0.0,
+                     -0.0,
+                     INFINITY,
+                     -INFINITY,
+                     NAN,
+                     -NAN,
+                     DBL_MIN,
+                     -DBL_MIN,
+                     DBL_TRUE_MIN,
+                     4 * DBL_TRUE_MIN,
+                     DBL_MIN / 3,
+                     DBL_MAX,
+                     -DBL_MAX,
+                     FLT_MIN,
+                     FLT_MAX,
+                     FLT_TRUE_MIN,
+                     1,
+                     -1,
+                     0.5,
+                     0.25,
+                     0.125,
+                     0x1p-13, /* 0.0001220703125: ten digits ending in 5, a tie at 9 */
+                     0x1p-14,
+                     0x1p-27,
+                     1.5,
+                     2.5,
+                     0.15,
+                     0.35,
+                     9007199254740992.0,
+                     9007199254740993.0,
+                     18014398509481988.0,
+                     123456789,
+                     999999999,
+                     999999999.5,
+                     9999999995,
+                     99999999.95,
+                     0.00009999999995,
+                     0.0001,
+                     0.0000999999999,
+                     1e-5,
+                     1e15,
+                     1e16,
+                     1e17,
+                     1e22,
+                     1e23,
+                     1e-300};
+    int bad = 0;
+    for (size_t i = 0; i < sizeof edge / sizeof edge[0]; i++)
+        for (int p = 1; p <= 17; p++) bad += !format_g_agrees(edge[i], p) || !format_g_agrees(-edge[i], p);
+    /* Powers of ten and their neighbours, where the exponent estimate and the carry into a new
+     * digit (9.99999999e4 -> 1e+05) are decided. */
+    for (int k = -40; k <= 40; k++) {
+        double t = pow(10, k), near[] = {t,
+                                         nextafter(t, 0),
+                                         nextafter(t, INFINITY),
+                                         t * (1 - 5e-10),
+                                         t * (1 + 5e-10),
+                                         t * (1 - 4.9e-9),
+                                         t * (1 - 5.1e-9)};
+        for (int j = 0; j < 7; j++)
+            for (int p = 1; p <= 17; p++) bad += !format_g_agrees(near[j], p);
+    }
+    /* Subnormals, walking down the exponents. */
+    for (double x = DBL_MIN; x > 0; x /= 7) bad += !format_g_agrees(x, 9) + !format_g_agrees(-x, 17);
+    CHECK(bad == 0);
+}
+
+TEST(format_g_matches_snprintf_on_two_million_random_values)
+{
+    lucent_rng r;
+    lucent_rng_init(17, 0, &r);
+    long bad = 0;
+    for (long k = 0; k < 2000000 && bad < 10; k++) {
+        uint64_t bits = lucent_rng_next(&r);
+        double x;
+        switch (k % 5) {
+        case 0: memcpy(&x, &bits, sizeof x); break; /* any bit pattern: every exponent, nan, inf */
+        case 1: x = ldexp((double)(bits >> 44), (int)(lucent_rng_next(&r) % 90) - 70); break; /* short: ties */
+        case 2: x = (lucent_rng_uniform(&r) - 0.5) * pow(10, (int)(lucent_rng_next(&r) % 50) - 25); break;
+        case 3: { /* floats */
+            float f;
+            uint32_t u = (uint32_t)bits;
+            memcpy(&f, &u, sizeof f);
+            x = f;
+            break;
+        }
+        default: x = (lucent_rng_uniform(&r) - 0.5) * 2000; break; /* the curvature CSV's range */
+        }
+        int p = k % 2 ? 9 : 1 + (int)(lucent_rng_next(&r) % 17);
+        bad += !format_g_agrees(x, p);
+    }
+    CHECK(bad == 0);
+}
+
+TEST(format_g_nine_digits_read_back_a_float_and_seventeen_a_double)
+{
+    lucent_rng r;
+    lucent_rng_init(18, 0, &r);
+    int bad = 0;
+    for (int k = 0; k < 200000; k++) {
+        uint64_t bits = lucent_rng_next(&r);
+        float f;
+        uint32_t u = (uint32_t)bits;
+        memcpy(&f, &u, sizeof f);
+        double d;
+        memcpy(&d, &bits, sizeof d);
+        char t[LUCENT_FORMAT_G_MAX];
+        if (isfinite(f)) {
+            lucent_format_g(t, f, 9);
+            bad += strtof(t, NULL) != f; /* 9 digits identify a float (IEEE 754-2008, 5.12.2) */
+        }
+        if (isfinite(d)) {
+            lucent_format_g(t, d, 17);
+            bad += strtod(t, NULL) != d; /* 17 a double */
+        }
+    }
+    CHECK(bad == 0);
+}
+
+TEST(format_u64_matches_snprintf)
+{
+    uint64_t v[] = {0,         1, 9, 10, 99, 100, 4294967295u, 4294967296u, 9999999999999999999u, 10000000000000000000u,
+                    UINT64_MAX};
+    lucent_rng r;
+    lucent_rng_init(19, 0, &r);
+    for (int k = 0; k < 10000 + 11; k++) {
+        uint64_t x = k < 11 ? v[k] : lucent_rng_next(&r) >> (k % 64);
+        char mine[24], libc[24];
+        int n = lucent_format_u64(mine, x);
+        mine[n] = 0;
+        snprintf(libc, sizeof libc, "%llu", (unsigned long long)x);
+        CHECK_MSG(strcmp(mine, libc) == 0, "%s vs %s", mine, libc);
+    }
+}
+
+static int cmp_u64_ref(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* The radix sort against qsort on one key set. */
+static int radix_agrees(const uint64_t *keys, size_t n)
+{
+    uint64_t *a = malloc((n + 1) * sizeof *a), *b = malloc((n + 1) * sizeof *b), *scratch = malloc((n + 1) * 8);
+    memcpy(a, keys, n * sizeof *a), memcpy(b, keys, n * sizeof *b);
+    lucent_radix_sort_u64(a, scratch, n);
+    qsort(b, n, sizeof *b, cmp_u64_ref);
+    int same = n == 0 || memcmp(a, b, n * sizeof *a) == 0;
+    free(a), free(b), free(scratch);
+    return same;
+}
+
+TEST(radix_sort_matches_qsort_on_random_and_adversarial_keys)
+{
+    enum { N = 100003 };
+    uint64_t *k = malloc(N * sizeof *k);
+    lucent_rng r;
+    lucent_rng_init(20, 0, &r);
+    size_t sizes[] = {0, 1, 2, 3, 2047, 2048, 2049, N};
+    for (int kind = 0; kind < 10; kind++)
+        for (size_t si = 0; si < sizeof sizes / sizeof sizes[0]; si++) {
+            size_t n = sizes[si];
+            for (size_t i = 0; i < n; i++) {
+                uint64_t x = lucent_rng_next(&r);
+                switch (kind) {
+                case 0: k[i] = x; break;                                       /* random, all digits vary */
+                case 1: k[i] = 42; break;                                      /* all equal: every pass skipped */
+                case 2: k[i] = i; break;                                       /* sorted */
+                case 3: k[i] = UINT64_MAX - i; break;                          /* reverse sorted */
+                case 4: k[i] = (x % 3) << 61; break;                           /* only the top digit, 3 values */
+                case 5: k[i] = (x & 0x7ff) << 22 | 5; break;                   /* one middle digit */
+                case 6: k[i] = x % 7; break;                                   /* few distinct, many duplicates */
+                case 7: k[i] = (i & 1) ? UINT64_MAX : 0; break;                /* the extremes alternating */
+                case 8: k[i] = (x % 500000) * 500000 + x % 499999; break;      /* edge keys as the stats make them */
+                default: k[i] = i % 2 ? x >> 1 : (uint64_t)1 << 63 | i; break; /* the top bit splits halves */
+                }
+            }
+            CHECK_MSG(radix_agrees(k, n), "key kind %d, %zu keys", kind, n);
+        }
+    free(k);
+}
+
 TEST_MAIN(TEST_ENTRY(error_message_and_context), TEST_ENTRY(error_is_per_thread), TEST_ENTRY(log_filters_by_level),
           TEST_ENTRY(progress_silent_by_default_and_draws_when_asked), TEST_ENTRY(parallel_for_visits_every_item_once),
           TEST_ENTRY(parallel_for_reports_lowest_failing_chunk), TEST_ENTRY(parallel_for_share_splits_the_same_chunks),
@@ -652,4 +855,7 @@ TEST_MAIN(TEST_ENTRY(error_message_and_context), TEST_ENTRY(error_is_per_thread)
           TEST_ENTRY(json_numbers_accept_scalar_when_allowed_and_write_round_trip),
           TEST_ENTRY(clocks_are_monotonic_and_agree_in_units),
           TEST_ENTRY(vectors_follow_their_definitions_and_zero_normalises_to_zero),
-          TEST_ENTRY(mat4_multiplies_column_major))
+          TEST_ENTRY(mat4_multiplies_column_major), TEST_ENTRY(format_g_matches_snprintf_on_edge_values),
+          TEST_ENTRY(format_g_matches_snprintf_on_two_million_random_values),
+          TEST_ENTRY(format_g_nine_digits_read_back_a_float_and_seventeen_a_double),
+          TEST_ENTRY(format_u64_matches_snprintf), TEST_ENTRY(radix_sort_matches_qsort_on_random_and_adversarial_keys))

@@ -121,25 +121,6 @@ static int parse_args(int argc, char **argv, options *o)
 
 /* ---- outputs ---- */
 
-static lucent_status write_csv(const char *path, const lucent_mesh *m, const lucent_curvature *c)
-{
-    lucent_atomic_file *af;
-    FILE *f;
-    lucent_status s = lucent_atomic_open(path, &af, &f);
-    if (s != LUCENT_OK) return s;
-    fprintf(f, "vertex,x,y,z,k1,k2,mean,gauss,flags\n");
-    for (size_t v = 0; v < m->vertex_count; v++) {
-        const double *p = m->positions + 3 * v;
-        fprintf(f, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n", v, p[0], p[1], p[2], c->k1[v], c->k2[v], c->mean[v],
-                c->gauss[v], c->flags[v]);
-    }
-    if (ferror(f)) {
-        lucent_atomic_abort(af);
-        return lucent_error(LUCENT_ERR_IO, "%s: write failed", path);
-    }
-    return lucent_atomic_commit(af);
-}
-
 /* The k-th smallest of a[0..n) (Hoare's selection, median-of-three pivots; a is reordered): the value
  * a full sort would put at a[k], in linear expected time. */
 static double select_kth(double *a, size_t n, size_t k)
@@ -171,16 +152,17 @@ static double select_kth(double *a, size_t n, size_t k)
     return a[k];
 }
 
-/* The q-quantile of |H| over valid vertices (0 when none). */
-static double abs_quantile(const lucent_curvature *c, double q)
+/* The 50% and 95% quantiles of |H| over valid vertices (0 when none), from one copy (selection
+ * only reorders it). */
+static void abs_quantiles(const lucent_curvature *c, double dest[2])
 {
-    double *a = malloc((c->count + 1) * sizeof *a), r = 0;
+    double *a = malloc((c->count + 1) * sizeof *a);
     size_t n = 0;
     for (size_t v = 0; a && v < c->count; v++)
         if (!(c->flags[v] & LUCENT_CURVATURE_INVALID)) a[n++] = fabs(c->mean[v]);
-    if (a && n) r = select_kth(a, n, (size_t)(q * (double)(n - 1)));
+    dest[0] = a && n ? select_kth(a, n, (size_t)(0.5 * (double)(n - 1))) : 0;
+    dest[1] = a && n ? select_kth(a, n, (size_t)(0.95 * (double)(n - 1))) : 0;
     free(a);
-    return r;
 }
 
 /* Diverging map: blue (-range) -> white (0) -> red (+range); invalid vertices grey. */
@@ -259,7 +241,8 @@ static lucent_status write_colours(const char *path, const options *o, const luc
     return s;
 }
 
-static void report(const options *o, const lucent_mesh *m, const lucent_curvature *c, double t, double range)
+static void report(const options *o, const lucent_mesh *m, const lucent_curvature *c, double t, const double q[2],
+                   double range)
 {
     lucent_mesh_stats st;
     if (lucent_mesh_stats_compute(m, &st) == LUCENT_OK)
@@ -267,8 +250,7 @@ static void report(const options *o, const lucent_mesh *m, const lucent_curvatur
                  o->mesh, m->vertex_count, m->face_count, st.boundary_edges, st.nonmanifold_edges, st.degenerate_faces);
     cli_info("%s: %.3f s; %zu vertices without a usable neighbourhood (set to 0); |H| 50%% %.4g, 95%% %.4g "
              "(colour range %.4g)",
-             lucent_curvature_method_name(o->method), t, c->invalid_count, abs_quantile(c, 0.5), abs_quantile(c, 0.95),
-             range);
+             lucent_curvature_method_name(o->method), t, c->invalid_count, q[0], q[1], range);
 }
 
 int cmd_curvature(int argc, char **argv)
@@ -286,11 +268,14 @@ int cmd_curvature(int argc, char **argv)
     lucent_status s = lucent_mesh_curvature(m, &d, &c);
     double t = lucent_clock_seconds() - t0;
     if (s == LUCENT_OK) {
-        double range = o.range > 0 ? o.range : abs_quantile(&c, 0.95);
+        double q[2];
+        abs_quantiles(&c, q);
+        double range = o.range > 0 ? o.range : q[1];
         if (!(range > 0)) range = 1;
         size_t n = strlen(o.out);
-        s = strcasecmp(o.out + n - 4, ".csv") == 0 ? write_csv(o.out, m, &c) : write_colours(o.out, &o, m, &c, range);
-        if (s == LUCENT_OK) report(&o, m, &c, t, range), cli_info("wrote %s", o.out);
+        s = strcasecmp(o.out + n - 4, ".csv") == 0 ? lucent_curvature_write_csv(o.out, m, &c)
+                                                   : write_colours(o.out, &o, m, &c, range);
+        if (s == LUCENT_OK) report(&o, m, &c, t, q, range), cli_info("wrote %s", o.out);
     }
     lucent_curvature_free(&c);
     lucent_mesh_destroy(m);

@@ -328,6 +328,11 @@ lucent_status lucent_mesh_curvature(const lucent_mesh *mesh, const lucent_curvat
 
 void lucent_curvature_free(lucent_curvature *curv);
 
+/* Writes the curvature as CSV, atomically: a header line "vertex,x,y,z,k1,k2,mean,gauss,flags",
+ * then one row per vertex, the index and flags as integers and the seven values as printf's
+ * "%.9g" gives them (9 significant digits: a float's positions read back exactly). */
+lucent_status lucent_curvature_write_csv(const char *path, const lucent_mesh *mesh, const lucent_curvature *curv);
+
 /* Returns the method's name ("rusinkiewicz", "meyer", "garimella"). */
 const char *lucent_curvature_method_name(lucent_curvature_method method);
 

@@ -67,6 +67,7 @@ static lucent_status mesh_from_ply(lucent_ply *ply, const char *name, lucent_mes
         m->vertex_count = d.vertex_count, m->face_count = d.triangle_count;
         m->positions = d.values, m->faces = d.triangles;
         m->normals = calloc(3 * d.vertex_count + 1, sizeof *m->normals);
+        mesh_advise_large(m->normals, 3 * d.vertex_count * sizeof *m->normals);
         d.values = NULL, d.triangles = NULL;
         if (!m->normals) {
             lucent_mesh_destroy(m), *dest = NULL;

@@ -47,6 +47,10 @@ static inline uint32_t mesh_prefetch_slot(const mesh_adjacency *adj, const uint3
 /* A 2 MiB-aligned block advised as transparent huge pages when large (alloc.c); free(). */
 void *mesh_alloc_large(size_t bytes);
 
+/* Advises the whole 2 MiB pages inside a block from malloc, calloc or realloc (of at least
+ * 256 KiB, not yet touched there) as huge pages, so that its first touch faults 2 MiB at a time. */
+void mesh_advise_large(void *p, size_t bytes);
+
 /* Mixed Voronoi areas of the three corners of face f (Meyer et al. 2003, Fig. 4; the same
  * split as trimesh2's compute_pointareas). Zero for a degenerate face. */
 void mesh_corner_areas(const lucent_mesh *mesh, size_t f, double dest[3]);

@@ -2,6 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/radix_sort.h"
 #include "mesh/internal.h"
 
 lucent_status lucent_mesh_create(size_t vertex_count, size_t face_count, lucent_mesh **dest)
@@ -16,6 +17,9 @@ lucent_status lucent_mesh_create(size_t vertex_count, size_t face_count, lucent_
     m->positions = calloc(vertex_count * 3 + 1, sizeof *m->positions);
     m->normals = calloc(vertex_count * 3 + 1, sizeof *m->normals);
     m->faces = calloc(face_count * 3 + 1, sizeof *m->faces);
+    mesh_advise_large(m->positions, vertex_count * 3 * sizeof *m->positions);
+    mesh_advise_large(m->normals, vertex_count * 3 * sizeof *m->normals);
+    mesh_advise_large(m->faces, face_count * 3 * sizeof *m->faces);
     if (!m->positions || !m->normals || !m->faces) {
         lucent_mesh_destroy(m);
         return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for a mesh of %zu vertices", vertex_count);
@@ -64,7 +68,7 @@ static lucent_status weld_map(const lucent_mesh *m, uint32_t *remap)
 {
     size_t cap = 16;
     while (cap < 2 * m->vertex_count) cap *= 2;
-    uint32_t *slot = malloc(cap * sizeof *slot);
+    uint32_t *slot = mesh_alloc_large(cap * sizeof *slot);
     if (!slot) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory welding a mesh");
     memset(slot, 0xff, cap * sizeof *slot);
     for (size_t v = 0; v < m->vertex_count; v++) {
@@ -114,8 +118,8 @@ static void weld_apply(lucent_mesh *m, uint32_t *remap, uint32_t *newidx)
 
 lucent_status lucent_mesh_weld(lucent_mesh *mesh)
 {
-    uint32_t *remap = malloc((mesh->vertex_count + 1) * sizeof *remap);
-    uint32_t *newidx = malloc((mesh->vertex_count + 1) * sizeof *newidx);
+    uint32_t *remap = mesh_alloc_large((mesh->vertex_count + 1) * sizeof *remap);
+    uint32_t *newidx = mesh_alloc_large((mesh->vertex_count + 1) * sizeof *newidx);
     lucent_status s = remap && newidx ? weld_map(mesh, remap)
                                       : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory welding a mesh");
     if (s == LUCENT_OK) weld_apply(mesh, remap, newidx);
@@ -204,20 +208,18 @@ void mesh_corner_areas(const lucent_mesh *mesh, size_t f, double dest[3])
 
 /* ---- statistics ---- */
 
-static int cmp_u64(const void *a, const void *b)
-{
-    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-    return x < y ? -1 : x > y;
-}
-
-static void count_edges(const lucent_mesh *m, uint64_t *keys, lucent_mesh_stats *dest)
+/* Each face edge as one key, lower vertex * vertex_count + higher (below 2^64 for any
+ * vertex_count <= UINT32_MAX, and only as many bits as the mesh needs: fewer radix passes);
+ * sorted, an edge's faces are a run of equal keys. */
+static void count_edges(const lucent_mesh *m, uint64_t *keys, uint64_t *scratch, lucent_mesh_stats *dest)
 {
     size_t n = 3 * m->face_count;
+    uint64_t nv = m->vertex_count;
     for (size_t i = 0; i < n; i++) {
         uint64_t a = m->faces[i], b = m->faces[i - i % 3 + (i + 1) % 3];
-        keys[i] = a < b ? a << 32 | b : b << 32 | a;
+        keys[i] = a < b ? a * nv + b : b * nv + a;
     }
-    qsort(keys, n, sizeof *keys, cmp_u64);
+    lucent_radix_sort_u64(keys, scratch, n);
     for (size_t i = 0; i < n;) {
         size_t j = i;
         while (j < n && keys[j] == keys[i]) j++;
@@ -230,13 +232,13 @@ static void count_edges(const lucent_mesh *m, uint64_t *keys, lucent_mesh_stats 
 lucent_status lucent_mesh_stats_compute(const lucent_mesh *mesh, lucent_mesh_stats *dest)
 {
     *dest = (lucent_mesh_stats){0};
-    uint64_t *keys = malloc((3 * mesh->face_count + 1) * sizeof *keys);
+    uint64_t *keys = mesh_alloc_large((6 * mesh->face_count + 1) * sizeof *keys); /* keys, the sort's scratch */
     uint8_t *used = calloc(mesh->vertex_count + 1, 1);
     if (!keys || !used) {
         free(keys), free(used);
         return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for mesh statistics");
     }
-    count_edges(mesh, keys, dest);
+    count_edges(mesh, keys, keys + 3 * mesh->face_count, dest);
     for (size_t f = 0; f < mesh->face_count; f++) {
         double a[3];
         mesh_corner_areas(mesh, f, a);

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "lucent/mesh.h"
+#include "mesh/internal.h"
 #include "mesh/reader.h"
 
 #define MAX_HEADER ((uint64_t)1 << 20)
@@ -341,6 +342,7 @@ static lucent_status store_vertex(body *b, uint64_t i)
         size_t esz = b->desc->single ? sizeof(float) : sizeof(double);
         void *grown = realloc(b->desc->single ? (void *)d->values32 : (void *)d->values, cap * (size_t)k * esz + 1);
         if (!grown) return oom(b);
+        mesh_advise_large(grown, cap * (size_t)k * esz);
         if (b->desc->single)
             d->values32 = grown;
         else
@@ -389,6 +391,7 @@ static lucent_status store_face(body *b, uint64_t f, uint32_t n)
         while (cap < d->triangle_count + n - 2) cap *= 2;
         uint32_t *grown = realloc(d->triangles, cap * 3 * sizeof *grown);
         if (!grown) return oom(b);
+        mesh_advise_large(grown, cap * 3 * sizeof *grown);
         d->triangles = grown, b->tri_cap = cap;
     }
     for (uint32_t j = 1; j + 1 < n; j++) {
@@ -615,7 +618,7 @@ lucent_status lucent_ply_read(lucent_ply *ply, const lucent_ply_read_desc *desc,
     if (s == LUCENT_OK && !r->gz && ve->count > 0) {
         b.vertex_cap = 0;
         size_t esz = desc->single ? sizeof(float) : sizeof(double);
-        void *v = malloc((size_t)ve->count * (size_t)desc->count * esz + 1);
+        void *v = mesh_alloc_large((size_t)ve->count * (size_t)desc->count * esz + 1);
         if (!v) s = oom(&b);
         if (desc->single)
             dest->values32 = v;
