@@ -42,8 +42,10 @@ full_disk() {
   check "$name on a full disk: exit 1 (got $rc)" test $rc -eq 1
   check "$name on a full disk: the message says so ($out)" grep -q "No space left on device" <<<"$out"
   check "$name on a full disk: the previous outputs, all of them, and nothing else" diff -r "$MNT/$name" "$TMP/$name.before"
+  check "$name on a full disk: no 'wrote' line (they come once the outputs have landed)" bash -c "! grep -q '^wrote' <<<\"\$1\"" _ "$out"
   rm -f "$MNT/fill"
   check "$name with room: the outputs are written" "${second[@]}"
+  check "$name with room: it says what it wrote" bash -c "\"\$@\" | grep -q '^wrote '" _ "${second[@]}"
   check "$name with room: every output is new" bash -c "for f in '$TMP/$name.before'/*; do ! cmp -s \"\$f\" '$MNT/$name'/\$(basename \"\$f\") || exit 1; done"
 }
 # trace writes its PNG (861 bytes, one page), EXR, variance EXR (3 KB each) and sidecar: 8 KiB of room holds two.

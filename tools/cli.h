@@ -51,6 +51,11 @@ int cli_check_outputs(const char *command, const char *const *inputs, int input_
 /* Prints an informational line to stdout unless --quiet. */
 void cli_info(const char *fmt, ...) LUCENT_PRINTF(1, 2);
 
+/* An informational line about an output ("wrote out/x.png"): while the command's output set is open
+ * it is held and printed once the set has landed (after the renames), dropped when it does not;
+ * outside a set (view) printed at once. */
+void cli_wrote(const char *fmt, ...) LUCENT_PRINTF(1, 2);
+
 /* Parses a whole non-negative integer / a finite double; false on garbage. */
 bool cli_parse_int(const char *text, int *dest);
 bool cli_parse_double(const char *text, double *dest);

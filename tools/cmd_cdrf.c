@@ -165,7 +165,7 @@ int cmd_cdrf_lut(int argc, char **argv)
     double smax = o.desc.sigma_max ? o.desc.sigma_max : 3.0;
     for (int k = 0; k < o.out_count && s == LUCENT_OK; k++) {
         s = lucent_cdrf_lut_write(o.outs[k], lut, smax, o.name);
-        if (s == LUCENT_OK) cli_info("wrote %s", o.outs[k]);
+        if (s == LUCENT_OK) cli_wrote("wrote %s", o.outs[k]);
     }
     if (s == LUCENT_OK) lut_summary(lut, &o.desc);
     lucent_image_destroy(lut);
@@ -291,7 +291,7 @@ static lucent_status run_fit(fit_options *o)
         s = k == 0   ? lucent_cdrf_fit_write_json(path, &report)
             : k == 1 ? lucent_cdrf_fit_write_csv(path, &report)
                      : lucent_cdrf_fit_write_svg(path, &report);
-        if (s == LUCENT_OK) cli_info("wrote %s", path);
+        if (s == LUCENT_OK) cli_wrote("wrote %s", path);
     }
     if (s == LUCENT_OK) {
         printf("%s: CDRF (%s) fitted to %d spheres, %llu photons per channel each\n", o->material.name,

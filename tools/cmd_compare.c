@@ -186,7 +186,7 @@ int cmd_compare(int argc, char **argv)
                              .on_event = on_event,
                              .user = &result};
     lucent_status s = lucent_compare_run(&d, &result);
-    if (s == LUCENT_OK) cli_info("wrote %s/report.html (and report.md, report.csv, results.json)", o.out);
+    if (s == LUCENT_OK) cli_wrote("wrote %s/report.html (and report.md, report.csv, results.json)", o.out);
     lucent_compare_result_free(&result);
     return s == LUCENT_OK ? CLI_OK : cli_fail();
 }

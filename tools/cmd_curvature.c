@@ -275,7 +275,7 @@ int cmd_curvature(int argc, char **argv)
         size_t n = strlen(o.out);
         s = strcasecmp(o.out + n - 4, ".csv") == 0 ? lucent_curvature_write_csv(o.out, m, &c)
                                                    : write_colours(o.out, &o, m, &c, range);
-        if (s == LUCENT_OK) report(&o, m, &c, t, q, range), cli_info("wrote %s", o.out);
+        if (s == LUCENT_OK) report(&o, m, &c, t, q, range), cli_wrote("wrote %s", o.out);
     }
     lucent_curvature_free(&c);
     lucent_mesh_destroy(m);

@@ -238,7 +238,7 @@ static int run_convert(int argc, char **argv)
     if (s == LUCENT_OK) s = lucent_image_write(a.out, img, &d);
     lucent_image_destroy(img);
     if (s != LUCENT_OK) return cli_fail();
-    cli_info("wrote %s", a.out);
+    cli_wrote("wrote %s", a.out);
     return CLI_OK;
 }
 
@@ -379,7 +379,7 @@ static int run_diff(int argc, char **argv)
             print_diff_json(&d, im[0], &e);
         else
             print_diff_text(&d, im[0], &e);
-        if (d.out && !d.json) cli_info("wrote %s", d.out);
+        if (d.out && !d.json) cli_wrote("wrote %s", d.out);
     }
     for (int i = 0; i < 3; i++) lucent_image_destroy(im[i]);
     return s == LUCENT_OK ? CLI_OK : cli_fail();

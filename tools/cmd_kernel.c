@@ -147,7 +147,7 @@ static lucent_status write_out(const options *o, const char *text)
 {
     if (!o->out) return fputs(text, stdout) < 0 ? lucent_error(LUCENT_ERR_IO, "stdout: write failed") : LUCENT_OK;
     lucent_status s = lucent_write_file(o->out, text, strlen(text));
-    if (s == LUCENT_OK) cli_info("wrote %s", o->out);
+    if (s == LUCENT_OK) cli_wrote("wrote %s", o->out);
     return s;
 }
 

@@ -133,7 +133,7 @@ static int choose_models(options *o)
 static void on_event(const lucent_eval_event *e, void *user)
 {
     (void)user;
-    if (e->kind == LUCENT_EVAL_WROTE) cli_info("wrote %s", e->path);
+    if (e->kind == LUCENT_EVAL_WROTE) cli_wrote("wrote %s", e->path);
     if (e->kind == LUCENT_EVAL_SKIPPED) cli_info("%s: skipped (%s)", e->name, e->reason);
 }
 

@@ -199,7 +199,7 @@ static lucent_status emit_json(const options *o)
     if (s != LUCENT_OK) return s;
     if (o->out) {
         s = lucent_write_file(o->out, text, strlen(text));
-        if (s == LUCENT_OK) cli_info("wrote %s", o->out);
+        if (s == LUCENT_OK) cli_wrote("wrote %s", o->out);
     } else {
         fputs(text, stdout);
     }
@@ -236,11 +236,10 @@ static lucent_status write_swatches(const options *o)
     s = lucent_image_write(o->swatches, img, NULL);
     lucent_image_destroy(img);
     if (s != LUCENT_OK) return s;
-    if (!g_cli.quiet) {
-        printf("wrote %s (dipole Rd swatches, left to right:", o->swatches);
-        for (int i = 0; i < o->count; i++) printf(" %s", o->list[i].name);
-        printf(")\n");
-    }
+    char names[2048] = "";
+    for (int i = 0; i < o->count; i++)
+        snprintf(names + strlen(names), sizeof names - strlen(names), " %s", o->list[i].name);
+    cli_wrote("wrote %s (dipole Rd swatches, left to right:%s)", o->swatches, names);
     return LUCENT_OK;
 }
 

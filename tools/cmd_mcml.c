@@ -153,9 +153,9 @@ static lucent_status run_one(const options *o, lucent_mcml_run *run, int k, int 
     if (s == LUCENT_OK) {
         s = lucent_mcml_write(path, run, &r);
         if (s == LUCENT_OK)
-            cli_info("wrote %s (Rsp %.5f, Rd %.5f +- %.5f, A %.5f +- %.5f, Tt %.5f +- %.5f; "
-                     "%.0f photons/s)",
-                     path, r.rsp, r.rd, r.rd_se, r.a, r.a_se, r.tt, r.tt_se, t > 0 ? (double)r.photons / t : 0.0);
+            cli_wrote("wrote %s (Rsp %.5f, Rd %.5f +- %.5f, A %.5f +- %.5f, Tt %.5f +- %.5f; "
+                      "%.0f photons/s)",
+                      path, r.rsp, r.rd, r.rd_se, r.a, r.a_se, r.tt, r.tt_se, t > 0 ? (double)r.photons / t : 0.0);
         lucent_mc_result_free(&r);
     }
     free(path);
@@ -271,9 +271,9 @@ static void print_comparison(const options *o, const lucent_mc_desc *d, const lu
 static lucent_status write_outputs(const options *o, const lucent_mco_comparison *c)
 {
     lucent_status s = LUCENT_OK;
-    if (o->csv && (s = lucent_mco_comparison_write_csv(o->csv, c)) == LUCENT_OK) cli_info("wrote %s", o->csv);
+    if (o->csv && (s = lucent_mco_comparison_write_csv(o->csv, c)) == LUCENT_OK) cli_wrote("wrote %s", o->csv);
     if (s == LUCENT_OK && o->json && (s = lucent_mco_comparison_write_json(o->json, c)) == LUCENT_OK)
-        cli_info("wrote %s", o->json);
+        cli_wrote("wrote %s", o->json);
     return s;
 }
 

@@ -112,8 +112,8 @@ int cmd_mesh_uv(int argc, char **argv)
                  "covered",
                  st.stretch_l2, st.stretch_max, st.flipped_faces, over, covered, o.size,
                  100.0 * (double)covered / ((double)o.size * o.size));
-        cli_info("wrote %s", o.out);
-        cli_info("wrote %s", o.png);
+        cli_wrote("wrote %s", o.out);
+        cli_wrote("wrote %s", o.png);
     }
     lucent_image_destroy(img);
     lucent_mesh_destroy(m);

@@ -542,7 +542,7 @@ static lucent_status run(const options *o)
         s = write_pack(o, dir, &m, &b, &rs, &sc, &written);
         if (s == LUCENT_OK) {
             cli_print_kernel_width(stdout, sc.radius_mm, &o->view);
-            cli_info("wrote %s/ (%d files)", dir, written);
+            cli_wrote("wrote %s/ (%d files)", dir, written);
         }
     }
     lucent_baked_free(&b);

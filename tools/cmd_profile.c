@@ -333,7 +333,7 @@ static void path_for(const options *o, const char *prefix, const lucent_profile 
 
 static lucent_status wrote(lucent_status s, const char *path)
 {
-    if (s == LUCENT_OK) cli_info("wrote %s", path);
+    if (s == LUCENT_OK) cli_wrote("wrote %s", path);
     return s;
 }
 

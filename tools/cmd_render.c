@@ -210,7 +210,7 @@ static lucent_status write_outputs(const options *o, lucent_renderer *r, const l
     free(text);
     const char *written[4] = {o->out, o->exr, o->mask, o->out ? json_path : NULL};
     for (int i = 0; st == LUCENT_OK && i < 4; i++)
-        if (written[i]) cli_info("wrote %s", written[i]);
+        if (written[i]) cli_wrote("wrote %s", written[i]);
     return st;
 }
 

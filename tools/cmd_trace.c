@@ -172,18 +172,18 @@ static lucent_status write_outputs(const trace_options *o, const lucent_scene *s
     char *json = sidecar_path(o);
     if (!json) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
     lucent_status s = write_png(o->out, r->image, &sc->render);
-    if (s == LUCENT_OK) cli_info("wrote %s", o->out);
+    if (s == LUCENT_OK) cli_wrote("wrote %s", o->out);
     if (s == LUCENT_OK && o->exr && (s = lucent_image_write(o->exr, r->image, NULL)) == LUCENT_OK)
-        cli_info("wrote %s", o->exr);
+        cli_wrote("wrote %s", o->exr);
     if (s == LUCENT_OK && o->variance && (s = lucent_image_write(o->variance, r->variance, NULL)) == LUCENT_OK)
-        cli_info("wrote %s", o->variance);
+        cli_wrote("wrote %s", o->variance);
     lucent_tracer_desc tracer = tracer_options(o);
     lucent_trace_sidecar_desc side = {.scene = sc,
                                       .scene_file = o->scene,
                                       .tracer = &tracer,
                                       .result = r,
                                       .threads = lucent_pool_threads(cli_pool())};
-    if (s == LUCENT_OK && (s = lucent_trace_write_sidecar(json, &side)) == LUCENT_OK) cli_info("wrote %s", json);
+    if (s == LUCENT_OK && (s = lucent_trace_write_sidecar(json, &side)) == LUCENT_OK) cli_wrote("wrote %s", json);
     free(json);
     return s;
 }

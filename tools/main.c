@@ -86,6 +86,50 @@ void cli_info(const char *fmt, ...)
     putchar('\n');
 }
 
+/* The lines cli_wrote holds until the output set lands. */
+static struct {
+    bool holding;
+    char **lines;
+    size_t count, cap;
+} g_wrote;
+
+void cli_wrote(const char *fmt, ...)
+{
+    if (g_cli.quiet) return;
+    va_list ap;
+    va_start(ap, fmt);
+    char *line = NULL;
+    int n = vasprintf(&line, fmt, ap);
+    va_end(ap);
+    if (n < 0) return;
+    if (!g_wrote.holding) {
+        puts(line);
+        free(line);
+        return;
+    }
+    if (g_wrote.count == g_wrote.cap) {
+        size_t cap = g_wrote.cap ? 2 * g_wrote.cap : 16;
+        char **grown = realloc(g_wrote.lines, cap * sizeof *grown);
+        if (!grown) {
+            free(line);
+            return;
+        }
+        g_wrote.lines = grown, g_wrote.cap = cap;
+    }
+    g_wrote.lines[g_wrote.count++] = line;
+}
+
+/* Prints (landed) or drops the held lines and stops holding. */
+static void wrote_release(bool landed)
+{
+    for (size_t i = 0; i < g_wrote.count; i++) {
+        if (landed) puts(g_wrote.lines[i]);
+        free(g_wrote.lines[i]);
+    }
+    free(g_wrote.lines);
+    g_wrote.lines = NULL, g_wrote.count = g_wrote.cap = 0, g_wrote.holding = false;
+}
+
 bool cli_parse_int(const char *text, int *dest)
 {
     char *end;
@@ -393,10 +437,12 @@ static int run_command(int argc, char **argv)
     if (strcmp(cmd->name, "view") == 0) return cmd->run(argc - 1, argv + 1); /* saves land when made */
     /* Every output of the command lands together when it succeeds, none when it fails. */
     lucent_outputs_begin();
+    g_wrote.holding = true; /* "wrote X" once X has landed */
     int rc = !cmd->run      ? cmd_merge(argc - 1, argv + 1)
              : g_cli.part_n ? run_part(cmd, argc - 1, argv + 1)
                             : cmd->run(argc - 1, argv + 1);
     if (lucent_outputs_end(rc == CLI_OK) != LUCENT_OK) rc = cli_fail();
+    wrote_release(rc == CLI_OK);
     return rc;
 }
 
