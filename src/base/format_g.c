@@ -78,7 +78,7 @@ int lucent_format_g(char *dest, double x, int precision)
     if (biased == 0 && frac == 0) return neg ? (memcpy(dest, "-0", 3), 2) : (memcpy(dest, "0", 2), 1);
     if (biased == 0 || biased == 0x7ff) return fallback(dest, x, p); /* subnormal, inf, nan */
     uint64_t m = frac | 1ull << 52;
-    int q = biased - 1075, b = biased - 1023; /* x = m 2^q, 2^b <= |x| < 2^(b+1) */
+    int q = biased - 1075, b = biased - 1023;                   /* x = m 2^q, 2^b <= |x| < 2^(b+1) */
     int e = (int)((b * 78913 - (b < 0 ? 262143 : 0)) / 262144); /* floor(b log10 2), +-1 fixed below */
     for (int tries = 0; tries < 3; tries++) {
         int s = p - 1 - e;

@@ -11,8 +11,9 @@ enum { BLOCK = 1 << 20, ROW_MAX = 20 + 7 * LUCENT_FORMAT_G_MAX + 8 };
 /* "v,x,y,z,k1,k2,mean,gauss,flags\n" of vertex v at dest; returns its length. */
 static size_t format_row(char *dest, const lucent_mesh *m, const lucent_curvature *c, size_t v)
 {
-    const double values[7] = {m->positions[3 * v], m->positions[3 * v + 1], m->positions[3 * v + 2], c->k1[v],
-                              c->k2[v],           c->mean[v],             c->gauss[v]};
+    const double values[7] = {
+        m->positions[3 * v], m->positions[3 * v + 1], m->positions[3 * v + 2], c->k1[v], c->k2[v], c->mean[v],
+        c->gauss[v]};
     char *o = dest + lucent_format_u64(dest, v);
     for (int k = 0; k < 7; k++) *o++ = ',', o += lucent_format_g(o, values[k], 9);
     *o++ = ',', o += lucent_format_u64(o, c->flags[v]);
