@@ -213,6 +213,28 @@ typedef struct lucent_uv_split {
 lucent_status lucent_mesh_uv_split(const lucent_mesh *mesh, lucent_uv_split *dest);
 void lucent_uv_split_free(lucent_uv_split *split);
 
+/* A texel near a texture seam (uv_seams.c, docs/tsd.md): the same surface point in the chart across
+ * the seam, by unfolding the two faces of its nearest seam edge into one plane. Texel (x, y) has its
+ * centre at (x + 0.5, y + 0.5) in texel coordinates, v up (row 0 at v = 0). */
+typedef struct lucent_uv_seam_texel {
+    uint32_t x, y;
+    uint32_t chart;    /* the chart of the edge's face on this side (lucent_mesh_uv_charts) */
+    uint32_t across;   /* the chart on the other side (may be the same chart) */
+    float target[2];   /* the same surface point in texel coordinates */
+    float jacobian[4]; /* d target / d texel, row major: a step (dx, dy) here is J (dx, dy) there */
+} lucent_uv_seam_texel;
+
+typedef struct lucent_uv_seams {
+    size_t count;
+    lucent_uv_seam_texel *texels; /* sorted by y, then x */
+} lucent_uv_seams;
+
+/* Every texel of a size x size texture whose centre lies within reach texels of a seam edge (an
+ * edge whose faces give its corners different coordinates), mapped across its nearest seam edge.
+ * Boundary edges map nothing. */
+lucent_status lucent_mesh_uv_seams(const lucent_mesh *mesh, int size, double reach, lucent_uv_seams *dest);
+void lucent_uv_seams_free(lucent_uv_seams *seams);
+
 /* ---- A picture of a mesh (no GPU) ------------------------------------------ */
 
 /* How to paint a mesh; zero fields take the defaults. */

@@ -128,6 +128,7 @@ typedef struct lucent_tsd_settings {
     int gaussians; /* of the fitted sum of Gaussians */
     int taps;      /* per 1-D pass, odd */
     int sog;       /* 0 auto (d'Eon's table for skin, else the fit), 1 d'Eon's table, 2 the fit */
+    bool seams;    /* the blur's taps follow texture seams into the chart across */
 } lucent_tsd_settings;
 
 typedef struct lucent_trace_settings {

@@ -44,6 +44,10 @@ static inline uint32_t mesh_prefetch_slot(const mesh_adjacency *adj, const uint3
     return next;
 }
 
+/* next[3 f + k]: the face across the edge from corner k to k + 1 of face f (UINT32_MAX: boundary or
+ * non-manifold); next holds 3 face_count entries (uv_atlas.c). */
+lucent_status mesh_face_neighbours(const lucent_mesh *mesh, uint32_t *next);
+
 /* A 2 MiB-aligned block advised as transparent huge pages when large (alloc.c); free(). */
 void *mesh_alloc_large(size_t bytes);
 

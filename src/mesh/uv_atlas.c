@@ -32,8 +32,8 @@ static int cmp_edge(const void *a, const void *b)
     return x->key < y->key ? -1 : x->key > y->key ? 1 : (x->slot > y->slot) - (x->slot < y->slot);
 }
 
-/* next[slot]: the face across the edge of that slot (UINT32_MAX: boundary or non-manifold). */
-static lucent_status face_neighbours(const lucent_mesh *m, uint32_t *next)
+/* The face across each edge slot (internal.h). */
+lucent_status mesh_face_neighbours(const lucent_mesh *m, uint32_t *next)
 {
     size_t n = 3 * m->face_count;
     edge_key *e = malloc((n + 1) * sizeof *e);
@@ -342,7 +342,7 @@ lucent_status lucent_mesh_uv_atlas(lucent_mesh *mesh, const lucent_uv_atlas_desc
                               w.g.touched && w.g.ent_face && w.g.ent_next && uvs
                           ? LUCENT_OK
                           : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for the atlas");
-    if (s == LUCENT_OK) s = face_neighbours(mesh, w.next);
+    if (s == LUCENT_OK) s = mesh_face_neighbours(mesh, w.next);
     if (s == LUCENT_OK) s = segment(&w, d.max_angle);
     double *old = mesh->uvs;
     if (s == LUCENT_OK) mesh->uvs = uvs, uvs = old, s = pack(&w, &d, mesh);
@@ -471,7 +471,7 @@ lucent_status lucent_mesh_uv_charts(const lucent_mesh *m, uint32_t *chart, size_
     if (!m->uvs) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "the mesh has no texture coordinates");
     uint32_t *next = malloc((3 * m->face_count + 1) * sizeof *next);
     if (!next) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
-    lucent_status s = face_neighbours(m, next);
+    lucent_status s = mesh_face_neighbours(m, next);
     for (size_t f = 0; f < m->face_count; f++) chart[f] = (uint32_t)f;
     for (size_t i = 0; s == LUCENT_OK && i < 3 * m->face_count; i++) {
         uint32_t g = next[i], f = (uint32_t)(i / 3), k = (uint32_t)(i % 3);

@@ -13,9 +13,11 @@
  *   blur        for each Gaussian i of the sum of Gaussians R(r) = sum_i w_i G(v_i, r), a horizontal
  *               and a vertical pass of G(v_i - v_{i-1}) applied to the previous result (the chain,
  *               14.4.2: G(v_i) = G(v_i - v_{i-1}) * G(v_{i-1})), taps 3 sigma wide scaled by the
- *               stretch, reading only texels of the centre's chart (a normalised convolution within
- *               the chart: no light from the unrelated charts packed beside it); the vertical pass
- *               also adds w_i G_i into the sum
+ *               stretch; a tap past the chart's edge follows the seam into the chart across
+ *               (lucent_mesh_uv_seams: the first texel outside holds the same surface point there and
+ *               the map's derivative), so light crosses seams; taps past the mesh's boundary keep
+ *               only texels of the centre's chart (a normalised convolution: no light from the
+ *               unrelated charts packed beside it); the vertical pass also adds w_i G_i into the sum
  *   geometry    the mesh from the camera: diffuse albedo (sum / pi + ambient) from the sum at the
  *               fragment's texture coordinates (a face smaller than a texel, never rasterised into
  *               the texture, keeps its own irradiance), the boundary's GGX reflection and
@@ -46,6 +48,9 @@ static const lucent_setting k_tsd[] = {
     SETTING_CHOICE("tsd_sog", tsd.sog, "auto", sog_names,
                    "the sum of Gaussians: d'Eon's skin table, the fit of the profile, or auto (the table for "
                    "skin materials)"),
+    SETTING_BOOL("tsd_seams", tsd.seams, true,
+                 "the blur's taps follow texture seams into the chart across (off: each "
+                 "chart blurs alone, as before seams were handled)"),
 };
 
 const lucent_settings_group gl_tsd_settings = SETTINGS_GROUP("tsd", "texture-space diffusion", k_tsd);
@@ -61,6 +66,8 @@ typedef struct tsd_object {
     GLuint irr, stretch, ping, pong, tmp, sum; /* RGBA16F; stretch RGBA32F: su, sv, chart + 1 */
     GLuint irr_fbo, stretch_fbo, dilate_fbo, ping_fbo, pong_fbo, tmp_fbo, v_fbo[2], sum_fbo;
     GLuint irr_dilated, stretch_dilated;
+    GLuint seam, seam_j;  /* seam texels: the point across (RGBA32F: x, y, chart + 1, across + 1), J (RGBA16F) */
+    size_t seam_texels;   /* texels mapped across a seam */
     bool own_uvs;         /* the mesh's coordinates (else Lucent's atlas) */
     lucent_uv_stats uv;   /* of the coordinates in use */
     int atlas_size;       /* the texture size the atlas was made for (0: own) */
@@ -73,18 +80,21 @@ typedef struct tsd_state {
     tsd_object *objects;
     int object_count;
     int taps;
+    bool seams;
 } tsd_state;
 
 static void free_textures(tsd_object *o)
 {
-    GLuint tex[8] = {o->irr, o->stretch, o->ping, o->pong, o->tmp, o->sum, o->irr_dilated, o->stretch_dilated};
+    GLuint tex[10] = {o->irr,         o->stretch,         o->ping, o->pong,  o->tmp, o->sum,
+                      o->irr_dilated, o->stretch_dilated, o->seam, o->seam_j};
     GLuint fbo[9] = {o->irr_fbo, o->stretch_fbo, o->dilate_fbo, o->ping_fbo, o->pong_fbo,
                      o->tmp_fbo, o->v_fbo[0],    o->v_fbo[1],   o->sum_fbo};
-    for (int i = 0; i < 8; i++)
+    for (int i = 0; i < 10; i++)
         if (tex[i]) glDeleteTextures(1, &tex[i]);
     for (int i = 0; i < 9; i++)
         if (fbo[i]) glDeleteFramebuffers(1, &fbo[i]);
     o->irr = o->stretch = o->ping = o->pong = o->tmp = o->sum = o->irr_dilated = o->stretch_dilated = 0;
+    o->seam = o->seam_j = 0;
     o->irr_fbo = o->stretch_fbo = o->dilate_fbo = o->ping_fbo = o->pong_fbo = o->tmp_fbo = 0;
     o->v_fbo[0] = o->v_fbo[1] = o->sum_fbo = 0;
     o->size = 0;
@@ -98,8 +108,43 @@ static void free_mesh(tsd_object *o)
     o->vao = o->vertices = o->indices = 0;
 }
 
+/* The seam textures (lucent_mesh_uv_seams): for each texel within TSD_DILATE texels of a seam edge,
+ * the same surface point across the seam and the map's derivative there; zero elsewhere. Uploaded
+ * row by row, from the first to the last mapped texel of the row. */
+static lucent_status upload_seams(const lucent_mesh *m, int size, tsd_object *o)
+{
+    lucent_uv_seams sm = {0};
+    lucent_status s = lucent_mesh_uv_seams(m, size, TSD_DILATE, &sm);
+    float *row = s == LUCENT_OK ? calloc(8 * (size_t)size, sizeof *row) : NULL;
+    if (s == LUCENT_OK && !row) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    if (s == LUCENT_OK) {
+        glClearTexImage(o->seam, 0, GL_RGBA, GL_FLOAT, NULL);
+        glClearTexImage(o->seam_j, 0, GL_RGBA, GL_FLOAT, NULL);
+    }
+    for (size_t i = 0; row && i < sm.count;) {
+        size_t j = i;
+        uint32_t y = sm.texels[i].y, x0 = sm.texels[i].x;
+        for (; j < sm.count && sm.texels[j].y == y; j++) {
+            const lucent_uv_seam_texel *t = &sm.texels[j];
+            float *a = row + 4 * (t->x - x0), *b = row + 4 * ((size_t)size + t->x - x0);
+            a[0] = t->target[0], a[1] = t->target[1], a[2] = (float)t->chart + 1, a[3] = (float)t->across + 1;
+            memcpy(b, t->jacobian, sizeof t->jacobian);
+        }
+        GLsizei w = (GLsizei)(sm.texels[j - 1].x - x0 + 1);
+        glTextureSubImage2D(o->seam, 0, (GLint)x0, (GLint)y, w, 1, GL_RGBA, GL_FLOAT, row);
+        glTextureSubImage2D(o->seam_j, 0, (GLint)x0, (GLint)y, w, 1, GL_RGBA, GL_FLOAT, row + 4 * (size_t)size);
+        memset(row, 0, 8 * (size_t)size * sizeof *row);
+        i = j;
+    }
+    o->seam_texels = sm.count;
+    free(row);
+    lucent_uv_seams_free(&sm);
+    return s;
+}
+
 /* The object's vertices split at texture seams (position, normal, uv), from its own coordinates or
- * from an atlas made for texture size `size` (the gutter is 4 texels there). */
+ * from an atlas made for texture size `size` (the gutter is 4 texels there), and its seam textures
+ * (make_textures first). */
 static lucent_status upload_mesh(const lucent_scene_object *so, int size, tsd_object *o)
 {
     lucent_mesh m = *so->mesh; /* a shallow copy: only uvs is replaced */
@@ -120,6 +165,7 @@ static lucent_status upload_mesh(const lucent_scene_object *so, int size, tsd_ob
     if (s == LUCENT_OK) s = lucent_mesh_uv_split(&m, &sp);
     if (s == LUCENT_OK) s = lucent_mesh_uv_charts(&m, chart, &charts);
     if (s == LUCENT_OK && o->own_uvs) o->uv.chart_count = charts;
+    if (s == LUCENT_OK) s = upload_seams(&m, size, o);
     float *v = s == LUCENT_OK ? malloc(sp.count * 9 * sizeof *v + 1) : NULL;
     if (s == LUCENT_OK && !v) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
     for (size_t i = 0; v && i < sp.count; i++) {
@@ -168,6 +214,8 @@ static lucent_status make_textures(tsd_object *o, int size)
     o->pong = gl_texture(GL_RGBA16F, size, size, GL_LINEAR);
     o->tmp = gl_texture(GL_RGBA16F, size, size, GL_LINEAR);
     o->sum = gl_texture(GL_RGBA16F, size, size, GL_LINEAR);
+    o->seam = gl_texture(GL_RGBA32F, size, size, GL_NEAREST);
+    o->seam_j = gl_texture(GL_RGBA16F, size, size, GL_NEAREST);
     lucent_status s = gl_framebuffer(1, &o->irr, 0, "the irradiance texture", &o->irr_fbo);
     if (s == LUCENT_OK) s = gl_framebuffer(1, &o->stretch, 0, "the stretch texture", &o->stretch_fbo);
     GLuint dil[2] = {o->irr_dilated, o->stretch_dilated}, v0[2] = {o->ping, o->sum}, v1[2] = {o->pong, o->sum};
@@ -228,13 +276,14 @@ static lucent_status prepare(lucent_renderer *r, void *state, const lucent_rende
     for (int i = 0; e == LUCENT_OK && i < sc->object_count; i++) {
         tsd_object *o = &st->objects[i];
         if (!sc->objects[i].visible) continue;
-        bool atlas_stale = !sc->objects[i].mesh->uvs && o->atlas_size != s->tsd.size;
-        if (!o->vao || atlas_stale) e = upload_mesh(&sc->objects[i], s->tsd.size, o);
+        bool resized = o->size != s->tsd.size; /* the seam textures follow the size, the atlas its gutter */
+        if (resized) e = make_textures(o, s->tsd.size);
+        if (e == LUCENT_OK && (!o->vao || resized)) e = upload_mesh(&sc->objects[i], s->tsd.size, o);
         if (e != LUCENT_OK) e = lucent_error_context(e, "object \"%s\": texture coordinates", sc->objects[i].name);
-        if (e == LUCENT_OK && o->size != s->tsd.size) e = make_textures(o, s->tsd.size);
         if (e == LUCENT_OK) e = object_sog(r, s, i, o);
     }
     st->taps = s->tsd.taps;
+    st->seams = s->tsd.seams;
     if (e == LUCENT_OK)
         e = gl_programs_get(&r->programs, "tsd_texture.vert.glsl", "tsd_irradiance.frag.glsl", NULL, &st->irradiance);
     if (e == LUCENT_OK)
@@ -315,6 +364,7 @@ static void blur_passes(lucent_renderer *r, tsd_state *st, int k)
     glUseProgram(p);
     glBindVertexArray(r->empty_vao);
     glUniform1i(glGetUniformLocation(p, "u_taps"), st->taps);
+    glUniform1i(glGetUniformLocation(p, "u_seams"), st->seams);
     GLint loc_axis = glGetUniformLocation(p, "u_axis"), loc_sigma = glGetUniformLocation(p, "u_sigma");
     GLint loc_weight = glGetUniformLocation(p, "u_weight");
     for (int axis = 0; axis < 2; axis++) {
@@ -331,6 +381,9 @@ static void blur_passes(lucent_renderer *r, tsd_state *st, int k)
             if (k == 0 && axis == 0) glClearNamedFramebufferfv(o->sum_fbo, GL_COLOR, 0, (const float[4]){0});
             glBindTextureUnit(0, axis == 0 ? source : o->tmp);
             glBindTextureUnit(1, o->stretch_dilated);
+            glBindTextureUnit(2, o->seam);
+            glBindTextureUnit(3, o->seam_j);
+            glBindTextureUnit(5, source);
             glDrawArrays(GL_TRIANGLES, 0, 3);
         }
         if (axis == 1) glDisablei(GL_BLEND, 1);
@@ -409,6 +462,7 @@ static void sidecar(const lucent_renderer *r, const void *state, const lucent_re
         cJSON_AddNumberToObject(j, "charts", (double)o->uv.chart_count);
         cJSON_AddNumberToObject(j, "stretch_l2", o->uv.stretch_l2);
         cJSON_AddNumberToObject(j, "texture_size", o->size);
+        cJSON_AddNumberToObject(j, "seam_texels", (double)o->seam_texels);
         cJSON_AddStringToObject(j, "sog", o->sog_from);
         lucent_json_add_numbers(j, "variances_mm2", o->sog.variance[0], o->sog.count);
         static const char *const names[3] = {"weights_r", "weights_g", "weights_b"};
@@ -427,8 +481,8 @@ static void release(void *state)
 
 const gl_method gl_method_tsd = {
     .name = "tsd",
-    .settings = (const char *const[]){"tsd_size", "tsd_gaussians", "tsd_taps", "tsd_sog", "profile", "translucency",
-                                      "transmittance", NULL},
+    .settings = (const char *const[]){"tsd_size", "tsd_gaussians", "tsd_taps", "tsd_sog", "tsd_seams", "profile",
+                                      "translucency", "transmittance", NULL},
     .state_size = sizeof(tsd_state),
     .bakes = bakes,
     .prepare = prepare,

@@ -1,6 +1,6 @@
 // tsd, seams (GPU Gems 3 14.4.3): a texel outside every chart (coverage 0) joins the chart of the
 // nearest covered texel within u_reach texels and takes the mean of that chart's covered texels there,
-// for the irradiance and the stretch (with its chart) alike, so that the blurs and the bilinear look-ups
+// for the irradiance and the stretch (with its chart; w stays 0: not covered) alike, so that the blurs and the bilinear look-ups
 // at a chart's edge read the chart's own values in the gutter.
 layout(binding = 0) uniform sampler2D u_irradiance; // rgb, a: coverage
 layout(binding = 1) uniform sampler2D u_stretch;    // texels per mm along u, v; z: chart + 1
@@ -34,5 +34,5 @@ void main()
             if (t.a > 0.0 && s.z == chart) sum += vec4(t.rgb, 1.0), st += s;
         }
     o_irradiance = sum.a > 0.0 ? vec4(sum.rgb / sum.a, 1.0) : vec4(0.0);
-    o_stretch = sum.a > 0.0 ? vec4(st.xy / sum.a, chart, 1.0) : vec4(0.0);
+    o_stretch = sum.a > 0.0 ? vec4(st.xy / sum.a, chart, 0.0) : vec4(0.0); // w 0: not covered
 }
