@@ -1,5 +1,6 @@
 /* Texture seams (src/mesh/uv_seams.c): a flat plane cut along a diagonal into two charts, the second
- * turned by 90 degrees and scaled by 0.5 in texture space. Each texel near the seam is mapped to the
+ * turned by 90 degrees and scaled by 0.5 in texture space (then also sheared and scaled unevenly, as a
+ * planar projection of a slanted face would be). Each texel near the seam is mapped to the
  * chart across it; the expected point is the same surface point, found here from the two charts'
  * analytic texture maps (inverted by hand), not from the library's edge frames. */
 #include <math.h>
@@ -11,6 +12,7 @@
 
 enum { N = 40, SIZE = 512 };
 static const double K = 0.015; /* chart A: texture units per mm; chart B: half of it */
+static bool g_sheared;         /* chart B's v: K/4 (x + 20) + K/10 (20 - z) instead of K/2 (x + 20) */
 
 /* The plane y = 0, x, z in [-20, 20] mm, N x N quads cut along their anti-diagonals; faces with
  * x + z < 0 in chart A (u, v) = 0.02 + K (x + 20, z + 20), the others in chart B, turned by 90
@@ -18,13 +20,19 @@ static const double K = 0.015; /* chart A: texture units per mm; chart B: half o
 static void chart_a(double x, double z, double *uv) { uv[0] = 0.02 + K * (x + 20), uv[1] = 0.02 + K * (z + 20); }
 static void chart_b(double x, double z, double *uv)
 {
-    uv[0] = 0.66 + 0.5 * K * (20 - z), uv[1] = 0.02 + 0.5 * K * (x + 20);
+    uv[0] = 0.66 + 0.5 * K * (20 - z);
+    uv[1] = g_sheared ? 0.02 + 0.25 * K * (x + 20) + 0.1 * K * (20 - z) : 0.02 + 0.5 * K * (x + 20);
 }
 /* The inverses, from texel coordinates to (x, z) mm. */
-static void from_a(double tx, double ty, double *p) { p[0] = (tx / SIZE - 0.02) / K - 20, p[1] = (ty / SIZE - 0.02) / K - 20; }
+static void from_a(double tx, double ty, double *p)
+{
+    p[0] = (tx / SIZE - 0.02) / K - 20, p[1] = (ty / SIZE - 0.02) / K - 20;
+}
 static void from_b(double tx, double ty, double *p)
 {
-    p[1] = 20 - (tx / SIZE - 0.66) / (0.5 * K), p[0] = (ty / SIZE - 0.02) / (0.5 * K) - 20;
+    p[1] = 20 - (tx / SIZE - 0.66) / (0.5 * K);
+    p[0] =
+        g_sheared ? (ty / SIZE - 0.02 - 0.1 * K * (20 - p[1])) / (0.25 * K) - 20 : (ty / SIZE - 0.02) / (0.5 * K) - 20;
 }
 static bool in_a_half(double tx) { return tx / SIZE < 0.64; } /* A's box lies left of u = 0.64, B's right */
 
@@ -46,7 +54,8 @@ static lucent_mesh *two_chart_plane(void)
             uint32_t tri[2][3] = {{v00, v01, v10}, {v10, v01, v11}};
             for (int t = 0; t < 2; t++, f++) {
                 double cx = 0, cz = 0;
-                for (int k = 0; k < 3; k++) cx += m->positions[3 * tri[t][k]] / 3, cz += m->positions[3 * tri[t][k] + 2] / 3;
+                for (int k = 0; k < 3; k++)
+                    cx += m->positions[3 * tri[t][k]] / 3, cz += m->positions[3 * tri[t][k] + 2] / 3;
                 for (int k = 0; k < 3; k++) {
                     m->faces[3 * f + k] = tri[t][k];
                     const double *p = m->positions + 3 * tri[t][k];
@@ -57,8 +66,9 @@ static lucent_mesh *two_chart_plane(void)
     return m;
 }
 
-TEST(seam_texels_map_to_the_same_surface_point)
+static void check_seam_map(bool sheared)
 {
+    g_sheared = sheared;
     lucent_mesh *m = two_chart_plane();
     if (!m) return;
     lucent_uv_seams s = {0};
@@ -91,23 +101,39 @@ TEST(seam_texels_map_to_the_same_surface_point)
     for (int side = 0; side < 2; side++)
         for (double x = -18; x <= 18; x += 0.05)
             for (double out = 0.2; out <= 1.5; out += 0.1, probes++) {
-                double uv[2], d = out / sqrt(2) / (side ? 0.5 * K * SIZE : K * SIZE); /* mm along (1, 1) or back */
-                if (side == 0) chart_a(x + d, -x + d, uv); /* A's side: outward is x + z > 0 */
-                else chart_b(x - d, -x - d, uv);
+                /* d mm along x and z, (1, 1) out of A or back out of B: `out` texels in that chart */
+                double uv[2], o0[2], o1[2];
+                (side ? chart_b : chart_a)(0, 0, o0), (side ? chart_b : chart_a)(side ? -1 : 1, side ? -1 : 1, o1);
+                double d = out / (SIZE * hypot(o1[0] - o0[0], o1[1] - o0[1]));
+                if (side == 0)
+                    chart_a(x + d, -x + d, uv); /* A's side: outward is x + z > 0 */
+                else
+                    chart_b(x - d, -x - d, uv);
                 uint32_t tx = (uint32_t)(uv[0] * SIZE), ty = (uint32_t)(uv[1] * SIZE);
                 bool found = false;
                 for (size_t i = 0; i < s.count && !found; i++)
                     found = s.texels[i].x == tx && s.texels[i].y == ty && in_a_half(tx + 0.5) == (side == 0);
                 missing += !found;
             }
-    printf("  %zu seam texels at %d^2: the mapped point off the same surface point by at most %.2g mm, a texel's "
+    printf("  %s: %zu seam texels at %d^2: the mapped point off the same surface point by at most %.2g mm, a texel's "
            "step by %.2g mm; %zu of %zu probes outside the seam unmapped\n",
-           s.count, SIZE, worst, worst_j, missing, probes);
+           sheared ? "B sheared" : "B turned and scaled", s.count, SIZE, worst, worst_j, missing, probes);
     CHECK(s.count > 0);
-    CHECK_MSG(worst < 1e-3, "%.3g mm", worst);   /* float texel coordinates: about 1e-5 mm */
+    CHECK_MSG(worst < 1e-3, "%.3g mm", worst); /* float texel coordinates: about 1e-5 mm */
     CHECK_MSG(worst_j < 1e-4, "%.3g mm", worst_j);
     CHECK(missing == 0);
     lucent_uv_seams_free(&s);
+    lucent_mesh_destroy(m);
+}
+
+TEST(seam_texels_map_to_the_same_surface_point)
+{
+    check_seam_map(false);
+    check_seam_map(true);
+    g_sheared = false;
+    lucent_mesh *m = two_chart_plane();
+    if (!m) return;
+    lucent_uv_seams s = {0};
     CHECK_ERR(lucent_mesh_uv_seams(m, SIZE, 0, &s), LUCENT_ERR_INVALID_ARGUMENT, "reach");
     free(m->uvs), m->uvs = NULL;
     CHECK_ERR(lucent_mesh_uv_seams(m, SIZE, 2, &s), LUCENT_ERR_INVALID_ARGUMENT, "no texture coordinates");

@@ -2,15 +2,14 @@
  * the texels just outside a chart, where the same surface point lies in the chart across the seam.
  *
  * A seam edge is an edge whose two faces give its corners different texture coordinates (two charts,
- * or one chart meeting itself, as on a latitude-longitude sphere). Seen from face f (chart A) the
- * edge runs from corner a to corner b, e = (b - a) / |b - a| in A's texels, n its normal pointing out
- * of f; seen from the face g across it (chart B) the same corners give e' and n' pointing into g.
- * A texel centre x near the edge, x = a + t e + h n, is the surface point reached by walking t along
- * the edge and h across it; in B that walk is a' + s (t e' + h n'), s = |b' - a'| / |b - a| the ratio
- * of the two charts' texel densities along the edge (the edge's length in 3-D is one). The map is the
- * unfolding of the two faces into one plane about their edge, exact on a flat surface; its derivative
- * J = s (e' e^T + n' n^T) carries a direction in A's texels to B's. Each texel within `reach` texels
- * of a seam edge keeps the map of its nearest seam edge. */
+ * or one chart meeting itself, as on a latitude-longitude sphere). A texel x near such an edge, seen
+ * from its face f, is a point of f's plane (f's texture map extended: P = P_a + D_f (x - x_a), D_f the
+ * inverse map's derivative); unfolding f's plane about the edge onto the plane of the face g across
+ * (the edge's direction kept, the direction out of f across the edge turned into the direction into
+ * g) and mapping that point by g's texture map gives the same surface point in g's chart:
+ * y = y_a + J (x - x_a), J = D_g^+ R D_f. Exact on a flat surface whatever the two maps (turned,
+ * scaled, sheared); on a curved one the unfolding of the two faces. Each texel within `reach` texels of
+ * a seam edge keeps the map of its nearest seam edge. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -54,53 +53,85 @@ static const double *corner_uv(const lucent_mesh *m, uint32_t f, uint32_t v)
     return NULL;
 }
 
-/* One side of an edge in texels: origin a, unit direction e, unit normal n toward (into = true) or
- * away from the face's third corner c; the edge's length. */
-static double edge_frame(const double a[2], const double b[2], const double c[2], int size, bool into, double o[2],
-                         double e[2], double n[2])
+/* The derivative of face f's texture map's inverse: D (3 x 2, column major as two v3) takes a step in
+ * texels to the step on the face's plane. false: degenerate in 3-D or in texture space. */
+static bool face_inverse(const lucent_mesh *m, uint32_t f, int size, v3 dest[2])
 {
-    double dx = (b[0] - a[0]) * size, dy = (b[1] - a[1]) * size, len = hypot(dx, dy);
-    if (!(len > 0)) return 0;
-    o[0] = a[0] * size, o[1] = a[1] * size, e[0] = dx / len, e[1] = dy / len;
-    n[0] = -e[1], n[1] = e[0];
-    double side = n[0] * (c[0] * size - o[0]) + n[1] * (c[1] * size - o[1]); /* > 0: c on n's side */
-    if ((side > 0) != into) n[0] = -n[0], n[1] = -n[1];
-    return len;
+    const double *t = m->uvs + 6 * f;
+    double a = (t[2] - t[0]) * size, b = (t[4] - t[0]) * size, c = (t[3] - t[1]) * size, d = (t[5] - t[1]) * size;
+    double det = a * d - b * c; /* A = [[a, b], [c, d]]: columns the corners' steps in texels */
+    if (!(fabs(det) > 0)) return false;
+    v3 p0 = v3_load(m->positions + 3 * m->faces[3 * f]);
+    v3 e1 = v3_sub(v3_load(m->positions + 3 * m->faces[3 * f + 1]), p0);
+    v3 e2 = v3_sub(v3_load(m->positions + 3 * m->faces[3 * f + 2]), p0);
+    if (!(v3_length(v3_cross(e1, e2)) > 0)) return false;
+    /* D = [e1 e2] A^-1, A^-1 = [[d, -b], [-c, a]] / det */
+    dest[0] = v3_scale(v3_add(v3_scale(e1, d), v3_scale(e2, -c)), 1 / det);
+    dest[1] = v3_scale(v3_add(v3_scale(e1, -b), v3_scale(e2, a)), 1 / det);
+    return true;
 }
 
-/* The candidates of the texels within reach of the edge from corner k of face f to the face g across. */
+/* The texel step that gives the 3-D step q (in the face's plane) under D: (D^T D)^-1 D^T q. */
+static void step_of(const v3 d[2], v3 q, double dest[2])
+{
+    double g00 = v3_dot(d[0], d[0]), g01 = v3_dot(d[0], d[1]), g11 = v3_dot(d[1], d[1]), det = g00 * g11 - g01 * g01;
+    double r0 = v3_dot(d[0], q), r1 = v3_dot(d[1], q);
+    dest[0] = (g11 * r0 - g01 * r1) / det, dest[1] = (g00 * r1 - g01 * r0) / det;
+}
+
+/* The unit vector in the plane of edge (a, b) and corner c, perpendicular to the edge, toward c. */
+static v3 toward(v3 a, v3 e, v3 c)
+{
+    v3 q = v3_sub(c, a);
+    return v3_normalize(v3_sub(q, v3_scale(e, v3_dot(q, e))));
+}
+
+/* The candidates of the texels within reach of the edge from corner k of face f to the face g across:
+ * f's plane unfolded about the edge onto g's, J = D_g^+ R D_f (R: the edge direction kept, the
+ * direction out of f across the edge turned into the direction into g). */
 static bool edge_candidates(const lucent_mesh *m, const uint32_t *chart, uint32_t f, int k, uint32_t g, int size,
                             double reach, seam_list *out)
 {
     uint32_t va = m->faces[3 * f + (uint32_t)k], vb = m->faces[3 * f + (uint32_t)(k + 1) % 3];
-    uint32_t vc = m->faces[3 * f + (uint32_t)(k + 2) % 3];
-    const double *ua = corner_uv(m, f, va), *ub = corner_uv(m, f, vb), *uc = corner_uv(m, f, vc);
-    const double *wa = corner_uv(m, g, va), *wb = corner_uv(m, g, vb), *wc = NULL;
+    uint32_t vc = m->faces[3 * f + (uint32_t)(k + 2) % 3], vd = UINT32_MAX;
     for (int j = 0; j < 3; j++)
-        if (m->faces[3 * g + (uint32_t)j] != va && m->faces[3 * g + (uint32_t)j] != vb) wc = m->uvs + 6 * g + 2 * j;
-    if (!wa || !wb || !wc) return true;
-    double o[2], e[2], n[2], o2[2], e2[2], n2[2];
-    double la = edge_frame(ua, ub, uc, size, false, o, e, n), lb = edge_frame(wa, wb, wc, size, true, o2, e2, n2);
-    if (!(la > 0) || !(lb > 0)) return true;
-    double s = lb / la, lo[2], hi[2];
+        if (m->faces[3 * g + (uint32_t)j] != va && m->faces[3 * g + (uint32_t)j] != vb)
+            vd = m->faces[3 * g + (uint32_t)j];
+    const double *ua = corner_uv(m, f, va), *ub = corner_uv(m, f, vb), *wa = corner_uv(m, g, va);
+    v3 df[2], dg[2];
+    if (vd == UINT32_MAX || !wa || !face_inverse(m, f, size, df) || !face_inverse(m, g, size, dg)) return true;
+    v3 pa = v3_load(m->positions + 3 * va), pb = v3_load(m->positions + 3 * vb);
+    v3 e = v3_normalize(v3_sub(pb, pa));
+    v3 out_f = v3_neg(toward(pa, e, v3_load(m->positions + 3 * vc))),
+       in_g = toward(pa, e, v3_load(m->positions + 3 * vd));
+    double jac[4]; /* row major */
+    for (int col = 0; col < 2; col++) {
+        v3 q = df[col], turned = v3_add(v3_scale(e, v3_dot(q, e)), v3_scale(in_g, v3_dot(q, out_f)));
+        double r[2];
+        step_of(dg, turned, r);
+        jac[col] = r[0], jac[2 + col] = r[1];
+    }
+    double o[2] = {ua[0] * size, ua[1] * size}, o2[2] = {wa[0] * size, wa[1] * size};
+    double ex = (ub[0] - ua[0]) * size, ey = (ub[1] - ua[1]) * size, la = hypot(ex, ey);
+    if (!(la > 0)) return true;
+    ex /= la, ey /= la;
+    double side = (ex * ((corner_uv(m, f, vc)[1]) * size - o[1]) - ey * ((corner_uv(m, f, vc)[0]) * size - o[0]));
+    double lo[2], hi[2];
     for (int i = 0; i < 2; i++) {
-        lo[i] = fmax(0, floor(fmin(o[i], o[i] + la * e[i]) - reach));
-        hi[i] = fmin(size - 1, ceil(fmax(o[i], o[i] + la * e[i]) + reach));
+        double end = o[i] + la * (i ? ey : ex);
+        lo[i] = fmax(0, floor(fmin(o[i], end) - reach)), hi[i] = fmin(size - 1, ceil(fmax(o[i], end) + reach));
     }
     for (double y = lo[1]; y <= hi[1]; y++)
         for (double x = lo[0]; x <= hi[0]; x++) {
-            double px = x + 0.5 - o[0], py = y + 0.5 - o[1], t = px * e[0] + py * e[1], h = px * n[0] + py * n[1];
-            double tc = fmin(fmax(t, 0), la), d = hypot(px - tc * e[0], py - tc * e[1]);
+            double px = x + 0.5 - o[0], py = y + 0.5 - o[1], t = px * ex + py * ey;
+            double h = (ex * py - ey * px) * (side > 0 ? -1 : 1); /* > 0: out of f */
+            double tc = fmin(fmax(t, 0), la), d = hypot(px - tc * ex, py - tc * ey);
             if (d > reach || h < -1) continue; /* far, or well inside the face */
             seam_candidate c = {(uint64_t)y * (uint64_t)size + (uint64_t)x, d, {0}};
             c.value.x = (uint32_t)x, c.value.y = (uint32_t)y, c.value.chart = chart[f], c.value.across = chart[g];
-            c.value.target[0] = (float)(o2[0] + s * (t * e2[0] + h * n2[0]));
-            c.value.target[1] = (float)(o2[1] + s * (t * e2[1] + h * n2[1]));
-            /* J = s (e' e^T + n' n^T), row major */
-            c.value.jacobian[0] = (float)(s * (e2[0] * e[0] + n2[0] * n[0]));
-            c.value.jacobian[1] = (float)(s * (e2[0] * e[1] + n2[0] * n[1]));
-            c.value.jacobian[2] = (float)(s * (e2[1] * e[0] + n2[1] * n[0]));
-            c.value.jacobian[3] = (float)(s * (e2[1] * e[1] + n2[1] * n[1]));
+            c.value.target[0] = (float)(o2[0] + jac[0] * px + jac[1] * py);
+            c.value.target[1] = (float)(o2[1] + jac[2] * px + jac[3] * py);
+            for (int i = 0; i < 4; i++) c.value.jacobian[i] = (float)jac[i];
             if (!list_push(out, &c)) return false;
         }
     return true;
@@ -120,7 +151,8 @@ lucent_status lucent_mesh_uv_seams(const lucent_mesh *m, int size, double reach,
     if (!m->uvs) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "the mesh has no texture coordinates");
     if (size < 1 || size > 16384 || !(reach > 0 && reach <= 64))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "seams: size must be 1..16384 and reach 0..64 texels");
-    uint32_t *next = malloc((3 * m->face_count + 1) * sizeof *next), *chart = malloc((m->face_count + 1) * sizeof *chart);
+    uint32_t *next = malloc((3 * m->face_count + 1) * sizeof *next),
+             *chart = malloc((m->face_count + 1) * sizeof *chart);
     seam_list l = {0};
     lucent_status s = next && chart ? LUCENT_OK : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory for the seams");
     if (s == LUCENT_OK) s = mesh_face_neighbours(m, next);
