@@ -90,7 +90,8 @@ static void grid_build(const lucent_mesh *m, face_grid *g)
         for (int a = 0; a < 3; a++)
             g->lo[a] = fmin(g->lo[a], m->positions[3 * v + a]), hi[a] = fmax(hi[a], m->positions[3 * v + a]);
     for (size_t f = 0; f < m->face_count; f++)
-        edge += v3_length(v3_sub(v3_load(m->positions + 3 * m->faces[3 * f]), v3_load(m->positions + 3 * m->faces[3 * f + 1])));
+        edge += v3_length(
+            v3_sub(v3_load(m->positions + 3 * m->faces[3 * f]), v3_load(m->positions + 3 * m->faces[3 * f + 1])));
     g->h = 2 * edge / (double)m->face_count;
     for (int a = 0; a < 3; a++) g->n[a] = (int)((hi[a] - g->lo[a]) / g->h) + 1;
     size_t cells = (size_t)g->n[0] * (size_t)g->n[1] * (size_t)g->n[2];
@@ -126,7 +127,8 @@ static bool uv_at(const lucent_mesh *m, const face_grid *g, const double *p, dou
                 size_t cell = ((size_t)z * g->n[1] + y) * g->n[0] + x;
                 for (uint32_t i = g->start[cell]; i < g->start[cell + 1]; i++) {
                     uint32_t f = g->face[i];
-                    v3 a = v3_load(m->positions + 3 * m->faces[3 * f]), b = v3_load(m->positions + 3 * m->faces[3 * f + 1]);
+                    v3 a = v3_load(m->positions + 3 * m->faces[3 * f]),
+                       b = v3_load(m->positions + 3 * m->faces[3 * f + 1]);
                     v3 cc = v3_load(m->positions + 3 * m->faces[3 * f + 2]), q = v3_load(p);
                     v3 e0 = v3_sub(b, a), e1 = v3_sub(cc, a), d = v3_sub(q, a);
                     double d00 = v3_dot(e0, e0), d01 = v3_dot(e0, e1), d11 = v3_dot(e1, e1);
