@@ -37,7 +37,7 @@ expect_fail 1 "drtiny.mci: line 3 (run): grid.dr" -- bash -c "cd '$TMP' && '$LUC
 expect_no_file "$TMP/drtiny.mco"
 # A material that does not absorb ends in bounded time with the step-limit warning.
 printf '{"name":"white","units":"mm^-1","sigma_a":[0,0,0],"sigma_s":[1,1,1],"g":0.9,"eta":1.0}\n' >"$TMP/white.json"
-out=$("$LUCENT" profile "$TMP/white.json" --model mc --photons 1000 --out "$TMP/white" 2>&1)
+out=$("$LUCENT" profile "$TMP/white.json" --model mc --photons 1000 --out "$TMP/white-mc" 2>&1)
 expect_true "profile of a non-absorbing medium warns: photons reached the step limit, results are lower bounds" -- \
   grep -q "photons reached the step limit (1048576 steps): the medium barely absorbs; results are lower bounds" <<<"$out"
 
@@ -62,6 +62,29 @@ expect_true "the scene survives --json naming it" -- cmp "$TMP/keep.json" "$FIXT
 expect_fail 2 "name the same file" -- "$LUCENT" trace "$TMP/keep.json" --out "$TMP/k.png" --exr "$TMP/k.exr" --variance "$TMP/./k.exr"
 expect_fail 2 "names the input" -- "$LUCENT" render "$TMP/keep.json" --out "$TMP/k.png" --json "$TMP/../$(basename "$TMP")/keep.json"
 expect_no_file "$TMP/k.png"
+# Every command that writes files checks them the same way, before any work.
+cp "$FIXTURES/mesh/tetra.ply" "$TMP/keep.ply"
+expect_fail 2 "--out '$TMP/keep.ply' names the input" -- "$LUCENT" curvature "$TMP/keep.ply" --out "$TMP/keep.ply"
+expect_fail 2 "names the input" -- "$LUCENT" mesh-uv "$TMP/keep.ply" "$TMP/uv.obj" --png "$TMP/keep.ply"
+expect_fail 2 "name the same file" -- "$LUCENT" mesh-uv "$TMP/keep.ply" "$TMP/uv.obj" --png "$TMP/uv.obj"
+expect_no_file "$TMP/uv.obj"
+printf '{"name":"keep","units":"mm^-1","sigma_a":[0.1,0.1,0.1],"sigma_s":[1,1,1],"g":0,"eta":1.3}\n' >"$TMP/keepmat.json"
+cp "$TMP/keepmat.json" "$TMP/keepmat.orig"
+expect_fail 2 "--out '$TMP/keepmat.json' names the input" -- "$LUCENT" materials "$TMP/keepmat.json" --out "$TMP/keepmat.json"
+expect_fail 2 "name the same file" -- "$LUCENT" materials skin1 --out "$TMP/m.png" --swatches "$TMP/m.png"
+expect_fail 2 "names the input" -- "$LUCENT" kernel "$TMP/keepmat.json" --out "$TMP/keepmat.json"
+expect_fail 2 "names the input" -- "$LUCENT" profile "$TMP/keepmat.json" --model dipole --out "$TMP/keepmat"
+expect_fail 2 "names the input" -- "$LUCENT" cdrf-fit "$TMP/keepmat.json" --out "$TMP/keepmat"
+expect_true "the material file survives outputs naming it" -- cmp "$TMP/keepmat.json" "$TMP/keepmat.orig"
+expect_fail 2 "name the same file" -- "$LUCENT" cdrf-lut --out "$TMP/l.exr" --out "$TMP/./l.exr"
+expect_no_file "$TMP/l.exr" "$TMP/keepmat.csv"
+cp "$FIXTURES/images/rgb8.png" "$TMP/keep.png"
+expect_fail 2 "names the input" -- "$LUCENT" image convert "$TMP/keep.png" "$TMP/keep.png"
+expect_fail 2 "names the input" -- "$LUCENT" image diff "$TMP/keep.png" "$FIXTURES/images/rgb8.png" --out "$TMP/keep.png"
+expect_true "the image survives outputs naming it" -- cmp "$TMP/keep.png" "$FIXTURES/images/rgb8.png"
+two_same() { printf '1.0\n2\n'; for k in 1 2; do printf 'same.mco A\n100\n0.01 0.01\n10 10 5\n1\n1.0\n1.0 1 9 0.75 0.02\n1.0\n'; done; }
+two_same >"$TMP/same.mci"
+expect_fail 2 "run 1's output '$TMP/out/same.mco' and run 2's output" -- "$LUCENT" mcml "$TMP/same.mci" --out-dir "$TMP/out"
 
 # Interruption (issue 17 item 5): SIGTERM or SIGINT mid-run ends the command by the signal, leaves no
 # temporary, and every previous output byte for byte. mcml of two runs: the signal lands in the second,

@@ -48,6 +48,10 @@ int cli_usage_error(const char *command, const char *fmt, ...) LUCENT_PRINTF(2, 
 int cli_check_outputs(const char *command, const char *const *inputs, int input_count, const char *const *outputs,
                       const char *const *flags, int output_count);
 
+/* The file a material spec reads (FILE.json, a path, or FILE#NAME without #NAME) into dest, for
+ * cli_check_outputs; NULL for a preset name. */
+const char *cli_spec_file(const char *spec, char *dest, size_t size);
+
 /* Prints an informational line to stdout unless --quiet. */
 void cli_info(const char *fmt, ...) LUCENT_PRINTF(1, 2);
 

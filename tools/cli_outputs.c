@@ -3,6 +3,7 @@
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 #include "cli.h"
@@ -42,4 +43,13 @@ int cli_check_outputs(const char *command, const char *const *inputs, int input_
                                        flags[i], outputs[i]);
     }
     return CLI_OK;
+}
+
+const char *cli_spec_file(const char *spec, char *dest, size_t size)
+{
+    size_t len = spec ? strlen(spec) : 0;
+    if (!spec || !(strchr(spec, '/') || strchr(spec, '#') || (len > 5 && strcasecmp(spec + len - 5, ".json") == 0)))
+        return NULL;
+    snprintf(dest, size, "%.*s", (int)strcspn(spec, "#"), spec);
+    return dest;
 }

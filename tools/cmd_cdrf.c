@@ -159,6 +159,9 @@ int cmd_cdrf_lut(int argc, char **argv)
     }
     const char *bad = lut_extension_check(&o);
     if (bad) return cli_usage_error("cdrf-lut", "--out '%s': use .exr, .pfm or .c", bad);
+    const char *flags[MAX_OUTS];
+    for (int k = 0; k < o.out_count; k++) flags[k] = "--out";
+    if ((rc = cli_check_outputs("cdrf-lut", NULL, 0, o.outs, flags, o.out_count)) != CLI_OK) return rc;
     o.desc.pool = cli_pool();
     lucent_image *lut = NULL;
     lucent_status s = lucent_cdrf_lut_build(&o.desc, &lut);
@@ -257,10 +260,19 @@ static int parse_fit_args(int argc, char **argv, fit_options *o)
 
 static const char *const k_channel[] = {"R", "G", "B"};
 
-static lucent_status run_fit(fit_options *o)
+/* Before the fit: PREFIX.json, .csv, .svg must not name the material file; a usage error. */
+static int check_fit_outputs(const fit_options *o, const char *prefix)
 {
-    lucent_status s = lucent_material_resolve(o->spec, &o->material);
-    if (s != LUCENT_OK) return s;
+    static const char *const exts[3] = {"json", "csv", "svg"}, *const flags[3] = {"--out", "--out", "--out"};
+    char file[1024], paths[3][600];
+    const char *ins[1] = {cli_spec_file(o->spec, file, sizeof file)}, *outs[3];
+    for (int k = 0; k < 3; k++) snprintf(paths[k], sizeof paths[k], "%s.%s", prefix, exts[k]), outs[k] = paths[k];
+    return cli_check_outputs("cdrf-fit", ins, 1, outs, flags, 3);
+}
+
+static lucent_status run_fit(fit_options *o, const char *prefix)
+{
+    lucent_status s = LUCENT_OK;
     lucent_cdrf_sphere_result *sp = NULL;
     lucent_cdrf_fit fit;
     lucent_cdrf_material_fit_desc fd = {.material = &o->material,
@@ -275,9 +287,7 @@ static lucent_status run_fit(fit_options *o)
                                         .sigma0_max = o->sigma0_max,
                                         .pool = cli_pool()};
     s = lucent_cdrf_fit_material(&fd, &fit, &sp);
-    char prefix[512], path[600], name[128];
-    snprintf(name, sizeof name, "%s-cdrf", o->material.name);
-    cli_out_prefix(o->out, name, prefix, sizeof prefix);
+    char path[600];
     static const char *const exts[] = {"json", "csv", "svg"};
     lucent_cdrf_fit_report report = {.material = &o->material,
                                      .spheres = sp,
@@ -319,5 +329,10 @@ int cmd_cdrf_fit(int argc, char **argv)
                      .cone_deg = 0.2 * 180 / M_PI};
     int rc = parse_fit_args(argc, argv, &o);
     if (rc != CLI_OK) return rc;
-    return run_fit(&o) == LUCENT_OK ? CLI_OK : cli_fail();
+    if (lucent_material_resolve(o.spec, &o.material) != LUCENT_OK) return cli_fail();
+    char prefix[512], name[128];
+    snprintf(name, sizeof name, "%s-cdrf", o.material.name);
+    cli_out_prefix(o.out, name, prefix, sizeof prefix);
+    if ((rc = check_fit_outputs(&o, prefix)) != CLI_OK) return rc;
+    return run_fit(&o, prefix) == LUCENT_OK ? CLI_OK : cli_fail();
 }

@@ -258,6 +258,9 @@ int cmd_curvature(int argc, char **argv)
     if (cli_wants_help(argc, argv)) return fputs(k_usage, stdout), CLI_OK;
     options o = {.mm_per_unit = 1};
     int rc = parse_args(argc, argv, &o);
+    const char *ins[1] = {o.mesh}, *outs[1] = {o.out};
+    static const char *const flags[1] = {"--out"};
+    if (rc == CLI_OK) rc = cli_check_outputs("curvature", ins, 1, outs, flags, 1);
     if (rc != CLI_OK) return rc;
     lucent_mesh *m;
     if (lucent_mesh_load(o.mesh, NULL, &m) != LUCENT_OK) return cli_fail();

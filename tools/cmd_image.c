@@ -226,6 +226,9 @@ static int run_convert(int argc, char **argv)
     if (cli_wants_help(argc, argv)) return fputs(k_convert_usage, stdout), CLI_OK;
     convert_args a = {0};
     int rc = parse_convert(argc, argv, &a);
+    const char *ins[1] = {a.in}, *outs[1] = {a.out};
+    static const char *const flags[1] = {"OUT"};
+    if (rc == CLI_OK) rc = cli_check_outputs("image convert", ins, 1, outs, flags, 1);
     if (rc != CLI_OK) return rc;
     lucent_image_format f;
     if (lucent_image_format_from_path(a.out, &f) != LUCENT_OK) return cli_fail();
@@ -365,6 +368,9 @@ static int run_diff(int argc, char **argv)
     if (cli_wants_help(argc, argv)) return fputs(k_diff_usage, stdout), CLI_OK;
     diff_args d = {0};
     int rc = parse_diff(argc, argv, &d);
+    const char *ins[3] = {d.a, d.b, d.mask}, *outs[1] = {d.out};
+    static const char *const flags[1] = {"--out"};
+    if (rc == CLI_OK) rc = cli_check_outputs("image diff", ins, 3, outs, flags, 1);
     if (rc != CLI_OK) return rc;
     lucent_image_format f;
     if (d.out && lucent_image_format_from_path(d.out, &f) != LUCENT_OK) return cli_fail();

@@ -209,6 +209,10 @@ int cmd_kernel(int argc, char **argv)
                  .seed = 1,
                  .view = cli_view_defaults()};
     int rc = parse_args(argc, argv, &o);
+    char file[1024];
+    const char *ins[1] = {cli_spec_file(o.spec, file, sizeof file)}, *outs[1] = {o.out};
+    static const char *const flags[1] = {"--out"};
+    if (rc == CLI_OK) rc = cli_check_outputs("kernel", ins, 1, outs, flags, 1);
     if (rc != CLI_OK) return rc;
     return run(&o) == LUCENT_OK ? CLI_OK : cli_fail();
 }

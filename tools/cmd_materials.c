@@ -290,6 +290,20 @@ static lucent_status gather(options *o, char **specs, int count)
     return LUCENT_OK;
 }
 
+/* --out and --swatches: two files, neither a material file named (FILE or FILE#NAME); a usage error. */
+static int check_outputs(const options *o, char **specs, int count)
+{
+    const char *outs[2] = {o->out, o->swatches};
+    static const char *const flags[2] = {"--out", "--swatches"};
+    int rc = cli_check_outputs("materials", NULL, 0, outs, flags, 2);
+    for (int i = 0; rc == CLI_OK && i < count; i++) {
+        char file[1024];
+        const char *ins[1] = {cli_spec_file(specs[i], file, sizeof file)};
+        rc = cli_check_outputs("materials", ins, 1, outs, flags, 2);
+    }
+    return rc;
+}
+
 int cmd_materials(int argc, char **argv)
 {
     if (cli_wants_help(argc, argv)) {
@@ -299,6 +313,7 @@ int cmd_materials(int argc, char **argv)
     options o = {0};
     int specs;
     int rc = parse_args(argc, argv, &o, &specs);
+    if (rc == CLI_OK) rc = check_outputs(&o, argv + 1, specs);
     if (rc == CLI_OK) {
         lucent_status s = gather(&o, argv + 1, specs);
         if (s == LUCENT_OK) s = emit(&o);

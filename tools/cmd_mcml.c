@@ -136,6 +136,26 @@ static char *output_path(const options *o, const lucent_mcml_run *run)
     return p;
 }
 
+/* The runs' output files, before any runs: distinct, none of them the .mci (a usage error). */
+static int check_run_outputs(const options *o, const lucent_mcml_file *file)
+{
+    int n = file->run_count, rc = CLI_OK;
+    char **paths = calloc((size_t)n + 1, sizeof *paths), (*labels)[32] = calloc((size_t)n + 1, sizeof *labels);
+    const char **flags = calloc((size_t)n + 1, sizeof *flags);
+    if (!paths || !labels || !flags) rc = (lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory"), cli_fail());
+    for (int k = 0; rc == CLI_OK && k < n; k++) {
+        snprintf(labels[k], sizeof labels[k], "run %d's output", k + 1);
+        flags[k] = labels[k];
+        if (!(paths[k] = output_path(o, &file->runs[k])))
+            rc = (lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory"), cli_fail());
+    }
+    const char *ins[1] = {o->input};
+    if (rc == CLI_OK) rc = cli_check_outputs("mcml", ins, 1, (const char *const *)paths, flags, n);
+    for (int k = 0; paths && k < n; k++) free(paths[k]);
+    free(paths), free(labels), free(flags);
+    return rc;
+}
+
 static lucent_status run_one(const options *o, lucent_mcml_run *run, int k, int count)
 {
     char label[64];
@@ -300,6 +320,10 @@ static lucent_status run_compare(const options *o, const lucent_mco *mco, lucent
 
 static int cmd_compare_mco(const options *o)
 {
+    const char *ins[2] = {o->compare, o->input}, *outs[2] = {o->csv, o->json};
+    static const char *const flags[2] = {"--csv", "--json"};
+    int rc = cli_check_outputs("mcml", ins, 2, outs, flags, 2);
+    if (rc != CLI_OK) return rc;
     lucent_mco mco;
     if (lucent_mco_load(o->compare, &mco) != LUCENT_OK) return cli_fail();
     lucent_mcml_file mci = {0};
@@ -323,6 +347,10 @@ int cmd_mcml(int argc, char **argv)
     if (o.compare) return cmd_compare_mco(&o);
     lucent_mcml_file file;
     if (lucent_mcml_load(o.input, &file) != LUCENT_OK) return cli_fail();
+    if ((rc = check_run_outputs(&o, &file)) != CLI_OK) {
+        lucent_mcml_file_free(&file);
+        return rc;
+    }
     lucent_status s = LUCENT_OK;
     for (int k = 0; k < file.run_count && s == LUCENT_OK; k++) s = run_one(&o, &file.runs[k], k, file.run_count);
     lucent_mcml_file_free(&file);

@@ -81,6 +81,9 @@ int cmd_mesh_uv(int argc, char **argv)
     if (cli_wants_help(argc, argv)) return fputs(k_usage, stdout), CLI_OK;
     options o = {.size = LUCENT_UV_ATLAS_TEXTURE, .angle = LUCENT_UV_ATLAS_ANGLE, .gutter = LUCENT_UV_ATLAS_GUTTER};
     int rc = parse_args(argc, argv, &o);
+    const char *ins[1] = {o.in}, *outs[2] = {o.out, o.png};
+    static const char *const flags[2] = {"OUT", "--png"};
+    if (rc == CLI_OK) rc = cli_check_outputs("mesh-uv", ins, 1, outs, flags, 2);
     if (rc != CLI_OK) return rc;
     lucent_mesh *m = NULL;
     lucent_image *img = NULL;

@@ -369,13 +369,25 @@ static lucent_status write_outputs(const options *o, const char *prefix, lucent_
     return s;
 }
 
-static lucent_status run(options *o)
+/* Before any work: PREFIX.json, .csv and .svg (with models compared, the chart) must not name the
+ * material file (--out skin would overwrite skin.json); a usage error. */
+static int check_outputs(const options *o, const char *prefix)
+{
+    char file[1024], paths[3][600];
+    const char *ins[1] = {cli_spec_file(o->spec, file, sizeof file)}, *outs[3];
+    static const char *const flags[3] = {"--out (JSON)", "--out (CSV)", "--out (SVG)"};
+    static const char *const ext[3] = {"json", "csv", "svg"};
+    for (int k = 0; k < 3; k++) {
+        snprintf(paths[k], sizeof paths[k], "%s.%s", prefix, ext[k]);
+        outs[k] = o->compare && k < 2 ? NULL : paths[k];
+    }
+    return cli_check_outputs("profile", ins, 1, outs, flags, 3);
+}
+
+static lucent_status run(options *o, const char *prefix)
 {
     lucent_profile *profiles[MODEL_COUNT] = {NULL};
     lucent_status s = LUCENT_OK;
-    char prefix[512], name[256];
-    default_prefix(o, name, sizeof name);
-    cli_out_prefix(o->out, name, prefix, sizeof prefix);
     for (int i = 0; i < o->model_count && s == LUCENT_OK; i++)
         s = make_profile(o, o->models[i], &o->grid, &profiles[i]);
     if (s == LUCENT_OK) s = write_outputs(o, prefix, profiles);
@@ -393,7 +405,10 @@ int cmd_profile(int argc, char **argv)
     const char *layers = NULL;
     int rc = parse_args(argc, argv, &o, &layers);
     if (rc != CLI_OK) return rc;
-    lucent_status s = prepare(&o, layers);
-    if (s == LUCENT_OK) s = run(&o);
-    return s == LUCENT_OK ? CLI_OK : cli_fail();
+    if (prepare(&o, layers) != LUCENT_OK) return cli_fail();
+    char prefix[512], name[256];
+    default_prefix(&o, name, sizeof name);
+    cli_out_prefix(o.out, name, prefix, sizeof prefix);
+    if ((rc = check_outputs(&o, prefix)) != CLI_OK) return rc;
+    return run(&o, prefix) == LUCENT_OK ? CLI_OK : cli_fail();
 }
