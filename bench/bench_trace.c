@@ -18,8 +18,10 @@
  * comparison also run: one sample per pixel and pass (UNIFORM_SECONDS), and next-event estimation only
  * at boundary vertices, Cycles' strategy (CYCLES_SECONDS).
  * Then the default scenes' references (issue 12 section 3, references() below).
+ * Then the efficiency on the dragon (efficiency() below).
  * Usage: bench_trace [references] [max_seconds_per_run (default 300)] [threads (default 2)]
- *   references: only the default scenes' references (BENCH_REFERENCE_SECONDS each, default 60) */
+ *   references: only the default scenes' references (BENCH_REFERENCE_SECONDS each, default 60)
+ *   bench_trace efficiency: only noise^2 x CPU on the dragon at 128 x 128 (BENCH_EFFICIENCY_PASSES) */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -291,8 +293,56 @@ static void references(lucent_pool *pool)
     }
 }
 
+/* ---- efficiency on the dragon (issue 12 section 3, docs/trace.md "Measured in the third pass") ----
+ * noise^2 x CPU seconds of the passes (lower is better; independent of the budget at a fixed
+ * estimator): dragon-marble at 128 x 128, BENCH_EFFICIENCY_PASSES passes (default 50) of one sample
+ * per pixel on one thread, seed BENCH_EFFICIENCY_SEED (default 1). The passes' CPU leaves out the
+ * fixed cost (set-up, the guiding field's pre-pass): the first pass's cost beyond an ordinary one. */
+static void efficiency(void)
+{
+    const char *env = getenv("BENCH_EFFICIENCY_PASSES"), *seed_env = getenv("BENCH_EFFICIENCY_SEED");
+    int passes = env && atoi(env) > 1 ? atoi(env) : 50;
+    uint64_t seed = seed_env ? strtoull(seed_env, NULL, 10) : 1;
+    const char *sets[] = {"render.width=128", "render.height=128"};
+    lucent_scene *sc;
+    if (lucent_scene_load(LUCENT_SOURCE_DIR "/data/scenes/dragon-marble.json",
+                          &(lucent_scene_load_desc){.overrides = sets, .override_count = 2}, &sc))
+        die("dragon-marble.json");
+    lucent_pool *one = lucent_pool_create(1);
+    reference_run r = {0};
+    double c0 = lucent_cpu_seconds();
+    if (lucent_tracer_create(sc, NULL, &r.tracer)) die("tracer");
+    r.cpu = lucent_cpu_seconds() - c0;
+    for (int i = 0; i < passes; i++) {
+        lucent_trace_result_free(&r.last);
+        double c = lucent_cpu_seconds();
+        if (lucent_tracer_render(r.tracer, &(lucent_trace_desc){.spp = 1, .seed = seed, .pool = one}, &r.last))
+            die("render");
+        r.cpu += lucent_cpu_seconds() - c, r.passes++;
+        if (r.passes == 1) r.first_cpu = r.cpu;
+    }
+    double per_pass = (r.cpu - r.first_cpu) / (r.passes - 1), fixed = r.first_cpu - per_pass;
+    double noise = reference_noise(&r.last), paths = (double)r.last.cost.paths;
+    const lucent_trace_cost *c = &r.last.cost;
+    printf("\nbench_trace: efficiency on dragon-marble 128 x 128, %d passes on 1 thread, seed %llu: noise %.2f%%, "
+           "passes %.1f CPU s (fixed %.1f s), noise^2 x CPU s = %.3f (main of 2026-12-02, the third pass: 0.909, "
+           "seeds 1-3 0.961 / 0.876 / 0.889; lower is better); per path %.1f rays, %.2f distance queries, "
+           "%.1f scatterings, %.2f next-event estimates\n",
+           passes, (unsigned long long)seed, 100 * noise, r.cpu - fixed, fixed, noise * noise * (r.cpu - fixed),
+           c->rays / paths, c->points / paths, c->scatters / paths, c->nee / paths);
+    fflush(stdout);
+    lucent_trace_result_free(&r.last);
+    lucent_tracer_destroy(r.tracer);
+    lucent_pool_destroy(one);
+    lucent_scene_destroy(sc);
+}
+
 int main(int argc, char **argv)
 {
+    if (argc > 1 && strcmp(argv[1], "efficiency") == 0) {
+        efficiency();
+        return 0;
+    }
     bool only_references = argc > 1 && strcmp(argv[1], "references") == 0;
     if (only_references) argc--, argv++;
     double max_seconds = argc > 1 ? atof(argv[1]) : 300;
@@ -325,5 +375,6 @@ int main(int argc, char **argv)
     lucent_scene_destroy(sc);
     references(pool);
     lucent_pool_destroy(pool);
+    efficiency();
     return 0;
 }
