@@ -395,19 +395,19 @@ static bool same_image(const lucent_image *a, const lucent_image *b)
 
 TEST(scene_changes_and_adopted_bakes_give_a_fresh_renderers_pixels)
 {
-    lucent_scene *sc = sphere_of("skin1", "[0, 0, -1]"), *marble = sphere_of("marble", "[0, 0, -1]");
-    lucent_scene *turned = sphere_of("marble", "[0.5, -0.3, -0.8]");
+    lucent_scene *sc = sphere_of("skin1", "[0, 0, -1]"), *other = sphere_of("chicken1", "[0, 0, -1]");
+    lucent_scene *turned = sphere_of("chicken1", "[0.5, -0.3, -0.8]");
     lucent_renderer *r = renderer_of(sc);
-    lucent_image *want_marble = fresh_render(marble), *want_turned = fresh_render(turned);
-    if (r && want_marble && want_turned) {
+    lucent_image *want_other = fresh_render(other), *want_turned = fresh_render(turned);
+    if (r && want_other && want_turned) {
         lucent_render_result a = {0}, b = {0}, c = {0};
         CHECK_OK(lucent_render(r, NULL, &a)); /* skin1 baked and uploaded */
         /* the material changed in the scene (with its albedo, the dipole Rd, as the loader sets it) */
-        sc->objects[0].material = marble->objects[0].material;
-        memcpy(sc->objects[0].albedo, marble->objects[0].albedo, sizeof sc->objects[0].albedo);
+        sc->objects[0].material = other->objects[0].material;
+        memcpy(sc->objects[0].albedo, other->objects[0].albedo, sizeof sc->objects[0].albedo);
         CHECK_OK(lucent_renderer_scene_changed(r, LUCENT_RENDERER_MATERIALS));
         CHECK_OK(lucent_render(r, NULL, &b));
-        CHECK(same_image(b.image, want_marble) && !same_image(a.image, b.image));
+        CHECK(same_image(b.image, want_other) && !same_image(a.image, b.image));
         /* a light turned */
         memcpy(sc->lights[0].direction, turned->lights[0].direction, sizeof sc->lights[0].direction);
         CHECK_OK(lucent_renderer_scene_changed(r, LUCENT_RENDERER_LIGHTS));
@@ -417,49 +417,49 @@ TEST(scene_changes_and_adopted_bakes_give_a_fresh_renderers_pixels)
     }
     lucent_renderer_destroy(r);
     /* parts baked elsewhere (a copy of them) are adopted: the frame bakes nothing and draws the same */
-    lucent_renderer *m = renderer_of(marble);
+    lucent_renderer *m = renderer_of(other);
     if (m) {
         lucent_renderer_desc rd = lucent_renderer_defaults();
         lucent_baked b = {0}, copy = {0};
-        unsigned what = lucent_renderer_bakes(m, &marble->render);
+        unsigned what = lucent_renderer_bakes(m, &other->render);
         /* the albedo (the material's Monte Carlo Rd) with every method */
         CHECK(what == (LUCENT_BAKE_TAPS | LUCENT_BAKE_RD) ||
               what == (LUCENT_BAKE_TAPS | LUCENT_BAKE_TRANSMITTANCE | LUCENT_BAKE_RD));
-        CHECK_OK(lucent_material_bake(&marble->objects[0].material,
+        CHECK_OK(lucent_material_bake(&other->objects[0].material,
                                       &(lucent_bake_desc){.what = what,
-                                                          .settings = &marble->render,
+                                                          .settings = &other->render,
                                                           .profile_photons = rd.profile_photons,
                                                           .transmit_photons = rd.transmit_photons,
                                                           .sigma0_photons = rd.sigma0_photons},
                                       NULL, &b));
         CHECK_OK(lucent_baked_copy(&b, &copy));
         lucent_baked_free(&b); /* the copy stands alone */
-        CHECK_OK(lucent_renderer_adopt_baked(m, &marble->objects[0].material, &copy));
+        CHECK_OK(lucent_renderer_adopt_baked(m, &other->objects[0].material, &copy));
         const lucent_taps *adopted = m->tables.baked[0].taps;
         lucent_render_result res = {0};
         CHECK_OK(lucent_render(m, NULL, &res));
         CHECK(m->tables.baked[0].taps == adopted); /* not baked again */
-        CHECK(same_image(res.image, want_marble));
+        CHECK(same_image(res.image, want_other));
         lucent_render_result_free(&res);
-        lucent_material other;
-        lucent_material_preset_find("ketchup", &other);
-        CHECK_ERR(lucent_renderer_adopt_baked(m, &other, &copy), LUCENT_ERR_NOT_FOUND, "Ketchup");
+        lucent_material ketchup;
+        lucent_material_preset_find("ketchup", &ketchup);
+        CHECK_ERR(lucent_renderer_adopt_baked(m, &ketchup, &copy), LUCENT_ERR_NOT_FOUND, "Ketchup");
         /* what each method bakes: lambert only the albedo; cdrf no sigma0 fit where the scene gives
          * sigma0; no albedo where the scene gives its colour */
-        lucent_render_settings s = marble->render;
+        lucent_render_settings s = other->render;
         s.view.method = LUCENT_METHOD_LAMBERT;
         CHECK(lucent_renderer_bakes(m, &s) == LUCENT_BAKE_RD);
         s.view.method = LUCENT_METHOD_CDRF, s.cdrf.sigma0 = LUCENT_SIGMA0_FIT;
         CHECK(lucent_renderer_bakes(m, &s) == LUCENT_BAKE_RD);
-        marble->objects[0].sigma0_set = false;
+        other->objects[0].sigma0_set = false;
         CHECK(lucent_renderer_bakes(m, &s) == (LUCENT_BAKE_SIGMA0 | LUCENT_BAKE_RD));
-        marble->objects[0].albedo_source = LUCENT_ALBEDO_COLOR;
+        other->objects[0].albedo_source = LUCENT_ALBEDO_COLOR;
         CHECK(lucent_renderer_bakes(m, &s) == LUCENT_BAKE_SIGMA0);
         lucent_baked_free(&copy);
     }
     lucent_renderer_destroy(m);
-    lucent_image_destroy(want_marble), lucent_image_destroy(want_turned);
-    lucent_scene_destroy(sc), lucent_scene_destroy(marble), lucent_scene_destroy(turned);
+    lucent_image_destroy(want_other), lucent_image_destroy(want_turned);
+    lucent_scene_destroy(sc), lucent_scene_destroy(other), lucent_scene_destroy(turned);
 }
 
 /* ---- errors ---- */
