@@ -45,6 +45,10 @@ expect_true "skip: the terminal warns, naming method and scene" -- \
   grep -q "warning: ssss:manual skipped (scene test-sphere: object .*no Table A.1 parameters for 'Skin2'" "$TMP/.stderr"
 expect_true "skip: the other method is reported" -- test "$(grep -c '^"test-sphere",' "$TMP/cmp-skip/report.csv")" = 1
 expect_true "skip: the skipped one is not" -- bash -c '! grep -q "ssss:manual" "$0"' "$TMP/cmp-skip/report.csv"
+expect_true "skip: the HTML names it and why" -- \
+  grep -q "Not in the table:</b> <b>ssss:manual</b> (object .*Skin2" "$TMP/cmp-skip/report.html"
+expect_true "skip: the Markdown names it" -- grep -q "Not in the table: ssss:manual (skipped: object" "$TMP/cmp-skip/report.md"
+expect_true "skip: the JSON lists it" -- grep -q '"method":[[:space:]]*"ssss:manual"' "$TMP/cmp-skip/results.json"
 
 # Failures: exit 1 (bad input) or 2 (bad usage), a message naming the cause, no report left behind.
 expect_fail 2 "--methods: unknown method 'phong'" -- "${GLRUN[@]}" compare "$SC/sphere.json" --methods lambert,phong --out "$TMP/c1"

@@ -80,6 +80,11 @@ typedef struct lucent_compare_method {
     int crop[3];             /* the worst region: x, y of its top-left pixel and its size */
 } lucent_compare_method;
 
+typedef struct lucent_compare_skipped {
+    const char *method; /* a method asked for that could not render the scene */
+    const char *reason; /* why, naming the object and the material */
+} lucent_compare_skipped;
+
 typedef struct lucent_compare_scene {
     const char *name;
     const char *description;
@@ -97,6 +102,8 @@ typedef struct lucent_compare_scene {
     const char *scene_json;        /* the scene after overrides: what made the images */
     const lucent_compare_method *methods;
     int method_count;
+    const lucent_compare_skipped *skipped; /* methods left out of this scene, with why */
+    int skipped_count;
 } lucent_compare_scene;
 
 /* The fewest samples per pixel from which the reference's noise is estimated: the variance of a

@@ -23,6 +23,9 @@ typedef struct scene_store {
     method_store methods[LUCENT_COMPARE_MAX_METHODS];
     lucent_compare_method rows[LUCENT_COMPARE_MAX_METHODS]; /* the report's view of methods[] */
     lucent_frame_times times[LUCENT_COMPARE_MAX_METHODS];
+    int skipped_count;
+    char skipped_name[LUCENT_COMPARE_MAX_METHODS][EVAL_NAME_SIZE], skipped_why[LUCENT_COMPARE_MAX_METHODS][512];
+    lucent_compare_skipped skipped[LUCENT_COMPARE_MAX_METHODS]; /* the report's view of the two above */
 } scene_store;
 
 struct lucent_compare_store {
@@ -238,6 +241,10 @@ static lucent_status run_method(const run *r, scene_store *ss, lucent_renderer *
     if (s == LUCENT_OK && eval_method_unavailable(&rs, ss->scene, why, sizeof why)) {
         char reason[EVAL_PATH_SIZE];
         snprintf(reason, sizeof reason, "scene %s: %s", ss->stem, why);
+        int k = ss->skipped_count++;
+        snprintf(ss->skipped_name[k], sizeof ss->skipped_name[k], "%s", method);
+        snprintf(ss->skipped_why[k], sizeof ss->skipped_why[k], "%s", why);
+        ss->skipped[k] = (lucent_compare_skipped){.method = ss->skipped_name[k], .reason = ss->skipped_why[k]};
         if (r->d.on_event)
             r->d.on_event(
                 &(lucent_eval_event){
@@ -313,7 +320,9 @@ static void fill_report(scene_store *ss, lucent_compare_scene *dest)
                                    .chart = ss->chart,
                                    .scene_json = ss->scene->json,
                                    .methods = ss->rows,
-                                   .method_count = ss->method_count};
+                                   .method_count = ss->method_count,
+                                   .skipped = ss->skipped,
+                                   .skipped_count = ss->skipped_count};
 }
 
 /* The reference and the renderer's methods, into ss. */

@@ -205,6 +205,21 @@ static void html_images(lucent_strbuf *b, const lucent_compare_scene *sc)
     lucent_strbuf_printf(b, "</div>\n");
 }
 
+/* The methods asked for that could not render the scene, with why (none: nothing). */
+static void html_skipped(lucent_strbuf *b, const lucent_compare_scene *sc)
+{
+    if (sc->skipped_count <= 0) return;
+    lucent_strbuf_printf(b, "<p class=\"warn\"><b>Not in the table:</b> ");
+    for (int i = 0; i < sc->skipped_count; i++) {
+        lucent_strbuf_printf(b, "%s<b>", i ? "; " : "");
+        lucent_strbuf_xml(b, sc->skipped[i].method);
+        lucent_strbuf_printf(b, "</b> (");
+        lucent_strbuf_xml(b, sc->skipped[i].reason);
+        lucent_strbuf_printf(b, ")");
+    }
+    lucent_strbuf_printf(b, ".</p>\n");
+}
+
 static void html_scene(lucent_strbuf *b, const lucent_compare_scene *sc)
 {
     char warn[400];
@@ -230,6 +245,7 @@ static void html_scene(lucent_strbuf *b, const lucent_compare_scene *sc)
     lucent_strbuf_xml(b, sc->device ? sc->device : "unknown");
     lucent_strbuf_printf(b, ".</p>\n");
     html_table(b, sc);
+    html_skipped(b, sc);
     html_images(b, sc);
     if (sc->chart) {
         lucent_strbuf_printf(b, "<p><img src=\"");
@@ -370,6 +386,9 @@ lucent_status lucent_compare_write_markdown(const char *path, const lucent_compa
                                  bold, m->name, bold, 100 * m->rel_rms, net, 100 * m->rel_rms_rgb[0],
                                  100 * m->rel_rms_rgb[1], 100 * m->rel_rms_rgb[2], m->frame_ms, ratio, m->setup_ms);
         }
+        for (int j = 0; j < sc->skipped_count; j++)
+            lucent_strbuf_printf(&b, "%s%s (skipped: %s)%s", j ? "; " : "\nNot in the table: ", sc->skipped[j].method,
+                                 sc->skipped[j].reason, j + 1 == sc->skipped_count ? ".\n" : "");
     }
     char *text;
     lucent_status s = lucent_strbuf_finish(&b, &text);

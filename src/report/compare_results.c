@@ -60,6 +60,13 @@ static cJSON *scene_json(const lucent_compare_scene_result *sr)
         cJSON_AddItemToArray(methods,
                              method_json(&r->methods[k], &sr->times[k], known ? r->reference_noise : NAN, rank[k], q));
     }
+    cJSON *skipped = cJSON_AddArrayToObject(sc, "skipped");
+    for (int k = 0; skipped && k < r->skipped_count; k++) {
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "method", r->skipped[k].method);
+        cJSON_AddStringToObject(o, "reason", r->skipped[k].reason);
+        cJSON_AddItemToArray(skipped, o);
+    }
     return sc;
 }
 
