@@ -3,9 +3,10 @@
 // from the centre in radii and the pixel's distance from the projected centre in prefilter radii (the
 // EWA-style screen-space low-pass of Botsch et al. 2005, section 3.2), so a splat never shrinks below
 // the prefilter (where the prefilter alone admits the pixel, the point is the centre: off the disk,
-// a grazing plane's q can lie far from the surface). The depth written is q's (depth-correct; the visibility and shadow passes push q
-// back along the ray by depth_epsilon radii). PASS: 0 visibility / shadow, 1 attributes (additive),
-// 2 disks (opaque, flat).
+// a grazing plane's q can lie far from the surface). The depth written is q's (depth-correct). The
+// visibility and shadow passes take the disks alone (the disks cover the surface; the prefilter
+// low-passes the attributes and does not decide what is in front) and push q back along the ray by
+// depth_epsilon radii. PASS: 0 visibility / shadow, 1 attributes (additive), 2 disks (opaque, flat).
 #include "points.glsl"
 
 uniform mat4 u_vp;
@@ -43,7 +44,10 @@ void main()
     vec3 e = q - v_c;
     float r3 = dot(e, e) / (v_r * v_r);
     vec2 dp = gl_FragCoord.xy - v_centre_px;
-    float r2 = PASS == 2 ? r3 : min(r3, dot(dp, dp) / (u_filter_px * u_filter_px));
+    // Visibility from the prefilter's pixels off a disk put the centre's depth a pixel beyond an edge-on
+    // disk at an occluding contour, hiding the surface behind (the bunny's paw: highlights of the near
+    // surface's grazing normal on the far one); so only the attribute pass uses the prefilter.
+    float r2 = PASS != 1 ? r3 : min(r3, dot(dp, dp) / (u_filter_px * u_filter_px));
     if (r2 > 1.0) discard;
     if (r3 > 1.0) q = v_c; // the prefilter admitted a pixel off the disk: the splat acts as a point
 #if PASS == 0
