@@ -2,8 +2,8 @@
  * Figure 1), on surfels (lucent/surfels.h) made from each object's vertices or read from a point
  * cloud. The passes:
  *   (1) shadow maps: the splats added to the core's maps (ray-cast disks seen from each light);
- *   (2) visibility splatting: the depth of every splat, pushed back along the view ray by
- *       depth_epsilon radii;
+ *   (2) visibility splatting: the depth of every splat's ray-cast disk (not its prefilter), pushed
+ *       back along the view ray by depth_epsilon radii;
  *   (3) attribute splatting: Gaussian-weighted position, normal, albedo, roughness and f0 added into
  *       float targets where a splat lies within the epsilon of the visible surface;
  *   (4) splat-based diffusion: the irradiance (N.L with the shadow test, plus the light through
