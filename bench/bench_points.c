@@ -7,7 +7,9 @@
  *   20 M elliptical splats/s on a GeForce 6800 Ultra (2005).
  * and the diffusion's splats per second (every Gaussian's splats from the level it used, read from the
  * sidecar). Times: the best frame of rounds that render both methods in turn (>= 3 rounds, >= MIN_SECONDS
- * per method). Usage: bench_points [MIN_SECONDS] [--big] */
+ * per method). Usage: bench_points [MIN_SECONDS] [--big] [--size PX] [--cases N]: --size renders PX x PX
+ * (default 512), --cases stops after the first N resolutions (on a CPU rasteriser the diffusion of the
+ * larger ones takes minutes a frame). */
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
@@ -81,21 +83,23 @@ static void splat_counts(lucent_renderer *r, const lucent_render_settings *s, do
     lucent_render_result_free(&res);
 }
 
-static lucent_scene *load(const char *scene, const bench_case *c)
+static lucent_scene *load(const char *scene, const bench_case *c, int size)
 {
-    char mesh[256], sub[64];
+    char mesh[256], sub[64], width[48], height[48];
     snprintf(mesh, sizeof mesh, "objects[0].mesh=../meshes/%s", c->mesh);
     snprintf(sub, sizeof sub, "objects[0].subdivide=%d", c->subdivide);
-    const char *sets[] = {mesh, sub, "render.width=512", "render.height=512"};
+    snprintf(width, sizeof width, "render.width=%d", size);
+    snprintf(height, sizeof height, "render.height=%d", size);
+    const char *sets[] = {mesh, sub, width, height};
     lucent_scene *sc = NULL;
     if (lucent_scene_load(scene, &(lucent_scene_load_desc){.overrides = sets, .override_count = 4}, &sc) != LUCENT_OK)
         fail("scene");
     return sc;
 }
 
-static void run_case(lucent_gl_context *ctx, const char *scene, const bench_case *c, double min_seconds)
+static void run_case(lucent_gl_context *ctx, const char *scene, const bench_case *c, double min_seconds, int size)
 {
-    lucent_scene *sc = load(scene, c);
+    lucent_scene *sc = load(scene, c, size);
     lucent_renderer *r = NULL;
     lucent_renderer_desc rd = lucent_renderer_defaults();
     if (lucent_renderer_create(ctx, sc, &rd, &r) != LUCENT_OK) fail("renderer");
@@ -119,7 +123,17 @@ static void run_case(lucent_gl_context *ctx, const char *scene, const bench_case
 int main(int argc, char **argv)
 {
     double min_seconds = argc > 1 && argv[1][0] != '-' ? atof(argv[1]) : 1.0;
-    bool big = argc > 1 && !strcmp(argv[argc - 1], "--big");
+    bool big = false;
+    int size = 512, cases = CASES;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--big")) big = true;
+        if (!strcmp(argv[i], "--size") && i + 1 < argc) size = atoi(argv[++i]);
+        if (!strcmp(argv[i], "--cases") && i + 1 < argc) cases = atoi(argv[++i]);
+    }
+    if (size < 16 || size > 8192 || cases < 1) {
+        fprintf(stderr, "usage: bench_points [MIN_SECONDS] [--big] [--size 16..8192] [--cases N >= 1]\n");
+        return 2;
+    }
     char scene[1024], probe[1100];
     const char *slash = strrchr(__FILE__, '/');
     snprintf(scene, sizeof scene, "%.*s/../data/scenes/dragon-marble.json", (int)(slash ? slash - __FILE__ : 1),
@@ -128,27 +142,29 @@ int main(int argc, char **argv)
     if (lucent_gl_create(NULL, &ctx) != LUCENT_OK) fail("GL context");
     lucent_gl_info info;
     lucent_gl_get_info(ctx, &info);
-    printf("bench_points: dragon-marble at 512x512 on %s | %s | %s\n", info.renderer, info.vendor, info.version);
+    printf("bench_points: dragon-marble at %dx%d on %s | %s | %s\n", size, size, info.renderer, info.vendor,
+           info.version);
     printf("frame and pass times: GPU ms, best of >= 3 interleaved rounds (>= %.1f s per method); splats/s in M\n",
            min_seconds);
     printf("%-14s %9s %9s", "dragon", "surfels", "points");
     for (int p = 0; p < PASSES; p++) printf(" %9s", k_passes[p]);
     printf(" %9s %7s %8s %8s %9s\n", "ssss", "pts/ss", "Msplat/s", "Mdiff/s", "setup ms");
-    for (int i = 0; i < CASES; i++) {
+    for (int i = 0; i < CASES && i < cases; i++) {
         if (k_cases[i].subdivide == 2 && !big) continue;
         snprintf(probe, sizeof probe, "%.*s/../meshes/%s", (int)(strrchr(scene, '/') - scene), scene, k_cases[i].mesh);
         if (access(probe, R_OK) != 0) {
             printf("%-14s (no %s: run make setup)\n", k_cases[i].label, probe);
             continue;
         }
-        run_case(ctx, scene, &k_cases[i], min_seconds);
+        run_case(ctx, scene, &k_cases[i], min_seconds, size);
     }
     printf("anchor: Botsch et al. 2005, > 20 M elliptical splats/s (high-quality splatting, GeForce 6800 Ultra); "
            "Msplat/s here = level-0 surfels / (visibility + attributes + shade)\n");
     if (info.software)
         printf("note: %s is a CPU rasteriser: its times show the scaling and the ratios, not GPU speed.\n",
                info.renderer);
-    if (!big) printf("(res1 + 2 Loop, 7M surfels: bench_points %.1f --big)\n", min_seconds);
+    if (!big && cases == CASES) printf("(res1 + 2 Loop, 7M surfels: bench_points %.1f --big)\n", min_seconds);
+    if (cases < CASES) printf("(the first %d of %d resolutions: --cases %d)\n", cases, CASES, cases);
     lucent_gl_destroy(ctx);
     return 0;
 }
