@@ -375,6 +375,90 @@ TEST(distance_bounded_flights_change_nothing)
     lucent_scene_destroy(sc);
 }
 
+/* The distance from p to segment ab, and to triangle abc by projection onto its plane (inside: the
+ * plane's distance; outside: the nearest of the three edges). An independent formula: the tracer's
+ * (embree.c) walks the Voronoi regions of the triangle instead. */
+static double segment_distance(v3 p, v3 a, v3 b)
+{
+    v3 ab = v3_sub(b, a);
+    double t = fmin(1.0, fmax(0.0, v3_dot(v3_sub(p, a), ab) / v3_dot(ab, ab)));
+    return v3_length(v3_sub(p, v3_madd(a, ab, t)));
+}
+
+static double brute_triangle_distance(v3 p, v3 a, v3 b, v3 c)
+{
+    v3 n = v3_normalize(v3_cross(v3_sub(b, a), v3_sub(c, a)));
+    double h = v3_dot(v3_sub(p, a), n);
+    v3 q = v3_madd(p, n, -h);
+    bool in = v3_dot(v3_cross(v3_sub(b, a), v3_sub(q, a)), n) >= 0 &&
+              v3_dot(v3_cross(v3_sub(c, b), v3_sub(q, b)), n) >= 0 &&
+              v3_dot(v3_cross(v3_sub(a, c), v3_sub(q, c)), n) >= 0;
+    if (in) return fabs(h);
+    return fmin(segment_distance(p, a, b), fmin(segment_distance(p, b, c), segment_distance(p, c, a)));
+}
+
+static double brute_distance(const lucent_scene *sc, v3 p)
+{
+    double d = INFINITY;
+    for (int o = 0; o < sc->object_count; o++) {
+        const lucent_mesh *m = sc->objects[o].mesh;
+        for (size_t f = 0; f < m->face_count; f++) {
+            const uint32_t *v = m->faces + 3 * f;
+            d = fmin(d, brute_triangle_distance(p, v3_load(m->positions + 3 * v[0]), v3_load(m->positions + 3 * v[1]),
+                                                v3_load(m->positions + 3 * v[2])));
+        }
+    }
+    return d;
+}
+
+/* The distance query behind the safe spheres (tr_distance_bound) against brute force over every
+ * triangle of a torus and a sphere, at random points inside and outside: the distance found equals
+ * the brute-force one (never more: the sphere it gives must hold no surface), its nearest point lies
+ * at that distance, a search limited to the distance of a known surface point (what the walk passes,
+ * integrator.c) finds the same, and a search limited below the distance finds nothing nearer. */
+TEST(distance_bound_is_the_distance)
+{
+    lucent_scene *sc = scene_from(
+        "{\"camera\": {\"position\": [0, 0, 9], \"target\": [0, 0, 0], \"fov_y\": 35}, \"lights\": [{\"type\": "
+        "\"environment\", \"intensity\": 1}],"
+        " \"objects\": [{\"name\": \"ring\", \"mesh\": {\"primitive\": \"torus\", \"major_radius\": 2, \"radius\": "
+        "0.6},"
+        " \"material\": \"Marble\"}, {\"name\": \"ball\", \"mesh\": {\"primitive\": \"icosphere\", \"radius\": 0.8,"
+        " \"subdivisions\": 3}, \"material\": \"Marble\", \"transform\": {\"translate\": [0.3, 0.2, 0.1]}}],"
+        " \"render\": {\"width\": 8, \"height\": 8}}");
+    CHECK(sc != NULL);
+    if (!sc) return;
+    int objects[2] = {0, 1};
+    tr_geometry *g = NULL;
+    CHECK_OK(tr_geometry_create(sc, objects, 2, &g));
+    lucent_rng rng;
+    lucent_rng_init(11, 0, &rng);
+    double worst = 0, worst_known = 0, worst_point = 0;
+    int found_none = 0, more = 0;
+    for (int i = 0; g && i < 2000; i++) {
+        v3 x = v3_make(6 * lucent_rng_uniform(&rng) - 3, 6 * lucent_rng_uniform(&rng) - 3,
+                       2 * lucent_rng_uniform(&rng) - 1);
+        double truth = brute_distance(sc, x), rmax = 1.5, want = fmin(truth, rmax);
+        v3 s;
+        double d = tr_distance_bound(g, x, rmax, &s);
+        more += d > want * (1 + 1e-12);
+        worst = fmax(worst, fabs(d - want));
+        if (truth < rmax) worst_point = fmax(worst_point, fabs(v3_length(v3_sub(x, s)) - d));
+        if (truth < rmax) { /* limited to a known surface point: the nearest itself, pushed out a little */
+            double known = v3_length(v3_sub(x, s)) * 1.01 + 1e-6;
+            worst_known = fmax(worst_known, fabs(tr_distance_bound(g, x, known, NULL) - truth));
+            found_none += tr_distance_bound(g, x, 0.5 * truth, NULL) < 0.5 * truth;
+        }
+    }
+    printf("  2000 points: |found - brute force| <= %.1e mm, limited to a known point %.1e mm, nearest point %.1e mm\n",
+           worst, worst_known, worst_point);
+    CHECK_MSG(more == 0, "%d distances above brute force", more);
+    CHECK(worst < 1e-9 && worst_known < 1e-9 && worst_point < 1e-9);
+    CHECK_MSG(found_none == 0, "%d searches found a surface nearer than the nearest", found_none);
+    tr_geometry_destroy(g);
+    lucent_scene_destroy(sc);
+}
+
 /* Russian roulette on the next-event estimate of deep vertices (made with probability P, weighted by
  * 1 / P) leaves the estimate unbiased: against the plain estimator (every vertex, every flight
  * queried), independent seeds, the pixels' differences are unit normal in their standard errors
@@ -642,4 +726,5 @@ TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_ad
           TEST_ENTRY(error_falls_as_one_over_sqrt_spp), TEST_ENTRY(framing_matches_the_camera_projection),
           TEST_ENTRY(refuses_delta_lights_through_smooth_boundaries), TEST_ENTRY(meshes_with_holes_terminate),
           TEST_ENTRY(point_clouds_are_skipped), TEST_ENTRY(bad_input_is_named),
-          TEST_ENTRY(distance_bounded_flights_change_nothing), TEST_ENTRY(deep_nee_roulette_is_unbiased))
+          TEST_ENTRY(distance_bounded_flights_change_nothing), TEST_ENTRY(distance_bound_is_the_distance),
+          TEST_ENTRY(deep_nee_roulette_is_unbiased))

@@ -187,7 +187,7 @@ bool tr_occluded(const tr_geometry *g, v3 o, v3 d, double tfar)
 /* The squared distance from p to triangle abc: the closest point lies in the face, on an edge or at a
  * vertex, told apart by the signs of the barycentric projections (the Voronoi regions of the
  * triangle; Ericson, Real-Time Collision Detection, 2005, section 5.1.5). */
-static double triangle_distance2(v3 p, v3 a, v3 b, v3 c)
+static double triangle_distance2(v3 p, v3 a, v3 b, v3 c, v3 *closest)
 {
     v3 ab = v3_sub(b, a), ac = v3_sub(c, a), ap = v3_sub(p, a);
     double d1 = v3_dot(ab, ap), d2 = v3_dot(ac, ap);
@@ -214,13 +214,15 @@ static double triangle_distance2(v3 p, v3 a, v3 b, v3 c)
         }
     }
     v3 e = v3_sub(p, q);
+    *closest = q;
     return v3_dot(e, e);
 }
 
 typedef struct distance_query {
     const tr_geometry *g;
     v3 p;
-    double d2; /* the smallest squared distance found so far */
+    double d2;  /* the smallest squared distance found so far */
+    v3 closest; /* the point of the surface at that distance */
 } distance_query;
 
 static bool on_point_query(struct RTCPointQueryFunctionArguments *args)
@@ -228,22 +230,24 @@ static bool on_point_query(struct RTCPointQueryFunctionArguments *args)
     distance_query *q = args->userPtr;
     const lucent_mesh *m = q->g->mesh[args->geomID];
     const uint32_t *f = m->faces + 3 * (size_t)args->primID;
+    v3 c;
     double d2 = triangle_distance2(q->p, v3_load(m->positions + 3 * f[0]), v3_load(m->positions + 3 * f[1]),
-                                   v3_load(m->positions + 3 * f[2]));
+                                   v3_load(m->positions + 3 * f[2]), &c);
     if (!(d2 < q->d2)) return false;
-    q->d2 = d2;
+    q->d2 = d2, q->closest = c;
     args->query->radius = (float)sqrt(d2) * (1.0f + 1e-6f); /* shrink the search (never below the distance) */
     return true;
 }
 
-double tr_distance_bound(const tr_geometry *g, v3 p, double rmax)
+double tr_distance_bound(const tr_geometry *g, v3 p, double rmax, v3 *closest)
 {
     t_points++;
     struct RTCPointQuery query = {.x = (float)p.x, .y = (float)p.y, .z = (float)p.z, .radius = (float)rmax};
     struct RTCPointQueryContext ctx;
     rtcInitPointQueryContext(&ctx);
-    distance_query q = {.g = g, .p = p, .d2 = rmax * rmax};
+    distance_query q = {.g = g, .p = p, .d2 = rmax * rmax, .closest = p};
     rtcPointQuery(g->scene, &query, &ctx, on_point_query, &q);
+    if (closest) *closest = q.closest;
     return sqrt(q.d2);
 }
 

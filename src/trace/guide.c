@@ -35,6 +35,7 @@ void tr_guide_prepare(const lucent_tracer *tr, tr_guide *g, const tr_light *l)
         v3_dot(h.n, g->toward) > 0) {
         g->has_n0 = true;
         g->n0 = h.n;
+        g->y0 = v3_madd(from, g->toward, h.t);
     }
 }
 

@@ -15,7 +15,7 @@ typedef struct tr_guide {
     int object;
     const tr_light *light;
     bool prepared, has_n0;
-    v3 toward, n0;
+    v3 toward, n0, y0; /* y0: the boundary point met toward the light */
 } tr_guide;
 
 /* Readies g for light l (one ray from x toward the light, unless already done for l). */

@@ -83,6 +83,8 @@ static void surface(tr_path *p, const tr_hit *h)
     bool first = p->camera_ray, inside = v3_dot(p->d, n) > 0, drop_reflection = first && tr->desc.subsurface_only;
     p->camera_ray = false;
     p->safe_r = 0, p->gap = 0; /* a new stretch of medium: no sphere until a ray query says it may be deep */
+    p->known_n = 0, p->known_next = 0;
+    tr_path_known(p, y);
     if (++p->bounces > tr->render.trace.max_bounces || v3_dot(n, n) == 0) {
         p->stats->truncated += p->bounces > tr->render.trace.max_bounces;
         p->done = true;
@@ -207,16 +209,34 @@ static double safe_depth(const tr_path *p, v3 x)
     return p->safe_r > 0 ? fmax(0.0, p->safe_r - v3_length(v3_sub(x, p->safe_c))) : 0.0;
 }
 
+/* An upper bound on the distance from x to the nearest surface: the nearest surface point the path
+ * knows, plus eps for the float precision of Embree's hit points (INFINITY when it knows none). */
+static double depth_above(const tr_path *p, v3 x)
+{
+    double d = INFINITY;
+    for (int i = 0; i < p->known_n; i++) d = fmin(d, v3_length(v3_sub(x, p->known[i])));
+    return d + p->tr->eps;
+}
+
 /* A new safe sphere at volume vertex x once the old one is half used up, where x may lie deep: the
- * last ray query left at least SAFE_MFP_MIN mean free paths between x and the surface ahead. */
+ * last ray query left at least SAFE_MFP_MIN mean free paths between x and the surface ahead, and no
+ * surface point the path knows is nearer than that. The query searches no further than the nearest
+ * known point (the sphere is the same, the search shorter); should it find nothing there (float
+ * trouble), there is no sphere. */
 static void refresh_safe(tr_path *p, const tr_object *ob, v3 x)
 {
-    double mfp = 1.0 / ob->sigma_t_min;
+    double mfp = 1.0 / ob->sigma_t_min, margin = 4.0 * p->tr->eps;
     if (p->tr->desc.plain_flights || !ob->dense || (p->safe_r > 0 && safe_depth(p, x) >= 0.5 * p->safe_r)) return;
     p->safe_r = 0;
-    if (!(p->gap >= SAFE_MFP_MIN * mfp)) return;
-    double r = tr_distance_bound(p->tr->geometry, x, SAFE_MFP_MAX * mfp) - 4.0 * p->tr->eps;
-    if (r >= SAFE_MFP_MIN * mfp) p->safe_c = x, p->safe_r = r;
+    double above = depth_above(p, x), reach = fmin(SAFE_MFP_MAX * mfp, above);
+    if (!(p->gap >= SAFE_MFP_MIN * mfp) || above - margin < SAFE_MFP_MIN * mfp) return;
+    v3 s;
+    double d = tr_distance_bound(p->tr->geometry, x, reach, &s);
+    if (d < reach)
+        tr_path_known(p, s);
+    else if (reach < SAFE_MFP_MAX * mfp)
+        return;
+    if (d - margin >= SAFE_MFP_MIN * mfp) p->safe_c = x, p->safe_r = d - margin;
 }
 
 /* The probability of making the next-event estimate at volume vertex x (see above). */
@@ -275,6 +295,7 @@ static void step_inside(tr_path *p)
         p->done = true;
     } else if (t < h.t) {
         p->gap = h.t - t;
+        tr_path_known(p, v3_madd(p->o, p->d, h.t));
         scatter(p, ob, t, &tf);
     } else {
         attenuate(p, ob, h.t, false, &tf);

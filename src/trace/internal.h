@@ -99,8 +99,10 @@ bool tr_intersect(const tr_geometry *g, v3 o, v3 d, double tnear, double tfar, t
 bool tr_occluded(const tr_geometry *g, v3 o, v3 d, double tfar);
 
 /* The distance from p to the nearest surface of any object, or rmax when none is nearer (Embree's
- * point query with an exact point-triangle distance on the meshes' double positions). */
-double tr_distance_bound(const tr_geometry *g, v3 p, double rmax);
+ * point query with an exact point-triangle distance on the meshes' double positions); *closest (may
+ * be NULL) receives the nearest surface point found (p itself when none is nearer than rmax). The
+ * search costs less the smaller rmax is: a caller that knows a surface point s may pass |p - s|. */
+double tr_distance_bound(const tr_geometry *g, v3 p, double rmax, v3 *closest);
 
 /* Ray queries (tr_intersect, tr_occluded) and distance queries this thread has made so far. */
 void tr_geometry_queries(uint64_t *rays, uint64_t *points);

@@ -50,6 +50,22 @@ static bool connect_boundary(tr_path *p, const tr_light *l, v3 y, v3 n, const tr
     return tr_transmittance(tr, v3_madd(y, n, tr->eps), c->ls.w, tmax, -1, c->T, c->Tw);
 }
 
+/* Russian roulette on the connection's light sample and shadow ray once the exit point is known (Arvo
+ * & Kirk 1990): the connection crosses s of medium, so it brings at most exp(-sigma_min s) of its
+ * light; it goes on with probability min(1, exp(1 - sigma_min s)) overall, that is, given the deep
+ * vertex roulette's 1 / weight already passed, P = min(1, exp(1 - sigma_min s) weight), and its value
+ * is weighted by 1 / P. Unbiased; the weighted value stays below what a connection of one mean free
+ * path brings. Dense media only, and not with nee_every_vertex (today's estimator). */
+static bool exit_roulette(tr_path *p, const tr_object *ob, double s, double *weight)
+{
+    if (!ob->dense || p->tr->desc.nee_every_vertex) return true;
+    double P = fmin(1.0, exp(1.0 - ob->sigma_t_min * s) * *weight);
+    if (P >= 1.0) return true;
+    if (!(tr_u(p) < P)) return false;
+    *weight /= P;
+    return true;
+}
+
 void tr_nee_through(tr_path *p, tr_guide *g)
 {
     const lucent_tracer *tr = p->tr;
@@ -61,8 +77,13 @@ void tr_nee_through(tr_path *p, tr_guide *g)
     double u0 = tr_u(p), u1 = tr_u(p), u2 = tr_u(p);
     tr_hit h;
     connection c;
+    if (g->has_n0) tr_path_known(p, g->y0);
     if (!tr_guide_sample(tr, g, u0, u1, u2, &w) || !exit_point(tr, from, w, g->object, &h)) return;
-    if (!connect_boundary(p, l, v3_madd(from, w, h.t), h.n, &ob->boundary, v3_neg(w), &c)) return;
+    v3 y = v3_madd(from, w, h.t);
+    tr_path_known(p, y);
+    double weight = p->nee_weight;
+    if (!exit_roulette(p, ob, h.t, &weight)) return;
+    if (!connect_boundary(p, l, y, h.n, &ob->boundary, v3_neg(w), &c)) return;
     tr_transform tf;
     tr_path_transform(p, g->object, from, &tf);
     double q = tr_guide_pdf(tr, g, w), pb = c.ls.delta ? 0.0 : c.pb, den = 0, v[3], f[3], pw[3];
@@ -70,7 +91,7 @@ void tr_nee_through(tr_path *p, tr_guide *g)
     for (int k = 0; k < 3; k++) {
         double walk = pw[k] * exp(-tr_walk_sigma(ob, &tf, k, w) * h.t);
         den += p->r[k] * (q * c.ls.pdf + walk * (c.ls.pdf + pb * c.Tw[k]));
-        v[k] = p->nee_weight * p->beta[k] * f[k] * exp(-ob->sigma_t[k] * h.t) * c.f * c.cos * c.ls.le[k] * c.T[k];
+        v[k] = weight * p->beta[k] * f[k] * exp(-ob->sigma_t[k] * h.t) * c.f * c.cos * c.ls.le[k] * c.T[k];
     }
     den /= 3.0;
     if (!(den > 0)) return;
