@@ -106,6 +106,7 @@ static void bench_pipeline(const char *path, int assimp, const char *out, int re
 static int run_curvature(const char *lucent, const char *path, const char *out, double *wall, double *cpu)
 {
     double t0 = lucent_clock_seconds();
+    fflush(stdout); /* the child must not write this process's buffered lines again */
     pid_t pid = fork();
     if (pid == 0) {
         freopen("/dev/null", "w", stdout), freopen("/dev/null", "w", stderr);
