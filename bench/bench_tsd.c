@@ -56,11 +56,7 @@ int main(int argc, char **argv)
     if (lucent_scene_load(scene_path, NULL, &sc) != LUCENT_OK) fail("scene");
     lucent_gl_context *ctx = NULL;
     lucent_renderer *r = NULL;
-    lucent_renderer_desc rd = lucent_renderer_defaults();
-    char cache[1024];
-    rd.cache_dir = bench_cache_dir(cache, sizeof cache);
-    if (lucent_gl_create(NULL, &ctx) != LUCENT_OK) fail("GL context");
-    if (lucent_renderer_create(ctx, sc, &rd, &r) != LUCENT_OK) fail("renderer");
+    if (bench_renderer_create(sc, &ctx, &r) != LUCENT_OK) fail("GL context and renderer");
     lucent_gl_info info;
     lucent_gl_get_info(ctx, &info);
     size_t faces = 0;
