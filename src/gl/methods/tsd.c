@@ -70,7 +70,6 @@ typedef struct tsd_object {
     size_t seam_texels;   /* texels mapped across a seam */
     bool own_uvs;         /* the mesh's coordinates (else Lucent's atlas) */
     lucent_uv_stats uv;   /* of the coordinates in use */
-    int atlas_size;       /* the texture size the atlas was made for (0: own) */
     lucent_sog sog;       /* variances and normalised weights in use */
     const char *sog_from; /* "deon", "fit" */
 } tsd_object;
@@ -152,11 +151,9 @@ static lucent_status upload_mesh(const lucent_scene_object *so, int size, tsd_ob
     o->own_uvs = so->mesh->uvs != NULL;
     if (o->own_uvs) {
         s = lucent_mesh_uv_stats_compute(&m, &o->uv);
-        o->atlas_size = 0;
     } else {
         m.uvs = NULL;
         s = lucent_mesh_uv_atlas(&m, &(lucent_uv_atlas_desc){.texture_size = size}, &o->uv);
-        o->atlas_size = size;
     }
     lucent_uv_split sp = {0};
     uint32_t *chart = malloc((m.face_count + 1) * sizeof *chart);
