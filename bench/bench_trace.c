@@ -325,8 +325,9 @@ static void efficiency(void)
     double noise = reference_noise(&r.last), paths = (double)r.last.cost.paths;
     const lucent_trace_cost *c = &r.last.cost;
     printf("\nbench_trace: efficiency on dragon-marble 128 x 128, %d passes on 1 thread, seed %llu: noise %.2f%%, "
-           "passes %.1f CPU s (fixed %.1f s), noise^2 x CPU s = %.3f (main of 2026-12-02, the third pass: 0.909, "
-           "seeds 1-3 0.961 / 0.876 / 0.889; lower is better); per path %.1f rays, %.2f distance queries, "
+           "passes %.1f CPU s (fixed %.1f s), noise^2 x CPU s = %.3f (lower is better; "
+           "before known points and exit roulette: 0.909 at load 7-14, 0.768 / 0.756 seeds 1-2 on an idle machine; "
+           "with them 0.675 / 0.687 idle); per path %.1f rays, %.2f distance queries, "
            "%.1f scatterings, %.2f next-event estimates\n",
            passes, (unsigned long long)seed, 100 * noise, r.cpu - fixed, fixed, noise * noise * (r.cpu - fixed),
            c->rays / paths, c->points / paths, c->scatters / paths, c->nee / paths);
