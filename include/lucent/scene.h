@@ -51,6 +51,12 @@ void lucent_camera_projection(const lucent_camera *cam, double aspect, double de
 void lucent_camera_ray(const lucent_camera *cam, int width, int height, double px, double py, double origin[3],
                        double dir[3]);
 
+/* The inverse of lucent_camera_ray: the image point (px, py) where point (mm) appears, and the cosine
+ * between the camera's axis and the direction to it. False when it is behind the camera or outside
+ * the image. */
+bool lucent_camera_project(const lucent_camera *cam, int width, int height, const double point[3], double *px,
+                           double *py, double *cos_axis);
+
 /* ---- Lights -------------------------------------------------------------------------------- */
 
 typedef enum lucent_light_type {

@@ -138,6 +138,8 @@ typedef struct lucent_trace_settings {
     int max_scatter;    /* volume scattering events per path */
     double time_limit;  /* seconds, 0: none (stops at spp) */
     int boundary_model; /* a lucent_boundary_model (lucent/trace.h) */
+    int light_paths;    /* a lucent_light_paths (lucent/trace.h) */
+    double photons;     /* light paths per pixel and pass */
 } lucent_trace_settings;
 
 typedef struct lucent_render_settings {

@@ -40,6 +40,11 @@ typedef struct lucent_tracer lucent_tracer;
  * is valid (docs/trace.md). */
 typedef enum lucent_boundary_model { LUCENT_BOUNDARY_WALTER = 0, LUCENT_BOUNDARY_CYCLES3 } lucent_boundary_model;
 
+/* Which objects' subsurface light is traced from the lights (render.light_paths, docs/trace.md "Light
+ * paths"): none, the dense ones (every channel's albedo >= 0.98) with a rough boundary, or every
+ * object with a rough boundary. */
+typedef enum lucent_light_paths { LUCENT_LIGHT_PATHS_OFF = 0, LUCENT_LIGHT_PATHS_AUTO, LUCENT_LIGHT_PATHS_ALL } lucent_light_paths;
+
 /* How a tracer is made; a zero field means the default. */
 typedef struct lucent_tracer_desc {
     /* Drop the light reflected where a camera ray first meets a refracting surface (the specular
@@ -115,6 +120,7 @@ typedef struct lucent_trace_cost {
     uint64_t points;       /* Embree distance (point) queries */
     uint64_t free_flights; /* free flights inside a medium that needed no ray query */
     uint64_t nee;          /* next-event estimates made from volume vertices */
+    uint64_t photons;      /* light paths (docs/trace.md); their queries count in rays and points */
 } lucent_trace_cost;
 
 typedef struct lucent_trace_result {

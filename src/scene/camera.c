@@ -50,3 +50,18 @@ void lucent_camera_ray(const lucent_camera *cam, int width, int height, double p
     memcpy(origin, cam->position, 3 * sizeof *origin);
     v3_store(v3_normalize(v3_sub(v3_add(v3_scale(r, sx), v3_scale(u, sy)), b)), dir);
 }
+
+bool lucent_camera_project(const lucent_camera *cam, int width, int height, const double point[3], double *px,
+                           double *py, double *cos_axis)
+{
+    v3 r, u, b, v = v3_sub(v3_load(point), v3_load(cam->position));
+    camera_frame(cam, &r, &u, &b);
+    double z = -v3_dot(v, b), len = v3_length(v);
+    if (!(z > 0) || !(len > 0)) return false;
+    double t = tan(0.5 * cam->fov_y * M_PI / 180), aspect = (double)width / height;
+    double sx = v3_dot(v, r) / z, sy = v3_dot(v, u) / z; /* lucent_camera_ray's sx, sy, inverted */
+    *px = (sx / (t * aspect) + 1) * 0.5 * width;
+    *py = (1 - sy / t) * 0.5 * height;
+    *cos_axis = z / len;
+    return *px >= 0 && *px < width && *py >= 0 && *py < height;
+}

@@ -21,7 +21,8 @@ lucent_status tr_film_create(int width, int height, bool adaptive, tr_film **des
     size_t n = (size_t)width * (size_t)height;
     tr_film *f = calloc(1, sizeof *f);
     bool ok = f && (f->acc = calloc(n * TR_FILM_ACC, sizeof *f->acc)) && (f->count = calloc(n, sizeof *f->count)) &&
-              (f->hits = calloc(n, sizeof *f->hits)) && (f->quota = calloc(n, sizeof *f->quota));
+              (f->hits = calloc(n, sizeof *f->hits)) && (f->quota = calloc(n, sizeof *f->quota)) &&
+              (f->light = calloc(n * TR_FILM_ACC, sizeof *f->light));
     if (ok && adaptive)
         ok = (f->pilot = calloc(n * TR_FILM_ACC, sizeof *f->pilot)) && (f->carry = calloc(n, sizeof *f->carry));
     if (!ok) {
@@ -37,7 +38,7 @@ lucent_status tr_film_create(int width, int height, bool adaptive, tr_film **des
 void tr_film_destroy(tr_film *f)
 {
     if (!f) return;
-    free(f->acc), free(f->count), free(f->hits), free(f->quota), free(f->pilot), free(f->carry);
+    free(f->acc), free(f->count), free(f->hits), free(f->quota), free(f->pilot), free(f->carry), free(f->light);
     free(f);
 }
 
@@ -47,6 +48,8 @@ void tr_film_reset(tr_film *f)
     memset(f->acc, 0, n * TR_FILM_ACC * sizeof *f->acc);
     memset(f->count, 0, n * sizeof *f->count);
     memset(f->hits, 0, n * sizeof *f->hits);
+    memset(f->light, 0, n * TR_FILM_ACC * sizeof *f->light);
+    f->light_passes = 0;
     if (f->pilot) memset(f->pilot, 0, n * TR_FILM_ACC * sizeof *f->pilot);
     if (f->carry) memset(f->carry, 0, n * sizeof *f->carry);
     for (size_t p = 0; p < n; p++) f->quota[p] = 1;
@@ -113,11 +116,12 @@ static lucent_status pass_tile(void *ctx, uint64_t chunk, uint64_t begin, uint64
     return LUCENT_OK;
 }
 
-static void merge_stats(tr_stats *into, const tr_stats *s)
+void tr_film_add_stats(tr_stats *into, const tr_stats *s)
 {
     into->paths += s->paths, into->scatters += s->scatters, into->bounces += s->bounces;
     into->escaped += s->escaped, into->truncated += s->truncated, into->nonfinite += s->nonfinite;
     into->rays += s->rays, into->points += s->points, into->free_flights += s->free_flights, into->nee += s->nee;
+    into->photons += s->photons;
 }
 
 uint64_t tr_film_pass_samples(const tr_film *f)
@@ -143,7 +147,7 @@ lucent_status tr_film_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *poo
                     .deadline = deadline};
     uint64_t tiles = (uint64_t)job.tiles_x * (uint64_t)((f->height + TILE - 1) / TILE);
     lucent_status s = lucent_parallel_for_share(pool, tiles, 1, pass_tile, &job, lucent_dist_share());
-    for (int t = 0; t < threads; t++) merge_stats(&f->stats, &stats[t]);
+    for (int t = 0; t < threads; t++) tr_film_add_stats(&f->stats, &stats[t]);
     free(stats);
     if (f->adaptive && lucent_dist_size() > 1) s = tr_film_gather(f, f->pilot, TR_FILM_ACC, s);
     *cut = atomic_load(&job.cut);
@@ -183,21 +187,23 @@ lucent_status tr_film_total(const tr_film *f, lucent_status status, tr_film **de
     memcpy(t->acc, f->acc, n * TR_FILM_ACC * sizeof *t->acc);
     memcpy(t->count, f->count, n * sizeof *t->count);
     memcpy(t->hits, f->hits, n * sizeof *t->hits);
+    memcpy(t->light, f->light, n * TR_FILM_ACC * sizeof *t->light); /* light paths run without MPI */
+    t->light_passes = f->light_passes;
     t->adaptive = f->adaptive, t->seed = f->seed, t->passes = f->passes, t->seconds = f->seconds;
     t->stats = f->stats;
-    uint64_t stats[10] = {t->stats.paths,        t->stats.scatters,  t->stats.bounces, t->stats.escaped,
+    uint64_t stats[11] = {t->stats.paths,        t->stats.scatters,  t->stats.bounces, t->stats.escaped,
                           t->stats.truncated,    t->stats.nonfinite, t->stats.rays,    t->stats.points,
-                          t->stats.free_flights, t->stats.nee};
+                          t->stats.free_flights, t->stats.nee,       t->stats.photons};
     s = lucent_dist_sum(LUCENT_OK, LUCENT_DIST_F64, t->acc, n * TR_FILM_ACC);
     s = lucent_dist_sum(s, LUCENT_DIST_U32, t->count, n);
     s = lucent_dist_sum(s, LUCENT_DIST_U32, t->hits, n);
-    s = lucent_dist_sum(s, LUCENT_DIST_I64, stats, 10);
+    s = lucent_dist_sum(s, LUCENT_DIST_I64, stats, 11);
     if (s != LUCENT_OK) {
         tr_film_destroy(t);
         return s;
     }
-    t->stats =
-        (tr_stats){stats[0], stats[1], stats[2], stats[3], stats[4], stats[5], stats[6], stats[7], stats[8], stats[9]};
+    t->stats = (tr_stats){stats[0], stats[1], stats[2], stats[3], stats[4], stats[5],
+                          stats[6], stats[7], stats[8], stats[9], stats[10]};
     *dest = t;
     return LUCENT_OK;
 }

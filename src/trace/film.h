@@ -21,6 +21,10 @@ typedef struct tr_film {
     double *pilot; /* TR_FILM_ACC per pixel; adaptive only */
     double *carry;
     uint32_t *quota;
+    /* the light paths' estimate (light_paths.c): per pixel the sums over passes of each pass's image,
+     * of its squares and of its squared luminance (TR_FILM_ACC), over light_passes passes */
+    double *light;
+    uint64_t light_passes;
     tr_stats stats;
 } tr_film;
 
@@ -52,6 +56,16 @@ void tr_film_allocate(tr_film *f);
 
 /* Samples in the next pass, all pixels together. */
 uint64_t tr_film_pass_samples(const tr_film *f);
+
+/* Adds the counts of s to into. */
+void tr_film_add_stats(tr_stats *into, const tr_stats *s);
+
+/* One pass of light paths (light_paths.c): render.photons per pixel; with a deadline no chunk starts
+ * after it, and a pass cut short is dropped whole (*cut). Nothing when no light path is served. */
+lucent_status tr_light_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *pool, double deadline, bool *cut);
+
+/* Photons in a pass of light paths (0: none served). */
+uint64_t tr_light_pass_photons(const lucent_tracer *tr);
 
 /* Rec. 709 luminance weights. */
 extern const double tr_film_luminance[3];

@@ -14,12 +14,26 @@ static void mean_var(double s, double s2, double n, double *mean, double *var)
     *var = n > 1 ? fmax(0.0, (s2 - s * s / n) / (n * (n - 1.0))) : 0.0;
 }
 
+/* Mean and variance of the mean of component k (0..2 RGB, 3 the luminance) of pixel p: the camera
+ * paths' samples plus the light paths' passes (independent estimates of the two shares). */
+static void pixel_mean_var(const tr_film *f, size_t p, int k, double *mean, double *var)
+{
+    const double *w = tr_film_luminance;
+    double m[2], v[2];
+    for (int part = 0; part < 2; part++) {
+        const double *a = (part ? f->light : f->acc) + p * TR_FILM_ACC;
+        double n = part ? (double)f->light_passes : (double)f->count[p];
+        double s = k < 3 ? a[k] : w[0] * a[0] + w[1] * a[1] + w[2] * a[2], s2 = k < 3 ? a[3 + k] : a[6];
+        mean_var(s, s2, n, &m[part], &v[part]);
+    }
+    *mean = m[0] + m[1], *var = v[0] + v[1];
+}
+
 /* se(Y) / Y of a pixel, or -1 when Y is 0. */
 static double pixel_rel_error(const tr_film *f, size_t p)
 {
-    const double *a = f->acc + p * TR_FILM_ACC, *w = tr_film_luminance;
-    double sy = w[0] * a[0] + w[1] * a[1] + w[2] * a[2], mean, var;
-    mean_var(sy, a[6], (double)f->count[p], &mean, &var);
+    double mean, var;
+    pixel_mean_var(f, p, 3, &mean, &var);
     return mean > 0 ? sqrt(var) / mean : -1.0;
 }
 
@@ -82,11 +96,10 @@ static lucent_status make_images(const tr_film *f, lucent_trace_result *r)
     if (s == LUCENT_OK) s = lucent_image_create(f->width, f->height, 1, &r->coverage);
     if (s != LUCENT_OK) return s;
     for (size_t p = 0; p < (size_t)f->width * (size_t)f->height; p++) {
-        const double *a = f->acc + p * TR_FILM_ACC;
         double n = (double)f->count[p];
         for (int c = 0; c < 3; c++) {
             double mean, var;
-            mean_var(a[c], a[3 + c], n, &mean, &var);
+            pixel_mean_var(f, p, c, &mean, &var);
             r->image->data[3 * p + c] = (float)mean;
             r->variance->data[3 * p + c] = (float)var;
         }
@@ -115,7 +128,8 @@ lucent_status tr_film_result(const tr_film *f, lucent_trace_result *r)
                                   .rays = st->rays,
                                   .points = st->points,
                                   .free_flights = st->free_flights,
-                                  .nee = st->nee};
+                                  .nee = st->nee,
+                                  .photons = st->photons};
     return LUCENT_OK;
 }
 

@@ -37,6 +37,7 @@ static void roulette(tr_path *p)
 static void add_found(void *ctx, const tr_light *l, const double le[3])
 {
     tr_path *p = ctx;
+    if (p->camera_side && l->light_paths) return; /* the light paths' */
     double w = tr_mis_hit_weight(p, l, p->d) / tr_mean3(p->r), v[3];
     for (int c = 0; c < 3; c++) v[c] = p->beta[c] * le[c] * w;
     tr_path_add(p, v);
@@ -44,12 +45,13 @@ static void add_found(void *ctx, const tr_light *l, const double le[3])
 
 static void escaped(tr_path *p)
 {
+    p->done = true;
+    if (p->to_camera) return; /* a light path never meets the camera's pinhole */
     if (p->camera_ray) {
         const double *bg = p->tr->render.view.background;
         tr_path_add(p, bg);
     }
     tr_lights_escaped(p->tr, p->d, add_found, p);
-    p->done = true;
 }
 
 /* The MIS record left by a rough boundary vertex y that the walk leaves in direction i (pdf pb). */
@@ -95,8 +97,12 @@ static void surface(tr_path *p, const tr_hit *h)
         return;
     }
     tr_guide g = {.x = y, .surface = true, .n = n, .o = v3_neg(p->d), .object = h->object};
-    if (b->kind == TR_BOUNDARY_ROUGH && !drop_reflection) tr_nee_surface(p, y, n, b, inside);
+    /* a light path connects to the camera from inside only: what the boundary reflects from outside
+     * toward the camera is the camera paths' */
+    if (b->kind == TR_BOUNDARY_ROUGH && !drop_reflection && (inside || !p->to_camera)) tr_nee_surface(p, y, n, b, inside);
     bool through = b->kind == TR_BOUNDARY_ROUGH && !tr->desc.boundary_nee_only;
+    bool enters_lp = p->primary && !inside && tr->objects[h->object].light_paths; /* entering: light paths' */
+    p->camera_side |= enters_lp;
     if (through) tr_nee_through(p, &g);
     tr_bsdf_sample bs;
     double u0 = tr_u(p), u1 = tr_u(p), u2 = tr_u(p);
@@ -104,12 +110,19 @@ static void surface(tr_path *p, const tr_hit *h)
         p->done = true;
         return;
     }
+    p->primary = false;
+    p->camera_side = enters_lp && bs.transmit;
+    if (p->camera_side && tr->camera_side_lights == 0) { /* all its light is the light paths' */
+        p->done = true;
+        return;
+    }
     if (bs.delta)
         p->mis = (tr_mis){.kind = MIS_NONE};
     else
         record_surface(p, y, n, bs.pdf, inside);
-    for (int c = 0; c < 3; c++) p->beta[c] *= bs.weight;
-    p->eta_scale /= bs.scale;
+    /* a light path carries power: the radiance scaling of the boundary does not apply (field.c too) */
+    for (int c = 0; c < 3; c++) p->beta[c] *= p->to_camera ? bs.weight / bs.scale : bs.weight;
+    if (!p->to_camera) p->eta_scale /= bs.scale;
     if (bs.transmit) p->medium = inside ? -1 : h->object;
     p->from_volume = through && v3_dot(bs.i, n) < 0;
     if (p->from_volume) {
@@ -130,7 +143,7 @@ static void step_outside(tr_path *p)
     int sphere = tr_sphere_light_hit(p->tr, p->o, p->d, hit ? h.t : INFINITY, &ts);
     if (sphere >= 0) {
         const tr_light *l = &p->tr->lights[sphere];
-        add_found(p, l, l->radiance);
+        if (!p->to_camera) add_found(p, l, l->radiance);
         p->done = true;
     } else if (!hit) {
         escaped(p);
@@ -303,6 +316,27 @@ static void step_inside(tr_path *p)
     }
 }
 
+/* Runs path p to its end; whether it met a surface. */
+static bool run(tr_path *p)
+{
+    uint64_t rays0, points0, rays1, points1;
+    tr_geometry_queries(&rays0, &points0);
+    p->hero = (int)(tr_u(p) * 3.0);
+    if (p->hero > 2) p->hero = 2;
+    bool covered = false;
+    while (!p->done) {
+        if (p->medium < 0)
+            step_outside(p);
+        else
+            step_inside(p);
+        covered |= p->bounces > 0;
+    }
+    p->stats->bounces += (uint64_t)p->bounces;
+    tr_geometry_queries(&rays1, &points1);
+    p->stats->rays += rays1 - rays0, p->stats->points += points1 - points0;
+    return covered;
+}
+
 bool tr_trace_path(const lucent_tracer *tr, double px, double py, lucent_rng *rng, double dest[3], tr_stats *stats)
 {
     tr_path p = {.tr = tr,
@@ -314,26 +348,36 @@ bool tr_trace_path(const lucent_tracer *tr, double px, double py, lucent_rng *rn
                  .tw = 1,
                  .medium = -1,
                  .nee_weight = 1,
-                 .camera_ray = true};
-    uint64_t rays0, points0, rays1, points1;
-    tr_geometry_queries(&rays0, &points0);
+                 .camera_ray = true,
+                 .primary = true};
     double o[3], d[3];
     lucent_camera_ray(&tr->scene->camera, tr->render.view.width, tr->render.view.height, px, py, o, d);
     p.o = v3_load(o), p.d = v3_load(d);
-    p.hero = (int)(tr_u(&p) * 3.0);
-    if (p.hero > 2) p.hero = 2;
-    bool covered = false;
     stats->paths++;
-    while (!p.done) {
-        if (p.medium < 0)
-            step_outside(&p);
-        else
-            step_inside(&p);
-        if (!p.camera_ray) covered = true;
-    }
-    stats->bounces += (uint64_t)p.bounces;
-    tr_geometry_queries(&rays1, &points1);
-    stats->rays += rays1 - rays0, stats->points += points1 - points0;
+    bool covered = run(&p);
     for (int c = 0; c < 3; c++) dest[c] = p.L[c];
     return covered;
+}
+
+void tr_trace_light_path(const lucent_tracer *tr, const tr_light *light, v3 o, v3 d, const double beta[3],
+                         double scale, lucent_rng *rng, struct tr_splats *splats, tr_stats *stats)
+{
+    (void)light;
+    tr_path p = {.tr = tr,
+                 .rng = rng,
+                 .stats = stats,
+                 .beta = {beta[0], beta[1], beta[2]},
+                 .r = {1, 1, 1},
+                 .eta_scale = 1,
+                 .tw = 1,
+                 .analog = true, /* the field steers toward the lights, not the camera */
+                 .medium = -1,
+                 .nee_weight = 1,
+                 .o = o,
+                 .d = d,
+                 .to_camera = true,
+                 .splats = splats,
+                 .splat_scale = scale};
+    stats->photons++;
+    run(&p);
 }

@@ -115,6 +115,7 @@ struct tr_object {
     double g_mean;      /* the guide's phase component (channel-independent) */
     double sigma_t_min; /* of the three channels: sets the walk's distance scales (integrator.c) */
     bool dense;         /* every channel's albedo >= TR_DENSE_ALBEDO: walks long enough for safe spheres */
+    bool light_paths;   /* its subsurface light comes from light paths (light_paths.c) */
 };
 
 /* An object's importance field (field.c): a grid of grad ln(fluence) per channel. */
@@ -136,7 +137,10 @@ typedef struct tr_light {
     double cos_cone;    /* directional disc: cos of the angular radius */
     double solid_angle; /* directional disc */
     bool delta;
-    double select; /* probability that next-event estimation picks it */
+    double select;     /* probability that next-event estimation picks it */
+    bool light_paths;  /* the light paths (light_paths.c) carry its light into the objects they serve */
+    double select_cam; /* the pick probability for camera paths that leave it to them (0 when it is theirs) */
+    double power;      /* light paths: its luminous power through the emission disc (emit_area times) */
 } tr_light;
 
 struct lucent_tracer {
@@ -148,7 +152,14 @@ struct lucent_tracer {
     int object_count;
     tr_light *lights;
     int light_count;
-    double select_cdf[64];
+    double select_cdf[64], select_cdf_cam[64];
+    /* light paths (light_paths.c): photons from the lights marked light_paths, whose connections to
+     * the camera (camera_light, a point "light" at the eye) carry the subsurface light of the objects
+     * marked light_paths; camera paths that enter such an object first leave those lights to them */
+    bool light_paths;
+    int camera_side_lights; /* lights left to camera paths that enter a light-path object */
+    tr_light camera_light;
+    double emit_centre[3], emit_radius; /* photons start on a disc of this radius about the centre */
     double eps;                  /* ray offset from surfaces, mm */
     bool has_matched;            /* some object is index matched (shadow rays must pass through it) */
     const tr_light *walk_target; /* the strongest light with a direction (NULL: none) */
@@ -160,8 +171,15 @@ struct lucent_tracer {
 /* ---- lights (lights.c) ---- */
 lucent_status tr_lights_build(lucent_tracer *tr);
 
-/* Picks a light for next-event estimation; NULL when there is none. */
-const tr_light *tr_light_pick(const lucent_tracer *tr, double u);
+/* Picks a light for next-event estimation; NULL when there is none. camera_side: a camera path that
+ * leaves the light-path lights to the light paths picks among the others (select_cam). */
+const tr_light *tr_light_pick(const lucent_tracer *tr, double u, bool camera_side);
+
+/* The pick probability of l (camera_side as above). */
+static inline double tr_light_select(const tr_light *l, bool camera_side)
+{
+    return camera_side ? l->select_cam : l->select;
+}
 
 typedef struct tr_light_sample {
     v3 w;         /* unit direction toward the light */
@@ -202,11 +220,33 @@ typedef struct tr_stats {
     uint64_t rays, points; /* ray queries (intersections, shadow rays) and distance queries */
     uint64_t free_flights; /* free flights inside a medium that needed no ray query (within a safe sphere) */
     uint64_t nee;          /* next-event estimates made from volume vertices */
+    uint64_t photons;      /* light paths (light_paths.c); their queries count in rays and points */
 } tr_stats;
 
 /* Estimates the radiance through image point (px, py); dest receives RGB. Returns whether the camera
  * ray hit a visible object. */
 bool tr_trace_path(const lucent_tracer *tr, double px, double py, struct lucent_rng *rng, double dest[3],
                    tr_stats *stats);
+
+/* ---- light paths (light_paths.c) ---- */
+struct tr_splats;
+
+/* Decides which lights and objects the light paths serve (tracer.c calls it once the lights and the
+ * objects are built). */
+void tr_light_paths_setup(lucent_tracer *tr);
+
+/* One light path from a photon of `light` with power per channel beta (relative) whose connections to
+ * the camera land in splats, scaled by scale (integrator.c). */
+void tr_trace_light_path(const lucent_tracer *tr, const tr_light *light, v3 o, v3 d, const double beta[3],
+                         double scale, struct lucent_rng *rng, struct tr_splats *splats, tr_stats *stats);
+
+/* Multiplies le (a camera-light sample's 1 / d^2 at boundary point y) by the camera's importance
+ * there: a pixel is the mean radiance over its area A of the image plane at unit distance, so a
+ * direction at angle theta off the axis weighs 1 / (A cos^3 theta) (light_paths.c). False when y is
+ * outside the view. */
+bool tr_light_paths_importance(const lucent_tracer *tr, v3 y, double le[3]);
+
+/* Adds value (RGB) at image point y of the camera's view (light_paths.c); nothing when y is outside. */
+void tr_splat(const lucent_tracer *tr, struct tr_splats *s, v3 y, const double value[3]);
 
 #endif

@@ -87,12 +87,13 @@ lucent_status tr_lights_build(lucent_tracer *tr)
     return LUCENT_OK;
 }
 
-const tr_light *tr_light_pick(const lucent_tracer *tr, double u)
+const tr_light *tr_light_pick(const lucent_tracer *tr, double u, bool camera_side)
 {
-    if (tr->light_count == 0) return NULL;
-    u *= tr->select_cdf[tr->light_count - 1];
+    const double *cdf = camera_side ? tr->select_cdf_cam : tr->select_cdf;
+    if (tr->light_count == 0 || !(cdf[tr->light_count - 1] > 0)) return NULL;
+    u *= cdf[tr->light_count - 1];
     for (int i = 0; i < tr->light_count - 1; i++)
-        if (u < tr->select_cdf[i]) return &tr->lights[i];
+        if (u < cdf[i] && tr_light_select(&tr->lights[i], camera_side) > 0) return &tr->lights[i];
     return &tr->lights[tr->light_count - 1];
 }
 

@@ -25,6 +25,34 @@ void tr_path_add(tr_path *p, const double v[3])
     for (int c = 0; c < 3; c++) p->L[c] += v[c];
 }
 
+void tr_path_add_at(tr_path *p, v3 y, const double v[3])
+{
+    if (!p->to_camera) {
+        tr_path_add(p, v);
+        return;
+    }
+    if (!isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2])) {
+        p->stats->nonfinite++;
+        return;
+    }
+    double s[3] = {v[0] * p->splat_scale, v[1] * p->splat_scale, v[2] * p->splat_scale};
+    tr_splat(p->tr, p->splats, y, s);
+}
+
+const tr_light *tr_path_pick(tr_path *p, double *ratio)
+{
+    *ratio = 1.0;
+    if (p->to_camera) return &p->tr->camera_light;
+    const tr_light *l = tr_light_pick(p->tr, tr_u(p), p->camera_side);
+    if (l && p->camera_side) *ratio = l->select_cam / l->select;
+    return l;
+}
+
+/* A light path's connection reaches the camera through boundary point y: the radiance BTDF of that
+ * direction, f(camera <- inside), is the one evaluated (f(inside <- camera)) over eta^2 (radiance
+ * reciprocity, f(a <- b) / eta_a^2 = f(b <- a) / eta_b^2, Veach 1997 eq. 5.14). */
+static double camera_btdf_factor(const tr_path *p, const tr_boundary *b) { return p->to_camera ? 1.0 / (b->eta * b->eta) : 1.0; }
+
 /* The point where an inside ray from x along w leaves object `object`, or false (a hole, another
  * object, or a face seen from its outer side). */
 static bool exit_point(const lucent_tracer *tr, v3 x, v3 w, int object, tr_hit *h)
@@ -39,11 +67,14 @@ typedef struct connection {
     double f, pb, cos, T[3], Tw[3];
 } connection;
 
-static bool connect_boundary(tr_path *p, const tr_light *l, v3 y, v3 n, const tr_boundary *b, v3 o, connection *c)
+static bool connect_boundary(tr_path *p, const tr_light *l, double ratio, v3 y, v3 n, const tr_boundary *b, v3 o,
+                             connection *c)
 {
     const lucent_tracer *tr = p->tr;
     if (!tr_light_sample_from(l, y, n, tr_u(p), tr_u(p), &c->ls)) return false;
-    c->f = tr_bsdf_eval(b, n, o, c->ls.w, &c->pb);
+    c->ls.pdf *= ratio;
+    if (p->to_camera && !tr_light_paths_importance(tr, y, c->ls.le)) return false; /* outside the view */
+    c->f = tr_bsdf_eval(b, n, o, c->ls.w, &c->pb) * camera_btdf_factor(p, b);
     if (!(c->f > 0)) return false;
     c->cos = fabs(v3_dot(c->ls.w, n));
     double tmax = isfinite(c->ls.dist) ? c->ls.dist * (1.0 - 1e-6) - tr->eps : INFINITY;
@@ -70,7 +101,8 @@ void tr_nee_through(tr_path *p, tr_guide *g)
 {
     const lucent_tracer *tr = p->tr;
     const tr_object *ob = &tr->objects[g->object];
-    const tr_light *l = tr_light_pick(tr, tr_u(p));
+    double ratio;
+    const tr_light *l = tr_path_pick(p, &ratio);
     if (!l) return;
     tr_guide_prepare(tr, g, l);
     v3 w, from = g->surface ? v3_madd(g->x, g->n, -tr->eps) : g->x;
@@ -83,11 +115,14 @@ void tr_nee_through(tr_path *p, tr_guide *g)
     tr_path_known(p, y);
     double weight = p->nee_weight;
     if (!exit_roulette(p, ob, h.t, &weight)) return;
-    if (!connect_boundary(p, l, y, h.n, &ob->boundary, v3_neg(w), &c)) return;
+    if (!connect_boundary(p, l, ratio, y, h.n, &ob->boundary, v3_neg(w), &c)) return;
     tr_transform tf;
     tr_path_transform(p, g->object, from, &tf);
     double q = tr_guide_pdf(tr, g, w), pb = c.ls.delta ? 0.0 : c.pb, den = 0, v[3], f[3], pw[3];
     tr_guide_vertex(tr, g, &tf, w, f, pw);
+    /* a light path at the boundary vertex where it entered: f(inside <- outside), eta^2 f(outside <- inside) */
+    if (p->to_camera && g->surface && v3_dot(g->o, g->n) > 0)
+        for (int k = 0; k < 3; k++) f[k] *= ob->boundary.eta * ob->boundary.eta;
     for (int k = 0; k < 3; k++) {
         double walk = pw[k] * exp(-tr_walk_sigma(ob, &tf, k, w) * h.t);
         den += p->r[k] * (q * c.ls.pdf + walk * (c.ls.pdf + pb * c.Tw[k]));
@@ -96,16 +131,18 @@ void tr_nee_through(tr_path *p, tr_guide *g)
     den /= 3.0;
     if (!(den > 0)) return;
     for (int k = 0; k < 3; k++) v[k] /= den;
-    tr_path_add(p, v);
+    tr_path_add_at(p, y, v);
 }
 
 void tr_nee_volume_matched(tr_path *p, v3 x)
 {
     const lucent_tracer *tr = p->tr;
     const tr_object *ob = &tr->objects[p->medium];
-    const tr_light *l = tr_light_pick(tr, tr_u(p));
+    double ratio;
+    const tr_light *l = tr_path_pick(p, &ratio);
     tr_light_sample ls;
-    if (!l || !tr_light_sample_from(l, x, v3_make(0, 0, 0), tr_u(p), tr_u(p), &ls)) return;
+    if (!l || p->to_camera || !tr_light_sample_from(l, x, v3_make(0, 0, 0), tr_u(p), tr_u(p), &ls)) return;
+    ls.pdf *= ratio;
     double T[3], Tw[3], tmax = isfinite(ls.dist) ? ls.dist * (1.0 - 1e-6) : INFINITY;
     if (!tr_transmittance(tr, x, ls.w, tmax, p->medium, T, Tw)) return;
     double mu = v3_dot(p->d, ls.w), den = 0, v[3];
@@ -132,9 +169,10 @@ static double guide_term(tr_path *p, tr_guide *g, v3 w, double walk_h, const tr_
 
 void tr_nee_surface(tr_path *p, v3 y, v3 n, const tr_boundary *b, bool inside)
 {
-    const tr_light *l = tr_light_pick(p->tr, tr_u(p));
+    double ratio;
+    const tr_light *l = tr_path_pick(p, &ratio);
     connection c;
-    if (!l || !connect_boundary(p, l, y, n, b, v3_neg(p->d), &c)) return;
+    if (!l || !connect_boundary(p, l, ratio, y, n, b, v3_neg(p->d), &c)) return;
     double g = inside && p->from_volume ? guide_term(p, &p->guide, p->d, p->walk_h, l) : 0.0;
     double pb = c.ls.delta ? 0.0 : c.pb, den = 0, v[3];
     for (int k = 0; k < 3; k++) {
@@ -144,14 +182,14 @@ void tr_nee_surface(tr_path *p, v3 y, v3 n, const tr_boundary *b, bool inside)
     den /= 3.0;
     if (!(den > 0)) return;
     for (int k = 0; k < 3; k++) v[k] /= den;
-    tr_path_add(p, v);
+    tr_path_add_at(p, y, v);
 }
 
 double tr_mis_hit_weight(tr_path *p, const tr_light *l, v3 w)
 {
     tr_mis *m = &p->mis;
     if (m->kind == MIS_NONE) return 1.0;
-    double pl = tr_light_pdf(l, m->p, m->n, w);
+    double pl = tr_light_pdf(l, m->p, m->n, w) * (p->camera_side ? l->select_cam / l->select : 1.0);
     if (!(pl > 0)) return 1.0;
     double g = m->has_guide ? guide_term(p, &m->guide, m->w, m->walk_h, l) : 0.0, walk = 0, other = 0;
     for (int k = 0; k < 3; k++) {

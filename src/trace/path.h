@@ -69,6 +69,14 @@ typedef struct tr_path {
     v3 known[TR_KNOWN];
     int known_n, known_next;
     double nee_weight; /* 1 / the probability with which this vertex's next-event estimate was made */
+    /* A light path (light_paths.c): a photon whose next-event estimates connect to the camera
+     * (tr->camera_light) and land in splats, scaled by splat_scale; beta is power, not radiance. */
+    bool to_camera;
+    struct tr_splats *splats;
+    double splat_scale;
+    /* A camera path before its first refracting surface (primary), and once it entered a light-path
+     * object there (camera_side): the light-path lights' share of its light is the light paths' */
+    bool primary, camera_side;
 } tr_path;
 
 static inline double tr_u(tr_path *p) { return lucent_rng_uniform(p->rng); }
@@ -95,8 +103,14 @@ static inline void tr_path_transform(const tr_path *p, int object, v3 x, tr_tran
         tr_field_lookup(p->tr, object, x, dest);
 }
 
-/* Adds value_c to the estimate when finite. */
+/* Adds value_c to the estimate when finite (a light path: at image point y). */
 void tr_path_add(tr_path *p, const double value[3]);
+void tr_path_add_at(tr_path *p, v3 y, const double value[3]);
+
+/* The light a next-event estimate targets: the camera for a light path, else a light picked (the
+ * camera side's lights once it left the others to the light paths); *ratio is the pick probability
+ * over the one lights.c's densities carry. NULL when there is none. */
+const tr_light *tr_path_pick(tr_path *p, double *ratio);
 
 /* Next-event estimation (nee.c): through a rough boundary from the vertex g describes (it is prepared
  * for the light picked, and keeps that for the walk's weights), from a volume vertex in an

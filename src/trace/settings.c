@@ -2,6 +2,7 @@
 #include "base/settings_table.h"
 
 SETTINGS_NAMES(boundary_model_names, "walter", "cycles3")
+SETTINGS_NAMES(light_paths_names, "off", "auto", "all")
 
 static const lucent_setting k_trace[] = {
     SETTING_INT("spp", trace.spp, 64, 1, 1 << 24, 0, "samples per pixel"),
@@ -12,6 +13,10 @@ static const lucent_setting k_trace[] = {
     SETTING_CHOICE("boundary_model", trace.boundary_model, "walter", boundary_model_names,
                    "the rough boundary's BSDF: Walter et al. 2007 (physics), or cycles3, Blender 3.x Cycles' "
                    "Glass BSDF convention (a peer's, for side-by-side validation; docs/trace.md)"),
+    SETTING_CHOICE("light_paths", trace.light_paths, "auto", light_paths_names,
+                   "objects whose subsurface light is traced from the lights to the camera: auto (the dense "
+                   "ones with a rough boundary), all (every rough one) or off (docs/trace.md)"),
+    SETTING_REAL("photons", trace.photons, 1, 0, 1024, "light paths per pixel and pass (0: none)"),
 };
 
 const lucent_settings_group tr_trace_settings = SETTINGS_GROUP("trace", "the path-traced reference", k_trace);

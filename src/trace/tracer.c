@@ -101,6 +101,7 @@ static lucent_status build(lucent_tracer *tr)
     tr->walk_strength = WALK_STRENGTH;
     if (s == LUCENT_OK) s = tr_film_create(tr->render.view.width, tr->render.view.height, tr->desc.adaptive, &tr->film);
     tr->eps = scene_eps(sc);
+    if (s == LUCENT_OK) tr_light_paths_setup(tr);
     return s;
 }
 
@@ -163,6 +164,15 @@ static lucent_status resolve(const lucent_tracer *tr, const lucent_trace_desc *i
     return LUCENT_OK;
 }
 
+/* Whether a camera path walks in some medium the field would steer: not when the light paths carry
+ * every object's subsurface light (camera paths that enter one end there). */
+static bool camera_walks(const lucent_tracer *tr)
+{
+    for (int o = 0; o < tr->object_count; o++)
+        if (!tr->objects[o].light_paths || tr->camera_side_lights > 0) return true;
+    return false;
+}
+
 /* Whether to stop after this pass (agreeing on status first). Ranks share the pass schedule: every
  * rank measures the error of the whole image, and rank 0's decision (its clock) holds for all. */
 static lucent_status should_stop(const lucent_tracer *tr, const lucent_trace_desc *d, double start,
@@ -206,7 +216,8 @@ lucent_status lucent_tracer_render(lucent_tracer *tr, const lucent_trace_desc *d
     bool merge = lucent_dist_share().stride == 0; /* a merge of parts: no path is traced here */
     /* under a time limit the field's photons get at most a quarter of it (the passes the rest) */
     double field_deadline = d.time_limit > 0 ? start + 0.25 * d.time_limit : 0;
-    if (!merge && !tr->fields && tr->walk_strength > 0 && (s = tr_field_build(tr, d.pool, field_deadline)) != LUCENT_OK)
+    if (!merge && !tr->fields && tr->walk_strength > 0 && camera_walks(tr) &&
+        (s = tr_field_build(tr, d.pool, field_deadline)) != LUCENT_OK)
         return s;
     tr->film->seed = d.seed;
     uint64_t per_pass =
@@ -217,7 +228,8 @@ lucent_status lucent_tracer_render(lucent_tracer *tr, const lucent_trace_desc *d
     for (int i = 0; i < d.spp && s == LUCENT_OK; i++) {
         bool stop = false, cut = false; /* a cut pass is past the deadline, so should_stop (which all
                                            processes agree on) stops too */
-        s = tr_film_pass(tr, tr->film, d.pool, progress, deadline, &cut);
+        s = tr_light_pass(tr, tr->film, d.pool, deadline, &cut);
+        if (s == LUCENT_OK && !cut) s = tr_film_pass(tr, tr->film, d.pool, progress, deadline, &cut);
         s = should_stop(tr, &d, start, s, &stop);
         if (stop) break;
     }

@@ -1,0 +1,262 @@
+/* Light paths: the subsurface light of dense objects traced from the lights to the camera.
+ *
+ * A camera path through a dense medium (marble: albedo 0.999, diffusion length 4 to 9 mm) gathers
+ * light from next-event estimates at every vertex near the boundary, but all of them land in the one
+ * pixel it started from. A photon from a light walks the same way (the same code, integrator.c, with
+ * the camera as the target of its next-event estimates: tr->camera_light, a point "light" at the eye
+ * whose intensity is the camera's importance), and its estimates land in the pixels where the
+ * boundary points they pass through appear: one walk feeds the many pixels its diffusion reaches
+ * (Veach 1997, section 10.2: light tracing with connections to the lens; Arvo & Kirk 1990 call the
+ * estimator particle tracing). By reciprocity, the estimates through the boundary and their multiple
+ * importance sampling are the camera paths' with the roles swapped; the radiance BTDF is evaluated
+ * with its arguments reversed and divided by eta^2 (nee.c), and a photon carries power, so the
+ * boundary's radiance scaling does not apply to it (integrator.c).
+ *
+ * The two estimators split the paths, so that each path is counted once: the light paths take every
+ * path that leaves an object they serve straight toward the camera from the light-path lights
+ * (camera <- boundary point, refracted out <- the walk inside <- ... <- light); a camera path whose
+ * first refracting surface is such an object and that refracts into it leaves those lights to them
+ * (it picks among the others, tr_light.select_cam, and finds none of theirs). Reflection off the
+ * boundary toward the camera, and everything after it, stays with the camera paths.
+ *
+ * Served: with render.light_paths auto, the dense objects with a rough boundary (tr_object.dense);
+ * lights: directional ones (sun discs included) and the environment; not with the comparison modes
+ * (boundary_nee_only, plain_flights, nee_every_vertex) or under MPI. Each pass traces
+ * render.photons photons per pixel, drawn from the lights in proportion to their power through a
+ * disc that covers the scene; a pass's connections make one image, and its estimate and variance per
+ * pixel come from those per-pass images (film.c), added to the camera paths' (independent).
+ * Connections are kept per chunk of photons and added in chunk order, so the image depends on the
+ * seed and the number of passes only (not on the thread count). */
+#include <math.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lucent/dist.h"
+#include "trace/film.h"
+
+enum { LP_CHUNKS = 64 };
+#define LP_STREAM (1ull << 62) /* photon streams: (LP_STREAM | pass << 32 | photon), apart from the camera's */
+
+static double luminance(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+
+/* ---- which lights and objects ---- */
+
+static bool light_eligible(const tr_light *l)
+{
+    return l->type == LUCENT_LIGHT_DIRECTIONAL || l->type == LUCENT_LIGHT_ENVIRONMENT;
+}
+
+/* Power through the emission disc per unit of the light's radiance (directional: irradiance). */
+static double emit_factor(const lucent_tracer *tr, const tr_light *l)
+{
+    double disc = M_PI * tr->emit_radius * tr->emit_radius;
+    if (l->type == LUCENT_LIGHT_ENVIRONMENT) return 4.0 * M_PI * disc;
+    return l->delta ? disc : l->solid_angle * disc;
+}
+
+void tr_light_paths_setup(lucent_tracer *tr)
+{
+    const lucent_tracer_desc *d = &tr->desc;
+    int mode = tr->render.trace.light_paths;
+    bool allowed = mode != LUCENT_LIGHT_PATHS_OFF && !d->boundary_nee_only && !d->plain_flights &&
+                   !d->nee_every_vertex && !lucent_dist_active() && tr->render.trace.photons > 0;
+    bool any = false;
+    for (int o = 0; o < tr->object_count; o++) {
+        tr_object *ob = &tr->objects[o];
+        ob->light_paths = allowed && ob->boundary.kind == TR_BOUNDARY_ROUGH &&
+                          (mode == LUCENT_LIGHT_PATHS_ALL || ob->dense);
+        any |= ob->light_paths;
+    }
+    double lo[3], hi[3];
+    lucent_scene_bounds(tr->scene, lo, hi);
+    for (int a = 0; a < 3; a++) tr->emit_centre[a] = 0.5 * (lo[a] + hi[a]);
+    tr->emit_radius = lo[0] <= hi[0] ? 0.5 * v3_length(v3_sub(v3_load(hi), v3_load(lo))) * 1.01 + tr->eps : 1.0;
+    double rest = 0, acc = 0;
+    bool lights = false;
+    for (int i = 0; i < tr->light_count; i++) {
+        tr_light *l = &tr->lights[i];
+        l->light_paths = any && light_eligible(l) && luminance(l->radiance) > 0;
+        l->power = l->light_paths ? luminance(l->radiance) * emit_factor(tr, l) : 0;
+        lights |= l->light_paths;
+        if (!l->light_paths) rest += l->select;
+    }
+    tr->light_paths = lights;
+    tr->camera_side_lights = 0;
+    for (int i = 0; i < tr->light_count; i++) {
+        tr_light *l = &tr->lights[i];
+        l->select_cam = l->light_paths || !(rest > 0) ? 0.0 : l->select / rest;
+        acc += l->select_cam;
+        tr->select_cdf_cam[i] = acc;
+        tr->camera_side_lights += l->select_cam > 0;
+    }
+    const double *eye = tr->scene->camera.position;
+    tr->camera_light = (tr_light){.type = LUCENT_LIGHT_POINT,
+                                  .scene_index = -1,
+                                  .radiance = {1, 1, 1},
+                                  .position = v3_load(eye),
+                                  .delta = true,
+                                  .select = 1.0};
+}
+
+/* ---- the camera's importance and the splats ---- */
+
+bool tr_light_paths_importance(const lucent_tracer *tr, v3 y, double le[3])
+{
+    const lucent_camera *cam = &tr->scene->camera;
+    int w = tr->render.view.width, h = tr->render.view.height;
+    double px, py, cosa, p[3];
+    v3_store(y, p);
+    if (!lucent_camera_project(cam, w, h, p, &px, &py, &cosa)) return false;
+    double t = tan(0.5 * cam->fov_y * M_PI / 180), area = (2.0 * t * w / h / w) * (2.0 * t / h);
+    double importance = 1.0 / (area * cosa * cosa * cosa);
+    for (int c = 0; c < 3; c++) le[c] *= importance;
+    return true;
+}
+
+typedef struct splat_item {
+    uint32_t pixel;
+    double v[3];
+} splat_item;
+
+struct tr_splats {
+    splat_item *items;
+    size_t n, cap;
+    bool failed; /* out of memory */
+};
+
+void tr_splat(const lucent_tracer *tr, struct tr_splats *s, v3 y, const double value[3])
+{
+    int w = tr->render.view.width, h = tr->render.view.height;
+    double px, py, cosa, p[3];
+    v3_store(y, p);
+    if (!lucent_camera_project(&tr->scene->camera, w, h, p, &px, &py, &cosa)) return;
+    int x = (int)px, yy = (int)py;
+    if (x < 0 || x >= w || yy < 0 || yy >= h) return;
+    if (s->n == s->cap) {
+        size_t cap = s->cap ? 2 * s->cap : 1024;
+        splat_item *grown = realloc(s->items, cap * sizeof *grown);
+        if (!grown) {
+            s->failed = true;
+            return;
+        }
+        s->items = grown, s->cap = cap;
+    }
+    splat_item *it = &s->items[s->n++];
+    it->pixel = (uint32_t)yy * (uint32_t)w + (uint32_t)x;
+    memcpy(it->v, value, sizeof it->v);
+}
+
+/* ---- a pass of photons ---- */
+
+typedef struct lp_job {
+    const lucent_tracer *tr;
+    struct tr_splats *lists; /* one per chunk */
+    tr_stats *stats;         /* one per thread */
+    uint64_t pass, per_chunk;
+    double total_power, deadline;
+    _Atomic bool cut;
+} lp_job;
+
+static const tr_light *emitter(const lucent_tracer *tr, double total, double u)
+{
+    double acc = 0;
+    const tr_light *last = NULL;
+    for (int i = 0; i < tr->light_count; i++) {
+        const tr_light *l = &tr->lights[i];
+        if (!(l->power > 0)) continue;
+        acc += l->power, last = l;
+        if (u * total < acc) return l;
+    }
+    return last;
+}
+
+/* A photon from light l: its direction (directional: toward the scene, uniformly in a sun disc's
+ * cone; environment: uniform over the sphere) and a start uniform on the disc of radius emit_radius
+ * perpendicular to it, 2 radii before the centre (all of the scene lies behind the disc). */
+static void emit(const lucent_tracer *tr, const tr_light *l, lucent_rng *rng, v3 *o, v3 *d)
+{
+    double u1 = lucent_rng_uniform(rng), u2 = lucent_rng_uniform(rng);
+    if (l->type == LUCENT_LIGHT_ENVIRONMENT)
+        *d = lucent_around(v3_make(0, 0, 1), 1.0 - 2.0 * u1, 2.0 * M_PI * u2);
+    else if (l->delta)
+        *d = v3_neg(l->toward);
+    else
+        *d = v3_neg(lucent_around(l->toward, 1.0 - u1 * (1.0 - l->cos_cone), 2.0 * M_PI * u2));
+    v3 t, b, c = v3_load(tr->emit_centre);
+    lucent_basis(*d, &t, &b);
+    double r = tr->emit_radius, rho = r * sqrt(lucent_rng_uniform(rng)), phi = 2.0 * M_PI * lucent_rng_uniform(rng);
+    *o = v3_add(v3_madd(c, *d, -2.0 * r), v3_add(v3_scale(t, rho * cos(phi)), v3_scale(b, rho * sin(phi))));
+}
+
+static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
+{
+    lp_job *job = ctx;
+    const lucent_tracer *tr = job->tr;
+    if (job->deadline > 0 && (atomic_load(&job->cut) || lucent_clock_seconds() >= job->deadline)) {
+        atomic_store(&job->cut, true);
+        return LUCENT_OK;
+    }
+    double scale = job->total_power / (double)(job->per_chunk * LP_CHUNKS);
+    for (uint64_t i = begin; i < end; i++) {
+        lucent_rng rng;
+        lucent_rng_init(tr->film->seed, LP_STREAM | job->pass << 32 | i, &rng);
+        const tr_light *l = emitter(tr, job->total_power, lucent_rng_uniform(&rng));
+        v3 o, d;
+        emit(tr, l, &rng, &o, &d);
+        double y = luminance(l->radiance), beta[3] = {l->radiance[0] / y, l->radiance[1] / y, l->radiance[2] / y};
+        tr_trace_light_path(tr, l, o, d, beta, scale, &rng, &job->lists[chunk], &job->stats[thread]);
+    }
+    return LUCENT_OK;
+}
+
+uint64_t tr_light_pass_photons(const lucent_tracer *tr)
+{
+    if (!tr->light_paths) return 0;
+    double n = tr->render.trace.photons * (double)tr->render.view.width * (double)tr->render.view.height;
+    uint64_t per_chunk = (uint64_t)ceil(n / LP_CHUNKS);
+    return (per_chunk ? per_chunk : 1) * LP_CHUNKS;
+}
+
+/* Adds the pass's connections, chunk by chunk, to the film's light-path sums (film.c). */
+static void fold(const lp_job *job, tr_film *f, double *image)
+{
+    size_t n = (size_t)f->width * (size_t)f->height;
+    memset(image, 0, n * 3 * sizeof *image);
+    for (int ch = 0; ch < LP_CHUNKS; ch++)
+        for (size_t i = 0; i < job->lists[ch].n; i++)
+            for (int c = 0; c < 3; c++) image[job->lists[ch].items[i].pixel * 3 + (size_t)c] += job->lists[ch].items[i].v[c];
+    for (size_t p = 0; p < n; p++) {
+        double *a = f->light + p * TR_FILM_ACC, y = 0;
+        for (int c = 0; c < 3; c++) {
+            double v = image[p * 3 + (size_t)c];
+            a[c] += v, a[3 + c] += v * v, y += tr_film_luminance[c] * v;
+        }
+        a[6] += y * y;
+    }
+    f->light_passes++;
+}
+
+lucent_status tr_light_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *pool, double deadline, bool *cut)
+{
+    *cut = false;
+    uint64_t photons = tr_light_pass_photons(tr);
+    if (!photons) return LUCENT_OK;
+    int threads = pool ? lucent_pool_threads(pool) : 1;
+    lp_job job = {.tr = tr, .pass = f->light_passes, .per_chunk = photons / LP_CHUNKS, .deadline = deadline};
+    for (int i = 0; i < tr->light_count; i++) job.total_power += tr->lights[i].power;
+    job.lists = calloc(LP_CHUNKS, sizeof *job.lists);
+    job.stats = calloc((size_t)threads, sizeof *job.stats);
+    double *image = malloc((size_t)f->width * (size_t)f->height * 3 * sizeof *image);
+    lucent_status s = job.lists && job.stats && image ? LUCENT_OK
+                                                      : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory");
+    if (s == LUCENT_OK) s = lucent_parallel_for(pool, photons, job.per_chunk, photon_chunk, &job);
+    for (int ch = 0; s == LUCENT_OK && job.lists && ch < LP_CHUNKS; ch++)
+        if (job.lists[ch].failed) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory for light paths");
+    *cut = atomic_load(&job.cut);
+    if (s == LUCENT_OK && !*cut) fold(&job, f, image); /* a cut pass is dropped whole: unbiased */
+    for (int t = 0; job.stats && t < threads; t++) tr_film_add_stats(&f->stats, &job.stats[t]);
+    for (int ch = 0; job.lists && ch < LP_CHUNKS; ch++) free(job.lists[ch].items);
+    free(job.lists), free(job.stats), free(image);
+    return s;
+}
