@@ -241,34 +241,47 @@ static void reference_figures(const reference_run *r, double at, double *t5, dou
     *noise_at = at > fixed ? noise * sqrt(passes / (at - fixed)) : INFINITY;
 }
 
+/* Three estimators on the same scene: today's (before section 3), the camera paths alone (light
+ * paths off: the third pass's), and the default (light paths for dense media, docs/trace.md). */
+enum { REF_RUNS = 3 };
+static const char *const ref_names[REF_RUNS] = {"today", "camera paths", "now"};
+
 static void reference_scene(const char *file, const char *const *sets, int nsets, double budget, lucent_pool *pool)
 {
     char path[1024];
     snprintf(path, sizeof path, "%s/data/scenes/%s", LUCENT_SOURCE_DIR, file);
     lucent_scene *sc;
     if (lucent_scene_load(path, &(lucent_scene_load_desc){.overrides = sets, .override_count = nsets}, &sc)) die(path);
-    reference_run runs[2] = {{0}};
+    reference_run runs[REF_RUNS] = {{0}};
     const lucent_tracer_desc today = {.plain_flights = true, .nee_every_vertex = true};
-    for (int k = 0; k < 2; k++) {
+    int mode = sc->render.trace.light_paths;
+    for (int k = 0; k < REF_RUNS; k++) {
         double c0 = lucent_cpu_seconds();
+        sc->render.trace.light_paths = k == 1 ? LUCENT_LIGHT_PATHS_OFF : mode; /* the tracer copies it */
         if (lucent_tracer_create(sc, k == 0 ? &today : NULL, &runs[k].tracer)) die("tracer");
         runs[k].cpu = (lucent_cpu_seconds() - c0) / g_threads; /* set-up (the BVH) */
     }
-    while (runs[0].cpu < budget || runs[1].cpu < budget)
-        for (int k = 0; k < 2; k++)
-            if (runs[k].cpu < budget) reference_pass(&runs[k], pool);
-    double t5[2], n60[2];
-    for (int k = 0; k < 2; k++) reference_figures(&runs[k], 60.0, &t5[k], &n60[k]);
-    const lucent_trace_cost *c = &runs[1].last.cost, *c0 = &runs[0].last.cost;
-    printf("  %-18s %dx%d  today: %4d spp in %5.1f s, noise %5.1f%% (at 60 s %5.1f%%), to 5%% %7.0f s, %5.1f rays/path"
-           " | now: %4d spp in %5.1f s, noise %5.1f%% (at 60 s %5.1f%%), to 5%% %7.0f s, %5.1f rays + %.1f distance "
-           "queries/path | %.2fx\n",
-           file, runs[1].last.image->width, runs[1].last.image->height, runs[0].passes, runs[0].cpu,
-           100 * reference_noise(&runs[0].last), 100 * n60[0], t5[0], (double)c0->rays / c0->paths, runs[1].passes,
-           runs[1].cpu, 100 * reference_noise(&runs[1].last), 100 * n60[1], t5[1], (double)c->rays / c->paths,
-           (double)c->points / c->paths, t5[0] / t5[1]);
+    bool more = true;
+    while (more) {
+        more = false;
+        for (int k = 0; k < REF_RUNS; k++)
+            if (runs[k].cpu < budget) reference_pass(&runs[k], pool), more = true;
+    }
+    printf("  %-18s %dx%d", file, runs[0].last.image->width, runs[0].last.image->height);
+    double t5[REF_RUNS], n60[REF_RUNS];
+    for (int k = 0; k < REF_RUNS; k++) {
+        reference_figures(&runs[k], 60.0, &t5[k], &n60[k]);
+        const lucent_trace_cost *c = &runs[k].last.cost;
+        printf(
+            "%s%s: %4d passes in %5.1f s, noise %5.1f%% (at 60 s %5.1f%%), to 5%% %7.0f s; per camera path %.1f rays + "
+            "%.1f distance queries, %.2f light paths",
+            k ? " | " : "  ", ref_names[k], runs[k].passes, runs[k].cpu, 100 * reference_noise(&runs[k].last),
+            100 * n60[k], t5[k], (double)c->rays / c->paths, (double)c->points / c->paths,
+            (double)c->photons / c->paths);
+    }
+    printf(" | time to 5%%: now %.2fx faster than today, %.2fx than the camera paths\n", t5[0] / t5[2], t5[1] / t5[2]);
     fflush(stdout);
-    for (int k = 0; k < 2; k++) lucent_trace_result_free(&runs[k].last), lucent_tracer_destroy(runs[k].tracer);
+    for (int k = 0; k < REF_RUNS; k++) lucent_trace_result_free(&runs[k].last), lucent_tracer_destroy(runs[k].tracer);
     lucent_scene_destroy(sc);
 }
 
@@ -279,7 +292,8 @@ static void references(lucent_pool *pool)
     const char *env = getenv("BENCH_REFERENCE_SECONDS");
     double budget = env && atof(env) > 0 ? atof(env) : 60.0;
     printf("\nbench_trace: the default scenes' references, today's estimator (a ray query per flight, next-event "
-           "estimation from every vertex) against the default one, interleaved, %.0f s each (CPU over %d threads); "
+           "estimation from every vertex), the camera paths alone (light paths off) and the default one, interleaved, "
+           "%.0f s each (CPU over %d threads); "
            "anchor (issue 12): dragon-marble 22 spp in 60 s, 28%% noise; goal 10%% in 60 s, 5%% in 300 s\n",
            budget, g_threads);
     const char *square[] = {"render.width=256", "render.height=256"},
@@ -296,17 +310,16 @@ static void references(lucent_pool *pool)
 /* ---- efficiency on the dragon (issue 12 section 3, docs/trace.md "Measured in the third pass") ----
  * noise^2 x CPU seconds of the passes (lower is better; independent of the budget at a fixed
  * estimator): dragon-marble at 128 x 128, BENCH_EFFICIENCY_PASSES passes (default 50) of one sample
- * per pixel on one thread, seed BENCH_EFFICIENCY_SEED (default 1). The passes' CPU leaves out the
- * fixed cost (set-up, the guiding field's pre-pass): the first pass's cost beyond an ordinary one. */
-static void efficiency(void)
+ * per pixel on one thread, seed BENCH_EFFICIENCY_SEED (default 1), the camera paths alone (light
+ * paths off) and the default. The passes' CPU leaves out the fixed cost (set-up, the guiding field's
+ * pre-pass): the first pass's cost beyond an ordinary one. */
+static void efficiency_run(int passes, uint64_t seed, bool light_paths)
 {
-    const char *env = getenv("BENCH_EFFICIENCY_PASSES"), *seed_env = getenv("BENCH_EFFICIENCY_SEED");
-    int passes = env && atoi(env) > 1 ? atoi(env) : 50;
-    uint64_t seed = seed_env ? strtoull(seed_env, NULL, 10) : 1;
-    const char *sets[] = {"render.width=128", "render.height=128"};
+    const char *sets[] = {"render.width=128", "render.height=128",
+                          light_paths ? "render.light_paths=auto" : "render.light_paths=off"};
     lucent_scene *sc;
     if (lucent_scene_load(LUCENT_SOURCE_DIR "/data/scenes/dragon-marble.json",
-                          &(lucent_scene_load_desc){.overrides = sets, .override_count = 2}, &sc))
+                          &(lucent_scene_load_desc){.overrides = sets, .override_count = 3}, &sc))
         die("dragon-marble.json");
     lucent_pool *one = lucent_pool_create(1);
     reference_run r = {0};
@@ -324,18 +337,30 @@ static void efficiency(void)
     double per_pass = (r.cpu - r.first_cpu) / (r.passes - 1), fixed = r.first_cpu - per_pass;
     double noise = reference_noise(&r.last), paths = (double)r.last.cost.paths;
     const lucent_trace_cost *c = &r.last.cost;
-    printf("\nbench_trace: efficiency on dragon-marble 128 x 128, %d passes on 1 thread, seed %llu: noise %.2f%%, "
-           "passes %.1f CPU s (fixed %.1f s), noise^2 x CPU s = %.3f (lower is better; "
-           "before known points and exit roulette: 0.909 at load 7-14, 0.768 / 0.756 seeds 1-2 on an idle machine; "
-           "with them 0.675 / 0.687 idle); per path %.1f rays, %.2f distance queries, "
-           "%.1f scatterings, %.2f next-event estimates\n",
-           passes, (unsigned long long)seed, 100 * noise, r.cpu - fixed, fixed, noise * noise * (r.cpu - fixed),
-           c->rays / paths, c->points / paths, c->scatters / paths, c->nee / paths);
+    printf("\nbench_trace: efficiency on dragon-marble 128 x 128, %s, %d passes on 1 thread, seed %llu: noise %.2f%%, "
+           "passes %.1f CPU s (fixed %.1f s), noise^2 x CPU s = %.3f (lower is better); per camera path %.1f rays, "
+           "%.2f distance queries, %.1f scatterings, %.2f next-event estimates, %.2f light paths (their queries "
+           "and scatterings included)\n",
+           light_paths ? "light paths (the default)" : "camera paths alone", passes, (unsigned long long)seed,
+           100 * noise, r.cpu - fixed, fixed, noise * noise * (r.cpu - fixed), c->rays / paths, c->points / paths,
+           c->scatters / paths, c->nee / paths, c->photons / paths);
     fflush(stdout);
     lucent_trace_result_free(&r.last);
     lucent_tracer_destroy(r.tracer);
     lucent_pool_destroy(one);
     lucent_scene_destroy(sc);
+}
+
+static void efficiency(void)
+{
+    const char *env = getenv("BENCH_EFFICIENCY_PASSES"), *seed_env = getenv("BENCH_EFFICIENCY_SEED");
+    int passes = env && atoi(env) > 1 ? atoi(env) : 50;
+    uint64_t seed = seed_env ? strtoull(seed_env, NULL, 10) : 1;
+    printf("\nbench_trace: figures measured (docs/trace.md, one machine, load 1-2): camera paths 1.21 / 1.28, "
+           "light paths 1.29 / 1.26 (seeds 1 / 2; the camera paths' were 0.675 / 0.687 on the faster machine of the "
+           "third pass)\n");
+    efficiency_run(passes, seed, false);
+    efficiency_run(passes, seed, true);
 }
 
 int main(int argc, char **argv)

@@ -467,6 +467,7 @@ TEST(distance_bound_is_the_distance)
 TEST(deep_nee_roulette_is_unbiased)
 {
     lucent_scene *sc = dense_scene(32);
+    if (sc) sc->render.trace.light_paths = LUCENT_LIGHT_PATHS_OFF; /* the camera paths' roulette (light paths: below) */
     lucent_pool *pool = lucent_pool_create(2);
     lucent_trace_result a = {0}, b = {0};
     CHECK(sc != NULL);
@@ -494,6 +495,76 @@ TEST(deep_nee_roulette_is_unbiased)
     CHECK_MSG(fabs(pooled_z) < 4, "pooled z %.2f", pooled_z);
     CHECK_MSG(b.cost.nee < b.cost.scatters / 2, "the roulette skipped too few deep vertices");
     lucent_trace_result_free(&a), lucent_trace_result_free(&b);
+    lucent_pool_destroy(pool);
+    lucent_scene_destroy(sc);
+}
+
+/* chi2 per degree of freedom and the pooled z of the differences of two independent estimates over the
+ * fully covered pixels' channels (from their standard errors); *n the pixel channels. */
+static void difference_stats(const lucent_trace_result *a, const lucent_trace_result *b, double *chi2_dof,
+                             double *pooled_z, double *rel, int *n)
+{
+    double chi2 = 0, diff = 0, var = 0, sum = 0;
+    *n = 0;
+    for (int p = 0; a->image && b->image && p < a->image->width * a->image->height; p++) {
+        if (a->coverage->data[p] < 1.0f || b->coverage->data[p] < 1.0f) continue;
+        for (int c = 0; c < 3; c++) {
+            double d = (double)a->image->data[3 * p + c] - b->image->data[3 * p + c];
+            double v = (double)a->variance->data[3 * p + c] + b->variance->data[3 * p + c];
+            if (!(v > 0)) continue;
+            chi2 += d * d / v, diff += d, var += v, sum += a->image->data[3 * p + c], (*n)++;
+        }
+    }
+    *chi2_dof = *n ? chi2 / *n : 0, *pooled_z = var > 0 ? diff / sqrt(var) : 0, *rel = sum > 0 ? diff / sum : 0;
+}
+
+/* Light paths (photons from the lights connected to the camera through the boundary) and camera paths
+ * estimate the same image: on a dense sphere lit by a delta sun, a sun disc and the environment, the
+ * light paths' share plus the camera paths' rest against camera paths alone (light_paths off),
+ * independent seeds: the pixels' differences are unit normal in their standard errors and the pooled
+ * difference is within 4 of them. The light paths' image depends on the seed and the passes only (1
+ * and 2 threads, 5 + 3 and 8 passes: bit for bit). */
+TEST(light_paths_agree_with_camera_paths)
+{
+    lucent_scene *sc = sphere_scene("{\"units\": \"mm^-1\", \"sigma_a\": [0.05, 0.08, 0.1], \"sigma_s\": [20, 18, 16], "
+                                    "\"g\": 0, \"eta\": 1.5}",
+                                    "{\"type\": \"directional\", \"direction\": [-1, -0.2, -0.3], \"intensity\": 2},"
+                                    " {\"type\": \"directional\", \"direction\": [0.3, 0.5, -1], \"intensity\": 1,"
+                                    " \"angular_radius\": 0.1},"
+                                    " {\"type\": \"environment\", \"intensity\": 0.1}",
+                                    32, ", \"roughness\": 0.3");
+    lucent_pool *pool = lucent_pool_create(2);
+    lucent_trace_result cam = {0}, lp = {0}, one = {0}, split = {0};
+    CHECK(sc != NULL);
+    if (!sc) return;
+    int spp = 160 / SLOW;
+    sc->render.trace.light_paths = LUCENT_LIGHT_PATHS_OFF;
+    CHECK_OK(render(sc, NULL, spp, 11, pool, &cam));
+    sc->render.trace.light_paths = LUCENT_LIGHT_PATHS_AUTO;
+    CHECK_OK(render(sc, NULL, spp, 12, pool, &lp));
+    double chi2, z, rel;
+    int n;
+    difference_stats(&cam, &lp, &chi2, &z, &rel, &n);
+    printf("  %d pixel channels: chi2/dof %.3f, pooled difference %+.2f%% (z %.2f); %.2f light paths and %.1f "
+           "scatterings per camera path (camera paths alone: %.1f)\n",
+           n, chi2, 100.0 * rel, z, (double)lp.cost.photons / (double)lp.cost.paths,
+           (double)lp.cost.scatters / (double)lp.cost.paths, (double)cam.cost.scatters / (double)cam.cost.paths);
+    CHECK(n > 600);
+    CHECK_MSG(chi2 > 0.7 && chi2 < 1.5, "chi2/dof %.3f", chi2);
+    CHECK_MSG(fabs(z) < 4, "pooled z %.2f", z);
+    CHECK_MSG(lp.cost.photons > 0 && cam.cost.photons == 0, "light paths: %llu photons with, %llu without",
+              (unsigned long long)lp.cost.photons, (unsigned long long)cam.cost.photons);
+    lucent_tracer *tr = NULL;
+    CHECK_OK(render(sc, NULL, 8, 12, NULL, &one));
+    CHECK_OK(lucent_tracer_create(sc, NULL, &tr));
+    CHECK_OK(lucent_tracer_render(tr, &(lucent_trace_desc){.spp = 5, .seed = 12, .pool = pool}, &split));
+    lucent_trace_result_free(&split);
+    CHECK_OK(lucent_tracer_render(tr, &(lucent_trace_desc){.spp = 3, .pool = pool}, &split));
+    CHECK_MSG(same_image(one.image, split.image) && same_image(one.variance, split.variance),
+              "light paths: 1 thread and 8 passes differ from 2 threads and 5 + 3");
+    lucent_tracer_destroy(tr);
+    lucent_trace_result_free(&cam), lucent_trace_result_free(&lp);
+    lucent_trace_result_free(&one), lucent_trace_result_free(&split);
     lucent_pool_destroy(pool);
     lucent_scene_destroy(sc);
 }
@@ -727,4 +798,4 @@ TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_ad
           TEST_ENTRY(refuses_delta_lights_through_smooth_boundaries), TEST_ENTRY(meshes_with_holes_terminate),
           TEST_ENTRY(point_clouds_are_skipped), TEST_ENTRY(bad_input_is_named),
           TEST_ENTRY(distance_bounded_flights_change_nothing), TEST_ENTRY(distance_bound_is_the_distance),
-          TEST_ENTRY(deep_nee_roulette_is_unbiased))
+          TEST_ENTRY(deep_nee_roulette_is_unbiased), TEST_ENTRY(light_paths_agree_with_camera_paths))

@@ -43,7 +43,11 @@ typedef enum lucent_boundary_model { LUCENT_BOUNDARY_WALTER = 0, LUCENT_BOUNDARY
 /* Which objects' subsurface light is traced from the lights (render.light_paths, docs/trace.md "Light
  * paths"): none, the dense ones (every channel's albedo >= 0.98) with a rough boundary, or every
  * object with a rough boundary. */
-typedef enum lucent_light_paths { LUCENT_LIGHT_PATHS_OFF = 0, LUCENT_LIGHT_PATHS_AUTO, LUCENT_LIGHT_PATHS_ALL } lucent_light_paths;
+typedef enum lucent_light_paths {
+    LUCENT_LIGHT_PATHS_OFF = 0,
+    LUCENT_LIGHT_PATHS_AUTO,
+    LUCENT_LIGHT_PATHS_ALL
+} lucent_light_paths;
 
 /* How a tracer is made; a zero field means the default. */
 typedef struct lucent_tracer_desc {
@@ -111,7 +115,8 @@ typedef struct lucent_trace_error {
     uint64_t dark_pixels;    /* object pixels with Y == 0 (no relative error) */
 } lucent_trace_error;
 
-/* Where the time goes: totals over the estimate's camera paths (the pilot's included). */
+/* Where the time goes: totals over the estimate's camera paths (the pilot's included) and light paths
+ * (photons, docs/trace.md "Light paths"; their queries, scatterings and estimates count here too). */
 typedef struct lucent_trace_cost {
     uint64_t paths;
     uint64_t scatters;     /* volume scattering vertices */

@@ -99,7 +99,8 @@ static void surface(tr_path *p, const tr_hit *h)
     tr_guide g = {.x = y, .surface = true, .n = n, .o = v3_neg(p->d), .object = h->object};
     /* a light path connects to the camera from inside only: what the boundary reflects from outside
      * toward the camera is the camera paths' */
-    if (b->kind == TR_BOUNDARY_ROUGH && !drop_reflection && (inside || !p->to_camera)) tr_nee_surface(p, y, n, b, inside);
+    if (b->kind == TR_BOUNDARY_ROUGH && !drop_reflection && (inside || !p->to_camera))
+        tr_nee_surface(p, y, n, b, inside);
     bool through = b->kind == TR_BOUNDARY_ROUGH && !tr->desc.boundary_nee_only;
     bool enters_lp = p->primary && !inside && tr->objects[h->object].light_paths; /* entering: light paths' */
     p->camera_side |= enters_lp;
@@ -359,8 +360,8 @@ bool tr_trace_path(const lucent_tracer *tr, double px, double py, lucent_rng *rn
     return covered;
 }
 
-void tr_trace_light_path(const lucent_tracer *tr, const tr_light *light, v3 o, v3 d, const double beta[3],
-                         double scale, lucent_rng *rng, struct tr_splats *splats, tr_stats *stats)
+void tr_trace_light_path(const lucent_tracer *tr, const tr_light *light, v3 o, v3 d, const double beta[3], double scale,
+                         lucent_rng *rng, struct tr_splats *splats, tr_stats *stats)
 {
     (void)light;
     tr_path p = {.tr = tr,

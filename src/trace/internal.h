@@ -4,9 +4,9 @@
  * transform), field.c (the fluence field the walk follows), lights.c (light sampling
  * and emission, shadow rays), guide.c (the direction distribution of next-event estimation through a
  * rough boundary), nee.c (next-event estimation and the MIS weights), integrator.c (one camera
- * path), film.c, film_alloc.c, film_result.c (the accumulated estimate: passes, adaptive
- * allocation, images and statistics), tracer.c (the public API). docs/trace.md explains the
- * estimator. */
+ * path, or light path), light_paths.c (photons from the lights connected to the camera), film.c,
+ * film_alloc.c, film_result.c (the accumulated estimate: passes, adaptive allocation, images and
+ * statistics), tracer.c (the public API). docs/trace.md explains the estimator. */
 #ifndef LUCENT_TRACE_INTERNAL_H
 #define LUCENT_TRACE_INTERNAL_H
 
@@ -160,11 +160,11 @@ struct lucent_tracer {
     int camera_side_lights; /* lights left to camera paths that enter a light-path object */
     tr_light camera_light;
     double emit_centre[3], emit_radius; /* photons start on a disc of this radius about the centre */
-    double eps;                  /* ray offset from surfaces, mm */
-    bool has_matched;            /* some object is index matched (shadow rays must pass through it) */
-    const tr_light *walk_target; /* the strongest light with a direction (NULL: none) */
-    tr_field *fields;            /* one per object once built (NULL: the analog walk) */
-    double walk_strength;        /* the share of the fluence gradient the walk follows */
+    double eps;                         /* ray offset from surfaces, mm */
+    bool has_matched;                   /* some object is index matched (shadow rays must pass through it) */
+    const tr_light *walk_target;        /* the strongest light with a direction (NULL: none) */
+    tr_field *fields;                   /* one per object once built (NULL: the analog walk) */
+    double walk_strength;               /* the share of the fluence gradient the walk follows */
     struct tr_film *film;
 };
 
@@ -237,8 +237,8 @@ void tr_light_paths_setup(lucent_tracer *tr);
 
 /* One light path from a photon of `light` with power per channel beta (relative) whose connections to
  * the camera land in splats, scaled by scale (integrator.c). */
-void tr_trace_light_path(const lucent_tracer *tr, const tr_light *light, v3 o, v3 d, const double beta[3],
-                         double scale, struct lucent_rng *rng, struct tr_splats *splats, tr_stats *stats);
+void tr_trace_light_path(const lucent_tracer *tr, const tr_light *light, v3 o, v3 d, const double beta[3], double scale,
+                         struct lucent_rng *rng, struct tr_splats *splats, tr_stats *stats);
 
 /* Multiplies le (a camera-light sample's 1 / d^2 at boundary point y) by the camera's importance
  * there: a pixel is the mean radiance over its area A of the image plane at unit distance, so a

@@ -64,8 +64,8 @@ void tr_light_paths_setup(lucent_tracer *tr)
     bool any = false;
     for (int o = 0; o < tr->object_count; o++) {
         tr_object *ob = &tr->objects[o];
-        ob->light_paths = allowed && ob->boundary.kind == TR_BOUNDARY_ROUGH &&
-                          (mode == LUCENT_LIGHT_PATHS_ALL || ob->dense);
+        ob->light_paths =
+            allowed && ob->boundary.kind == TR_BOUNDARY_ROUGH && (mode == LUCENT_LIGHT_PATHS_ALL || ob->dense);
         any |= ob->light_paths;
     }
     double lo[3], hi[3];
@@ -225,7 +225,8 @@ static void fold(const lp_job *job, tr_film *f, double *image)
     memset(image, 0, n * 3 * sizeof *image);
     for (int ch = 0; ch < LP_CHUNKS; ch++)
         for (size_t i = 0; i < job->lists[ch].n; i++)
-            for (int c = 0; c < 3; c++) image[job->lists[ch].items[i].pixel * 3 + (size_t)c] += job->lists[ch].items[i].v[c];
+            for (int c = 0; c < 3; c++)
+                image[job->lists[ch].items[i].pixel * 3 + (size_t)c] += job->lists[ch].items[i].v[c];
     for (size_t p = 0; p < n; p++) {
         double *a = f->light + p * TR_FILM_ACC, y = 0;
         for (int c = 0; c < 3; c++) {
@@ -248,8 +249,8 @@ lucent_status tr_light_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *po
     job.lists = calloc(LP_CHUNKS, sizeof *job.lists);
     job.stats = calloc((size_t)threads, sizeof *job.stats);
     double *image = malloc((size_t)f->width * (size_t)f->height * 3 * sizeof *image);
-    lucent_status s = job.lists && job.stats && image ? LUCENT_OK
-                                                      : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory");
+    lucent_status s =
+        job.lists && job.stats && image ? LUCENT_OK : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory");
     if (s == LUCENT_OK) s = lucent_parallel_for(pool, photons, job.per_chunk, photon_chunk, &job);
     for (int ch = 0; s == LUCENT_OK && job.lists && ch < LP_CHUNKS; ch++)
         if (job.lists[ch].failed) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory for light paths");

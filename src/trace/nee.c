@@ -51,7 +51,10 @@ const tr_light *tr_path_pick(tr_path *p, double *ratio)
 /* A light path's connection reaches the camera through boundary point y: the radiance BTDF of that
  * direction, f(camera <- inside), is the one evaluated (f(inside <- camera)) over eta^2 (radiance
  * reciprocity, f(a <- b) / eta_a^2 = f(b <- a) / eta_b^2, Veach 1997 eq. 5.14). */
-static double camera_btdf_factor(const tr_path *p, const tr_boundary *b) { return p->to_camera ? 1.0 / (b->eta * b->eta) : 1.0; }
+static double camera_btdf_factor(const tr_path *p, const tr_boundary *b)
+{
+    return p->to_camera ? 1.0 / (b->eta * b->eta) : 1.0;
+}
 
 /* The point where an inside ray from x along w leaves object `object`, or false (a hole, another
  * object, or a face seen from its outer side). */
