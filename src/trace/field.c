@@ -67,16 +67,13 @@ typedef struct photon {
     int medium, channel;
 } photon;
 
-/* Emits a photon from light l toward the scene's bounding sphere (centre c, radius r). */
+/* Emits a photon from light l toward the scene's bounding sphere (emit_centre c, emit_radius r). */
 static bool emit(const tr_light *l, v3 c, double r, lucent_rng *rng, photon *ph)
 {
     double u1 = lucent_rng_uniform(rng), u2 = lucent_rng_uniform(rng);
     if (l->type == LUCENT_LIGHT_DIRECTIONAL) {
-        v3 t, b, a = l->toward;
-        lucent_basis(a, &t, &b);
-        double rho = r * sqrt(u1), phi = 2.0 * M_PI * u2;
-        ph->p = v3_add(v3_madd(c, a, 2.0 * r), v3_add(v3_scale(t, rho * cos(phi)), v3_scale(b, rho * sin(phi))));
-        ph->d = v3_neg(a);
+        ph->p = tr_disc_start(c, r, l->toward, u1, u2);
+        ph->d = v3_neg(l->toward);
     } else if (l->type == LUCENT_LIGHT_POINT || l->type == LUCENT_LIGHT_SPHERE) {
         ph->p = l->position;
         ph->d = lucent_around(v3_make(0, 0, 1), 1.0 - 2.0 * u1, 2.0 * M_PI * u2);
@@ -149,10 +146,8 @@ static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
     (void)thread;
     field_job *job = ctx;
     const lucent_tracer *tr = job->tr;
-    double lo[3], hi[3], *tally = job->tally + chunk * job->per_chunk;
-    lucent_scene_bounds(tr->scene, lo, hi);
-    v3 c = v3_scale(v3_add(v3_load(lo), v3_load(hi)), 0.5);
-    double r = 0.5 * v3_length(v3_sub(v3_load(hi), v3_load(lo))) * 1.01 + tr->eps;
+    double *tally = job->tally + chunk * job->per_chunk, r = tr->emit_radius;
+    v3 c = v3_load(tr->emit_centre);
     if (job->deadline > 0 && lucent_clock_seconds() >= job->deadline) return LUCENT_OK; /* the run's time limit */
     lucent_rng rng;
     lucent_rng_init(FIELD_SEED, chunk, &rng);

@@ -64,9 +64,6 @@ void tr_film_add_stats(tr_stats *into, const tr_stats *s);
  * after it, and a pass cut short is dropped whole (*cut). Nothing when no light path is served. */
 lucent_status tr_light_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *pool, double deadline, bool *cut);
 
-/* Photons in a pass of light paths (0: none served). */
-uint64_t tr_light_pass_photons(const lucent_tracer *tr);
-
 /* Rec. 709 luminance weights. */
 extern const double tr_film_luminance[3];
 

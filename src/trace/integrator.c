@@ -360,10 +360,9 @@ bool tr_trace_path(const lucent_tracer *tr, double px, double py, lucent_rng *rn
     return covered;
 }
 
-void tr_trace_light_path(const lucent_tracer *tr, const tr_light *light, v3 o, v3 d, const double beta[3], double scale,
-                         lucent_rng *rng, struct tr_splats *splats, tr_stats *stats)
+void tr_trace_light_path(const lucent_tracer *tr, v3 o, v3 d, const double beta[3], double scale, lucent_rng *rng,
+                         struct tr_splats *splats, tr_stats *stats)
 {
-    (void)light;
     tr_path p = {.tr = tr,
                  .rng = rng,
                  .stats = stats,

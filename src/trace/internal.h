@@ -168,6 +168,16 @@ struct lucent_tracer {
     struct tr_film *film;
 };
 
+/* A photon's start: uniform (u1, u2) on the disc of radius r about c + 2 r a, perpendicular to a. A
+ * photon leaving it along -a meets all of a scene in the sphere (c, r) (field.c, light_paths.c). */
+static inline v3 tr_disc_start(v3 c, double r, v3 a, double u1, double u2)
+{
+    v3 t, b;
+    lucent_basis(a, &t, &b);
+    double rho = r * sqrt(u1), phi = 2.0 * M_PI * u2;
+    return v3_add(v3_madd(c, a, 2.0 * r), v3_add(v3_scale(t, rho * cos(phi)), v3_scale(b, rho * sin(phi))));
+}
+
 /* ---- lights (lights.c) ---- */
 lucent_status tr_lights_build(lucent_tracer *tr);
 
@@ -175,11 +185,15 @@ lucent_status tr_lights_build(lucent_tracer *tr);
  * leaves the light-path lights to the light paths picks among the others (select_cam). */
 const tr_light *tr_light_pick(const lucent_tracer *tr, double u, bool camera_side);
 
-/* The pick probability of l (camera_side as above). */
-static inline double tr_light_select(const tr_light *l, bool camera_side)
+/* The factor by which a camera-side path's pick probability of l differs from l->select, the
+ * probability folded into tr_light_sample_from's and tr_light_pdf's densities (1 off the camera side). */
+static inline double tr_light_pick_ratio(const tr_light *l, bool camera_side)
 {
-    return camera_side ? l->select_cam : l->select;
+    return camera_side ? l->select_cam / l->select : 1.0;
 }
+
+/* Rec. 709 luminance of an RGB triple. */
+static inline double tr_luminance(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
 
 typedef struct tr_light_sample {
     v3 w;         /* unit direction toward the light */
@@ -235,18 +249,18 @@ struct tr_splats;
  * objects are built). */
 void tr_light_paths_setup(lucent_tracer *tr);
 
-/* One light path from a photon of `light` with power per channel beta (relative) whose connections to
+/* One light path from a photon leaving o along d with power per channel beta (relative) whose connections to
  * the camera land in splats, scaled by scale (integrator.c). */
-void tr_trace_light_path(const lucent_tracer *tr, const tr_light *light, v3 o, v3 d, const double beta[3], double scale,
+void tr_trace_light_path(const lucent_tracer *tr, v3 o, v3 d, const double beta[3], double scale,
                          struct lucent_rng *rng, struct tr_splats *splats, tr_stats *stats);
 
 /* Multiplies le (a camera-light sample's 1 / d^2 at boundary point y) by the camera's importance
  * there: a pixel is the mean radiance over its area A of the image plane at unit distance, so a
- * direction at angle theta off the axis weighs 1 / (A cos^3 theta) (light_paths.c). False when y is
- * outside the view. */
-bool tr_light_paths_importance(const lucent_tracer *tr, v3 y, double le[3]);
+ * direction at angle theta off the axis weighs 1 / (A cos^3 theta) (light_paths.c). Returns the
+ * pixel (row-major index) where y appears, or -1 when it is outside the view (le untouched). */
+long tr_light_paths_importance(const lucent_tracer *tr, v3 y, double le[3]);
 
-/* Adds value (RGB) at image point y of the camera's view (light_paths.c); nothing when y is outside. */
-void tr_splat(const lucent_tracer *tr, struct tr_splats *s, v3 y, const double value[3]);
+/* Adds value (RGB) to pixel `pixel` of a pass's splats (light_paths.c). */
+void tr_splat(struct tr_splats *s, long pixel, const double value[3]);
 
 #endif

@@ -38,8 +38,6 @@
 enum { LP_CHUNKS = 64 };
 #define LP_STREAM (1ull << 62) /* photon streams: (LP_STREAM | pass << 32 | photon), apart from the camera's */
 
-static double luminance(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
-
 /* ---- which lights and objects ---- */
 
 static bool light_eligible(const tr_light *l)
@@ -76,8 +74,8 @@ void tr_light_paths_setup(lucent_tracer *tr)
     bool lights = false;
     for (int i = 0; i < tr->light_count; i++) {
         tr_light *l = &tr->lights[i];
-        l->light_paths = any && light_eligible(l) && luminance(l->radiance) > 0;
-        l->power = l->light_paths ? luminance(l->radiance) * emit_factor(tr, l) : 0;
+        l->light_paths = any && light_eligible(l) && tr_luminance(l->radiance) > 0;
+        l->power = l->light_paths ? tr_luminance(l->radiance) * emit_factor(tr, l) : 0;
         lights |= l->light_paths;
         if (!l->light_paths) rest += l->select;
     }
@@ -101,17 +99,17 @@ void tr_light_paths_setup(lucent_tracer *tr)
 
 /* ---- the camera's importance and the splats ---- */
 
-bool tr_light_paths_importance(const lucent_tracer *tr, v3 y, double le[3])
+long tr_light_paths_importance(const lucent_tracer *tr, v3 y, double le[3])
 {
     const lucent_camera *cam = &tr->scene->camera;
     int w = tr->render.view.width, h = tr->render.view.height;
     double px, py, cosa, p[3];
     v3_store(y, p);
-    if (!lucent_camera_project(cam, w, h, p, &px, &py, &cosa)) return false;
-    double t = tan(0.5 * cam->fov_y * M_PI / 180), area = (2.0 * t * w / h / w) * (2.0 * t / h);
-    double importance = 1.0 / (area * cosa * cosa * cosa);
+    if (!lucent_camera_project(cam, w, h, p, &px, &py, &cosa)) return -1;
+    double side = 2.0 * tan(0.5 * cam->fov_y * M_PI / 180) / h; /* a pixel's side at unit distance */
+    double importance = 1.0 / (side * side * cosa * cosa * cosa);
     for (int c = 0; c < 3; c++) le[c] *= importance;
-    return true;
+    return (long)py * w + (long)px;
 }
 
 typedef struct splat_item {
@@ -125,14 +123,8 @@ struct tr_splats {
     bool failed; /* out of memory */
 };
 
-void tr_splat(const lucent_tracer *tr, struct tr_splats *s, v3 y, const double value[3])
+void tr_splat(struct tr_splats *s, long pixel, const double value[3])
 {
-    int w = tr->render.view.width, h = tr->render.view.height;
-    double px, py, cosa, p[3];
-    v3_store(y, p);
-    if (!lucent_camera_project(&tr->scene->camera, w, h, p, &px, &py, &cosa)) return;
-    int x = (int)px, yy = (int)py;
-    if (x < 0 || x >= w || yy < 0 || yy >= h) return;
     if (s->n == s->cap) {
         size_t cap = s->cap ? 2 * s->cap : 1024;
         splat_item *grown = realloc(s->items, cap * sizeof *grown);
@@ -143,7 +135,7 @@ void tr_splat(const lucent_tracer *tr, struct tr_splats *s, v3 y, const double v
         s->items = grown, s->cap = cap;
     }
     splat_item *it = &s->items[s->n++];
-    it->pixel = (uint32_t)yy * (uint32_t)w + (uint32_t)x;
+    it->pixel = (uint32_t)pixel;
     memcpy(it->v, value, sizeof it->v);
 }
 
@@ -183,10 +175,8 @@ static void emit(const lucent_tracer *tr, const tr_light *l, lucent_rng *rng, v3
         *d = v3_neg(l->toward);
     else
         *d = v3_neg(lucent_around(l->toward, 1.0 - u1 * (1.0 - l->cos_cone), 2.0 * M_PI * u2));
-    v3 t, b, c = v3_load(tr->emit_centre);
-    lucent_basis(*d, &t, &b);
-    double r = tr->emit_radius, rho = r * sqrt(lucent_rng_uniform(rng)), phi = 2.0 * M_PI * lucent_rng_uniform(rng);
-    *o = v3_add(v3_madd(c, *d, -2.0 * r), v3_add(v3_scale(t, rho * cos(phi)), v3_scale(b, rho * sin(phi))));
+    double u3 = lucent_rng_uniform(rng), u4 = lucent_rng_uniform(rng);
+    *o = tr_disc_start(v3_load(tr->emit_centre), tr->emit_radius, v3_neg(*d), u3, u4);
 }
 
 static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
@@ -204,13 +194,14 @@ static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
         const tr_light *l = emitter(tr, job->total_power, lucent_rng_uniform(&rng));
         v3 o, d;
         emit(tr, l, &rng, &o, &d);
-        double y = luminance(l->radiance), beta[3] = {l->radiance[0] / y, l->radiance[1] / y, l->radiance[2] / y};
-        tr_trace_light_path(tr, l, o, d, beta, scale, &rng, &job->lists[chunk], &job->stats[thread]);
+        double y = tr_luminance(l->radiance), beta[3] = {l->radiance[0] / y, l->radiance[1] / y, l->radiance[2] / y};
+        tr_trace_light_path(tr, o, d, beta, scale, &rng, &job->lists[chunk], &job->stats[thread]);
     }
     return LUCENT_OK;
 }
 
-uint64_t tr_light_pass_photons(const lucent_tracer *tr)
+/* Photons in a pass of light paths (0: none served). */
+static uint64_t pass_photons(const lucent_tracer *tr)
 {
     if (!tr->light_paths) return 0;
     double n = tr->render.trace.photons * (double)tr->render.view.width * (double)tr->render.view.height;
@@ -241,7 +232,7 @@ static void fold(const lp_job *job, tr_film *f, double *image)
 lucent_status tr_light_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *pool, double deadline, bool *cut)
 {
     *cut = false;
-    uint64_t photons = tr_light_pass_photons(tr);
+    uint64_t photons = pass_photons(tr);
     if (!photons) return LUCENT_OK;
     int threads = pool ? lucent_pool_threads(pool) : 1;
     lp_job job = {.tr = tr, .pass = f->light_passes, .per_chunk = photons / LP_CHUNKS, .deadline = deadline};

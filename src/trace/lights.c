@@ -15,8 +15,6 @@
 
 #include "trace/internal.h"
 
-static double luminance(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
-
 /* 1 - cos a, accurate for small a. */
 static double one_minus_cos(double a)
 {
@@ -50,7 +48,7 @@ static void build_one(const lucent_light *in, int index, tr_light *l)
 static double power_proxy(const lucent_light *in, v3 centre, double radius)
 {
     double c[3] = {in->color[0] * in->intensity, in->color[1] * in->intensity, in->color[2] * in->intensity};
-    double y = luminance(c);
+    double y = tr_luminance(c);
     if (in->type == LUCENT_LIGHT_ENVIRONMENT) return M_PI * y;
     if (in->type == LUCENT_LIGHT_DIRECTIONAL) return y;
     double d = fmax(v3_length(v3_sub(v3_load(in->position), centre)), fmax(radius, 1e-3));
@@ -93,7 +91,7 @@ const tr_light *tr_light_pick(const lucent_tracer *tr, double u, bool camera_sid
     if (tr->light_count == 0 || !(cdf[tr->light_count - 1] > 0)) return NULL;
     u *= cdf[tr->light_count - 1];
     for (int i = 0; i < tr->light_count - 1; i++)
-        if (u < cdf[i] && tr_light_select(&tr->lights[i], camera_side) > 0) return &tr->lights[i];
+        if (u < cdf[i]) return &tr->lights[i];
     return &tr->lights[tr->light_count - 1];
 }
 

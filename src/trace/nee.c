@@ -25,7 +25,7 @@ void tr_path_add(tr_path *p, const double v[3])
     for (int c = 0; c < 3; c++) p->L[c] += v[c];
 }
 
-void tr_path_add_at(tr_path *p, v3 y, const double v[3])
+void tr_path_add_at(tr_path *p, long pixel, const double v[3])
 {
     if (!p->to_camera) {
         tr_path_add(p, v);
@@ -36,7 +36,7 @@ void tr_path_add_at(tr_path *p, v3 y, const double v[3])
         return;
     }
     double s[3] = {v[0] * p->splat_scale, v[1] * p->splat_scale, v[2] * p->splat_scale};
-    tr_splat(p->tr, p->splats, y, s);
+    tr_splat(p->splats, pixel, s);
 }
 
 const tr_light *tr_path_pick(tr_path *p, double *ratio)
@@ -44,7 +44,7 @@ const tr_light *tr_path_pick(tr_path *p, double *ratio)
     *ratio = 1.0;
     if (p->to_camera) return &p->tr->camera_light;
     const tr_light *l = tr_light_pick(p->tr, tr_u(p), p->camera_side);
-    if (l && p->camera_side) *ratio = l->select_cam / l->select;
+    if (l) *ratio = tr_light_pick_ratio(l, p->camera_side);
     return l;
 }
 
@@ -68,6 +68,7 @@ static bool exit_point(const lucent_tracer *tr, v3 x, v3 w, int object, tr_hit *
 typedef struct connection {
     tr_light_sample ls;
     double f, pb, cos, T[3], Tw[3];
+    long pixel; /* a light path's: where the connection lands in the image */
 } connection;
 
 static bool connect_boundary(tr_path *p, const tr_light *l, double ratio, v3 y, v3 n, const tr_boundary *b, v3 o,
@@ -76,7 +77,8 @@ static bool connect_boundary(tr_path *p, const tr_light *l, double ratio, v3 y, 
     const lucent_tracer *tr = p->tr;
     if (!tr_light_sample_from(l, y, n, tr_u(p), tr_u(p), &c->ls)) return false;
     c->ls.pdf *= ratio;
-    if (p->to_camera && !tr_light_paths_importance(tr, y, c->ls.le)) return false; /* outside the view */
+    c->pixel = p->to_camera ? tr_light_paths_importance(tr, y, c->ls.le) : -1;
+    if (p->to_camera && c->pixel < 0) return false; /* outside the view */
     c->f = tr_bsdf_eval(b, n, o, c->ls.w, &c->pb) * camera_btdf_factor(p, b);
     if (!(c->f > 0)) return false;
     c->cos = fabs(v3_dot(c->ls.w, n));
@@ -134,7 +136,7 @@ void tr_nee_through(tr_path *p, tr_guide *g)
     den /= 3.0;
     if (!(den > 0)) return;
     for (int k = 0; k < 3; k++) v[k] /= den;
-    tr_path_add_at(p, y, v);
+    tr_path_add_at(p, c.pixel, v);
 }
 
 void tr_nee_volume_matched(tr_path *p, v3 x)
@@ -185,14 +187,14 @@ void tr_nee_surface(tr_path *p, v3 y, v3 n, const tr_boundary *b, bool inside)
     den /= 3.0;
     if (!(den > 0)) return;
     for (int k = 0; k < 3; k++) v[k] /= den;
-    tr_path_add_at(p, y, v);
+    tr_path_add_at(p, c.pixel, v);
 }
 
 double tr_mis_hit_weight(tr_path *p, const tr_light *l, v3 w)
 {
     tr_mis *m = &p->mis;
     if (m->kind == MIS_NONE) return 1.0;
-    double pl = tr_light_pdf(l, m->p, m->n, w) * (p->camera_side ? l->select_cam / l->select : 1.0);
+    double pl = tr_light_pdf(l, m->p, m->n, w) * tr_light_pick_ratio(l, p->camera_side);
     if (!(pl > 0)) return 1.0;
     double g = m->has_guide ? guide_term(p, &m->guide, m->w, m->walk_h, l) : 0.0, walk = 0, other = 0;
     for (int k = 0; k < 3; k++) {

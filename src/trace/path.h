@@ -103,9 +103,9 @@ static inline void tr_path_transform(const tr_path *p, int object, v3 x, tr_tran
         tr_field_lookup(p->tr, object, x, dest);
 }
 
-/* Adds value_c to the estimate when finite (a light path: at image point y). */
+/* Adds value_c to the estimate when finite; tr_path_add_at: for a light path, to pixel `pixel` of its splats. */
 void tr_path_add(tr_path *p, const double value[3]);
-void tr_path_add_at(tr_path *p, v3 y, const double value[3]);
+void tr_path_add_at(tr_path *p, long pixel, const double value[3]);
 
 /* The light a next-event estimate targets: the camera for a light path, else a light picked (the
  * camera side's lights once it left the others to the light paths); *ratio is the pick probability

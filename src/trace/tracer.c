@@ -168,8 +168,9 @@ static lucent_status resolve(const lucent_tracer *tr, const lucent_trace_desc *i
  * every object's subsurface light (camera paths that enter one end there). */
 static bool camera_walks(const lucent_tracer *tr)
 {
+    if (tr->camera_side_lights > 0) return tr->object_count > 0;
     for (int o = 0; o < tr->object_count; o++)
-        if (!tr->objects[o].light_paths || tr->camera_side_lights > 0) return true;
+        if (!tr->objects[o].light_paths) return true;
     return false;
 }
 
