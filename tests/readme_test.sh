@@ -6,7 +6,8 @@
 # the tree), with the build's lucent first on PATH. An example may use files an earlier example wrote.
 #
 # Sizes: unless LUCENT_README_FULL=1, small-size options are appended per subcommand (the table
-# below: later options win), so that the whole README runs in a minute or two. A line that cannot
+# below: later options win; tsd's texture is 256 texels a side: at 2048, one tsd frame takes 18 s on
+# llvmpipe), so that the whole README runs in a minute or two. A line that cannot
 # run here says `readme-test: skip (why)` in its comment; one that needs the fetched meshes is skipped when
 # data/meshes lacks them. Usage: readme_test.sh LUCENT SOURCE_DIR [CACHE_DIR]
 set -u
@@ -21,9 +22,9 @@ export PATH=$work/bin:$PATH LUCENT_CACHE_DIR=${3:-$work/cache}
 
 small_options() { # SUBCOMMAND: what makes its example small
   case $1 in
-    render) echo "--set render.width=32 --set render.height=24 --set render.shadow_map_size=256" ;;
+    render) echo "--set render.width=32 --set render.height=24 --set render.shadow_map_size=256 --set render.tsd_size=256" ;;
     trace) echo "--set render.width=32 --set render.height=24 --spp 2 --time 5" ;;
-    compare) echo "--set render.width=32 --set render.height=24 --set render.shadow_map_size=256 --spp 2 --time 5" ;;
+    compare) echo "--set render.width=32 --set render.height=24 --set render.shadow_map_size=256 --set render.tsd_size=256 --spp 2 --time 5 --frames 1" ;;
     profile) echo "--photons 5000" ;;
     kernel) echo "--photons 5000" ;;
     kernel-eval) echo "--size 32" ;;

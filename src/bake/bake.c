@@ -165,7 +165,7 @@ static lucent_status bake_sigma0(const lucent_material *m, const lucent_bake_des
     lucent_cdrf_variant v = (lucent_cdrf_variant)d->settings->cdrf.variant;
     if ((b->have & LUCENT_BAKE_SIGMA0) && !strcmp(b->sigma0_key, lucent_cdrf_variant_name(v))) return LUCENT_OK;
     b->have &= ~(unsigned)LUCENT_BAKE_SIGMA0, b->sigma0_key[0] = '\0';
-    char key[640];
+    char key[1024]; /* room for the longest material key (511) and radius list (127) */
     sigma0_cache_key(m, v, d->sigma0_photons, key, sizeof key);
     b->sigma0_cached = lucent_cache_get(cache, "sigma0", key, "sigma0_mm", 3, b->sigma0) &&
                        lucent_cache_get(cache, "sigma0", key, "kd", 3, b->kd);
