@@ -21,13 +21,19 @@
 
 static bool has_target(const tr_guide *g) { return g->light && g->light->type != LUCENT_LIGHT_ENVIRONMENT; }
 
+void tr_guide_select(tr_guide *g, const tr_light *l)
+{
+    if (g->light == l) return;
+    g->light = l;
+    g->prepared = g->has_n0 = false;
+}
+
 void tr_guide_prepare(const lucent_tracer *tr, tr_guide *g, const tr_light *l)
 {
-    if (g->light == l && g->prepared) return;
+    tr_guide_select(g, l);
+    if (g->prepared) return;
     v3 from = g->surface ? v3_madd(g->x, g->n, -tr->eps) : g->x;
-    g->light = l;
     g->prepared = true;
-    g->has_n0 = false;
     if (!has_target(g)) return;
     g->toward = l->type == LUCENT_LIGHT_DIRECTIONAL ? l->toward : v3_normalize(v3_sub(l->position, g->x));
     tr_hit h;
@@ -40,6 +46,8 @@ void tr_guide_prepare(const lucent_tracer *tr, tr_guide *g, const tr_light *l)
 }
 
 static double phase_share(const tr_guide *g) { return has_target(g) ? P_PHASE : 1.0; }
+
+bool tr_guide_draw_needs_ray(const tr_guide *g, double u0) { return u0 >= phase_share(g); }
 
 bool tr_guide_sample(const lucent_tracer *tr, const tr_guide *g, double u0, double u1, double u2, v3 *w)
 {

@@ -18,10 +18,18 @@ typedef struct tr_guide {
     v3 toward, n0, y0; /* y0: the boundary point met toward the light */
 } tr_guide;
 
+/* Makes l the light of g (forgetting what was prepared for another light); no ray. */
+void tr_guide_select(tr_guide *g, const tr_light *l);
+
 /* Readies g for light l (one ray from x toward the light, unless already done for l). */
 void tr_guide_prepare(const lucent_tracer *tr, tr_guide *g, const tr_light *l);
 
-/* Draws an inside direction w from q; false when the draw is lost (it counts as zero). */
+/* Whether tr_guide_sample's draw for u0 is the lobe's, which needs g prepared; the walk-like share
+ * (phase function or BSDF) needs only the light selected. */
+bool tr_guide_draw_needs_ray(const tr_guide *g, double u0);
+
+/* Draws an inside direction w from q (g selected, and prepared when tr_guide_draw_needs_ray); false
+ * when the draw is lost (it counts as zero). */
 bool tr_guide_sample(const lucent_tracer *tr, const tr_guide *g, double u0, double u1, double u2, v3 *w);
 
 /* q(w), solid angle. */

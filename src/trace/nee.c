@@ -109,17 +109,21 @@ void tr_nee_through(tr_path *p, tr_guide *g)
     double ratio;
     const tr_light *l = tr_path_pick(p, &ratio);
     if (!l) return;
-    tr_guide_prepare(tr, g, l);
     v3 w, from = g->surface ? v3_madd(g->x, g->n, -tr->eps) : g->x;
     double u0 = tr_u(p), u1 = tr_u(p), u2 = tr_u(p);
     tr_hit h;
     connection c;
-    if (g->has_n0) tr_path_known(p, g->y0);
+    /* the ray toward the light that prepares the guide waits until a walk-like draw survives the exit
+     * roulette (q(w) needs it only then): the same estimate, fewer rays */
+    tr_guide_select(g, l);
+    if (tr_guide_draw_needs_ray(g, u0)) tr_guide_prepare(tr, g, l);
     if (!tr_guide_sample(tr, g, u0, u1, u2, &w) || !exit_point(tr, from, w, g->object, &h)) return;
     v3 y = v3_madd(from, w, h.t);
     tr_path_known(p, y);
     double weight = p->nee_weight;
     if (!exit_roulette(p, ob, h.t, &weight)) return;
+    tr_guide_prepare(tr, g, l);
+    if (g->has_n0) tr_path_known(p, g->y0);
     if (!connect_boundary(p, l, ratio, y, h.n, &ob->boundary, v3_neg(w), &c)) return;
     tr_transform tf;
     tr_path_transform(p, g->object, from, &tf);
