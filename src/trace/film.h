@@ -64,9 +64,6 @@ void tr_film_add_stats(tr_stats *into, const tr_stats *s);
  * after it, and a pass cut short is dropped whole (*cut). Nothing when no light path is served. */
 lucent_status tr_light_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *pool, double deadline, bool *cut);
 
-/* Rec. 709 luminance weights. */
-extern const double tr_film_luminance[3];
-
 /* The RMS over object pixels of se(Y) / Y (INFINITY when there is none), over every rank's pixels. */
 lucent_status tr_film_error_rms(const tr_film *f, double *dest);
 

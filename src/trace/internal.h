@@ -192,8 +192,12 @@ static inline double tr_light_pick_ratio(const tr_light *l, bool camera_side)
     return camera_side ? l->select_cam / l->select : 1.0;
 }
 
-/* Rec. 709 luminance of an RGB triple. */
-static inline double tr_luminance(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+/* Rec. 709 luminance weights (film.c), and the luminance of an RGB triple. */
+extern const double tr_film_luminance[3];
+static inline double tr_luminance(const double c[3])
+{
+    return tr_film_luminance[0] * c[0] + tr_film_luminance[1] * c[1] + tr_film_luminance[2] * c[2];
+}
 
 typedef struct tr_light_sample {
     v3 w;         /* unit direction toward the light */
