@@ -67,12 +67,12 @@ typedef struct photon {
     int medium, channel;
 } photon;
 
-/* Emits a photon from light l toward the scene's bounding sphere (emit_centre c, emit_radius r). */
-static bool emit(const tr_light *l, v3 c, double r, lucent_rng *rng, photon *ph)
+/* Emits a photon from light l toward the scene's bounding sphere (the tracer's emit centre and radius). */
+static bool emit(const lucent_tracer *tr, const tr_light *l, lucent_rng *rng, photon *ph)
 {
     double u1 = lucent_rng_uniform(rng), u2 = lucent_rng_uniform(rng);
     if (l->type == LUCENT_LIGHT_DIRECTIONAL) {
-        ph->p = tr_disc_start(c, r, l->toward, u1, u2);
+        ph->p = tr_disc_start(v3_load(tr->emit_centre), tr->emit_radius, l->toward, u1, u2);
         ph->d = v3_neg(l->toward);
     } else if (l->type == LUCENT_LIGHT_POINT || l->type == LUCENT_LIGHT_SPHERE) {
         ph->p = l->position;
@@ -146,14 +146,13 @@ static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
     (void)thread;
     field_job *job = ctx;
     const lucent_tracer *tr = job->tr;
-    double *tally = job->tally + chunk * job->per_chunk, r = tr->emit_radius;
-    v3 c = v3_load(tr->emit_centre);
+    double *tally = job->tally + chunk * job->per_chunk;
     if (job->deadline > 0 && lucent_clock_seconds() >= job->deadline) return LUCENT_OK; /* the run's time limit */
     lucent_rng rng;
     lucent_rng_init(FIELD_SEED, chunk, &rng);
     for (uint64_t i = begin; i < end; i++) {
         photon ph = {.channel = (int)(i % 3)};
-        if (emit(pick_emitter(tr, lucent_rng_uniform(&rng)), c, r, &rng, &ph))
+        if (emit(tr, pick_emitter(tr, lucent_rng_uniform(&rng)), &rng, &ph))
             trace_photon(tr, tr->fields, tally, &ph, &rng);
     }
     return LUCENT_OK;
