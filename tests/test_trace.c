@@ -571,27 +571,15 @@ TEST(deep_nee_roulette_is_unbiased)
     lucent_scene_destroy(sc);
 }
 
-/* Light paths (photons from the lights connected to the camera through the boundary) and camera paths
- * estimate the same image: on a dense sphere lit by a delta sun, a sun disc and the environment, the
- * light paths' share plus the camera paths' rest against camera paths alone (light_paths off),
- * independent seeds: the pixels' differences are unit normal in their standard errors, and the pooled
- * difference of 8 independent batches each is within 4.5 of its standard error (Student's t with 14
- * degrees of freedom: p = 0.0005 two-sided). The light paths' image depends on the seed and the
- * passes only (1 and 2 threads, 5 + 3 and 8 passes: bit for bit). */
-TEST(light_paths_agree_with_camera_paths)
+/* Renders sc in BATCHES independent batches of total_spp / BATCHES samples per pixel with light paths
+ * (auto) and without (off), and checks
+ * that the two estimate the same image: chi2 per degree of freedom of the batches' merged means
+ * between 0.7 and 1.5, the pooled difference within 4.5 of its standard error from the batches'
+ * spread, and photons traced only with light paths. */
+static void check_light_paths_agree(lucent_scene *sc, int total_spp, lucent_pool *pool)
 {
-    lucent_scene *sc = sphere_scene("{\"units\": \"mm^-1\", \"sigma_a\": [0.05, 0.08, 0.1], \"sigma_s\": [20, 18, 16], "
-                                    "\"g\": 0, \"eta\": 1.5}",
-                                    "{\"type\": \"directional\", \"direction\": [-1, -0.2, -0.3], \"intensity\": 2},"
-                                    " {\"type\": \"directional\", \"direction\": [0.3, 0.5, -1], \"intensity\": 1,"
-                                    " \"angular_radius\": 0.1},"
-                                    " {\"type\": \"environment\", \"intensity\": 0.1}",
-                                    32, ", \"roughness\": 0.3");
-    lucent_pool *pool = lucent_pool_create(2);
-    lucent_trace_result cams[BATCHES] = {{0}}, lps[BATCHES] = {{0}}, one = {0}, split = {0};
-    CHECK(sc != NULL);
-    if (!sc) return;
-    int spp = 160 / SLOW / BATCHES > 0 ? 160 / SLOW / BATCHES : 1;
+    lucent_trace_result cams[BATCHES] = {{0}}, lps[BATCHES] = {{0}};
+    int spp = total_spp / SLOW / BATCHES > 0 ? total_spp / SLOW / BATCHES : 1;
     sc->render.trace.light_paths = LUCENT_LIGHT_PATHS_OFF;
     render_batches(sc, NULL, spp, 11, pool, cams);
     sc->render.trace.light_paths = LUCENT_LIGHT_PATHS_AUTO;
@@ -615,6 +603,30 @@ TEST(light_paths_agree_with_camera_paths)
     CHECK_MSG(fabs(zb) < 4.5, "pooled z over batches %.2f", zb);
     CHECK_MSG(lp->cost.photons > 0 && cam->cost.photons == 0, "light paths: %llu photons with, %llu without",
               (unsigned long long)lp->cost.photons, (unsigned long long)cam->cost.photons);
+    for (int k = 0; k < BATCHES; k++) lucent_trace_result_free(&cams[k]), lucent_trace_result_free(&lps[k]);
+}
+
+/* Light paths (photons from the lights connected to the camera through the boundary) and camera paths
+ * estimate the same image: on a dense sphere lit by a delta sun, a sun disc and the environment, the
+ * light paths' share plus the camera paths' rest against camera paths alone (light_paths off),
+ * independent seeds: the pixels' differences are unit normal in their standard errors, and the pooled
+ * difference of 8 independent batches each is within 4.5 of its standard error (Student's t with 14
+ * degrees of freedom: p = 0.0005 two-sided). The light paths' image depends on the seed and the
+ * passes only (1 and 2 threads, 5 + 3 and 8 passes: bit for bit). */
+TEST(light_paths_agree_with_camera_paths)
+{
+    lucent_scene *sc = sphere_scene("{\"units\": \"mm^-1\", \"sigma_a\": [0.05, 0.08, 0.1], \"sigma_s\": [20, 18, 16], "
+                                    "\"g\": 0, \"eta\": 1.5}",
+                                    "{\"type\": \"directional\", \"direction\": [-1, -0.2, -0.3], \"intensity\": 2},"
+                                    " {\"type\": \"directional\", \"direction\": [0.3, 0.5, -1], \"intensity\": 1,"
+                                    " \"angular_radius\": 0.1},"
+                                    " {\"type\": \"environment\", \"intensity\": 0.1}",
+                                    32, ", \"roughness\": 0.3");
+    lucent_pool *pool = lucent_pool_create(2);
+    lucent_trace_result one = {0}, split = {0};
+    CHECK(sc != NULL);
+    if (!sc) return;
+    check_light_paths_agree(sc, 160, pool);
     lucent_tracer *tr = NULL;
     CHECK_OK(render(sc, NULL, 8, 12, NULL, &one));
     CHECK_OK(lucent_tracer_create(sc, NULL, &tr));
@@ -624,8 +636,25 @@ TEST(light_paths_agree_with_camera_paths)
     CHECK_MSG(same_image(one.image, split.image) && same_image(one.variance, split.variance),
               "light paths: 1 thread and 8 passes differ from 2 threads and 5 + 3");
     lucent_tracer_destroy(tr);
-    for (int k = 0; k < BATCHES; k++) lucent_trace_result_free(&cams[k]), lucent_trace_result_free(&lps[k]);
     lucent_trace_result_free(&one), lucent_trace_result_free(&split);
+    lucent_pool_destroy(pool);
+    lucent_scene_destroy(sc);
+}
+
+/* The same for point lights: one outside the scene's bounding sphere (photons into the cone that
+ * holds it) and one inside it, 0.7 mm off the surface (photons in every direction). 480 samples per
+ * pixel: the pooled ratio's standard error is about 0.7%, so that a 5% error in the photons' power
+ * is 7 of it (at 160, 1.2%: a deliberate 5% error gave z 3.5). */
+TEST(light_paths_agree_for_point_lights)
+{
+    lucent_scene *sc = sphere_scene("{\"units\": \"mm^-1\", \"sigma_a\": [0.05, 0.08, 0.1], \"sigma_s\": [20, 18, 16], "
+                                    "\"g\": 0, \"eta\": 1.5}",
+                                    "{\"type\": \"point\", \"position\": [-3, 1, 2], \"intensity\": 20},"
+                                    " {\"type\": \"point\", \"position\": [0, 1.7, 0.3], \"intensity\": 0.5}",
+                                    32, ", \"roughness\": 0.3");
+    lucent_pool *pool = lucent_pool_create(2);
+    CHECK(sc != NULL);
+    if (sc) check_light_paths_agree(sc, 480, pool);
     lucent_pool_destroy(pool);
     lucent_scene_destroy(sc);
 }
@@ -859,4 +888,5 @@ TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_ad
           TEST_ENTRY(refuses_delta_lights_through_smooth_boundaries), TEST_ENTRY(meshes_with_holes_terminate),
           TEST_ENTRY(point_clouds_are_skipped), TEST_ENTRY(bad_input_is_named),
           TEST_ENTRY(distance_bounded_flights_change_nothing), TEST_ENTRY(distance_bound_is_the_distance),
-          TEST_ENTRY(deep_nee_roulette_is_unbiased), TEST_ENTRY(light_paths_agree_with_camera_paths))
+          TEST_ENTRY(deep_nee_roulette_is_unbiased), TEST_ENTRY(light_paths_agree_with_camera_paths),
+          TEST_ENTRY(light_paths_agree_for_point_lights))

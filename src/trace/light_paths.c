@@ -20,10 +20,11 @@
  * boundary toward the camera, and everything after it, stays with the camera paths.
  *
  * Served: with render.light_paths auto, the dense objects with a rough boundary (tr_object.dense);
- * lights: directional ones (sun discs included) and the environment; not with the comparison modes
- * (boundary_nee_only, plain_flights, nee_every_vertex) or under MPI. Each pass traces
- * render.photons photons per pixel, drawn from the lights in proportion to their power through a
- * disc that covers the scene; a pass's connections make one image, and its estimate and variance per
+ * lights: directional ones (sun discs included), point lights and the environment; not with the
+ * comparison modes (boundary_nee_only, plain_flights, nee_every_vertex) or under MPI. Each pass
+ * traces render.photons photons per pixel, drawn from the lights in proportion to their power toward
+ * the scene (through a disc that covers it; from a point light, into the cone that holds its bounding
+ * sphere); a pass's connections make one image, and its estimate and variance per
  * pixel come from those per-pass images (film.c), added to the camera paths' (independent).
  * Connections are kept per chunk of photons and added in chunk order, so the image depends on the
  * seed and the number of passes only (not on the thread count). */
@@ -42,13 +43,28 @@ enum { LP_CHUNKS = 64 };
 
 static bool light_eligible(const tr_light *l)
 {
-    return l->type == LUCENT_LIGHT_DIRECTIONAL || l->type == LUCENT_LIGHT_ENVIRONMENT;
+    return l->type == LUCENT_LIGHT_DIRECTIONAL || l->type == LUCENT_LIGHT_ENVIRONMENT || l->type == LUCENT_LIGHT_POINT;
 }
 
-/* Power through the emission disc per unit of the light's radiance (directional: irradiance). */
+/* 1 - cos of the half-angle of the cone from point light l that holds the scene's bounding sphere (2:
+ * every direction, when the light lies within the sphere). */
+static double point_cone(const lucent_tracer *tr, const tr_light *l, v3 *axis)
+{
+    v3 to = v3_sub(v3_load(tr->emit_centre), l->position);
+    double d = v3_length(to), R = tr->emit_radius;
+    *axis = d > 0 ? v3_scale(to, 1.0 / d) : v3_make(0, 0, 1);
+    if (!(d > R)) return 2.0;
+    double sin2 = (R / d) * (R / d);
+    return sin2 / (1.0 + sqrt(1.0 - sin2)); /* 1 - cos, accurate for small angles */
+}
+
+/* Power emitted toward the scene per unit of the light's radiance (directional: irradiance, through
+ * the emission disc; point: intensity, into the cone that holds the scene). */
 static double emit_factor(const lucent_tracer *tr, const tr_light *l)
 {
     double disc = M_PI * tr->emit_radius * tr->emit_radius;
+    v3 axis;
+    if (l->type == LUCENT_LIGHT_POINT) return 2.0 * M_PI * point_cone(tr, l, &axis);
     if (l->type == LUCENT_LIGHT_ENVIRONMENT) return 4.0 * M_PI * disc;
     return l->delta ? disc : l->solid_angle * disc;
 }
@@ -165,10 +181,18 @@ static const tr_light *emitter(const lucent_tracer *tr, double total, double u)
 
 /* A photon from light l: its direction (directional: toward the scene, uniformly in a sun disc's
  * cone; environment: uniform over the sphere) and a start uniform on the disc of radius emit_radius
- * perpendicular to it, 2 radii before the centre (all of the scene lies behind the disc). */
+ * perpendicular to it, 2 radii before the centre (all of the scene lies behind the disc); from a point
+ * light, its position and a direction uniform in the cone that holds the scene's bounding sphere. */
 static void emit(const lucent_tracer *tr, const tr_light *l, lucent_rng *rng, v3 *o, v3 *d)
 {
     double u1 = lucent_rng_uniform(rng), u2 = lucent_rng_uniform(rng);
+    if (l->type == LUCENT_LIGHT_POINT) {
+        v3 axis;
+        double omc = point_cone(tr, l, &axis);
+        *d = lucent_around(axis, 1.0 - u1 * omc, 2.0 * M_PI * u2);
+        *o = l->position;
+        return;
+    }
     if (l->type == LUCENT_LIGHT_ENVIRONMENT)
         *d = lucent_around(v3_make(0, 0, 1), 1.0 - 2.0 * u1, 2.0 * M_PI * u2);
     else if (l->delta)
