@@ -659,6 +659,63 @@ TEST(light_paths_agree_for_point_lights)
     lucent_scene_destroy(sc);
 }
 
+/* The same for sphere lights (photons from a point uniform on the light's surface, uniformly in the
+ * cone from it that holds the scene, weighted by their cosine and that cone): one far off, and one
+ * whose surface reaches into the scene's bounding sphere (photons from there in every direction). */
+TEST(light_paths_agree_for_sphere_lights)
+{
+    lucent_scene *sc =
+        sphere_scene("{\"units\": \"mm^-1\", \"sigma_a\": [0.05, 0.08, 0.1], \"sigma_s\": [20, 18, 16], "
+                     "\"g\": 0, \"eta\": 1.5}",
+                     "{\"type\": \"sphere\", \"position\": [-3, 1, 2], \"radius\": 0.5, \"intensity\": 20},"
+                     " {\"type\": \"sphere\", \"position\": [0, 1.9, 0.3], \"radius\": 0.2, \"intensity\": 0.5}",
+                     32, ", \"roughness\": 0.3");
+    lucent_pool *pool = lucent_pool_create(2);
+    CHECK(sc != NULL);
+    if (sc) check_light_paths_agree(sc, 480, pool);
+    lucent_pool_destroy(pool);
+    lucent_scene_destroy(sc);
+}
+
+/* The sum over the image of the radiance a small light gives a sphere of matter that only reflects
+ * (sigma_a 1000 / mm: what refracts in is absorbed within a micron), camera paths only. */
+static double reflected_sum(const char *light, uint64_t seed, lucent_pool *pool)
+{
+    lucent_scene *sc = sphere_scene("{\"units\": \"mm^-1\", \"sigma_a\": 1000, \"sigma_s\": 0.001, \"g\": 0, "
+                                    "\"eta\": 1.5}",
+                                    light, 32, ", \"roughness\": 0.3");
+    lucent_trace_result r = {0};
+    double sum = 0;
+    if (sc) sc->render.trace.light_paths = LUCENT_LIGHT_PATHS_OFF;
+    if (sc) CHECK_OK(render(sc, NULL, 64, seed, pool, &r));
+    for (int i = 0; r.image && i < 3 * r.image->width * r.image->height; i++) sum += r.image->data[i];
+    lucent_trace_result_free(&r);
+    lucent_scene_destroy(sc);
+    return sum;
+}
+
+/* A sphere light of intensity I that lies wholly above a surface point's horizon gives it the
+ * irradiance of a point light of intensity I at its centre, I cos / d^2 (the sphere's radiance
+ * I / (pi r^2) over the solid angle it subtends, pi sin^2 a, sin a = r / d): at radius 0.01 mm, 3.7 mm
+ * away, the reflection of the two is the same within the noise and the BSDF's change across the
+ * light's 0.15 degrees (below 1e-4). A shadow ray set off the surface used to be cut at the sampled
+ * point's distance to the light, so that the light it was aimed at blocked it: the sphere light gave
+ * 0.76 of the point light's reflection. Two seeds each: the noise of a sum is its spread. */
+TEST(sphere_light_gives_a_point_lights_irradiance)
+{
+    lucent_pool *pool = lucent_pool_create(2);
+    const char *point = "{\"type\": \"point\", \"position\": [-3, 1, 2], \"intensity\": 20}";
+    const char *sphere = "{\"type\": \"sphere\", \"position\": [-3, 1, 2], \"radius\": 0.01, \"intensity\": 20}";
+    double p1 = reflected_sum(point, 1, pool), p2 = reflected_sum(point, 2, pool);
+    double s1 = reflected_sum(sphere, 1, pool), s2 = reflected_sum(sphere, 2, pool);
+    double ratio = (s1 + s2) / (p1 + p2), spread = fabs(p1 - p2) / (p1 + p2) + fabs(s1 - s2) / (s1 + s2);
+    printf("  reflected: point light %.4f, %.4f; sphere light %.4f, %.4f; ratio %.5f (seeds' spread %.5f)\n", p1, p2,
+           s1, s2, ratio, spread);
+    CHECK(p1 > 0 && s1 > 0);
+    CHECK_MSG(fabs(ratio - 1) < fmax(4 * spread, 1e-3), "sphere / point %.5f", ratio);
+    lucent_pool_destroy(pool);
+}
+
 /* Mean over the object's pixels and channels of (a - b)^2 / 2: the squared error of one estimate,
  * from two independent ones (E[(a - b)^2] = 2 var). */
 static double squared_error(const lucent_trace_result *a, const lucent_trace_result *b)
@@ -889,4 +946,5 @@ TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_ad
           TEST_ENTRY(point_clouds_are_skipped), TEST_ENTRY(bad_input_is_named),
           TEST_ENTRY(distance_bounded_flights_change_nothing), TEST_ENTRY(distance_bound_is_the_distance),
           TEST_ENTRY(deep_nee_roulette_is_unbiased), TEST_ENTRY(light_paths_agree_with_camera_paths),
-          TEST_ENTRY(light_paths_agree_for_point_lights))
+          TEST_ENTRY(light_paths_agree_for_point_lights), TEST_ENTRY(light_paths_agree_for_sphere_lights),
+          TEST_ENTRY(sphere_light_gives_a_point_lights_irradiance))

@@ -220,6 +220,13 @@ double tr_light_pdf(const tr_light *l, v3 p, v3 n, v3 w);
 typedef void (*tr_light_fn)(void *ctx, const tr_light *l, const double le[3]);
 void tr_lights_escaped(const lucent_tracer *tr, v3 w, tr_light_fn fn, void *ctx);
 
+/* How far a shadow ray from o along w (a direction sampled toward light l from a point near o, at
+ * distance dist from there) may go before it reaches the light itself: for a sphere light, where the
+ * ray from o meets it (dist when it passes by); for the others, dist. A shadow ray offset from the
+ * sampled point meets a sphere light at another depth, and cut at dist it was blocked by the light
+ * it was aimed at (by how much the offset moves the entry point across the sphere). */
+double tr_light_distance(const tr_light *l, v3 o, v3 w, double dist);
+
 /* The nearest sphere light hit by o + t d for t < tfar: its index, or -1. */
 int tr_sphere_light_hit(const lucent_tracer *tr, v3 o, v3 d, double tfar, double *t);
 

@@ -20,12 +20,13 @@
  * boundary toward the camera, and everything after it, stays with the camera paths.
  *
  * Served: with render.light_paths auto, the dense objects with a rough boundary (tr_object.dense);
- * lights: directional ones (sun discs included), point lights and the environment; not with the
- * comparison modes (boundary_nee_only, plain_flights, nee_every_vertex) or under MPI. Each pass
- * traces render.photons photons per pixel, drawn from the lights in proportion to their power toward
- * the scene (through a disc that covers it; from a point light, into the cone that holds its bounding
- * sphere); a pass's connections make one image, and its estimate and variance per
- * pixel come from those per-pass images (film.c), added to the camera paths' (independent).
+ * lights: all of them (directional ones, sun discs included; point and sphere lights; the
+ * environment); not with the comparison modes (boundary_nee_only, plain_flights, nee_every_vertex)
+ * or under MPI. Each pass traces render.photons photons per pixel, drawn from the lights in
+ * proportion to their power toward the scene (through a disc that covers it; from a point or sphere
+ * light, into the cone that holds its bounding sphere); a pass's connections make one image, and its
+ * estimate and variance per pixel come from those per-pass images (film.c), added to the camera
+ * paths' (independent).
  * Connections are kept per chunk of photons and added in chunk order, so the image depends on the
  * seed and the number of passes only (not on the thread count). */
 #include <math.h>
@@ -43,14 +44,15 @@ enum { LP_CHUNKS = 64 };
 
 static bool light_eligible(const tr_light *l)
 {
-    return l->type == LUCENT_LIGHT_DIRECTIONAL || l->type == LUCENT_LIGHT_ENVIRONMENT || l->type == LUCENT_LIGHT_POINT;
+    return l->type == LUCENT_LIGHT_DIRECTIONAL || l->type == LUCENT_LIGHT_ENVIRONMENT ||
+           l->type == LUCENT_LIGHT_POINT || l->type == LUCENT_LIGHT_SPHERE;
 }
 
-/* 1 - cos of the half-angle of the cone from point light l that holds the scene's bounding sphere (2:
- * every direction, when the light lies within the sphere). */
-static double point_cone(const lucent_tracer *tr, const tr_light *l, v3 *axis)
+/* 1 - cos of the half-angle of the cone from x that holds the scene's bounding sphere, and its axis
+ * (2: every direction, when x lies within the sphere). */
+static double scene_cone(const lucent_tracer *tr, v3 x, v3 *axis)
 {
-    v3 to = v3_sub(v3_load(tr->emit_centre), l->position);
+    v3 to = v3_sub(v3_load(tr->emit_centre), x);
     double d = v3_length(to), R = tr->emit_radius;
     *axis = d > 0 ? v3_scale(to, 1.0 / d) : v3_make(0, 0, 1);
     if (!(d > R)) return 2.0;
@@ -59,12 +61,16 @@ static double point_cone(const lucent_tracer *tr, const tr_light *l, v3 *axis)
 }
 
 /* Power emitted toward the scene per unit of the light's radiance (directional: irradiance, through
- * the emission disc; point: intensity, into the cone that holds the scene). */
+ * the emission disc; point: intensity, into the cone that holds the scene). For a sphere light of
+ * radius r, the power of a disc of area pi r^2 at its centre into that cone: a share to draw photons
+ * by, which each photon's weight corrects (emit). */
 static double emit_factor(const lucent_tracer *tr, const tr_light *l)
 {
     double disc = M_PI * tr->emit_radius * tr->emit_radius;
     v3 axis;
-    if (l->type == LUCENT_LIGHT_POINT) return 2.0 * M_PI * point_cone(tr, l, &axis);
+    if (l->type == LUCENT_LIGHT_POINT) return 2.0 * M_PI * scene_cone(tr, l->position, &axis);
+    if (l->type == LUCENT_LIGHT_SPHERE)
+        return M_PI * l->radius * l->radius * 2.0 * M_PI * scene_cone(tr, l->position, &axis);
     if (l->type == LUCENT_LIGHT_ENVIRONMENT) return 4.0 * M_PI * disc;
     return l->delta ? disc : l->solid_angle * disc;
 }
@@ -179,19 +185,25 @@ static const tr_light *emitter(const lucent_tracer *tr, double total, double u)
     return last;
 }
 
-/* A photon from light l: its direction (directional: toward the scene, uniformly in a sun disc's
- * cone; environment: uniform over the sphere) and a start uniform on the disc of radius emit_radius
- * perpendicular to it, 2 radii before the centre (all of the scene lies behind the disc); from a point
- * light, its position and a direction uniform in the cone that holds the scene's bounding sphere. */
-static void emit(const lucent_tracer *tr, const tr_light *l, lucent_rng *rng, v3 *o, v3 *d)
+/* A photon from light l: its start o, direction d and weight (its power over the mean photon's of the
+ * light, l->power). Directional: toward the scene, uniformly in a sun disc's cone; environment:
+ * uniform over the sphere; both from a start uniform on the disc of radius emit_radius perpendicular
+ * to d, 2 radii before the centre (all of the scene lies behind the disc): weight 1. Point: from its
+ * position, uniformly in the cone that holds the scene's bounding sphere: weight 1. Sphere (uniform
+ * radiance L over area A): a point x uniform on its surface, d uniform in the cone Omega_x from x that
+ * holds the scene: the emitted power L cos(n_x, d) dA dw over the density 1 / (A Omega_x), weight
+ * cos A Omega_x / emit_factor (0 for directions into the light). */
+static double emit(const lucent_tracer *tr, const tr_light *l, lucent_rng *rng, v3 *o, v3 *d)
 {
     double u1 = lucent_rng_uniform(rng), u2 = lucent_rng_uniform(rng);
-    if (l->type == LUCENT_LIGHT_POINT) {
-        v3 axis;
-        double omc = point_cone(tr, l, &axis);
-        *d = lucent_around(axis, 1.0 - u1 * omc, 2.0 * M_PI * u2);
-        *o = l->position;
-        return;
+    if (l->type == LUCENT_LIGHT_POINT || l->type == LUCENT_LIGHT_SPHERE) {
+        v3 axis, n = lucent_around(v3_make(0, 0, 1), 1.0 - 2.0 * u1, 2.0 * M_PI * u2);
+        *o = l->type == LUCENT_LIGHT_SPHERE ? v3_madd(l->position, n, l->radius * (1.0 + 1e-9)) : l->position;
+        double omc = scene_cone(tr, *o, &axis);
+        *d = lucent_around(axis, 1.0 - lucent_rng_uniform(rng) * omc, 2.0 * M_PI * lucent_rng_uniform(rng));
+        if (l->type == LUCENT_LIGHT_POINT) return 1.0;
+        double area = 4.0 * M_PI * l->radius * l->radius;
+        return fmax(0.0, v3_dot(n, *d)) * area * 2.0 * M_PI * omc / emit_factor(tr, l);
     }
     if (l->type == LUCENT_LIGHT_ENVIRONMENT)
         *d = lucent_around(v3_make(0, 0, 1), 1.0 - 2.0 * u1, 2.0 * M_PI * u2);
@@ -201,6 +213,7 @@ static void emit(const lucent_tracer *tr, const tr_light *l, lucent_rng *rng, v3
         *d = v3_neg(lucent_around(l->toward, 1.0 - u1 * (1.0 - l->cos_cone), 2.0 * M_PI * u2));
     double u3 = lucent_rng_uniform(rng), u4 = lucent_rng_uniform(rng);
     *o = tr_disc_start(v3_load(tr->emit_centre), tr->emit_radius, v3_neg(*d), u3, u4);
+    return 1.0;
 }
 
 static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
@@ -217,8 +230,8 @@ static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
         lucent_rng_init(tr->film->seed, LP_STREAM | job->pass << 32 | i, &rng);
         const tr_light *l = emitter(tr, job->total_power, lucent_rng_uniform(&rng));
         v3 o, d;
-        emit(tr, l, &rng, &o, &d);
-        double y = tr_luminance(l->radiance), beta[3] = {l->radiance[0] / y, l->radiance[1] / y, l->radiance[2] / y};
+        double weight = emit(tr, l, &rng, &o, &d), y = tr_luminance(l->radiance), beta[3];
+        for (int c = 0; c < 3; c++) beta[c] = weight * l->radiance[c] / y;
         tr_trace_light_path(tr, o, d, beta, scale, &rng, &job->lists[chunk], &job->stats[thread]);
     }
     return LUCENT_OK;

@@ -188,6 +188,13 @@ static double sphere_hit(v3 c, double r, v3 o, v3 d)
     return t0 > 0 ? t0 : (t1 > 0 && q > 0 ? t1 : INFINITY);
 }
 
+double tr_light_distance(const tr_light *l, v3 o, v3 w, double dist)
+{
+    if (l->type != LUCENT_LIGHT_SPHERE) return dist;
+    double t = sphere_hit(l->position, l->radius, o, w);
+    return isfinite(t) ? t : dist;
+}
+
 int tr_sphere_light_hit(const lucent_tracer *tr, v3 o, v3 d, double tfar, double *t)
 {
     int best = -1;

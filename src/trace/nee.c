@@ -82,8 +82,10 @@ static bool connect_boundary(tr_path *p, const tr_light *l, double ratio, v3 y, 
     c->f = tr_bsdf_eval(b, n, o, c->ls.w, &c->pb) * camera_btdf_factor(p, b);
     if (!(c->f > 0)) return false;
     c->cos = fabs(v3_dot(c->ls.w, n));
-    double tmax = isfinite(c->ls.dist) ? c->ls.dist * (1.0 - 1e-6) - tr->eps : INFINITY;
-    return tr_transmittance(tr, v3_madd(y, n, tr->eps), c->ls.w, tmax, -1, c->T, c->Tw);
+    v3 from = v3_madd(y, n, tr->eps); /* off the surface: the light's own distance from there */
+    double dist = tr_light_distance(l, from, c->ls.w, c->ls.dist);
+    double tmax = isfinite(dist) ? dist * (1.0 - 1e-6) - tr->eps : INFINITY;
+    return tr_transmittance(tr, from, c->ls.w, tmax, -1, c->T, c->Tw);
 }
 
 /* Russian roulette on the connection's light sample and shadow ray once the exit point is known (Arvo
