@@ -48,12 +48,12 @@ static bool light_eligible(const tr_light *l)
            l->type == LUCENT_LIGHT_POINT || l->type == LUCENT_LIGHT_SPHERE;
 }
 
-/* 1 - cos of the half-angle of the cone from x that holds the scene's bounding sphere, and its axis
- * (2: every direction, when x lies within the sphere). */
-static double scene_cone(const lucent_tracer *tr, v3 x, v3 *axis)
+/* 1 - cos of the half-angle of the cone from x that holds the scene's bounding sphere grown by
+ * `grow`, and its axis (2: every direction, when x lies within that sphere). */
+static double scene_cone(const lucent_tracer *tr, v3 x, double grow, v3 *axis)
 {
     v3 to = v3_sub(v3_load(tr->emit_centre), x);
-    double d = v3_length(to), R = tr->emit_radius;
+    double d = v3_length(to), R = tr->emit_radius + grow;
     *axis = d > 0 ? v3_scale(to, 1.0 / d) : v3_make(0, 0, 1);
     if (!(d > R)) return 2.0;
     double sin2 = (R / d) * (R / d);
@@ -61,16 +61,16 @@ static double scene_cone(const lucent_tracer *tr, v3 x, v3 *axis)
 }
 
 /* Power emitted toward the scene per unit of the light's radiance (directional: irradiance, through
- * the emission disc; point: intensity, into the cone that holds the scene). For a sphere light of
- * radius r, the power of a disc of area pi r^2 at its centre into that cone: a share to draw photons
- * by, which each photon's weight corrects (emit). */
+ * the emission disc; point: intensity, into the cone that holds the scene; sphere of radius r: its
+ * projected area pi r^2 times the cone from its centre that holds the scene grown by r, which holds
+ * every direction in which a point of the light sees the scene). */
 static double emit_factor(const lucent_tracer *tr, const tr_light *l)
 {
     double disc = M_PI * tr->emit_radius * tr->emit_radius;
     v3 axis;
-    if (l->type == LUCENT_LIGHT_POINT) return 2.0 * M_PI * scene_cone(tr, l->position, &axis);
+    if (l->type == LUCENT_LIGHT_POINT) return 2.0 * M_PI * scene_cone(tr, l->position, 0.0, &axis);
     if (l->type == LUCENT_LIGHT_SPHERE)
-        return M_PI * l->radius * l->radius * 2.0 * M_PI * scene_cone(tr, l->position, &axis);
+        return M_PI * l->radius * l->radius * 2.0 * M_PI * scene_cone(tr, l->position, l->radius, &axis);
     if (l->type == LUCENT_LIGHT_ENVIRONMENT) return 4.0 * M_PI * disc;
     return l->delta ? disc : l->solid_angle * disc;
 }
@@ -185,25 +185,28 @@ static const tr_light *emitter(const lucent_tracer *tr, double total, double u)
     return last;
 }
 
-/* A photon from light l: its start o, direction d and weight (its power over the mean photon's of the
- * light, l->power). Directional: toward the scene, uniformly in a sun disc's cone; environment:
- * uniform over the sphere; both from a start uniform on the disc of radius emit_radius perpendicular
- * to d, 2 radii before the centre (all of the scene lies behind the disc): weight 1. Point: from its
- * position, uniformly in the cone that holds the scene's bounding sphere: weight 1. Sphere (uniform
- * radiance L over area A): a point x uniform on its surface, d uniform in the cone Omega_x from x that
- * holds the scene: the emitted power L cos(n_x, d) dA dw over the density 1 / (A Omega_x), weight
- * cos A Omega_x / emit_factor (0 for directions into the light). */
-static double emit(const lucent_tracer *tr, const tr_light *l, lucent_rng *rng, v3 *o, v3 *d)
+/* A photon from light l: its start o and direction d, all of equal power. Directional: toward the
+ * scene, uniformly in a sun disc's cone; environment: uniform over the sphere; both from a start
+ * uniform on the disc of radius emit_radius perpendicular to d, 2 radii before the centre (all of the
+ * scene lies behind the disc). Point: from its position, uniformly in the cone that holds the scene's
+ * bounding sphere. Sphere of radius r and radiance L: d uniform in the cone of emit_factor, then a
+ * point uniform on the disc of radius r through the centre perpendicular to d, lifted onto the
+ * light's half facing d: the power L cos dA dw that the light sends along d is L dA_perp dw over that
+ * disc (dA_perp = cos dA), so the photons' density follows it. */
+static void emit(const lucent_tracer *tr, const tr_light *l, lucent_rng *rng, v3 *o, v3 *d)
 {
     double u1 = lucent_rng_uniform(rng), u2 = lucent_rng_uniform(rng);
     if (l->type == LUCENT_LIGHT_POINT || l->type == LUCENT_LIGHT_SPHERE) {
-        v3 axis, n = lucent_around(v3_make(0, 0, 1), 1.0 - 2.0 * u1, 2.0 * M_PI * u2);
-        *o = l->type == LUCENT_LIGHT_SPHERE ? v3_madd(l->position, n, l->radius * (1.0 + 1e-9)) : l->position;
-        double omc = scene_cone(tr, *o, &axis);
-        *d = lucent_around(axis, 1.0 - lucent_rng_uniform(rng) * omc, 2.0 * M_PI * lucent_rng_uniform(rng));
-        if (l->type == LUCENT_LIGHT_POINT) return 1.0;
-        double area = 4.0 * M_PI * l->radius * l->radius;
-        return fmax(0.0, v3_dot(n, *d)) * area * 2.0 * M_PI * omc / emit_factor(tr, l);
+        double r = l->type == LUCENT_LIGHT_SPHERE ? l->radius : 0.0;
+        v3 axis, t, b;
+        double omc = scene_cone(tr, l->position, r, &axis);
+        *d = lucent_around(axis, 1.0 - u1 * omc, 2.0 * M_PI * u2);
+        double rho = r * sqrt(lucent_rng_uniform(rng)), phi = 2.0 * M_PI * lucent_rng_uniform(rng);
+        lucent_basis(*d, &t, &b);
+        v3 x = v3_add(v3_scale(t, rho * cos(phi)), v3_scale(b, rho * sin(phi)));
+        x = v3_madd(x, *d, sqrt(fmax(0.0, r * r - rho * rho)));
+        *o = v3_add(l->position, v3_scale(x, 1.0 + 1e-9)); /* just outside the light */
+        return;
     }
     if (l->type == LUCENT_LIGHT_ENVIRONMENT)
         *d = lucent_around(v3_make(0, 0, 1), 1.0 - 2.0 * u1, 2.0 * M_PI * u2);
@@ -213,7 +216,6 @@ static double emit(const lucent_tracer *tr, const tr_light *l, lucent_rng *rng, 
         *d = v3_neg(lucent_around(l->toward, 1.0 - u1 * (1.0 - l->cos_cone), 2.0 * M_PI * u2));
     double u3 = lucent_rng_uniform(rng), u4 = lucent_rng_uniform(rng);
     *o = tr_disc_start(v3_load(tr->emit_centre), tr->emit_radius, v3_neg(*d), u3, u4);
-    return 1.0;
 }
 
 static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
@@ -230,8 +232,8 @@ static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
         lucent_rng_init(tr->film->seed, LP_STREAM | job->pass << 32 | i, &rng);
         const tr_light *l = emitter(tr, job->total_power, lucent_rng_uniform(&rng));
         v3 o, d;
-        double weight = emit(tr, l, &rng, &o, &d), y = tr_luminance(l->radiance), beta[3];
-        for (int c = 0; c < 3; c++) beta[c] = weight * l->radiance[c] / y;
+        emit(tr, l, &rng, &o, &d);
+        double y = tr_luminance(l->radiance), beta[3] = {l->radiance[0] / y, l->radiance[1] / y, l->radiance[2] / y};
         tr_trace_light_path(tr, o, d, beta, scale, &rng, &job->lists[chunk], &job->stats[thread]);
     }
     return LUCENT_OK;
