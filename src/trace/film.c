@@ -50,6 +50,7 @@ void tr_film_reset(tr_film *f)
     memset(f->hits, 0, n * sizeof *f->hits);
     memset(f->light, 0, n * TR_FILM_ACC * sizeof *f->light);
     f->light_passes = 0;
+    memset(f->light_m2, 0, sizeof f->light_m2), memset(f->light_n, 0, sizeof f->light_n);
     if (f->pilot) memset(f->pilot, 0, n * TR_FILM_ACC * sizeof *f->pilot);
     if (f->carry) memset(f->carry, 0, n * sizeof *f->carry);
     for (size_t p = 0; p < n; p++) f->quota[p] = 1;

@@ -25,6 +25,10 @@ typedef struct tr_film {
      * of its squares and of its squared luminance (TR_FILM_ACC), over light_passes passes */
     double *light;
     uint64_t light_passes;
+    /* per light (light_paths.c, emitter_shares): over the passes so far, the sum of a photon's squared
+     * connections scaled to a pick probability of 1, and the photons */
+    double light_m2[TR_MAX_LIGHTS];
+    uint64_t light_n[TR_MAX_LIGHTS];
     tr_stats stats;
 } tr_film;
 

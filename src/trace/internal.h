@@ -80,6 +80,8 @@ v3 tr_walk_sample(const tr_object *ob, const tr_transform *tf, int k, v3 d_in, d
  * jade bunny 0.990; Skin1's blue 0.68, where they cost 1.8x per sample and save nothing). */
 #define TR_DENSE_ALBEDO 0.98
 
+#define TR_MAX_LIGHTS 64 /* the lights a tracer takes (lights.c) */
+
 /* ---- the ray-tracing scene (embree.c) ---- */
 typedef struct tr_geometry tr_geometry;
 
@@ -152,7 +154,7 @@ struct lucent_tracer {
     int object_count;
     tr_light *lights;
     int light_count;
-    double select_cdf[64], select_cdf_cam[64];
+    double select_cdf[TR_MAX_LIGHTS], select_cdf_cam[TR_MAX_LIGHTS];
     /* light paths (light_paths.c): photons from the lights marked light_paths, whose connections to
      * the camera (camera_light, a point "light" at the eye) carry the subsurface light of the objects
      * marked light_paths; camera paths that enter such an object first leave those lights to them */

@@ -163,26 +163,69 @@ void tr_splat(struct tr_splats *s, long pixel, const double value[3])
 
 /* ---- a pass of photons ---- */
 
+typedef struct lp_moments {
+    double m2[TR_MAX_LIGHTS]; /* per light: its photons' sums of squared connections, times share^2 */
+    uint64_t n[TR_MAX_LIGHTS];
+} lp_moments;
+
 typedef struct lp_job {
     const lucent_tracer *tr;
     struct tr_splats *lists; /* one per chunk */
+    lp_moments *moments;     /* one per chunk */
     tr_stats *stats;         /* one per thread */
     uint64_t pass, per_chunk;
-    double total_power, deadline;
+    double share[TR_MAX_LIGHTS], deadline;
     _Atomic bool cut;
 } lp_job;
 
-static const tr_light *emitter(const lucent_tracer *tr, double total, double u)
+#define LP_POWER_SHARE 0.2 /* the part of the photons drawn in proportion to power once measured */
+
+/* Each light's share of a pass's photons. The first pass draws them in proportion to the lights'
+ * power. A light's photons add to the image's variance about M_l / share_l, M_l the mean over its
+ * photons of the sum of their squared connections at share 1 (one pixel's variance is the second
+ * moment of what lands there, less the squared mean, small for sparse connections), so the shares
+ * that minimise sum_l M_l / share_l under sum_l share_l = 1 go as sqrt(M_l) (the cost per photon
+ * differed by 1.4x at most between the dragon's lights and is left out). Later passes take
+ * LP_POWER_SHARE of the power shares and the rest in proportion to sqrt(M_l) measured over the
+ * passes so far: a pass's shares depend on earlier passes only, so each pass is an unbiased
+ * estimate (the photons' weights divide by their light's share), and the image on the seed and the
+ * passes only. On the dragon (256 x 256) they put 0.62, 0.18, 0.20 of the photons on the low sun,
+ * the back light and the environment from the second pass on, against 0.49, 0.30, 0.20 by power. */
+static void emitter_shares(const lucent_tracer *tr, const tr_film *f, double share[TR_MAX_LIGHTS])
+{
+    double total = 0, root[TR_MAX_LIGHTS] = {0}, roots = 0;
+    for (int i = 0; i < tr->light_count; i++) {
+        total += tr->lights[i].power;
+        if (tr->lights[i].power > 0 && f->light_n[i] > 0) root[i] = sqrt(f->light_m2[i] / (double)f->light_n[i]);
+        roots += root[i];
+    }
+    bool measured = f->light_passes > 0 && roots > 0;
+    for (int i = 0; i < tr->light_count; i++) {
+        double p = total > 0 ? tr->lights[i].power / total : 0;
+        share[i] = measured ? LP_POWER_SHARE * p + (1.0 - LP_POWER_SHARE) * root[i] / roots : p;
+    }
+}
+
+/* The light of a photon: picked by the shares (u uniform in [0, 1)). */
+static int emitter(const lucent_tracer *tr, const double share[TR_MAX_LIGHTS], double u)
 {
     double acc = 0;
-    const tr_light *last = NULL;
+    int last = -1;
     for (int i = 0; i < tr->light_count; i++) {
-        const tr_light *l = &tr->lights[i];
-        if (!(l->power > 0)) continue;
-        acc += l->power, last = l;
-        if (u * total < acc) return l;
+        if (!(share[i] > 0)) continue;
+        acc += share[i], last = i;
+        if (u < acc) return i;
     }
     return last;
+}
+
+/* Sum over a photon's connections (items from `from` on) of their squared values. */
+static double squared_connections(const struct tr_splats *s, size_t from)
+{
+    double m2 = 0;
+    for (size_t k = from; k < s->n; k++)
+        for (int c = 0; c < 3; c++) m2 += s->items[k].v[c] * s->items[k].v[c];
+    return m2;
 }
 
 /* A photon from light l: its start o and direction d, all of equal power. Directional: toward the
@@ -226,15 +269,21 @@ static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
         atomic_store(&job->cut, true);
         return LUCENT_OK;
     }
-    double scale = job->total_power / (double)(job->per_chunk * LP_CHUNKS);
+    double photons = (double)(job->per_chunk * LP_CHUNKS);
+    lp_moments *mo = &job->moments[chunk];
     for (uint64_t i = begin; i < end; i++) {
         lucent_rng rng;
         lucent_rng_init(tr->film->seed, LP_STREAM | job->pass << 32 | i, &rng);
-        const tr_light *l = emitter(tr, job->total_power, lucent_rng_uniform(&rng));
+        int k = emitter(tr, job->share, lucent_rng_uniform(&rng));
+        if (k < 0) continue;
+        const tr_light *l = &tr->lights[k];
         v3 o, d;
         emit(tr, l, &rng, &o, &d);
         double y = tr_luminance(l->radiance), beta[3] = {l->radiance[0] / y, l->radiance[1] / y, l->radiance[2] / y};
-        tr_trace_light_path(tr, o, d, beta, scale, &rng, &job->lists[chunk], &job->stats[thread]);
+        size_t from = job->lists[chunk].n;
+        tr_trace_light_path(tr, o, d, beta, l->power / (job->share[k] * photons), &rng, &job->lists[chunk],
+                            &job->stats[thread]);
+        mo->m2[k] += squared_connections(&job->lists[chunk], from) * job->share[k] * job->share[k], mo->n[k]++;
     }
     return LUCENT_OK;
 }
@@ -275,19 +324,24 @@ lucent_status tr_light_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *po
     if (!photons) return LUCENT_OK;
     int threads = pool ? lucent_pool_threads(pool) : 1;
     lp_job job = {.tr = tr, .pass = f->light_passes, .per_chunk = photons / LP_CHUNKS, .deadline = deadline};
-    for (int i = 0; i < tr->light_count; i++) job.total_power += tr->lights[i].power;
+    emitter_shares(tr, f, job.share);
     job.lists = calloc(LP_CHUNKS, sizeof *job.lists);
+    job.moments = calloc(LP_CHUNKS, sizeof *job.moments);
     job.stats = calloc((size_t)threads, sizeof *job.stats);
     double *image = malloc((size_t)f->width * (size_t)f->height * 3 * sizeof *image);
-    lucent_status s =
-        job.lists && job.stats && image ? LUCENT_OK : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory");
+    lucent_status s = job.lists && job.moments && job.stats && image
+                          ? LUCENT_OK
+                          : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory");
     if (s == LUCENT_OK) s = lucent_parallel_for(pool, photons, job.per_chunk, photon_chunk, &job);
     for (int ch = 0; s == LUCENT_OK && job.lists && ch < LP_CHUNKS; ch++)
         if (job.lists[ch].failed) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory for light paths");
     *cut = atomic_load(&job.cut);
-    if (s == LUCENT_OK && !*cut) fold(&job, f, image); /* a cut pass is dropped whole: unbiased */
+    if (s == LUCENT_OK && !*cut) fold(&job, f, image);                /* a cut pass is dropped whole: unbiased */
+    for (int ch = 0; s == LUCENT_OK && !*cut && ch < LP_CHUNKS; ch++) /* in chunk order: any thread count */
+        for (int i = 0; i < tr->light_count; i++)
+            f->light_m2[i] += job.moments[ch].m2[i], f->light_n[i] += job.moments[ch].n[i];
     for (int t = 0; job.stats && t < threads; t++) tr_film_add_stats(&f->stats, &job.stats[t]);
     for (int ch = 0; job.lists && ch < LP_CHUNKS; ch++) free(job.lists[ch].items);
-    free(job.lists), free(job.stats), free(image);
+    free(job.lists), free(job.moments), free(job.stats), free(image);
     return s;
 }

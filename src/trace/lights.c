@@ -59,13 +59,13 @@ lucent_status tr_lights_build(lucent_tracer *tr)
 {
     const lucent_scene *sc = tr->scene;
     int n = sc->light_count;
-    if (n > 64)
-        return lucent_error(LUCENT_ERR_UNSUPPORTED, "%s: the path tracer takes at most 64 lights (got %d)",
-                            sc->path[0] ? sc->path : "scene", n);
+    if (n > TR_MAX_LIGHTS)
+        return lucent_error(LUCENT_ERR_UNSUPPORTED, "%s: the path tracer takes at most %d lights (got %d)",
+                            sc->path[0] ? sc->path : "scene", TR_MAX_LIGHTS, n);
     tr->lights = calloc((size_t)(n ? n : 1), sizeof *tr->lights);
     if (!tr->lights) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory");
     tr->light_count = n;
-    double lo[3], hi[3], w[64], sum = 0;
+    double lo[3], hi[3], w[TR_MAX_LIGHTS], sum = 0;
     lucent_scene_bounds(sc, lo, hi);
     v3 centre = v3_scale(v3_add(v3_load(lo), v3_load(hi)), 0.5);
     double radius = lo[0] <= hi[0] ? 0.5 * v3_length(v3_sub(v3_load(hi), v3_load(lo))) : 1.0;
