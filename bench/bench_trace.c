@@ -356,9 +356,9 @@ static void efficiency(void)
     const char *env = getenv("BENCH_EFFICIENCY_PASSES"), *seed_env = getenv("BENCH_EFFICIENCY_SEED");
     int passes = env && atoi(env) > 1 ? atoi(env) : 50;
     uint64_t seed = seed_env ? strtoull(seed_env, NULL, 10) : 1;
-    printf("\nbench_trace: figures measured (docs/trace.md, one machine, load 1-2): camera paths 1.21 / 1.28, "
-           "light paths 1.29 / 1.26 (seeds 1 / 2; the camera paths' were 0.675 / 0.687 on the faster machine of the "
-           "third pass)\n");
+    printf("\nbench_trace: figures measured (docs/trace.md, 30 passes, load 1-2): camera paths 0.967 / 0.957, "
+           "light paths 0.754 / 1.080 (seeds 1 / 2, 2026-12-03; before the light shares 0.941 / 1.395, before the "
+           "8-mean-free-path reach 1.29 / 1.26 with 40 passes on a slower day)\n");
     efficiency_run(passes, seed, false);
     efficiency_run(passes, seed, true);
 }
