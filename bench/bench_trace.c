@@ -357,8 +357,8 @@ static void efficiency(void)
     int passes = env && atoi(env) > 1 ? atoi(env) : 50;
     uint64_t seed = seed_env ? strtoull(seed_env, NULL, 10) : 1;
     printf("\nbench_trace: figures measured (docs/trace.md, 30 passes, load 1-2): camera paths 0.967 / 0.957, "
-           "light paths 0.754 / 1.080 (seeds 1 / 2, 2026-12-03; before the light shares 0.941 / 1.395, before the "
-           "8-mean-free-path reach 1.29 / 1.26 with 40 passes on a slower day)\n");
+           "light paths 0.754 / 1.080 (seeds 1 / 2, 2026-12-03; before the light shares 0.941 / 1.395, 50 passes in "
+           "the fourth pass on section 3, before the 8-mean-free-path reach: 1.29 / 1.26)\n");
     efficiency_run(passes, seed, false);
     efficiency_run(passes, seed, true);
 }
