@@ -338,14 +338,20 @@ TEST(same_seed_same_image_on_one_and_two_threads)
 /* ---- distance-bounded flights and next-event roulette at deep vertices ---- */
 
 /* A dense, nearly non-absorbing sphere (16 to 20 mean free paths in radius, albedo 0.997, like marble's
- * scale ratio) with a rough boundary, lit by a sun from the side and a dim environment. */
-static lucent_scene *dense_scene(int size)
+ * scale ratio) with a rough boundary, lit by LIGHTS. */
+static lucent_scene *dense_lit(const char *lights, int size)
 {
     return sphere_scene("{\"units\": \"mm^-1\", \"sigma_a\": [0.05, 0.08, 0.1], \"sigma_s\": [20, 18, 16], "
                         "\"g\": 0, \"eta\": 1.5}",
-                        "{\"type\": \"directional\", \"direction\": [-1, -0.2, -0.3], \"intensity\": 2},"
-                        " {\"type\": \"environment\", \"intensity\": 0.1}",
-                        size, ", \"roughness\": 0.3");
+                        lights, size, ", \"roughness\": 0.3");
+}
+
+/* The dense sphere lit by a sun from the side and a dim environment. */
+static lucent_scene *dense_scene(int size)
+{
+    return dense_lit("{\"type\": \"directional\", \"direction\": [-1, -0.2, -0.3], \"intensity\": 2},"
+                     " {\"type\": \"environment\", \"intensity\": 0.1}",
+                     size);
 }
 
 /* A flight that ends inside a sphere holding no surface cannot have crossed one: skipping its ray
@@ -533,6 +539,28 @@ static void merge_batches(lucent_trace_result batch[BATCHES])
     for (size_t i = 0; i < 3 * n; i++) m->image->data[i] /= BATCHES, m->variance->data[i] /= (float)(BATCHES * BATCHES);
 }
 
+/* Two estimators' batches compared: b's pooled sum over a's (ratio), its standard error from the
+ * batches' spread (se, relative) and z; then, with both merged (merge_batches), the chi2 per degree of
+ * freedom of the pixels' differences and the pooled z from the per-pixel variances (z_pixels) over
+ * n pixel channels. */
+typedef struct batch_comparison {
+    double ratio, se, z, chi2, z_pixels;
+    int n;
+} batch_comparison;
+
+static batch_comparison compare_batches(lucent_trace_result a[BATCHES], lucent_trace_result b[BATCHES])
+{
+    batch_comparison c;
+    double ma, sea, mb, seb, rel;
+    pooled_over_batches(a, a, b, &ma, &sea);
+    pooled_over_batches(b, a, b, &mb, &seb);
+    double se = sqrt(sea * sea + seb * seb);
+    c.ratio = mb / ma, c.se = se / ma, c.z = (mb - ma) / se;
+    merge_batches(a), merge_batches(b);
+    difference_stats(&a[0], &b[0], &c.chi2, &c.z_pixels, &rel, &c.n);
+    return c;
+}
+
 /* Russian roulette on the next-event estimate of deep vertices (made with probability P, weighted by
  * 1 / P) leaves the estimate unbiased: against the plain estimator (every vertex, every flight
  * queried), independent seeds, the pixels' differences are unit normal in their standard errors
@@ -551,20 +579,13 @@ TEST(deep_nee_roulette_is_unbiased)
     int spp = 96 / SLOW / BATCHES;
     render_batches(sc, &(lucent_tracer_desc){.plain_flights = true, .nee_every_vertex = true}, spp, 7, pool, plain);
     render_batches(sc, NULL, spp, 1007, pool, rr);
-    double mp, sep, mr, ser;
-    pooled_over_batches(plain, plain, rr, &mp, &sep);
-    pooled_over_batches(rr, plain, rr, &mr, &ser);
-    double zb = (mr - mp) / sqrt(sep * sep + ser * ser), chi2, z, rel;
-    merge_batches(plain), merge_batches(rr);
-    int n;
-    difference_stats(&plain[0], &rr[0], &chi2, &z, &rel, &n);
+    batch_comparison c = compare_batches(plain, rr);
     printf("  %d pixel channels: chi2/dof %.3f; %d batches each of %d spp: roulette / plain %.4f +- %.4f (z %.2f; "
            "the per-pixel variances give z %.2f); next-event estimates at %.0f%% of volume vertices\n",
-           n, chi2, BATCHES, spp, mr / mp, sqrt(sep * sep + ser * ser) / mp, zb, z,
-           100.0 * rr[0].cost.nee / rr[0].cost.scatters);
-    CHECK(n > 600);
-    CHECK_MSG(chi2 > 0.7 && chi2 < 1.5, "chi2/dof %.3f", chi2);
-    CHECK_MSG(fabs(zb) < 4.5, "pooled z over batches %.2f", zb);
+           c.n, c.chi2, BATCHES, spp, c.ratio, c.se, c.z, -c.z_pixels, 100.0 * rr[0].cost.nee / rr[0].cost.scatters);
+    CHECK(c.n > 600);
+    CHECK_MSG(c.chi2 > 0.7 && c.chi2 < 1.5, "chi2/dof %.3f", c.chi2);
+    CHECK_MSG(fabs(c.z) < 4.5, "pooled z over batches %.2f", c.z);
     CHECK_MSG(rr[0].cost.nee < rr[0].cost.scatters / 2, "the roulette skipped too few deep vertices");
     for (int k = 0; k < BATCHES; k++) lucent_trace_result_free(&plain[k]), lucent_trace_result_free(&rr[k]);
     lucent_pool_destroy(pool);
@@ -584,23 +605,17 @@ static void check_light_paths_agree(lucent_scene *sc, int total_spp, lucent_pool
     render_batches(sc, NULL, spp, 11, pool, cams);
     sc->render.trace.light_paths = LUCENT_LIGHT_PATHS_AUTO;
     render_batches(sc, NULL, spp, 1011, pool, lps);
-    double mc, sec, ml, sel;
-    pooled_over_batches(cams, cams, lps, &mc, &sec);
-    pooled_over_batches(lps, cams, lps, &ml, &sel);
-    double zb = (ml - mc) / sqrt(sec * sec + sel * sel), chi2, z, rel;
-    merge_batches(cams), merge_batches(lps);
+    batch_comparison c = compare_batches(cams, lps);
     const lucent_trace_result *cam = &cams[0], *lp = &lps[0];
-    int n;
-    difference_stats(cam, lp, &chi2, &z, &rel, &n);
     printf("  %d pixel channels: chi2/dof %.3f; %d batches each of %d spp: light paths / camera paths %.4f +- %.4f "
            "(z %.2f; the per-pixel variances give z %.2f); %.2f light paths and %.1f scatterings per camera path "
            "(camera paths alone: %.1f)\n",
-           n, chi2, BATCHES, spp, ml / mc, sqrt(sec * sec + sel * sel) / mc, zb, z,
+           c.n, c.chi2, BATCHES, spp, c.ratio, c.se, c.z, -c.z_pixels,
            (double)lp->cost.photons / (double)lp->cost.paths, (double)lp->cost.scatters / (double)lp->cost.paths,
            (double)cam->cost.scatters / (double)cam->cost.paths);
-    CHECK(n > 600);
-    CHECK_MSG(chi2 > 0.7 && chi2 < 1.5, "chi2/dof %.3f", chi2);
-    CHECK_MSG(fabs(zb) < 4.5, "pooled z over batches %.2f", zb);
+    CHECK(c.n > 600);
+    CHECK_MSG(c.chi2 > 0.7 && c.chi2 < 1.5, "chi2/dof %.3f", c.chi2);
+    CHECK_MSG(fabs(c.z) < 4.5, "pooled z over batches %.2f", c.z);
     CHECK_MSG(lp->cost.photons > 0 && cam->cost.photons == 0, "light paths: %llu photons with, %llu without",
               (unsigned long long)lp->cost.photons, (unsigned long long)cam->cost.photons);
     for (int k = 0; k < BATCHES; k++) lucent_trace_result_free(&cams[k]), lucent_trace_result_free(&lps[k]);
@@ -615,13 +630,11 @@ static void check_light_paths_agree(lucent_scene *sc, int total_spp, lucent_pool
  * passes only (1 and 2 threads, 5 + 3 and 8 passes: bit for bit). */
 TEST(light_paths_agree_with_camera_paths)
 {
-    lucent_scene *sc = sphere_scene("{\"units\": \"mm^-1\", \"sigma_a\": [0.05, 0.08, 0.1], \"sigma_s\": [20, 18, 16], "
-                                    "\"g\": 0, \"eta\": 1.5}",
-                                    "{\"type\": \"directional\", \"direction\": [-1, -0.2, -0.3], \"intensity\": 2},"
-                                    " {\"type\": \"directional\", \"direction\": [0.3, 0.5, -1], \"intensity\": 1,"
-                                    " \"angular_radius\": 0.1},"
-                                    " {\"type\": \"environment\", \"intensity\": 0.1}",
-                                    32, ", \"roughness\": 0.3");
+    lucent_scene *sc = dense_lit("{\"type\": \"directional\", \"direction\": [-1, -0.2, -0.3], \"intensity\": 2},"
+                                 " {\"type\": \"directional\", \"direction\": [0.3, 0.5, -1], \"intensity\": 1,"
+                                 " \"angular_radius\": 0.1},"
+                                 " {\"type\": \"environment\", \"intensity\": 0.1}",
+                                 32);
     lucent_pool *pool = lucent_pool_create(2);
     lucent_trace_result one = {0}, split = {0};
     CHECK(sc != NULL);
@@ -641,40 +654,36 @@ TEST(light_paths_agree_with_camera_paths)
     lucent_scene_destroy(sc);
 }
 
-/* The same for point lights: one outside the scene's bounding sphere (photons into the cone that
- * holds it) and one inside it, 0.7 mm off the surface (photons in every direction). 480 samples per
- * pixel: the pooled ratio's standard error is about 0.7%, so that a 5% error in the photons' power
- * is 7 of it (at 160, 1.2%: a deliberate 5% error gave z 3.5). */
-TEST(light_paths_agree_for_point_lights)
+/* check_light_paths_agree on the dense sphere lit by LIGHTS at total_spp samples per pixel. */
+static void dense_light_paths_agree(const char *lights, int total_spp)
 {
-    lucent_scene *sc = sphere_scene("{\"units\": \"mm^-1\", \"sigma_a\": [0.05, 0.08, 0.1], \"sigma_s\": [20, 18, 16], "
-                                    "\"g\": 0, \"eta\": 1.5}",
-                                    "{\"type\": \"point\", \"position\": [-3, 1, 2], \"intensity\": 20},"
-                                    " {\"type\": \"point\", \"position\": [0, 1.7, 0.3], \"intensity\": 0.5}",
-                                    32, ", \"roughness\": 0.3");
+    lucent_scene *sc = dense_lit(lights, 32);
     lucent_pool *pool = lucent_pool_create(2);
     CHECK(sc != NULL);
-    if (sc) check_light_paths_agree(sc, 480, pool);
+    if (sc) check_light_paths_agree(sc, total_spp, pool);
     lucent_pool_destroy(pool);
     lucent_scene_destroy(sc);
 }
 
-/* The same for sphere lights (photons from a point uniform on the light's surface, uniformly in the
- * cone from it that holds the scene, weighted by their cosine and that cone): one far off, and one
- * whose surface reaches into the scene's bounding sphere (photons from there in every direction). */
+/* The same for point lights: one outside the scene's bounding sphere (photons into the cone that
+ * holds it) and one inside it, 0.7 mm off the surface (photons in every direction). 480 samples per
+ * pixel: the pooled ratio's standard error is about 0.55%, so that a 5% error in the photons' power
+ * is 9 of it (at 160, 1.2%: a deliberate 5% error gave z 3.5). */
+TEST(light_paths_agree_for_point_lights)
+{
+    dense_light_paths_agree("{\"type\": \"point\", \"position\": [-3, 1, 2], \"intensity\": 20},"
+                            " {\"type\": \"point\", \"position\": [0, 1.7, 0.3], \"intensity\": 0.5}",
+                            480);
+}
+
+/* The same for sphere lights (a photon's direction uniform in the cone toward the scene grown by the
+ * light's radius, its start on the light's disc perpendicular to it, lifted onto the light): one far
+ * off, and one whose surface reaches into the scene's bounding sphere. */
 TEST(light_paths_agree_for_sphere_lights)
 {
-    lucent_scene *sc =
-        sphere_scene("{\"units\": \"mm^-1\", \"sigma_a\": [0.05, 0.08, 0.1], \"sigma_s\": [20, 18, 16], "
-                     "\"g\": 0, \"eta\": 1.5}",
-                     "{\"type\": \"sphere\", \"position\": [-3, 1, 2], \"radius\": 0.5, \"intensity\": 20},"
-                     " {\"type\": \"sphere\", \"position\": [0, 1.9, 0.3], \"radius\": 0.2, \"intensity\": 0.5}",
-                     32, ", \"roughness\": 0.3");
-    lucent_pool *pool = lucent_pool_create(2);
-    CHECK(sc != NULL);
-    if (sc) check_light_paths_agree(sc, 480, pool);
-    lucent_pool_destroy(pool);
-    lucent_scene_destroy(sc);
+    dense_light_paths_agree("{\"type\": \"sphere\", \"position\": [-3, 1, 2], \"radius\": 0.5, \"intensity\": 20},"
+                            " {\"type\": \"sphere\", \"position\": [0, 1.9, 0.3], \"radius\": 0.2, \"intensity\": 0.5}",
+                            480);
 }
 
 /* The sum over the image of the radiance a small light gives a sphere of matter that only reflects
