@@ -465,23 +465,23 @@ TEST(distance_bound_is_the_distance)
     lucent_scene_destroy(sc);
 }
 
-/* chi2 per degree of freedom and the pooled z of the differences of two independent estimates over the
- * fully covered pixels' channels (from their standard errors); *n the pixel channels. */
+/* chi2 per degree of freedom and the pooled z of the differences b - a of two independent estimates
+ * over the fully covered pixels' channels (from their standard errors); *n the pixel channels. */
 static void difference_stats(const lucent_trace_result *a, const lucent_trace_result *b, double *chi2_dof,
-                             double *pooled_z, double *rel, int *n)
+                             double *pooled_z, int *n)
 {
-    double chi2 = 0, diff = 0, var = 0, sum = 0;
+    double chi2 = 0, diff = 0, var = 0;
     *n = 0;
     for (int p = 0; a->image && b->image && p < a->image->width * a->image->height; p++) {
         if (a->coverage->data[p] < 1.0f || b->coverage->data[p] < 1.0f) continue;
         for (int c = 0; c < 3; c++) {
-            double d = (double)a->image->data[3 * p + c] - b->image->data[3 * p + c];
+            double d = (double)b->image->data[3 * p + c] - a->image->data[3 * p + c];
             double v = (double)a->variance->data[3 * p + c] + b->variance->data[3 * p + c];
             if (!(v > 0)) continue;
-            chi2 += d * d / v, diff += d, var += v, sum += a->image->data[3 * p + c], (*n)++;
+            chi2 += d * d / v, diff += d, var += v, (*n)++;
         }
     }
-    *chi2_dof = *n ? chi2 / *n : 0, *pooled_z = var > 0 ? diff / sqrt(var) : 0, *rel = sum > 0 ? diff / sum : 0;
+    *chi2_dof = *n ? chi2 / *n : 0, *pooled_z = var > 0 ? diff / sqrt(var) : 0;
 }
 
 enum { BATCHES = 8 };
@@ -551,13 +551,13 @@ typedef struct batch_comparison {
 static batch_comparison compare_batches(lucent_trace_result a[BATCHES], lucent_trace_result b[BATCHES])
 {
     batch_comparison c;
-    double ma, sea, mb, seb, rel;
+    double ma, sea, mb, seb;
     pooled_over_batches(a, a, b, &ma, &sea);
     pooled_over_batches(b, a, b, &mb, &seb);
     double se = sqrt(sea * sea + seb * seb);
     c.ratio = mb / ma, c.se = se / ma, c.z = (mb - ma) / se;
     merge_batches(a), merge_batches(b);
-    difference_stats(&a[0], &b[0], &c.chi2, &c.z_pixels, &rel, &c.n);
+    difference_stats(&a[0], &b[0], &c.chi2, &c.z_pixels, &c.n);
     return c;
 }
 
@@ -582,7 +582,7 @@ TEST(deep_nee_roulette_is_unbiased)
     batch_comparison c = compare_batches(plain, rr);
     printf("  %d pixel channels: chi2/dof %.3f; %d batches each of %d spp: roulette / plain %.4f +- %.4f (z %.2f; "
            "the per-pixel variances give z %.2f); next-event estimates at %.0f%% of volume vertices\n",
-           c.n, c.chi2, BATCHES, spp, c.ratio, c.se, c.z, -c.z_pixels, 100.0 * rr[0].cost.nee / rr[0].cost.scatters);
+           c.n, c.chi2, BATCHES, spp, c.ratio, c.se, c.z, c.z_pixels, 100.0 * rr[0].cost.nee / rr[0].cost.scatters);
     CHECK(c.n > 600);
     CHECK_MSG(c.chi2 > 0.7 && c.chi2 < 1.5, "chi2/dof %.3f", c.chi2);
     CHECK_MSG(fabs(c.z) < 4.5, "pooled z over batches %.2f", c.z);
@@ -610,9 +610,8 @@ static void check_light_paths_agree(lucent_scene *sc, int total_spp, lucent_pool
     printf("  %d pixel channels: chi2/dof %.3f; %d batches each of %d spp: light paths / camera paths %.4f +- %.4f "
            "(z %.2f; the per-pixel variances give z %.2f); %.2f light paths and %.1f scatterings per camera path "
            "(camera paths alone: %.1f)\n",
-           c.n, c.chi2, BATCHES, spp, c.ratio, c.se, c.z, -c.z_pixels,
-           (double)lp->cost.photons / (double)lp->cost.paths, (double)lp->cost.scatters / (double)lp->cost.paths,
-           (double)cam->cost.scatters / (double)cam->cost.paths);
+           c.n, c.chi2, BATCHES, spp, c.ratio, c.se, c.z, c.z_pixels, (double)lp->cost.photons / (double)lp->cost.paths,
+           (double)lp->cost.scatters / (double)lp->cost.paths, (double)cam->cost.scatters / (double)cam->cost.paths);
     CHECK(c.n > 600);
     CHECK_MSG(c.chi2 > 0.7 && c.chi2 < 1.5, "chi2/dof %.3f", c.chi2);
     CHECK_MSG(fabs(c.z) < 4.5, "pooled z over batches %.2f", c.z);

@@ -297,7 +297,8 @@ static uint64_t pass_photons(const lucent_tracer *tr)
     return (per_chunk ? per_chunk : 1) * LP_CHUNKS;
 }
 
-/* Adds the pass's connections, chunk by chunk, to the film's light-path sums (film.c). */
+/* Adds the pass's connections and each light's moments (emitter_shares), chunk by chunk so that the
+ * sums do not depend on the thread count, to the film's light-path sums (film.c). */
 static void fold(const lp_job *job, tr_film *f, double *image)
 {
     size_t n = (size_t)f->width * (size_t)f->height;
@@ -314,6 +315,9 @@ static void fold(const lp_job *job, tr_film *f, double *image)
         }
         a[6] += y * y;
     }
+    for (int ch = 0; ch < LP_CHUNKS; ch++)
+        for (int i = 0; i < job->tr->light_count; i++)
+            f->light_m2[i] += job->moments[ch].m2[i], f->light_n[i] += job->moments[ch].n[i];
     f->light_passes++;
 }
 
@@ -336,10 +340,7 @@ lucent_status tr_light_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *po
     for (int ch = 0; s == LUCENT_OK && job.lists && ch < LP_CHUNKS; ch++)
         if (job.lists[ch].failed) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory for light paths");
     *cut = atomic_load(&job.cut);
-    if (s == LUCENT_OK && !*cut) fold(&job, f, image);                /* a cut pass is dropped whole: unbiased */
-    for (int ch = 0; s == LUCENT_OK && !*cut && ch < LP_CHUNKS; ch++) /* in chunk order: any thread count */
-        for (int i = 0; i < tr->light_count; i++)
-            f->light_m2[i] += job.moments[ch].m2[i], f->light_n[i] += job.moments[ch].n[i];
+    if (s == LUCENT_OK && !*cut) fold(&job, f, image); /* a cut pass is dropped whole: unbiased */
     for (int t = 0; job.stats && t < threads; t++) tr_film_add_stats(&f->stats, &job.stats[t]);
     for (int ch = 0; job.lists && ch < LP_CHUNKS; ch++) free(job.lists[ch].items);
     free(job.lists), free(job.moments), free(job.stats), free(image);
