@@ -465,6 +465,57 @@ TEST(distance_bound_is_the_distance)
     lucent_scene_destroy(sc);
 }
 
+/* The depth lattice (depth.c) against brute force on the same torus and ball: the distance to the
+ * nearest surface is 1-Lipschitz, so its bound at a point may never exceed the distance there (the
+ * safe sphere must hold no surface), and, with the nearest lattice vertex at most h sqrt(3) / 2
+ * away, it lies within h sqrt(3) of the distance (of the cap, within h sqrt(3) / 2) over the
+ * bounds the lattice was made for. Points beyond every cell get 0. */
+TEST(depth_lattice_bounds_the_distance)
+{
+    lucent_scene *sc = scene_from(
+        "{\"camera\": {\"position\": [0, 0, 9], \"target\": [0, 0, 0], \"fov_y\": 35}, \"lights\": [{\"type\": "
+        "\"environment\", \"intensity\": 1}],"
+        " \"objects\": [{\"name\": \"ring\", \"mesh\": {\"primitive\": \"torus\", \"major_radius\": 2, \"radius\": "
+        "0.6},"
+        " \"material\": \"Marble\"}, {\"name\": \"ball\", \"mesh\": {\"primitive\": \"icosphere\", \"radius\": 0.8,"
+        " \"subdivisions\": 3}, \"material\": \"Marble\", \"transform\": {\"translate\": [0.3, 0.2, 0.1]}}],"
+        " \"render\": {\"width\": 8, \"height\": 8}}");
+    CHECK(sc != NULL);
+    if (!sc) return;
+    int objects[2] = {0, 1};
+    tr_geometry *g = NULL;
+    CHECK_OK(tr_geometry_create(sc, objects, 2, &g));
+    const double lo[3] = {-2.6, -2.6, -0.6}, hi[3] = {2.6, 2.6, 0.6}, h = 0.1, cap = 0.5;
+    tr_depth *z = g ? tr_depth_create(lo, hi, h, cap) : NULL;
+    CHECK(z != NULL);
+    lucent_rng rng;
+    lucent_rng_init(12, 0, &rng);
+    int above = 0, loose = 0, outside = 0;
+    double worst_gap = 0;
+    for (int i = 0; z && i < 3000; i++) {
+        v3 x = v3_make(6 * lucent_rng_uniform(&rng) - 3, 6 * lucent_rng_uniform(&rng) - 3,
+                       2 * lucent_rng_uniform(&rng) - 1);
+        double b = tr_depth_bound(z, g, x);
+        if (fabs(x.x) > 2.6 + 2 * h || fabs(x.y) > 2.6 + 2 * h || fabs(x.z) > 0.6 + 2 * h) { /* beyond every cell */
+            outside += b != 0;
+            continue;
+        }
+        double truth = brute_distance(sc, x), floor = fmin(truth - h * sqrt(3.0), cap - 0.5 * h * sqrt(3.0));
+        above += b > truth;
+        if (fabs(x.x) > 2.6 || fabs(x.y) > 2.6 || fabs(x.z) > 0.6) continue; /* maybe in no cell */
+        loose += b < floor - 1e-6;
+        worst_gap = fmax(worst_gap, fmin(truth, cap) - b);
+    }
+    printf("  3000 points, spacing %.2f, cap %.2f: bound up to %.3f below the distance (allowed %.3f)\n", h, cap,
+           worst_gap, h * sqrt(3.0));
+    CHECK_MSG(above == 0, "%d bounds above the distance", above);
+    CHECK_MSG(loose == 0, "%d bounds looser than the lattice allows", loose);
+    CHECK_MSG(outside == 0, "%d points outside the lattice got a bound", outside);
+    tr_depth_destroy(z);
+    tr_geometry_destroy(g);
+    lucent_scene_destroy(sc);
+}
+
 /* chi2 per degree of freedom and the pooled z of the differences b - a of two independent estimates
  * over the fully covered pixels' channels (from their standard errors); *n the pixel channels. */
 static void difference_stats(const lucent_trace_result *a, const lucent_trace_result *b, double *chi2_dof,
@@ -953,6 +1004,6 @@ TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_ad
           TEST_ENTRY(refuses_delta_lights_through_smooth_boundaries), TEST_ENTRY(meshes_with_holes_terminate),
           TEST_ENTRY(point_clouds_are_skipped), TEST_ENTRY(bad_input_is_named),
           TEST_ENTRY(distance_bounded_flights_change_nothing), TEST_ENTRY(distance_bound_is_the_distance),
-          TEST_ENTRY(deep_nee_roulette_is_unbiased), TEST_ENTRY(light_paths_agree_with_camera_paths),
-          TEST_ENTRY(light_paths_agree_for_point_lights), TEST_ENTRY(light_paths_agree_for_sphere_lights),
-          TEST_ENTRY(sphere_light_gives_a_point_lights_irradiance))
+          TEST_ENTRY(depth_lattice_bounds_the_distance), TEST_ENTRY(deep_nee_roulette_is_unbiased),
+          TEST_ENTRY(light_paths_agree_with_camera_paths), TEST_ENTRY(light_paths_agree_for_point_lights),
+          TEST_ENTRY(light_paths_agree_for_sphere_lights), TEST_ENTRY(sphere_light_gives_a_point_lights_irradiance))

@@ -8,6 +8,7 @@
  * meets no surface at all has left a mesh through a hole and ends (counted as escaped), so open
  * meshes cannot hang the tracer. Russian roulette ends paths of small throughput without bias. */
 #include <math.h>
+#include <stdlib.h>
 
 #include "trace/path.h"
 
@@ -84,9 +85,7 @@ static void surface(tr_path *p, const tr_hit *h)
     const tr_boundary *b = &tr->objects[h->object].boundary;
     bool first = p->camera_ray, inside = v3_dot(p->d, n) > 0, drop_reflection = first && tr->desc.subsurface_only;
     p->camera_ray = false;
-    p->safe_r = 0, p->gap = 0; /* a new stretch of medium: no sphere until a ray query says it may be deep */
-    p->known_n = 0, p->known_next = 0;
-    tr_path_known(p, y);
+    p->safe_r = 0; /* a new stretch of medium */
     if (++p->bounces > tr->render.trace.max_bounces || v3_dot(n, n) == 0) {
         p->stats->truncated += p->bounces > tr->render.trace.max_bounces;
         p->done = true;
@@ -196,21 +195,16 @@ static void scatter_direction(tr_path *p, const tr_object *ob, v3 x, const tr_tr
 /* ---- free flights bounded by the distance to the boundary ----
  * In a dense, nearly non-absorbing medium (marble: a mean free path of 0.4 mm, albedo 0.999) a walk
  * takes hundreds of flights, and each asked Embree for the boundary ahead although most end far from
- * it. A distance query (tr_distance_bound) gives a sphere around a vertex that holds no surface; a
- * flight that ends inside it cannot have crossed a surface, so it needs no ray query: the same
- * decision the query would have made, so the estimate is unchanged (tested bit for bit). Next-event
- * estimation from a vertex at depth d (a lower bound from the sphere) reaches the boundary through at
- * least d of medium, so it contributes at most about exp(-sigma_min d) of a shallow vertex's; it is
- * made with probability P = min(1, exp(1 - sigma_min d)) and weighted by 1 / P (Russian roulette on
- * an estimator: unbiased, and its weighted value stays below a shallow vertex's). Both only in dense
- * media (tr_object.dense, TR_DENSE_ALBEDO): elsewhere walks are short and the queries cost more than
- * they save. */
-/* A query visits every BVH leaf its sphere overlaps until it finds nearer triangles, so one that finds
- * nothing (a deep vertex) costs more the further it looks: at 8 mean free paths rather than 16 the
- * dragon's light paths took 0.90 of the time per pass (four seeds, 0.81-0.95) at the same noise, with
- * 3.8 instead of 3.4 queries per path (docs/trace.md). */
-#define SAFE_MFP_MAX 8.0 /* a distance query looks this many mean free paths far at most */
-#define SAFE_MFP_MIN 2.0 /* spheres smaller than this (in mean free paths) are not worth their query */
+ * it. The object's depth lattice (depth.c) gives, at any point, the radius of a sphere about it that
+ * holds no surface. A flight that stays inside the union of two such spheres, the path's current one
+ * (about an earlier vertex) and one about the flight's end, cannot have crossed a surface, so it needs
+ * no ray query: the same decision the query would have made, so the estimate is unchanged (tested bit
+ * for bit). Next-event estimation from a vertex at depth d (a lower bound from the sphere) reaches
+ * the boundary through at least d of medium, so it contributes at most about exp(-sigma_min d) of a
+ * shallow vertex's; it is made with probability P = min(1, exp(1 - sigma_min d)) and weighted by 1 / P
+ * (Russian roulette on an estimator: unbiased, and its weighted value stays below a shallow vertex's).
+ * Both only in dense media (tr_object.depth, TR_DENSE_ALBEDO): elsewhere walks are short. */
+#define SAFE_REFRESH 0.5 /* a vertex asks the lattice for a new sphere once the old one is this far used up */
 
 /* How far the flight from p->o along p->d stays inside the safe sphere (0 when there is none). */
 static double safe_reach(const tr_path *p)
@@ -224,37 +218,26 @@ static double safe_reach(const tr_path *p)
 /* A lower bound on the distance from x to any surface (0 outside the safe sphere). */
 static double safe_depth(const tr_path *p, v3 x)
 {
-    return p->safe_r > 0 ? fmax(0.0, p->safe_r - v3_length(v3_sub(x, p->safe_c))) : 0.0;
+    double d = p->safe_r > 0 ? p->safe_r - v3_length(v3_sub(x, p->safe_c)) : 0.0;
+    return d > 0 ? d : 0.0;
 }
 
-/* An upper bound on the distance from x to the nearest surface: the nearest surface point the path
- * knows, plus eps for the float precision of Embree's hit points (INFINITY when it knows none). */
-static double depth_above(const tr_path *p, v3 x)
+/* The lattice's sphere about x, less a margin for the float precision of Embree's hit points. */
+static double lattice_radius(const tr_path *p, const tr_object *ob, v3 x)
 {
-    double d = INFINITY;
-    for (int i = 0; i < p->known_n; i++) d = fmin(d, v3_length(v3_sub(x, p->known[i])));
-    return d + p->tr->eps;
+    return tr_depth_bound(ob->depth, p->tr->geometry, x) - 4.0 * p->tr->eps;
 }
 
-/* A new safe sphere at volume vertex x once the old one is half used up, where x may lie deep: the
- * last ray query left at least SAFE_MFP_MIN mean free paths between x and the surface ahead, and no
- * surface point the path knows is nearer than that. The query searches no further than the nearest
- * known point (the sphere is the same, the search shorter); should it find nothing there (float
- * trouble), there is no sphere. */
+/* A new safe sphere about volume vertex x once the old one is used up to SAFE_REFRESH of its radius
+ * (the lattice's sphere is the larger the nearer to its centre x lies, so refreshing at every vertex
+ * costs more lookups than it saves ray queries: measured in docs/trace.md). */
 static void refresh_safe(tr_path *p, const tr_object *ob, v3 x)
 {
-    double mfp = 1.0 / ob->sigma_t_min, margin = 4.0 * p->tr->eps;
-    if (p->tr->desc.plain_flights || !ob->dense || (p->safe_r > 0 && safe_depth(p, x) >= 0.5 * p->safe_r)) return;
-    p->safe_r = 0;
-    double above = depth_above(p, x), reach = fmin(SAFE_MFP_MAX * mfp, above);
-    if (!(p->gap >= SAFE_MFP_MIN * mfp) || above - margin < SAFE_MFP_MIN * mfp) return;
-    v3 s;
-    double d = tr_distance_bound(p->tr->geometry, x, reach, &s);
-    if (d < reach)
-        tr_path_known(p, s);
-    else if (reach < SAFE_MFP_MAX * mfp)
-        return;
-    if (d - margin >= SAFE_MFP_MIN * mfp) p->safe_c = x, p->safe_r = d - margin;
+    if (!ob->depth) return;
+    double depth = safe_depth(p, x);
+    if (p->safe_r > 0 && depth >= (1.0 - SAFE_REFRESH) * p->safe_r) return;
+    double r = lattice_radius(p, ob, x);
+    if (r > depth) p->safe_c = x, p->safe_r = r;
 }
 
 /* The probability of making the next-event estimate at volume vertex x (see above). */
@@ -301,9 +284,14 @@ static void step_inside(tr_path *p)
     tr_transform tf;
     tr_path_transform(p, p->medium, p->o, &tf);
     double t = -log(1.0 - tr_u(p)) / tr_walk_sigma(ob, &tf, p->hero, p->d);
-    if (t < safe_reach(p)) { /* ends inside the safe sphere: no surface on the way */
+    double reach = safe_reach(p);
+    if (!(t < reach) && ob->depth) { /* the spheres about the flight's two ends may cover it */
+        v3 x = v3_madd(p->o, p->d, t);
+        double r = lattice_radius(p, ob, x);
+        if (t - r < reach) p->safe_c = x, p->safe_r = r, reach = INFINITY;
+    }
+    if (t < reach) { /* ends inside the safe sphere: no surface on the way */
         p->stats->free_flights++;
-        p->gap = INFINITY;
         scatter(p, ob, t, &tf);
         return;
     }
@@ -312,8 +300,6 @@ static void step_inside(tr_path *p)
         p->stats->escaped++; /* left the mesh through a hole */
         p->done = true;
     } else if (t < h.t) {
-        p->gap = h.t - t;
-        tr_path_known(p, v3_madd(p->o, p->d, h.t));
         scatter(p, ob, t, &tf);
     } else {
         attenuate(p, ob, h.t, false, &tf);

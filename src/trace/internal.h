@@ -106,6 +106,15 @@ bool tr_occluded(const tr_geometry *g, v3 o, v3 d, double tfar);
  * search costs less the smaller rmax is: a caller that knows a surface point s may pass |p - s|. */
 double tr_distance_bound(const tr_geometry *g, v3 p, double rmax, v3 *closest);
 
+/* A lattice of distances to the nearest surface over [lo, hi], spacing about h, each distance capped
+ * at cap and filled on first use (depth.c); NULL when out of memory. */
+typedef struct tr_depth tr_depth;
+tr_depth *tr_depth_create(const double lo[3], const double hi[3], double h, double cap);
+void tr_depth_destroy(tr_depth *z);
+
+/* A lower bound on the distance from x to any surface (0 outside the lattice). */
+double tr_depth_bound(const tr_depth *z, const tr_geometry *g, v3 x);
+
 /* Ray queries (tr_intersect, tr_occluded) and distance queries this thread has made so far. */
 void tr_geometry_queries(uint64_t *rays, uint64_t *points);
 
@@ -118,6 +127,7 @@ struct tr_object {
     double sigma_t_min; /* of the three channels: sets the walk's distance scales (integrator.c) */
     bool dense;         /* every channel's albedo >= TR_DENSE_ALBEDO: walks long enough for safe spheres */
     bool light_paths;   /* its subsurface light comes from light paths (light_paths.c) */
+    tr_depth *depth;    /* dense objects: distances to the surface for the safe spheres (integrator.c) */
 };
 
 /* An object's importance field (field.c): a grid of grad ln(fluence) per channel. */
@@ -144,6 +154,9 @@ typedef struct tr_light {
     double select_cam; /* the pick probability for camera paths that leave it to them (0 when it is theirs) */
     double power;      /* light paths: its luminous power through the emission disc (emit_area times) */
 } tr_light;
+
+/* The depth lattices of the dense objects (none with plain_flights), each over its mesh's bounds. */
+lucent_status tr_depth_setup(lucent_tracer *tr);
 
 struct lucent_tracer {
     const lucent_scene *scene;

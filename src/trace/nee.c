@@ -121,11 +121,9 @@ void tr_nee_through(tr_path *p, tr_guide *g)
     if (tr_guide_draw_needs_ray(g, u0)) tr_guide_prepare(tr, g, l);
     if (!tr_guide_sample(tr, g, u0, u1, u2, &w) || !exit_point(tr, from, w, g->object, &h)) return;
     v3 y = v3_madd(from, w, h.t);
-    tr_path_known(p, y);
     double weight = p->nee_weight;
     if (!exit_roulette(p, ob, h.t, &weight)) return;
     tr_guide_prepare(tr, g, l);
-    if (g->has_n0) tr_path_known(p, g->y0);
     if (!connect_boundary(p, l, ratio, y, h.n, &ob->boundary, v3_neg(w), &c)) return;
     tr_transform tf;
     tr_path_transform(p, g->object, from, &tf);

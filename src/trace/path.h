@@ -34,8 +34,6 @@ typedef struct tr_mis {
     double walk_h;  /* and the hero's density of that step: p_HG(w) T_h(segment) */
 } tr_mis;
 
-#define TR_KNOWN 4 /* surface points a path remembers (tr_path.known) */
-
 typedef struct tr_path {
     const lucent_tracer *tr;
     lucent_rng *rng;
@@ -58,16 +56,9 @@ typedef struct tr_path {
     tr_guide guide;
     double rx[3];
     double walk_h;
-    /* a sphere inside the current medium that holds no surface (integrator.c), and what the last ray
-     * query left between the vertex it made and the surface ahead (an upper bound on its depth) */
+    /* a sphere inside the current medium that holds no surface (integrator.c) */
     v3 safe_c;
-    double safe_r; /* 0: none */
-    double gap;
-    /* surface points this stretch of medium's queries met (ray hits, the nearest points of distance
-     * queries): the depth of any x is at most |x - s| (the triangle inequality), so a distance query
-     * that could only return a sphere too small to use is not made (integrator.c) */
-    v3 known[TR_KNOWN];
-    int known_n, known_next;
+    double safe_r;     /* 0: none */
     double nee_weight; /* 1 / the probability with which this vertex's next-event estimate was made */
     /* A light path (light_paths.c): a photon whose next-event estimates connect to the camera
      * (tr->camera_light) and land in splats, scaled by splat_scale; beta is power, not radiance. */
@@ -80,14 +71,6 @@ typedef struct tr_path {
 } tr_path;
 
 static inline double tr_u(tr_path *p) { return lucent_rng_uniform(p->rng); }
-
-/* Remembers surface point s (the oldest of TR_KNOWN is forgotten). */
-static inline void tr_path_known(tr_path *p, v3 s)
-{
-    p->known[p->known_next] = s;
-    p->known_next = (p->known_next + 1) % TR_KNOWN;
-    if (p->known_n < TR_KNOWN) p->known_n++;
-}
 
 /* Where the transform's weights have grown past this, the walk goes on analog: in dense media, many
  * short steps under a coarse field multiply small mismatches into fireflies. Decided at scattering

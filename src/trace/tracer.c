@@ -102,6 +102,7 @@ static lucent_status build(lucent_tracer *tr)
     if (s == LUCENT_OK) s = tr_film_create(tr->render.view.width, tr->render.view.height, tr->desc.adaptive, &tr->film);
     tr->eps = scene_eps(sc);
     if (s == LUCENT_OK) tr_light_paths_setup(tr);
+    if (s == LUCENT_OK) s = tr_depth_setup(tr);
     return s;
 }
 
@@ -132,6 +133,7 @@ void lucent_tracer_destroy(lucent_tracer *tr)
     tr_field_destroy(tr);
     tr_geometry_destroy(tr->geometry);
     tr_film_destroy(tr->film);
+    for (int o = 0; tr->objects && o < tr->object_count; o++) tr_depth_destroy(tr->objects[o].depth);
     free(tr->objects);
     free(tr->lights);
     free(tr);
