@@ -291,11 +291,14 @@ static void references(lucent_pool *pool)
 {
     const char *env = getenv("BENCH_REFERENCE_SECONDS");
     double budget = env && atof(env) > 0 ? atof(env) : 60.0;
-    printf("\nbench_trace: the default scenes' references, today's estimator (a ray query per flight, next-event "
-           "estimation from every vertex), the camera paths alone (light paths off) and the default one, interleaved, "
-           "%.0f s each (CPU over %d threads); "
-           "anchor (issue 12): dragon-marble 22 spp in 60 s, 28%% noise; goal 10%% in 60 s, 5%% in 300 s\n",
-           budget, g_threads);
+    printf(
+        "\nbench_trace: the default scenes' references, today's estimator (a ray query per flight, next-event "
+        "estimation from every vertex), the camera paths alone (light paths off) and the default one, interleaved, "
+        "%.0f s each (CPU over %d threads); "
+        "anchor (issue 12): dragon-marble 22 spp in 60 s, 28%% noise; goal 10%% in 60 s, 5%% in 300 s; measured "
+        "(docs/trace.md, 2026-12-03, with the depth lattice): default 11.9%% at 60 s, 335 s to 5%%, before section 3 "
+        "1783 s\n",
+        budget, g_threads);
     const char *square[] = {"render.width=256", "render.height=256"},
                *wide[] = {"render.width=384", "render.height=128"};
     const char *files[] = {"dragon-marble.json", "bunny-skin.json", "bunny-jade.json", "spheres-skin.json"};
@@ -356,9 +359,10 @@ static void efficiency(void)
     const char *env = getenv("BENCH_EFFICIENCY_PASSES"), *seed_env = getenv("BENCH_EFFICIENCY_SEED");
     int passes = env && atoi(env) > 1 ? atoi(env) : 50;
     uint64_t seed = seed_env ? strtoull(seed_env, NULL, 10) : 1;
-    printf("\nbench_trace: figures measured (docs/trace.md, 30 passes, load 1-2): camera paths 0.967 / 0.957, "
-           "light paths 0.754 / 1.080 (seeds 1 / 2, 2026-12-03; before the light shares 0.941 / 1.395, 50 passes in "
-           "the fourth pass on section 3, before the 8-mean-free-path reach: 1.29 / 1.26)\n");
+    printf("\nbench_trace: figures measured (docs/trace.md, 30 passes, load 1-2): camera paths 0.786 / 0.761, "
+           "light paths 0.706 / 0.628 (seeds 1 / 2, 2026-12-03, with the depth lattice; before it 0.967 / 0.957 and "
+           "0.754 / 1.080; before the light shares 0.941 / 1.395, 50 passes in the fourth pass on section 3, before "
+           "the 8-mean-free-path reach: 1.29 / 1.26)\n");
     efficiency_run(passes, seed, false);
     efficiency_run(passes, seed, true);
 }
