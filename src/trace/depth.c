@@ -16,7 +16,10 @@
 
 #include "trace/internal.h"
 
-enum { DEPTH_MAX_VERTICES = 1 << 23 }; /* 32 MB of floats at most; the spacing grows to fit */
+/* 128 MB of floats at most (allocated zeroed: only the pages walks reach are touched): at marble's
+ * mean free path, a bounding box of 2.5e7 mm^3 (40 x 30 x 20 cm) keeps the spacing; a larger object's
+ * spacing grows to fit, and its spheres are looser by the larger cell diagonal. */
+enum { DEPTH_MAX_VERTICES = 1 << 25 };
 
 struct tr_depth {
     double lo[3], h, cap;

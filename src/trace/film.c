@@ -76,25 +76,25 @@ static void accumulate(double *a, const double v[3])
 }
 
 /* One camera path through pixel (x, y) from stream `stream`; true when it met an object. */
-static bool sample(const pass_job *job, int x, int y, uint64_t stream, int thread, double v[3])
+static bool sample(const pass_job *job, int x, int y, uint64_t stream, tr_stats *stats, double v[3])
 {
     lucent_rng rng;
     lucent_rng_init(job->film->seed, stream, &rng);
     double px = x + lucent_rng_uniform(&rng), py = y + lucent_rng_uniform(&rng);
-    return tr_trace_path(job->tr, px, py, &rng, v, &job->stats[thread]);
+    return tr_trace_path(job->tr, px, py, &rng, v, stats);
 }
 
-static uint64_t pixel_pass(const pass_job *job, int x, int y, int thread)
+static uint64_t pixel_pass(const pass_job *job, int x, int y, tr_stats *stats)
 {
     tr_film *f = job->film;
     size_t p = (size_t)y * (size_t)f->width + (size_t)x;
     double v[3];
     for (uint32_t i = 0; i < f->quota[p]; i++, f->count[p]++) {
-        f->hits[p] += sample(job, x, y, (uint64_t)f->count[p] << 32 | p, thread, v);
+        f->hits[p] += sample(job, x, y, (uint64_t)f->count[p] << 32 | p, stats, v);
         accumulate(f->acc + p * TR_FILM_ACC, v);
     }
     if (!f->adaptive) return f->quota[p];
-    sample(job, x, y, PILOT_STREAM | f->passes << 32 | p, thread, v);
+    sample(job, x, y, PILOT_STREAM | f->passes << 32 | p, stats, v);
     accumulate(f->pilot + p * TR_FILM_ACC, v);
     return f->quota[p] + 1;
 }
@@ -111,8 +111,11 @@ static lucent_status pass_tile(void *ctx, uint64_t chunk, uint64_t begin, uint64
         atomic_store(&job->cut, true);
         return LUCENT_OK;
     }
+    tr_stats stats = {0}; /* counted on this thread's stack, not in the threads' array, whose neighbouring
+                             counters share cache lines (the dragon: within the noise, 85 and 84-87 passes) */
     for (int y = y0; y < y1; y++)
-        for (int x = x0; x < x1; x++) done += pixel_pass(job, x, y, thread);
+        for (int x = x0; x < x1; x++) done += pixel_pass(job, x, y, &stats);
+    tr_film_add_stats(&job->stats[thread], &stats);
     lucent_progress_add(job->progress, done);
     return LUCENT_OK;
 }

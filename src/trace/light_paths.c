@@ -271,6 +271,7 @@ static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
     }
     double photons = (double)(job->per_chunk * LP_CHUNKS);
     lp_moments *mo = &job->moments[chunk];
+    tr_stats stats = {0}; /* on this thread's stack (film.c's pass_tile says why) */
     for (uint64_t i = begin; i < end; i++) {
         lucent_rng rng;
         lucent_rng_init(tr->film->seed, LP_STREAM | job->pass << 32 | i, &rng);
@@ -281,10 +282,10 @@ static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
         emit(tr, l, &rng, &o, &d);
         double y = tr_luminance(l->radiance), beta[3] = {l->radiance[0] / y, l->radiance[1] / y, l->radiance[2] / y};
         size_t from = job->lists[chunk].n;
-        tr_trace_light_path(tr, o, d, beta, l->power / (job->share[k] * photons), &rng, &job->lists[chunk],
-                            &job->stats[thread]);
+        tr_trace_light_path(tr, o, d, beta, l->power / (job->share[k] * photons), &rng, &job->lists[chunk], &stats);
         mo->m2[k] += squared_connections(&job->lists[chunk], from) * job->share[k] * job->share[k], mo->n[k]++;
     }
+    tr_film_add_stats(&job->stats[thread], &stats);
     return LUCENT_OK;
 }
 
