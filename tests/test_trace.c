@@ -511,6 +511,19 @@ TEST(depth_lattice_bounds_the_distance)
     CHECK_MSG(above == 0, "%d bounds above the distance", above);
     CHECK_MSG(loose == 0, "%d bounds looser than the lattice allows", loose);
     CHECK_MSG(outside == 0, "%d points outside the lattice got a bound", outside);
+    /* a spacing far too fine for memory grows (no overflow of the vertex count) and still bounds
+     * from below; bounds that are not finite make no lattice */
+    tr_depth *fine = g ? tr_depth_create(lo, hi, 1e-9, cap) : NULL;
+    int fine_above = 0;
+    for (int i = 0; fine && i < 200; i++) {
+        v3 x = v3_make(5 * lucent_rng_uniform(&rng) - 2.5, 5 * lucent_rng_uniform(&rng) - 2.5,
+                       lucent_rng_uniform(&rng) - 0.5);
+        fine_above += tr_depth_bound(fine, g, x) > brute_distance(sc, x);
+    }
+    CHECK(fine != NULL && fine_above == 0);
+    const double bad[3] = {NAN, 0, 0};
+    CHECK(tr_depth_create(bad, hi, h, cap) == NULL);
+    tr_depth_destroy(fine);
     tr_depth_destroy(z);
     tr_geometry_destroy(g);
     lucent_scene_destroy(sc);

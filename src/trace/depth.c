@@ -29,15 +29,17 @@ struct tr_depth {
 
 tr_depth *tr_depth_create(const double lo[3], const double hi[3], double h, double cap)
 {
-    tr_depth *z = calloc(1, sizeof *z);
-    if (!z) return NULL;
     double size[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
-    for (;;) {
-        size_t count = 1;
-        for (int i = 0; i < 3; i++) count *= (size_t)(z->n[i] = (int)ceil(size[i] / h) + 2);
+    if (!(h > 0 && isfinite(h) && isfinite(size[0] + size[1] + size[2]) && cap > 0)) return NULL;
+    for (;;) { /* counted in double: no overflow */
+        double count = 1;
+        for (int i = 0; i < 3; i++) count *= ceil(size[i] / h) + 2;
         if (count <= DEPTH_MAX_VERTICES) break;
         h *= 1.25;
     }
+    tr_depth *z = calloc(1, sizeof *z);
+    if (!z) return NULL;
+    for (int i = 0; i < 3; i++) z->n[i] = (int)(ceil(size[i] / h) + 2);
     z->h = h, z->cap = cap;
     for (int i = 0; i < 3; i++) z->lo[i] = lo[i] - 0.5 * h;
     z->d = calloc((size_t)z->n[0] * (size_t)z->n[1] * (size_t)z->n[2], sizeof *z->d);
@@ -113,7 +115,9 @@ lucent_status tr_depth_setup(lucent_tracer *tr)
             }
         double mfp = 1.0 / ob->sigma_t_min, h = DEPTH_SPACING_MFP * mfp;
         ob->depth = tr_depth_create(lo, hi, h, DEPTH_REACH_MFP * mfp + sqrt(3.0) * h);
-        if (!ob->depth) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory (depth lattice)");
+        if (!ob->depth)
+            return lucent_error(LUCENT_ERR_OUT_OF_MEMORY,
+                                "trace: objects[%d]: cannot make its depth lattice (out of memory)", ob->scene_index);
     }
     return LUCENT_OK;
 }

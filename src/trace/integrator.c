@@ -8,7 +8,6 @@
  * meets no surface at all has left a mesh through a hole and ends (counted as escaped), so open
  * meshes cannot hang the tracer. Russian roulette ends paths of small throughput without bias. */
 #include <math.h>
-#include <stdlib.h>
 
 #include "trace/path.h"
 
@@ -229,8 +228,7 @@ static double lattice_radius(const tr_path *p, const tr_object *ob, v3 x)
 }
 
 /* A new safe sphere about volume vertex x once the old one is used up to SAFE_REFRESH of its radius
- * (the lattice's sphere is the larger the nearer to its centre x lies, so refreshing at every vertex
- * costs more lookups than it saves ray queries: measured in docs/trace.md). */
+ * (a lookup at every vertex cost more than the ray queries its larger spheres saved: docs/trace.md). */
 static void refresh_safe(tr_path *p, const tr_object *ob, v3 x)
 {
     if (!ob->depth) return;

@@ -107,7 +107,7 @@ bool tr_occluded(const tr_geometry *g, v3 o, v3 d, double tfar);
 double tr_distance_bound(const tr_geometry *g, v3 p, double rmax, v3 *closest);
 
 /* A lattice of distances to the nearest surface over [lo, hi], spacing about h, each distance capped
- * at cap and filled on first use (depth.c); NULL when out of memory. */
+ * at cap and filled on first use (depth.c); NULL when out of memory or the bounds are not finite. */
 typedef struct tr_depth tr_depth;
 tr_depth *tr_depth_create(const double lo[3], const double hi[3], double h, double cap);
 void tr_depth_destroy(tr_depth *z);
