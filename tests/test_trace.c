@@ -417,14 +417,10 @@ static double brute_distance(const lucent_scene *sc, v3 p)
     return d;
 }
 
-/* The distance query behind the safe spheres (tr_distance_bound) against brute force over every
- * triangle of a torus and a sphere, at random points inside and outside: the distance found equals
- * the brute-force one (never more: the sphere it gives must hold no surface), its nearest point lies
- * at that distance, a search limited to the distance of a known surface point (what the walk passes,
- * integrator.c) finds the same, and a search limited below the distance finds nothing nearer. */
-TEST(distance_bound_is_the_distance)
+/* A torus and a ball that cuts into it, for the distance tests. */
+static lucent_scene *torus_and_ball(void)
 {
-    lucent_scene *sc = scene_from(
+    return scene_from(
         "{\"camera\": {\"position\": [0, 0, 9], \"target\": [0, 0, 0], \"fov_y\": 35}, \"lights\": [{\"type\": "
         "\"environment\", \"intensity\": 1}],"
         " \"objects\": [{\"name\": \"ring\", \"mesh\": {\"primitive\": \"torus\", \"major_radius\": 2, \"radius\": "
@@ -432,6 +428,16 @@ TEST(distance_bound_is_the_distance)
         " \"material\": \"Marble\"}, {\"name\": \"ball\", \"mesh\": {\"primitive\": \"icosphere\", \"radius\": 0.8,"
         " \"subdivisions\": 3}, \"material\": \"Marble\", \"transform\": {\"translate\": [0.3, 0.2, 0.1]}}],"
         " \"render\": {\"width\": 8, \"height\": 8}}");
+}
+
+/* The distance query (tr_distance_bound) against brute force over every
+ * triangle of a torus and a sphere, at random points inside and outside: the distance found equals
+ * the brute-force one (never more: the sphere it gives must hold no surface), its nearest point lies
+ * at that distance, a search limited to the distance of a known surface point finds the same, and a
+ * search limited below the distance finds nothing nearer. The depth lattice's distances come from it. */
+TEST(distance_bound_is_the_distance)
+{
+    lucent_scene *sc = torus_and_ball();
     CHECK(sc != NULL);
     if (!sc) return;
     int objects[2] = {0, 1};
@@ -472,14 +478,7 @@ TEST(distance_bound_is_the_distance)
  * bounds the lattice was made for. Points beyond every cell get 0. */
 TEST(depth_lattice_bounds_the_distance)
 {
-    lucent_scene *sc = scene_from(
-        "{\"camera\": {\"position\": [0, 0, 9], \"target\": [0, 0, 0], \"fov_y\": 35}, \"lights\": [{\"type\": "
-        "\"environment\", \"intensity\": 1}],"
-        " \"objects\": [{\"name\": \"ring\", \"mesh\": {\"primitive\": \"torus\", \"major_radius\": 2, \"radius\": "
-        "0.6},"
-        " \"material\": \"Marble\"}, {\"name\": \"ball\", \"mesh\": {\"primitive\": \"icosphere\", \"radius\": 0.8,"
-        " \"subdivisions\": 3}, \"material\": \"Marble\", \"transform\": {\"translate\": [0.3, 0.2, 0.1]}}],"
-        " \"render\": {\"width\": 8, \"height\": 8}}");
+    lucent_scene *sc = torus_and_ball();
     CHECK(sc != NULL);
     if (!sc) return;
     int objects[2] = {0, 1};
