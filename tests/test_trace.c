@@ -417,10 +417,11 @@ static double brute_distance(const lucent_scene *sc, v3 p)
     return d;
 }
 
-/* A torus and a ball that cuts into it, for the distance tests. */
-static lucent_scene *torus_and_ball(void)
+/* A torus and a ball that cuts into it, for the distance tests: the scene (*sc) and its ray-tracing
+ * geometry (NULL when either failed, which fails the test). */
+static tr_geometry *torus_and_ball(lucent_scene **sc)
 {
-    return scene_from(
+    *sc = scene_from(
         "{\"camera\": {\"position\": [0, 0, 9], \"target\": [0, 0, 0], \"fov_y\": 35}, \"lights\": [{\"type\": "
         "\"environment\", \"intensity\": 1}],"
         " \"objects\": [{\"name\": \"ring\", \"mesh\": {\"primitive\": \"torus\", \"major_radius\": 2, \"radius\": "
@@ -428,6 +429,11 @@ static lucent_scene *torus_and_ball(void)
         " \"material\": \"Marble\"}, {\"name\": \"ball\", \"mesh\": {\"primitive\": \"icosphere\", \"radius\": 0.8,"
         " \"subdivisions\": 3}, \"material\": \"Marble\", \"transform\": {\"translate\": [0.3, 0.2, 0.1]}}],"
         " \"render\": {\"width\": 8, \"height\": 8}}");
+    CHECK(*sc != NULL);
+    int objects[2] = {0, 1};
+    tr_geometry *g = NULL;
+    if (*sc) CHECK_OK(tr_geometry_create(*sc, objects, 2, &g));
+    return g;
 }
 
 /* The distance query (tr_distance_bound) against brute force over every
@@ -437,12 +443,8 @@ static lucent_scene *torus_and_ball(void)
  * search limited below the distance finds nothing nearer. The depth lattice's distances come from it. */
 TEST(distance_bound_is_the_distance)
 {
-    lucent_scene *sc = torus_and_ball();
-    CHECK(sc != NULL);
-    if (!sc) return;
-    int objects[2] = {0, 1};
-    tr_geometry *g = NULL;
-    CHECK_OK(tr_geometry_create(sc, objects, 2, &g));
+    lucent_scene *sc;
+    tr_geometry *g = torus_and_ball(&sc);
     lucent_rng rng;
     lucent_rng_init(11, 0, &rng);
     double worst = 0, worst_known = 0, worst_point = 0;
@@ -478,12 +480,8 @@ TEST(distance_bound_is_the_distance)
  * bounds the lattice was made for. Points beyond every cell get 0. */
 TEST(depth_lattice_bounds_the_distance)
 {
-    lucent_scene *sc = torus_and_ball();
-    CHECK(sc != NULL);
-    if (!sc) return;
-    int objects[2] = {0, 1};
-    tr_geometry *g = NULL;
-    CHECK_OK(tr_geometry_create(sc, objects, 2, &g));
+    lucent_scene *sc;
+    tr_geometry *g = torus_and_ball(&sc);
     const double lo[3] = {-2.6, -2.6, -0.6}, hi[3] = {2.6, 2.6, 0.6}, h = 0.1, cap = 0.5;
     tr_depth *z = g ? tr_depth_create(lo, hi, h, cap) : NULL;
     CHECK(z != NULL);
