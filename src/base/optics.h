@@ -65,7 +65,7 @@ static inline v3 lucent_around(v3 n, double mu, double phi)
 {
     v3 t, b;
     lucent_basis(n, &t, &b);
-    double s = sqrt(fmax(0.0, 1.0 - mu * mu));
+    double s = sqrt(lucent_at_least(0.0, 1.0 - mu * mu));
     return v3_normalize(lucent_from_local((v3){s * cos(phi), s * sin(phi), mu}, t, b, n));
 }
 
@@ -159,10 +159,10 @@ static inline v3 lucent_ggx_sample_visible(v3 v, v3 n, double alpha, double u1, 
     v3 t2 = v3_cross(vh, t1);
     double r = sqrt(u1), phi = 2.0 * M_PI * u2, s = 0.5 * (1.0 + vh.z);
     double p1 = r * cos(phi), p2 = r * sin(phi);
-    p2 = (1.0 - s) * sqrt(fmax(0.0, 1.0 - p1 * p1)) + s * p2;
-    double p3 = sqrt(fmax(0.0, 1.0 - p1 * p1 - p2 * p2));
+    p2 = (1.0 - s) * sqrt(lucent_at_least(0.0, 1.0 - p1 * p1)) + s * p2;
+    double p3 = sqrt(lucent_at_least(0.0, 1.0 - p1 * p1 - p2 * p2));
     v3 nh = v3_add(v3_add(v3_scale(t1, p1), v3_scale(t2, p2)), v3_scale(vh, p3));
-    v3 m = v3_normalize(v3_make(alpha * nh.x, alpha * nh.y, fmax(1e-12, nh.z)));
+    v3 m = v3_normalize(v3_make(alpha * nh.x, alpha * nh.y, lucent_at_least(1e-12, nh.z)));
     return lucent_from_local(m, t, b, n);
 }
 
@@ -214,7 +214,7 @@ static inline double lucent_hg_sample_cos(double g, double u)
     if (fabs(g) < 1e-6) return 2.0 * u - 1.0;
     if (fabs(g) >= 1.0) return g > 0 ? 1.0 : -1.0;
     double q = (1.0 - g * g) / (1.0 - g + 2.0 * g * u);
-    return fmax(-1.0, fmin(1.0, (1.0 + g * g - q * q) / (2.0 * g)));
+    return lucent_at_least(-1.0, lucent_at_most(1.0, (1.0 + g * g - q * q) / (2.0 * g)));
 }
 
 /* A new travel direction after scattering from travel direction d (unit): mu from

@@ -55,7 +55,7 @@ static double rough_transmit(const tr_boundary *b, v3 no, v3 o, v3 i, double eta
 static double cycles3_eval(const tr_boundary *b, v3 no, v3 o, v3 i, double eta_o, double eta_other, double *pdf)
 {
     double co = v3_dot(o, no), ci = v3_dot(i, no);
-    double F = lucent_fresnel_dielectric(co, eta_other / eta_o, NULL), R = fmax(1e-4, 1.0 - F), W = F + R;
+    double F = lucent_fresnel_dielectric(co, eta_other / eta_o, NULL), R = lucent_at_least(1e-4, 1.0 - F), W = F + R;
     double g = lucent_ggx_g1(co, b->alpha) * lucent_ggx_g1(fabs(ci), b->alpha);
     if (ci > 0) { /* reflection closure (bsdf_microfacet_ggx_eval_reflect): F D G / (4 co ci) */
         v3 m = lucent_ggx_half_reflect(o, i);
@@ -84,7 +84,8 @@ static double cycles3_eval(const tr_boundary *b, v3 no, v3 o, v3 i, double eta_o
 static bool sample_cycles3(const tr_boundary *b, v3 n, v3 no, v3 o, double eta_o, double eta_t, double u0, double u1,
                            double u2, tr_bsdf_sample *dest)
 {
-    double F = lucent_fresnel_dielectric(v3_dot(o, no), eta_t / eta_o, NULL), R = fmax(1e-4, 1.0 - F), W = F + R;
+    double F = lucent_fresnel_dielectric(v3_dot(o, no), eta_t / eta_o, NULL), R = lucent_at_least(1e-4, 1.0 - F),
+           W = F + R;
     v3 m = lucent_ggx_sample_visible(o, no, b->alpha, u1, u2);
     *dest = (tr_bsdf_sample){.weight = W, .scale = 1.0};
     if (u0 * W < F) {

@@ -8,7 +8,9 @@
  * first time a walk needs it; the value depends only on the vertex, so which thread fills it, and
  * when, changes nothing (the images stay bit for bit the same on any thread count). Values are
  * stored as floats rounded down (still lower bounds). Points outside the lattice get 0 (no sphere).
- * Memory: calloc'd, so only the pages of the cells walks visit are ever touched. */
+ * Memory: calloc'd, so only the pages of the cells walks visit are ever touched; stored in bricks of
+ * 4 x 4 x 4 vertices (256 bytes), so that a cell's eight corners mostly share two cache lines instead
+ * of lying on four (a lookup waits on its loads: 58% of its own time on the dragon before). */
 #include <math.h>
 #include <stdatomic.h>
 #include <stdlib.h>
@@ -23,7 +25,8 @@ enum { DEPTH_MAX_VERTICES = 1 << 25 };
 
 struct tr_depth {
     double lo[3], h, cap;
-    int n[3];
+    int n[3];            /* vertices per axis */
+    size_t bricks[2];    /* bricks along x, and in an xy layer */
     _Atomic uint32_t *d; /* per vertex: 0 unknown, else the float bits of the distance (-1: none) */
 };
 
@@ -31,9 +34,9 @@ tr_depth *tr_depth_create(const double lo[3], const double hi[3], double h, doub
 {
     double size[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
     if (!(h > 0 && isfinite(h) && isfinite(size[0] + size[1] + size[2]) && cap > 0)) return NULL;
-    for (;;) { /* counted in double: no overflow */
+    for (;;) { /* counted in double, whole bricks: no overflow */
         double count = 1;
-        for (int i = 0; i < 3; i++) count *= ceil(size[i] / h) + 2;
+        for (int i = 0; i < 3; i++) count *= 4 * ceil((ceil(size[i] / h) + 2) / 4);
         if (count <= DEPTH_MAX_VERTICES) break;
         h *= 1.25;
     }
@@ -42,7 +45,9 @@ tr_depth *tr_depth_create(const double lo[3], const double hi[3], double h, doub
     for (int i = 0; i < 3; i++) z->n[i] = (int)(ceil(size[i] / h) + 2);
     z->h = h, z->cap = cap;
     for (int i = 0; i < 3; i++) z->lo[i] = lo[i] - 0.5 * h;
-    z->d = calloc((size_t)z->n[0] * (size_t)z->n[1] * (size_t)z->n[2], sizeof *z->d);
+    size_t nb[3] = {(size_t)(z->n[0] + 3) / 4, (size_t)(z->n[1] + 3) / 4, (size_t)(z->n[2] + 3) / 4};
+    z->bricks[0] = nb[0], z->bricks[1] = nb[0] * nb[1];
+    z->d = calloc(z->bricks[1] * nb[2] * 64, sizeof *z->d);
     if (!z->d) {
         free(z);
         return NULL;
@@ -57,23 +62,25 @@ void tr_depth_destroy(tr_depth *z)
     free(z);
 }
 
-/* The distance at vertex (i, j, k), from the lattice or a query (rounded down to a float). */
-static double vertex_depth(const tr_depth *z, const tr_geometry *g, int i, int j, int k)
+/* Where vertex (i, j, k) is stored: its brick, then its place in the brick (x fastest). */
+static size_t vertex_slot(const tr_depth *z, int i, int j, int k)
 {
-    _Atomic uint32_t *slot = z->d + ((size_t)k * (size_t)z->n[1] + (size_t)j) * (size_t)z->n[0] + (size_t)i;
-    uint32_t bits = atomic_load_explicit(slot, memory_order_relaxed);
-    float f;
-    if (!bits) {
-        v3 v = v3_make(z->lo[0] + i * z->h, z->lo[1] + j * z->h, z->lo[2] + k * z->h);
-        double d = tr_distance_bound(g, v, z->cap, NULL);
-        f = (float)d;
-        if ((double)f > d) f = nextafterf(f, 0.0f);
-        if (!(f > 0)) f = -1.0f;
-        memcpy(&bits, &f, sizeof bits);
-        atomic_store_explicit(slot, bits, memory_order_relaxed);
-    }
-    memcpy(&f, &bits, sizeof f);
-    return f;
+    size_t brick = ((size_t)(k >> 2) * z->bricks[1] + (size_t)(j >> 2) * z->bricks[0] + (size_t)(i >> 2));
+    return brick * 64 + (size_t)((k & 3) << 4 | (j & 3) << 2 | (i & 3));
+}
+
+/* Fills vertex (i, j, k) with a query (its distance rounded down to a float); its stored bits. */
+static uint32_t vertex_fill(const tr_depth *z, const tr_geometry *g, int i, int j, int k)
+{
+    v3 v = v3_make(z->lo[0] + i * z->h, z->lo[1] + j * z->h, z->lo[2] + k * z->h);
+    double d = tr_distance_bound(g, v, z->cap, NULL);
+    float f = (float)d;
+    if ((double)f > d) f = nextafterf(f, 0.0f);
+    if (!(f > 0)) f = -1.0f;
+    uint32_t bits;
+    memcpy(&bits, &f, sizeof bits);
+    atomic_store_explicit(z->d + vertex_slot(z, i, j, k), bits, memory_order_relaxed);
+    return bits;
 }
 
 double tr_depth_bound(const tr_depth *z, const tr_geometry *g, v3 x)
@@ -84,12 +91,20 @@ double tr_depth_bound(const tr_depth *z, const tr_geometry *g, v3 x)
         if (!(u[a] >= 0 && u[a] < z->n[a] - 1)) return 0.0;
         c[a] = (int)u[a], f[a] = u[a] - c[a];
     }
+    uint32_t bits[8]; /* the eight loads first, so that they wait together */
+    for (int corner = 0; corner < 8; corner++)
+        bits[corner] = atomic_load_explicit(
+            z->d + vertex_slot(z, c[0] + (corner & 1), c[1] + (corner >> 1 & 1), c[2] + (corner >> 2)),
+            memory_order_relaxed);
     /* the best of D(v) - |x - v| over the corners; the square root only for a corner that improves it */
     double best = 0.0;
     for (int corner = 0; corner < 8; corner++) {
         int di = corner & 1, dj = corner >> 1 & 1, dk = corner >> 2;
         double ex = f[0] - di, ey = f[1] - dj, ez = f[2] - dk, r2 = (ex * ex + ey * ey + ez * ez) * z->h * z->h;
-        double d = vertex_depth(z, g, c[0] + di, c[1] + dj, c[2] + dk), m = d - best;
+        if (!bits[corner]) bits[corner] = vertex_fill(z, g, c[0] + di, c[1] + dj, c[2] + dk);
+        float df;
+        memcpy(&df, &bits[corner], sizeof df);
+        double d = df, m = d - best;
         if (m > 0 && m * m > r2) best = d - sqrt(r2);
     }
     return best;

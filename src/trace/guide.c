@@ -108,6 +108,5 @@ void tr_guide_vertex(const lucent_tracer *tr, const tr_guide *g, const tr_transf
         for (int k = 0; k < 3; k++) f[k] = fb, pdf[k] = p;
         return;
     }
-    double mu = v3_dot(g->d_in, w);
-    for (int k = 0; k < 3; k++) f[k] = lucent_hg_phase(mu, ob->g[k]), pdf[k] = tr_walk_pdf(ob, tf, k, g->d_in, w);
+    tr_walk_phase_pdf(ob, tf, g->d_in, w, f, pdf);
 }

@@ -73,6 +73,9 @@ typedef struct tr_transform {
 
 double tr_walk_sigma(const tr_object *ob, const tr_transform *tf, int k, v3 w);
 double tr_walk_pdf(const tr_object *ob, const tr_transform *tf, int k, v3 d_in, v3 w);
+/* Per channel k, the phase function f[k] and tr_walk_pdf pdf[k] for d_in -> w (the same values, each
+ * computed once). */
+void tr_walk_phase_pdf(const tr_object *ob, const tr_transform *tf, v3 d_in, v3 w, double f[3], double pdf[3]);
 v3 tr_walk_sample(const tr_object *ob, const tr_transform *tf, int k, v3 d_in, double u0, double u1, double u2);
 
 /* Safe spheres and the deep next-event roulette (integrator.c) pay for their distance queries only

@@ -215,8 +215,9 @@ static void stretch(const lucent_tracer *tr, int m, v3 o, v3 d, double s, double
     tr_transform tf;
     tr_field_lookup(tr, m, o, &tf);
     for (int c = 0; c < 3; c++) {
-        T[c] *= exp(-ob->sigma_t[c] * s);
-        Tw[c] *= exp(-tr_walk_sigma(ob, &tf, c, d) * s);
+        double sw = tr_walk_sigma(ob, &tf, c, d), e = exp(-ob->sigma_t[c] * s);
+        T[c] *= e;
+        Tw[c] *= sw == ob->sigma_t[c] ? e : exp(-sw * s); /* the analog walk's is the same factor */
     }
 }
 

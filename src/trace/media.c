@@ -40,6 +40,16 @@ double tr_walk_pdf(const tr_object *ob, const tr_transform *tf, int k, v3 d_in, 
     return m > 0 ? (1.0 - m) * p + m * b_pdf(tf->b[k], v3_dot(w, tf->u[k])) : p;
 }
 
+void tr_walk_phase_pdf(const tr_object *ob, const tr_transform *tf, v3 d_in, v3 w, double f[3], double pdf[3])
+{
+    double mu = v3_dot(d_in, w);
+    for (int k = 0; k < 3; k++) {
+        /* the phase function once per distinct g; the analog walk's density is the phase function */
+        f[k] = k > 0 && ob->g[k] == ob->g[k - 1] ? f[k - 1] : lucent_hg_phase(mu, ob->g[k]);
+        pdf[k] = tf->b[k] > 0 ? tr_walk_pdf(ob, tf, k, d_in, w) : f[k];
+    }
+}
+
 v3 tr_walk_sample(const tr_object *ob, const tr_transform *tf, int k, v3 d_in, double u0, double u1, double u2)
 {
     double m = mix_of(ob, tf, k), b = tf->b[k];

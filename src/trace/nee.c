@@ -97,7 +97,7 @@ static bool connect_boundary(tr_path *p, const tr_light *l, double ratio, v3 y, 
 static bool exit_roulette(tr_path *p, const tr_object *ob, double s, double *weight)
 {
     if (!ob->dense || p->tr->desc.nee_every_vertex) return true;
-    double P = fmin(1.0, exp(1.0 - ob->sigma_t_min * s) * *weight);
+    double P = lucent_at_most(1.0, exp(1.0 - ob->sigma_t_min * s) * *weight);
     if (P >= 1.0) return true;
     if (!(tr_u(p) < P)) return false;
     *weight /= P;
@@ -133,9 +133,10 @@ void tr_nee_through(tr_path *p, tr_guide *g)
     if (p->to_camera && g->surface && v3_dot(g->o, g->n) > 0)
         for (int k = 0; k < 3; k++) f[k] *= ob->boundary.eta * ob->boundary.eta;
     for (int k = 0; k < 3; k++) {
-        double walk = pw[k] * exp(-tr_walk_sigma(ob, &tf, k, w) * h.t);
+        double sk = tr_walk_sigma(ob, &tf, k, w), e = exp(-ob->sigma_t[k] * h.t);
+        double walk = pw[k] * (sk == ob->sigma_t[k] ? e : exp(-sk * h.t)); /* the analog walk's: the same */
         den += p->r[k] * (q * c.ls.pdf + walk * (c.ls.pdf + pb * c.Tw[k]));
-        v[k] = weight * p->beta[k] * f[k] * exp(-ob->sigma_t[k] * h.t) * c.f * c.cos * c.ls.le[k] * c.T[k];
+        v[k] = weight * p->beta[k] * f[k] * e * c.f * c.cos * c.ls.le[k] * c.T[k];
     }
     den /= 3.0;
     if (!(den > 0)) return;
