@@ -746,6 +746,32 @@ TEST(light_paths_agree_for_sphere_lights)
                             480);
 }
 
+/* A scene of two balls, one dense (served by the light paths under auto) and one not (albedo 0.67 to
+ * 0.91): the light paths must connect to the camera only out of the dense one, since camera paths
+ * enter the other with every light. Before that was so, the second ball's light was counted by both,
+ * twice its value (measured: 94.7 against 48.1 over its half of the image), so the pooled ratio
+ * was far outside its error. */
+TEST(light_paths_leave_unserved_objects_to_camera_paths)
+{
+    lucent_scene *sc =
+        scene_from("{\"camera\": {\"position\": [0, 0, 6], \"target\": [0, 0, 0], \"fov_y\": 35},"
+                   " \"lights\": [{\"type\": \"directional\", \"direction\": [-1, -0.2, -0.3], \"intensity\": 2},"
+                   " {\"type\": \"environment\", \"intensity\": 0.1}],"
+                   " \"objects\": [{\"name\": \"dense\", \"mesh\": {\"primitive\": \"icosphere\", \"radius\": 1,"
+                   " \"subdivisions\": 4}, \"material\": {\"units\": \"mm^-1\", \"sigma_a\": [0.05, 0.08, 0.1],"
+                   " \"sigma_s\": [20, 18, 16], \"g\": 0, \"eta\": 1.5}, \"roughness\": 0.3,"
+                   " \"transform\": {\"translate\": [-1.1, 0, 0]}},"
+                   " {\"name\": \"thin\", \"mesh\": {\"primitive\": \"icosphere\", \"radius\": 1, \"subdivisions\": 4},"
+                   " \"material\": {\"units\": \"mm^-1\", \"sigma_a\": [1, 2, 4], \"sigma_s\": [10, 8, 8], \"g\": 0,"
+                   " \"eta\": 1.5}, \"roughness\": 0.3, \"transform\": {\"translate\": [1.1, 0, 0]}}],"
+                   " \"render\": {\"width\": 64, \"height\": 32}}");
+    lucent_pool *pool = lucent_pool_create(2);
+    CHECK(sc != NULL);
+    if (sc) check_light_paths_agree(sc, 96, pool);
+    lucent_pool_destroy(pool);
+    lucent_scene_destroy(sc);
+}
+
 /* The sum over the image of the radiance a small light gives a sphere of matter that only reflects
  * (sigma_a 1000 / mm: what refracts in is absorbed within a micron), camera paths only. */
 static double reflected_sum(const char *light, uint64_t seed, lucent_pool *pool)
@@ -1016,4 +1042,6 @@ TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_ad
           TEST_ENTRY(distance_bounded_flights_change_nothing), TEST_ENTRY(distance_bound_is_the_distance),
           TEST_ENTRY(depth_lattice_bounds_the_distance), TEST_ENTRY(deep_nee_roulette_is_unbiased),
           TEST_ENTRY(light_paths_agree_with_camera_paths), TEST_ENTRY(light_paths_agree_for_point_lights),
-          TEST_ENTRY(light_paths_agree_for_sphere_lights), TEST_ENTRY(sphere_light_gives_a_point_lights_irradiance))
+          TEST_ENTRY(light_paths_agree_for_sphere_lights),
+          TEST_ENTRY(light_paths_leave_unserved_objects_to_camera_paths),
+          TEST_ENTRY(sphere_light_gives_a_point_lights_irradiance))

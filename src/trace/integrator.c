@@ -98,7 +98,7 @@ static void surface(tr_path *p, const tr_hit *h)
     /* a light path connects to the camera from inside only: what the boundary reflects from outside
      * toward the camera is the camera paths' */
     if (b->kind == TR_BOUNDARY_ROUGH && !drop_reflection && (inside || !p->to_camera))
-        tr_nee_surface(p, y, n, b, inside);
+        tr_nee_surface(p, y, n, h->object, inside);
     bool through = b->kind == TR_BOUNDARY_ROUGH && !tr->desc.boundary_nee_only;
     bool enters_lp = p->primary && !inside && tr->objects[h->object].light_paths; /* entering: light paths' */
     p->camera_side |= enters_lp;

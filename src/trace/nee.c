@@ -39,10 +39,12 @@ void tr_path_add_at(tr_path *p, long pixel, const double v[3])
     tr_splat(p->splats, pixel, s);
 }
 
-const tr_light *tr_path_pick(tr_path *p, double *ratio)
+const tr_light *tr_path_pick(tr_path *p, int object, double *ratio)
 {
     *ratio = 1.0;
-    if (p->to_camera) return &p->tr->camera_light;
+    /* a light path connects to the camera only out of a served object: what leaves the others toward
+     * the camera is the camera paths' (they enter those objects with every light) */
+    if (p->to_camera) return object >= 0 && p->tr->objects[object].light_paths ? &p->tr->camera_light : NULL;
     const tr_light *l = tr_light_pick(p->tr, tr_u(p), p->camera_side);
     if (l) *ratio = tr_light_pick_ratio(l, p->camera_side);
     return l;
@@ -109,7 +111,7 @@ void tr_nee_through(tr_path *p, tr_guide *g)
     const lucent_tracer *tr = p->tr;
     const tr_object *ob = &tr->objects[g->object];
     double ratio;
-    const tr_light *l = tr_path_pick(p, &ratio);
+    const tr_light *l = tr_path_pick(p, g->object, &ratio);
     if (!l) return;
     v3 w, from = g->surface ? v3_madd(g->x, g->n, -tr->eps) : g->x;
     double u0 = tr_u(p), u1 = tr_u(p), u2 = tr_u(p);
@@ -149,7 +151,7 @@ void tr_nee_volume_matched(tr_path *p, v3 x)
     const lucent_tracer *tr = p->tr;
     const tr_object *ob = &tr->objects[p->medium];
     double ratio;
-    const tr_light *l = tr_path_pick(p, &ratio);
+    const tr_light *l = tr_path_pick(p, p->medium, &ratio);
     tr_light_sample ls;
     if (!l || p->to_camera || !tr_light_sample_from(l, x, v3_make(0, 0, 0), tr_u(p), tr_u(p), &ls)) return;
     ls.pdf *= ratio;
@@ -177,10 +179,11 @@ static double guide_term(tr_path *p, tr_guide *g, v3 w, double walk_h, const tr_
     return tr_guide_pdf(p->tr, g, w) / walk_h;
 }
 
-void tr_nee_surface(tr_path *p, v3 y, v3 n, const tr_boundary *b, bool inside)
+void tr_nee_surface(tr_path *p, v3 y, v3 n, int object, bool inside)
 {
+    const tr_boundary *b = &p->tr->objects[object].boundary;
     double ratio;
-    const tr_light *l = tr_path_pick(p, &ratio);
+    const tr_light *l = tr_path_pick(p, object, &ratio);
     connection c;
     if (!l || !connect_boundary(p, l, ratio, y, n, b, v3_neg(p->d), &c)) return;
     double g = inside && p->from_volume ? guide_term(p, &p->guide, p->d, p->walk_h, l) : 0.0;

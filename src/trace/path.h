@@ -90,17 +90,18 @@ static inline void tr_path_transform(const tr_path *p, int object, v3 x, tr_tran
 void tr_path_add(tr_path *p, const double value[3]);
 void tr_path_add_at(tr_path *p, long pixel, const double value[3]);
 
-/* The light a next-event estimate targets: the camera for a light path, else a light picked (the
- * camera side's lights once it left the others to the light paths); *ratio is the pick probability
- * over the one lights.c's densities carry. NULL when there is none. */
-const tr_light *tr_path_pick(tr_path *p, double *ratio);
+/* The light a next-event estimate out of object `object` targets: the camera for a light path (NULL
+ * unless the object is one the light paths serve), else a light picked (the camera side's lights once
+ * it left the others to the light paths); *ratio is the pick probability over the one lights.c's
+ * densities carry. NULL when there is none. */
+const tr_light *tr_path_pick(tr_path *p, int object, double *ratio);
 
 /* Next-event estimation (nee.c): through a rough boundary from the vertex g describes (it is prepared
  * for the light picked, and keeps that for the walk's weights), from a volume vertex in an
  * index-matched medium, and at a boundary vertex. */
 void tr_nee_through(tr_path *p, tr_guide *g);
 void tr_nee_volume_matched(tr_path *p, v3 x);
-void tr_nee_surface(tr_path *p, v3 y, v3 n, const tr_boundary *b, bool inside);
+void tr_nee_surface(tr_path *p, v3 y, v3 n, int object, bool inside);
 
 /* The balance-heuristic weight of a light the walk found (in direction w) against the strategies
  * recorded in p->mis. */
