@@ -746,6 +746,17 @@ TEST(light_paths_agree_for_sphere_lights)
                             480);
 }
 
+/* A light of intensity 0 beside the sun: it is no camera-side light, and a camera path that enters
+ * the dense ball stays on the camera side to its end. Before, such a path walked on for the dark
+ * light and, after its first reflection inside, counted the sun too, which the light paths had
+ * counted already (measured on a marble ball: 291 against 206 with light paths off). */
+TEST(light_paths_agree_beside_a_dark_light)
+{
+    dense_light_paths_agree("{\"type\": \"directional\", \"direction\": [-1, -0.2, -0.3], \"intensity\": 2},"
+                            " {\"type\": \"directional\", \"direction\": [1, 0, -0.5], \"intensity\": 0}",
+                            96);
+}
+
 /* A scene of two balls, one dense (served by the light paths under auto) and one not (albedo 0.67 to
  * 0.91): the light paths must connect to the camera only out of the dense one, since camera paths
  * enter the other with every light. Before that was so, the second ball's light was counted by both,
@@ -1044,4 +1055,4 @@ TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_ad
           TEST_ENTRY(light_paths_agree_with_camera_paths), TEST_ENTRY(light_paths_agree_for_point_lights),
           TEST_ENTRY(light_paths_agree_for_sphere_lights),
           TEST_ENTRY(light_paths_leave_unserved_objects_to_camera_paths),
-          TEST_ENTRY(sphere_light_gives_a_point_lights_irradiance))
+          TEST_ENTRY(light_paths_agree_beside_a_dark_light), TEST_ENTRY(sphere_light_gives_a_point_lights_irradiance))

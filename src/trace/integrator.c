@@ -110,7 +110,9 @@ static void surface(tr_path *p, const tr_hit *h)
         return;
     }
     p->primary = false;
-    p->camera_side = enters_lp && bs.transmit;
+    /* set where it enters, and kept to its end: every light it finds after that of a served light
+     * reached the camera out of the served object, which the light paths count */
+    if (enters_lp) p->camera_side = bs.transmit;
     if (p->camera_side && tr->camera_side_lights == 0) { /* all its light is the light paths' */
         p->done = true;
         return;
@@ -251,7 +253,8 @@ static void refresh_safe(tr_path *p, const tr_object *ob, v3 x, double r)
 static double nee_probability(const tr_path *p, const tr_object *ob, v3 x)
 {
     if (p->tr->desc.nee_every_vertex) return 1.0;
-    return lucent_at_most(1.0, exp(1.0 - ob->sigma_t_min * safe_depth(p, x)));
+    double e = 1.0 - ob->sigma_t_min * safe_depth(p, x);
+    return e >= 0 ? 1.0 : exp(e); /* within a mean free path: 1, without calling exp */
 }
 
 /* A scattering at distance t along the flight; r_end: the lattice's radius there if looked up (else NaN). */

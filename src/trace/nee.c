@@ -99,7 +99,9 @@ static bool connect_boundary(tr_path *p, const tr_light *l, double ratio, v3 y, 
 static bool exit_roulette(tr_path *p, const tr_object *ob, double s, double *weight)
 {
     if (!ob->dense || p->tr->desc.nee_every_vertex) return true;
-    double P = lucent_at_most(1.0, exp(1.0 - ob->sigma_t_min * s) * *weight);
+    double e = 1.0 - ob->sigma_t_min * s;
+    if (e >= 0 && *weight >= 1.0) return true; /* P = 1 without calling exp */
+    double P = lucent_at_most(1.0, exp(e) * *weight);
     if (P >= 1.0) return true;
     if (!(tr_u(p) < P)) return false;
     *weight /= P;
