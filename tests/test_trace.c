@@ -12,6 +12,7 @@
 
 #include "lucent/lucent.h"
 #include "test.h"
+#include "trace/film.h"
 #include "trace/internal.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -746,6 +747,50 @@ TEST(light_paths_agree_for_sphere_lights)
                             480);
 }
 
+/* Each light's share of the photons follows what its photons bring (docs/trace.md, "Each light's share
+ * of the photons"): the dense ball lit by two suns of equal power, one from the camera's side and one
+ * from behind. The first pass draws by power: a binomial half each. A later pass draws light l with
+ * probability 0.2 p_l + 0.8 sqrt(M_l) / sum_k sqrt(M_k) (p_l its part of the power, M_l the mean of
+ * its photons' squared connections so far), computed here from the moments the film kept; the next
+ * pass's counts must follow it within 4.5 binomial standard deviations. And physics orders them: the
+ * light from behind leaves the ball mostly where the camera does not see it, so it gets less than its
+ * half. */
+TEST(light_shares_follow_what_each_light_brings)
+{
+    lucent_scene *sc = dense_lit("{\"type\": \"directional\", \"direction\": [0.1, 0.1, -1], \"intensity\": 1},"
+                                 " {\"type\": \"directional\", \"direction\": [0.1, 0.1, 1], \"intensity\": 1}",
+                                 32);
+    lucent_pool *pool = lucent_pool_create(2);
+    lucent_tracer *tr = NULL;
+    lucent_trace_result r = {0};
+    CHECK(sc != NULL);
+    if (!sc) return;
+    CHECK_OK(lucent_tracer_create(sc, NULL, &tr));
+    CHECK_OK(lucent_tracer_render(tr, &(lucent_trace_desc){.spp = 1, .seed = 3, .pool = pool}, &r));
+    const tr_film *f = tr->film;
+    double n1[2] = {(double)f->light_n[0], (double)f->light_n[1]}, root[2],
+           power = tr->lights[0].power + tr->lights[1].power;
+    double total = n1[0] + n1[1];
+    CHECK_MSG(tr->light_count == 2 && total > 500, "%d lights, %.0f photons", tr->light_count, total);
+    CHECK_MSG(fabs(n1[0] - 0.5 * total) < 4.5 * sqrt(0.25 * total), "first pass: %.0f of %.0f photons from the first",
+              n1[0], total);
+    for (int i = 0; i < 2; i++) root[i] = sqrt(f->light_m2[i] / n1[i]);
+    double share[2];
+    for (int i = 0; i < 2; i++) share[i] = 0.2 * tr->lights[i].power / power + 0.8 * root[i] / (root[0] + root[1]);
+    lucent_trace_result_free(&r);
+    CHECK_OK(lucent_tracer_render(tr, &(lucent_trace_desc){.spp = 1, .pool = pool}, &r));
+    double d[2] = {(double)f->light_n[0] - n1[0], (double)f->light_n[1] - n1[1]}, n2 = d[0] + d[1];
+    printf("  pass 1: %.0f / %.0f photons; shares from its moments %.3f / %.3f; pass 2: %.0f / %.0f\n", n1[0], n1[1],
+           share[0], share[1], d[0], d[1]);
+    CHECK_MSG(fabs(d[1] - share[1] * n2) < 4.5 * sqrt(n2 * share[1] * (1 - share[1])),
+              "second pass: %.0f of %.0f photons from behind, expected %.1f", d[1], n2, share[1] * n2);
+    CHECK_MSG(share[1] < 0.4, "the light from behind's share %.3f", share[1]);
+    lucent_trace_result_free(&r);
+    lucent_tracer_destroy(tr);
+    lucent_pool_destroy(pool);
+    lucent_scene_destroy(sc);
+}
+
 /* A light of intensity 0 beside the sun: it is no camera-side light, and a camera path that enters
  * the dense ball stays on the camera side to its end. Before, such a path walked on for the dark
  * light and, after its first reflection inside, counted the sun too, which the light paths had
@@ -1055,4 +1100,5 @@ TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_ad
           TEST_ENTRY(light_paths_agree_with_camera_paths), TEST_ENTRY(light_paths_agree_for_point_lights),
           TEST_ENTRY(light_paths_agree_for_sphere_lights),
           TEST_ENTRY(light_paths_leave_unserved_objects_to_camera_paths),
-          TEST_ENTRY(light_paths_agree_beside_a_dark_light), TEST_ENTRY(sphere_light_gives_a_point_lights_irradiance))
+          TEST_ENTRY(light_paths_agree_beside_a_dark_light), TEST_ENTRY(light_shares_follow_what_each_light_brings),
+          TEST_ENTRY(sphere_light_gives_a_point_lights_irradiance))
