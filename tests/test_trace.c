@@ -749,10 +749,11 @@ TEST(light_paths_agree_for_sphere_lights)
 
 /* Each light's share of the photons follows what its photons bring (docs/trace.md, "Each light's share
  * of the photons"): the dense ball lit by two suns of equal power, one from the camera's side and one
- * from behind. The first pass draws by power: a binomial half each. A later pass draws light l with
- * probability 0.2 p_l + 0.8 sqrt(M_l) / sum_k sqrt(M_k) (p_l its part of the power, M_l the mean of
+ * from behind. The first pass draws by power: half each. A later pass gives light l the share
+ * 0.2 p_l + 0.8 sqrt(M_l) / sum_k sqrt(M_k) of its photons (p_l its part of the power, M_l the mean of
  * its photons' squared connections so far), computed here from the moments the film kept; the next
- * pass's counts must follow it within 4.5 binomial standard deviations. And physics orders them: the
+ * pass's counts must follow it within 4.5 binomial standard deviations (the strata of light_paths.c
+ * make them exact to within one; drawn independently they would spread binomially). And physics orders them: the
  * light from behind leaves the ball mostly where the camera does not see it, so it gets less than its
  * half. */
 TEST(light_shares_follow_what_each_light_brings)

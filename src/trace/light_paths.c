@@ -177,6 +177,8 @@ typedef struct lp_job {
     tr_stats *stats;         /* one per thread */
     uint64_t pass, per_chunk;
     double share[TR_MAX_LIGHTS], deadline;
+    uint64_t first[TR_MAX_LIGHTS + 1]; /* light l's photons are first[l] .. first[l + 1] - 1 (strata) */
+    double shift[TR_MAX_LIGHTS][2];    /* the random shift of each light's point set in this pass */
     _Atomic bool cut;
 } lp_job;
 
@@ -208,17 +210,50 @@ static void emitter_shares(const lucent_tracer *tr, const tr_film *f, double sha
     }
 }
 
-/* The light of a photon: picked by the shares (u uniform in [0, 1)). */
-static int emitter(const lucent_tracer *tr, const double share[TR_MAX_LIGHTS], double u)
+/* A pass's photons are stratified. Light l takes a block of them, first[l] .. first[l + 1] - 1, whose
+ * bounds are share_l's cumulative sums times the photon count, less one random offset in [0, 1) for the
+ * pass (systematic sampling: each light gets its share of the photons to within one, and in expectation
+ * exactly; a photon's weight divides by its light's share as before). Within a block, the two numbers
+ * that set where photon j of n lands (the start on the disc of a directional light or the environment,
+ * the direction of a point or sphere light) are the Hammersley point ((j + 1/2) / n, phi_2(j)), phi_2
+ * the base-2 radical inverse, shifted modulo 1 by a random vector per light and pass (Cranley and
+ * Patterson 1976): every photon's numbers are still uniform, so the pass is an unbiased estimate, and
+ * the passes stay independent, so the variance of the mean still comes from their spread; but the
+ * photons of a pass no longer bunch up on the object by chance. */
+static void strata(lp_job *job, const lucent_tracer *tr, uint64_t photons)
 {
-    double acc = 0;
-    int last = -1;
-    for (int i = 0; i < tr->light_count; i++) {
-        if (!(share[i] > 0)) continue;
-        acc += share[i], last = i;
-        if (u < acc) return i;
+    lucent_rng rng;
+    lucent_rng_init(tr->film->seed, LP_STREAM | job->pass << 32 | 0xFFFFFFFFull, &rng);
+    double offset = lucent_rng_uniform(&rng), acc = 0;
+    job->first[0] = 0;
+    for (int l = 0; l < tr->light_count; l++) {
+        acc += job->share[l];
+        double edge = l == tr->light_count - 1 ? (double)photons : ceil(acc * (double)photons - offset);
+        uint64_t e = edge < (double)job->first[l] ? job->first[l] : edge > (double)photons ? photons : (uint64_t)edge;
+        job->first[l + 1] = e;
+        job->shift[l][0] = lucent_rng_uniform(&rng), job->shift[l][1] = lucent_rng_uniform(&rng);
     }
-    return last;
+}
+
+static double radical_inverse_2(uint64_t j)
+{
+    double r = 0, f = 0.5;
+    for (; j; j >>= 1, f *= 0.5)
+        if (j & 1) r += f;
+    return r;
+}
+
+/* Photon i's light (-1: none), and its two stratified numbers. */
+static int stratum(const lp_job *job, int lights, uint64_t i, double *a, double *b)
+{
+    for (int l = 0; l < lights; l++) {
+        if (i >= job->first[l + 1]) continue;
+        uint64_t j = i - job->first[l], n = job->first[l + 1] - job->first[l];
+        *a = fmod(((double)j + 0.5) / (double)n + job->shift[l][0], 1.0);
+        *b = fmod(radical_inverse_2(j) + job->shift[l][1], 1.0);
+        return l;
+    }
+    return -1;
 }
 
 /* Sum over a photon's connections (items from `from` on) of their squared values. */
@@ -230,18 +265,20 @@ static double squared_connections(const struct tr_splats *s, size_t from)
     return m2;
 }
 
-/* A photon from light l: its start o and direction d, all of equal power. Directional: toward the
- * scene, uniformly in a sun disc's cone; environment: uniform over the sphere; both from a start
- * uniform on the disc of radius emit_radius perpendicular to d, 2 radii before the centre (all of the
+/* A photon from light l: its start o and direction d, all of equal power; a and b (uniform, from
+ * stratum) place it, the rest comes from rng. Directional: toward the scene, uniformly in a sun disc's
+ * cone; environment: uniform over the sphere; both from a start uniform (a, b) on the disc of radius
+ * emit_radius perpendicular to d, 2 radii before the centre (all of the
  * scene lies behind the disc). Point: from its position, uniformly in the cone that holds the scene's
- * bounding sphere. Sphere of radius r and radiance L: d uniform in the cone of emit_factor, then a
+ * bounding sphere (a, b). Sphere of radius r and radiance L: d uniform (a, b) in the cone of emit_factor, then a
  * point uniform on the disc of radius r through the centre perpendicular to d, lifted onto the
  * light's half facing d: the power L cos dA dw that the light sends along d is L dA_perp dw over that
  * disc (dA_perp = cos dA), so the photons' density follows it. */
-static void emit(const lucent_tracer *tr, const tr_light *l, lucent_rng *rng, v3 *o, v3 *d)
+static void emit(const lucent_tracer *tr, const tr_light *l, double a, double b, lucent_rng *rng, v3 *o, v3 *d)
 {
-    double u1 = lucent_rng_uniform(rng), u2 = lucent_rng_uniform(rng);
-    if (l->type == LUCENT_LIGHT_POINT || l->type == LUCENT_LIGHT_SPHERE) {
+    bool from_position = l->type == LUCENT_LIGHT_POINT || l->type == LUCENT_LIGHT_SPHERE;
+    double u1 = from_position ? a : lucent_rng_uniform(rng), u2 = from_position ? b : lucent_rng_uniform(rng);
+    if (from_position) {
         double r = l->type == LUCENT_LIGHT_SPHERE ? l->radius : 0.0;
         v3 axis, t, b;
         double omc = scene_cone(tr, l->position, r, &axis);
@@ -259,8 +296,7 @@ static void emit(const lucent_tracer *tr, const tr_light *l, lucent_rng *rng, v3
         *d = v3_neg(l->toward);
     else
         *d = v3_neg(lucent_around(l->toward, 1.0 - u1 * (1.0 - l->cos_cone), 2.0 * M_PI * u2));
-    double u3 = lucent_rng_uniform(rng), u4 = lucent_rng_uniform(rng);
-    *o = tr_disc_start(v3_load(tr->emit_centre), tr->emit_radius, v3_neg(*d), u3, u4);
+    *o = tr_disc_start(v3_load(tr->emit_centre), tr->emit_radius, v3_neg(*d), a, b);
 }
 
 static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
@@ -277,11 +313,12 @@ static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
     for (uint64_t i = begin; i < end; i++) {
         lucent_rng rng;
         lucent_rng_init(tr->film->seed, LP_STREAM | job->pass << 32 | i, &rng);
-        int k = emitter(tr, job->share, lucent_rng_uniform(&rng));
+        double a, b;
+        int k = stratum(job, tr->light_count, i, &a, &b);
         if (k < 0) continue;
         const tr_light *l = &tr->lights[k];
         v3 o, d;
-        emit(tr, l, &rng, &o, &d);
+        emit(tr, l, a, b, &rng, &o, &d);
         double y = tr_luminance(l->radiance), beta[3] = {l->radiance[0] / y, l->radiance[1] / y, l->radiance[2] / y};
         size_t from = job->lists[chunk].n;
         tr_trace_light_path(tr, o, d, beta, l->power / (job->share[k] * photons), &rng, &job->lists[chunk], &stats);
@@ -332,6 +369,7 @@ lucent_status tr_light_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *po
     int threads = pool ? lucent_pool_threads(pool) : 1;
     lp_job job = {.tr = tr, .pass = f->light_passes, .per_chunk = photons / LP_CHUNKS, .deadline = deadline};
     emitter_shares(tr, f, job.share);
+    strata(&job, tr, photons);
     job.lists = calloc(LP_CHUNKS, sizeof *job.lists);
     job.moments = calloc(LP_CHUNKS, sizeof *job.moments);
     job.stats = calloc((size_t)threads, sizeof *job.stats);
