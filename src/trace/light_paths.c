@@ -178,7 +178,7 @@ typedef struct lp_job {
     uint64_t pass, per_chunk;
     double share[TR_MAX_LIGHTS], deadline;
     uint64_t first[TR_MAX_LIGHTS + 1]; /* light l's photons are first[l] .. first[l + 1] - 1 (strata) */
-    double shift[TR_MAX_LIGHTS][2];    /* the random shift of each light's point set in this pass */
+    double shift[TR_MAX_LIGHTS][4];    /* the random shift of each light's point set in this pass */
     _Atomic bool cut;
 } lp_job;
 
@@ -213,11 +213,10 @@ static void emitter_shares(const lucent_tracer *tr, const tr_film *f, double sha
 /* A pass's photons are stratified. Light l takes a block of them, first[l] .. first[l + 1] - 1, whose
  * bounds are share_l's cumulative sums times the photon count, less one random offset in [0, 1) for the
  * pass (systematic sampling: each light gets its share of the photons to within one, and in expectation
- * exactly; a photon's weight divides by its light's share as before). Within a block, the two numbers
- * that set where photon j of n lands (the start on the disc of a directional light or the environment,
- * the direction of a point or sphere light) are the Hammersley point ((j + 1/2) / n, phi_2(j)), phi_2
- * the base-2 radical inverse, shifted modulo 1 by a random vector per light and pass (Cranley and
- * Patterson 1976): every photon's numbers are still uniform, so the pass is an unbiased estimate, and
+ * exactly; a photon's weight divides by its light's share as before). Within a block, the four numbers
+ * that set where photon j of n starts and goes (emit) are the Hammersley point
+ * ((j + 1/2) / n, phi_2(j), phi_3(j), phi_5(j)), phi_b the base-b radical inverse, shifted modulo 1 by
+ * a random vector per light and pass (Cranley and Patterson 1976): every photon's numbers are still uniform, so the pass is an unbiased estimate, and
  * the passes stay independent, so the variance of the mean still comes from their spread; but the
  * photons of a pass no longer bunch up on the object by chance. */
 static void strata(lp_job *job, const lucent_tracer *tr, uint64_t photons)
@@ -231,26 +230,27 @@ static void strata(lp_job *job, const lucent_tracer *tr, uint64_t photons)
         double edge = l == tr->light_count - 1 ? (double)photons : ceil(acc * (double)photons - offset);
         uint64_t e = edge < (double)job->first[l] ? job->first[l] : edge > (double)photons ? photons : (uint64_t)edge;
         job->first[l + 1] = e;
-        job->shift[l][0] = lucent_rng_uniform(&rng), job->shift[l][1] = lucent_rng_uniform(&rng);
+        for (int k = 0; k < 4; k++) job->shift[l][k] = lucent_rng_uniform(&rng);
     }
 }
 
-static double radical_inverse_2(uint64_t j)
+/* The base-b radical inverse of j: its digits mirrored about the point. */
+static double radical_inverse(uint64_t j, unsigned b)
 {
-    double r = 0, f = 0.5;
-    for (; j; j >>= 1, f *= 0.5)
-        if (j & 1) r += f;
+    double r = 0, f = 1.0 / b;
+    for (; j; j /= b, f /= b) r += (double)(j % b) * f;
     return r;
 }
 
-/* Photon i's light (-1: none), and its two stratified numbers. */
-static int stratum(const lp_job *job, int lights, uint64_t i, double *a, double *b)
+/* Photon i's light (-1: none), and its four stratified numbers. */
+static int stratum(const lp_job *job, int lights, uint64_t i, double u[4])
 {
     for (int l = 0; l < lights; l++) {
         if (i >= job->first[l + 1]) continue;
         uint64_t j = i - job->first[l], n = job->first[l + 1] - job->first[l];
-        *a = fmod(((double)j + 0.5) / (double)n + job->shift[l][0], 1.0);
-        *b = fmod(radical_inverse_2(j) + job->shift[l][1], 1.0);
+        double x[4] = {((double)j + 0.5) / (double)n, radical_inverse(j, 2), radical_inverse(j, 3),
+                       radical_inverse(j, 5)};
+        for (int k = 0; k < 4; k++) u[k] = fmod(x[k] + job->shift[l][k], 1.0);
         return l;
     }
     return -1;
@@ -265,25 +265,25 @@ static double squared_connections(const struct tr_splats *s, size_t from)
     return m2;
 }
 
-/* A photon from light l: its start o and direction d, all of equal power; a and b (uniform, from
- * stratum) place it, the rest comes from rng. Directional: toward the scene, uniformly in a sun disc's
- * cone; environment: uniform over the sphere; both from a start uniform (a, b) on the disc of radius
- * emit_radius perpendicular to d, 2 radii before the centre (all of the
- * scene lies behind the disc). Point: from its position, uniformly in the cone that holds the scene's
- * bounding sphere (a, b). Sphere of radius r and radiance L: d uniform (a, b) in the cone of emit_factor, then a
- * point uniform on the disc of radius r through the centre perpendicular to d, lifted onto the
- * light's half facing d: the power L cos dA dw that the light sends along d is L dA_perp dw over that
- * disc (dA_perp = cos dA), so the photons' density follows it. */
-static void emit(const lucent_tracer *tr, const tr_light *l, double a, double b, lucent_rng *rng, v3 *o, v3 *d)
+/* A photon from light l: its start o and direction d, all of equal power, from the four uniform
+ * numbers u of its stratum. Directional: toward the scene, uniformly (u2, u3) in a sun disc's cone;
+ * environment: uniform (u2, u3) over the sphere; both from a start uniform (u0, u1) on the disc of
+ * radius emit_radius perpendicular to d, 2 radii before the centre (all of the scene lies behind the
+ * disc). Point: from its position, uniformly (u0, u1) in the cone that holds the scene's bounding
+ * sphere. Sphere of radius r and radiance L: d uniform (u0, u1) in the cone of emit_factor, then a
+ * point uniform (u2, u3) on the disc of radius r through the centre perpendicular to d, lifted onto
+ * the light's half facing d: the power L cos dA dw that the light sends along d is L dA_perp dw over
+ * that disc (dA_perp = cos dA), so the photons' density follows it. */
+static void emit(const lucent_tracer *tr, const tr_light *l, const double u[4], v3 *o, v3 *d)
 {
     bool from_position = l->type == LUCENT_LIGHT_POINT || l->type == LUCENT_LIGHT_SPHERE;
-    double u1 = from_position ? a : lucent_rng_uniform(rng), u2 = from_position ? b : lucent_rng_uniform(rng);
+    double u1 = from_position ? u[0] : u[2], u2 = from_position ? u[1] : u[3];
     if (from_position) {
         double r = l->type == LUCENT_LIGHT_SPHERE ? l->radius : 0.0;
         v3 axis, t, b;
         double omc = scene_cone(tr, l->position, r, &axis);
         *d = lucent_around(axis, 1.0 - u1 * omc, 2.0 * M_PI * u2);
-        double rho = r * sqrt(lucent_rng_uniform(rng)), phi = 2.0 * M_PI * lucent_rng_uniform(rng);
+        double rho = r * sqrt(u[2]), phi = 2.0 * M_PI * u[3];
         lucent_basis(*d, &t, &b);
         v3 x = v3_add(v3_scale(t, rho * cos(phi)), v3_scale(b, rho * sin(phi)));
         x = v3_madd(x, *d, sqrt(fmax(0.0, r * r - rho * rho)));
@@ -296,7 +296,7 @@ static void emit(const lucent_tracer *tr, const tr_light *l, double a, double b,
         *d = v3_neg(l->toward);
     else
         *d = v3_neg(lucent_around(l->toward, 1.0 - u1 * (1.0 - l->cos_cone), 2.0 * M_PI * u2));
-    *o = tr_disc_start(v3_load(tr->emit_centre), tr->emit_radius, v3_neg(*d), a, b);
+    *o = tr_disc_start(v3_load(tr->emit_centre), tr->emit_radius, v3_neg(*d), u[0], u[1]);
 }
 
 static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
@@ -313,12 +313,12 @@ static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
     for (uint64_t i = begin; i < end; i++) {
         lucent_rng rng;
         lucent_rng_init(tr->film->seed, LP_STREAM | job->pass << 32 | i, &rng);
-        double a, b;
-        int k = stratum(job, tr->light_count, i, &a, &b);
+        double u[4];
+        int k = stratum(job, tr->light_count, i, u);
         if (k < 0) continue;
         const tr_light *l = &tr->lights[k];
         v3 o, d;
-        emit(tr, l, a, b, &rng, &o, &d);
+        emit(tr, l, u, &o, &d);
         double y = tr_luminance(l->radiance), beta[3] = {l->radiance[0] / y, l->radiance[1] / y, l->radiance[2] / y};
         size_t from = job->lists[chunk].n;
         tr_trace_light_path(tr, o, d, beta, l->power / (job->share[k] * photons), &rng, &job->lists[chunk], &stats);
