@@ -216,20 +216,24 @@ static void emitter_shares(const lucent_tracer *tr, const tr_film *f, double sha
  * exactly; a photon's weight divides by its light's share as before). Within a block, the four numbers
  * that set where photon j of n starts and goes (emit) are the Hammersley point
  * ((j + 1/2) / n, phi_2(j), phi_3(j), phi_5(j)), phi_b the base-b radical inverse, shifted modulo 1 by
- * a random vector per light and pass (Cranley and Patterson 1976): every photon's numbers are still uniform, so the pass is an unbiased estimate, and
- * the passes stay independent, so the variance of the mean still comes from their spread; but the
- * photons of a pass no longer bunch up on the object by chance. */
+ * a random vector per light and pass (Cranley and Patterson 1976): every photon's numbers are still
+ * uniform, so the pass is an unbiased estimate, and the passes stay independent, so the variance of the
+ * mean still comes from their spread; but the photons of a pass no longer bunch up on the object by
+ * chance. A light without a share gets no photons (its weight would divide by 0). */
 static void strata(lp_job *job, const lucent_tracer *tr, uint64_t photons)
 {
     lucent_rng rng;
     lucent_rng_init(tr->film->seed, LP_STREAM | job->pass << 32 | 0xFFFFFFFFull, &rng);
     double offset = lucent_rng_uniform(&rng), acc = 0;
+    int last = -1; /* the last light with a share: it takes the block's end (rounding) */
+    for (int l = 0; l < tr->light_count; l++)
+        if (job->share[l] > 0) last = l;
     job->first[0] = 0;
     for (int l = 0; l < tr->light_count; l++) {
         acc += job->share[l];
-        double edge = l == tr->light_count - 1 ? (double)photons : ceil(acc * (double)photons - offset);
+        double edge = l >= last ? (double)photons : ceil(acc * (double)photons - offset);
         uint64_t e = edge < (double)job->first[l] ? job->first[l] : edge > (double)photons ? photons : (uint64_t)edge;
-        job->first[l + 1] = e;
+        job->first[l + 1] = job->share[l] > 0 ? e : job->first[l]; /* none for a light without a share */
         for (int k = 0; k < 4; k++) job->shift[l][k] = lucent_rng_uniform(&rng);
     }
 }
