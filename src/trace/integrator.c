@@ -193,9 +193,8 @@ static void scatter_direction(tr_path *p, const tr_object *ob, v3 x, const tr_tr
     if (ob->boundary.kind == TR_BOUNDARY_MATCHED) {
         p->mis = (tr_mis){.kind = MIS_VOLUME, .p = x, .tc = {1, 1, 1}};
         for (int c = 0; c < 3; c++) p->mis.a[c] = p->rx[c], p->mis.pb[c] = pw[c];
-    } else {
-        p->mis.kind =
-            MIS_NONE; /* nothing else of the record is read (zeroing it whole cost 0.5% of the dragon's run) */
+    } else { /* nothing else of the record is read (zeroing it whole cost 0.5% of the dragon's run) */
+        p->mis.kind = MIS_NONE;
     }
     p->o = x;
     p->d = w;

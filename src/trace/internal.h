@@ -72,6 +72,12 @@ typedef struct tr_transform {
 } tr_transform;
 
 double tr_walk_sigma(const tr_object *ob, const tr_transform *tf, int k, v3 w);
+/* The walk's exp(-sw s) for a stretch s, given e = exp(-sigma_t s): e itself where the walk is analog
+ * (sw == sigma_t), so that it costs no second exp. */
+static inline double tr_walk_decay(double sw, double sigma_t, double e, double s)
+{
+    return sw == sigma_t ? e : exp(-sw * s);
+}
 double tr_walk_pdf(const tr_object *ob, const tr_transform *tf, int k, v3 d_in, v3 w);
 /* Per channel k, the phase function f[k] and tr_walk_pdf pdf[k] for d_in -> w (the same values, each
  * computed once). */

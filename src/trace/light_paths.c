@@ -99,15 +99,13 @@ void tr_light_paths_setup(lucent_tracer *tr)
         l->light_paths = any && light_eligible(l) && tr_luminance(l->radiance) > 0;
         l->power = l->light_paths ? tr_luminance(l->radiance) * emit_factor(tr, l) : 0;
         lights |= l->light_paths;
-        if (!l->light_paths && tr_luminance(l->radiance) > 0) rest += l->select;
+        if (!l->light_paths) rest += l->select;
     }
     tr->light_paths = lights;
     tr->camera_side_lights = 0;
     for (int i = 0; i < tr->light_count; i++) {
         tr_light *l = &tr->lights[i];
-        /* a dark light (intensity 0) is no camera-side light: its paths would walk for nothing */
-        bool dark = !(tr_luminance(l->radiance) > 0);
-        l->select_cam = l->light_paths || dark || !(rest > 0) ? 0.0 : l->select / rest;
+        l->select_cam = l->light_paths || !(rest > 0) ? 0.0 : l->select / rest; /* a dark light's select is 0 */
         acc += l->select_cam;
         tr->select_cdf_cam[i] = acc;
         tr->camera_side_lights += l->select_cam > 0;

@@ -69,14 +69,16 @@ lucent_status tr_lights_build(lucent_tracer *tr)
     lucent_scene_bounds(sc, lo, hi);
     v3 centre = v3_scale(v3_add(v3_load(lo), v3_load(hi)), 0.5);
     double radius = lo[0] <= hi[0] ? 0.5 * v3_length(v3_sub(v3_load(hi), v3_load(lo))) : 1.0;
+    int lit = 0; /* lights that give light: a dark one (intensity 0) is never picked */
     for (int i = 0; i < n; i++) {
         build_one(&sc->lights[i], i, &tr->lights[i]);
         w[i] = power_proxy(&sc->lights[i], centre, radius);
         sum += w[i];
+        lit += w[i] > 0;
     }
     double acc = 0, best = 0;
     for (int i = 0; i < n; i++) {
-        tr->lights[i].select = sum > 0 ? 0.75 * w[i] / sum + 0.25 / n : 1.0 / n;
+        tr->lights[i].select = w[i] > 0 ? 0.75 * w[i] / sum + 0.25 / lit : 0.0;
         acc += tr->lights[i].select;
         tr->select_cdf[i] = acc;
         if (sc->lights[i].type != LUCENT_LIGHT_ENVIRONMENT && w[i] > best)
@@ -217,7 +219,7 @@ static void stretch(const lucent_tracer *tr, int m, v3 o, v3 d, double s, double
     for (int c = 0; c < 3; c++) {
         double sw = tr_walk_sigma(ob, &tf, c, d), e = exp(-ob->sigma_t[c] * s);
         T[c] *= e;
-        Tw[c] *= sw == ob->sigma_t[c] ? e : exp(-sw * s); /* the analog walk's is the same factor */
+        Tw[c] *= tr_walk_decay(sw, ob->sigma_t[c], e, s);
     }
 }
 

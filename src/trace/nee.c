@@ -138,7 +138,7 @@ void tr_nee_through(tr_path *p, tr_guide *g)
         for (int k = 0; k < 3; k++) f[k] *= ob->boundary.eta * ob->boundary.eta;
     for (int k = 0; k < 3; k++) {
         double sk = tr_walk_sigma(ob, &tf, k, w), e = exp(-ob->sigma_t[k] * h.t);
-        double walk = pw[k] * (sk == ob->sigma_t[k] ? e : exp(-sk * h.t)); /* the analog walk's: the same */
+        double walk = pw[k] * tr_walk_decay(sk, ob->sigma_t[k], e, h.t);
         den += p->r[k] * (q * c.ls.pdf + walk * (c.ls.pdf + pb * c.Tw[k]));
         v[k] = weight * p->beta[k] * f[k] * e * c.f * c.cos * c.ls.le[k] * c.T[k];
     }
