@@ -527,6 +527,86 @@ TEST(depth_lattice_bounds_the_distance)
     lucent_scene_destroy(sc);
 }
 
+/* A direction uniform over the sphere (Archimedes: z uniform in [-1, 1]). */
+static v3 uniform_direction(lucent_rng *rng)
+{
+    double z = 1.0 - 2.0 * lucent_rng_uniform(rng), phi = 2.0 * M_PI * lucent_rng_uniform(rng), r = sqrt(1.0 - z * z);
+    return v3_make(r * cos(phi), r * sin(phi), z);
+}
+
+/* The first surface of sc along x + t w, t > 0, over every triangle (Moller and Trumbore 1997): an
+ * independent intersection, not Embree's. */
+static double brute_ray(const lucent_scene *sc, v3 x, v3 w)
+{
+    double best = INFINITY;
+    for (int o = 0; o < sc->object_count; o++) {
+        const lucent_mesh *m = sc->objects[o].mesh;
+        for (size_t f = 0; f < m->face_count; f++) {
+            const uint32_t *v = m->faces + 3 * f;
+            v3 a = v3_load(m->positions + 3 * v[0]), e1 = v3_sub(v3_load(m->positions + 3 * v[1]), a),
+               e2 = v3_sub(v3_load(m->positions + 3 * v[2]), a), pv = v3_cross(w, e2);
+            double det = v3_dot(e1, pv);
+            if (fabs(det) < 1e-300) continue;
+            v3 tv = v3_sub(x, a), qv = v3_cross(tv, e1);
+            double u = v3_dot(tv, pv) / det, vv = v3_dot(w, qv) / det, t = v3_dot(e2, qv) / det;
+            if (u >= 0 && vv >= 0 && u + vv <= 1 && t > 0) best = fmin(best, t);
+        }
+    }
+    return best;
+}
+
+/* The lattice's free run (sphere tracing through the known vertices, depth.c), which ends the exit
+ * roulette's connections before their ray (nee.c), against brute-force rays on the torus and ball:
+ * before any vertex is known it goes nowhere (it fills none); once every vertex is known it never
+ * passes the first surface, and where it stops short of its goal with steps too small, that point
+ * lies within the lattice's bound of a surface (h sqrt(3) plus the smallest step, 0.05 h). */
+TEST(free_run_stops_before_the_first_surface)
+{
+    lucent_scene *sc;
+    tr_geometry *g = torus_and_ball(&sc);
+    const double lo[3] = {-2.6, -2.6, -0.6}, hi[3] = {2.6, 2.6, 0.6}, h = 0.1, cap = 0.5;
+    tr_depth *z = g ? tr_depth_create(lo, hi, h, cap) : NULL;
+    CHECK(z != NULL);
+    lucent_rng rng;
+    lucent_rng_init(13, 0, &rng);
+    int moved_unknown = 0, past = 0, far = 0, stalled = 0, capped = 0, left = 0;
+    double longest = 0, reach = h * sqrt(3.0) + 0.05 * h;
+    for (int i = 0; z && i < 200; i++)
+        moved_unknown += tr_depth_free_run(z, v3_make(0, 2, 0), uniform_direction(&rng), 0.0, INFINITY, 0.0) != 0.0;
+    for (double x = lo[0]; z && x <= hi[0] + h; x += 0.5 * h) /* every vertex known */
+        for (double y = lo[1]; y <= hi[1] + h; y += 0.5 * h)
+            for (double zz = lo[2]; zz <= hi[2] + h; zz += 0.5 * h) tr_depth_bound(z, g, v3_make(x, y, zz));
+    for (int i = 0; z && i < 1500; i++) {
+        v3 x = v3_make(5 * lucent_rng_uniform(&rng) - 2.5, 5 * lucent_rng_uniform(&rng) - 2.5,
+                       lucent_rng_uniform(&rng) - 0.5);
+        v3 w = uniform_direction(&rng);
+        double s = brute_ray(sc, x, w), t = tr_depth_free_run(z, x, w, 0.0, INFINITY, 0.0);
+        past += t > s;
+        longest = fmax(longest, t);
+        if (tr_depth_free_run(z, x, w, t, INFINITY, 0.0) > t) { /* stopped by the count of steps */
+            capped++;
+            continue;
+        }
+        v3 end = v3_madd(x, w, t);
+        if (fabs(end.x) > 2.6 || fabs(end.y) > 2.6 || fabs(end.z) > 0.6) { /* out of the lattice: no bound */
+            left++;
+            continue;
+        }
+        stalled++;
+        far += brute_distance(sc, end) > reach;
+    }
+    printf("  1500 rays: %d stopped near a surface, %d out of the lattice, %d by the count of steps, longest run "
+           "%.2f mm; %d past the first surface\n",
+           stalled, left, capped, longest, past);
+    CHECK_MSG(moved_unknown == 0, "%d runs moved on a lattice with no vertex known", moved_unknown);
+    CHECK_MSG(past == 0, "%d runs passed the first surface", past);
+    CHECK_MSG(far == 0, "%d runs stopped further than %.3f from any surface", far, reach);
+    CHECK(stalled > 750 && longest > 0.5);
+    tr_depth_destroy(z);
+    tr_geometry_destroy(g);
+    lucent_scene_destroy(sc);
+}
+
 /* chi2 per degree of freedom and the pooled z of the differences b - a of two independent estimates
  * over the fully covered pixels' channels (from their standard errors); *n the pixel channels. */
 static void difference_stats(const lucent_trace_result *a, const lucent_trace_result *b, double *chi2_dof,
@@ -1097,9 +1177,9 @@ TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_ad
           TEST_ENTRY(refuses_delta_lights_through_smooth_boundaries), TEST_ENTRY(meshes_with_holes_terminate),
           TEST_ENTRY(point_clouds_are_skipped), TEST_ENTRY(bad_input_is_named),
           TEST_ENTRY(distance_bounded_flights_change_nothing), TEST_ENTRY(distance_bound_is_the_distance),
-          TEST_ENTRY(depth_lattice_bounds_the_distance), TEST_ENTRY(deep_nee_roulette_is_unbiased),
-          TEST_ENTRY(light_paths_agree_with_camera_paths), TEST_ENTRY(light_paths_agree_for_point_lights),
-          TEST_ENTRY(light_paths_agree_for_sphere_lights),
+          TEST_ENTRY(depth_lattice_bounds_the_distance), TEST_ENTRY(free_run_stops_before_the_first_surface),
+          TEST_ENTRY(deep_nee_roulette_is_unbiased), TEST_ENTRY(light_paths_agree_with_camera_paths),
+          TEST_ENTRY(light_paths_agree_for_point_lights), TEST_ENTRY(light_paths_agree_for_sphere_lights),
           TEST_ENTRY(light_paths_leave_unserved_objects_to_camera_paths),
           TEST_ENTRY(light_paths_agree_beside_a_dark_light), TEST_ENTRY(light_shares_follow_what_each_light_brings),
           TEST_ENTRY(sphere_light_gives_a_point_lights_irradiance))
