@@ -33,7 +33,7 @@ static const char k_usage[] =
     "  --plain-flights    for comparison: every free flight in a medium asks for the boundary ahead\n"
     "                     (no distance bound)\n"
     "  --nee-every-vertex for comparison: next-event estimation from every volume vertex (no Russian\n"
-    "                     roulette at deep ones)\n"
+    "                     roulette at deep ones or on the exit; each vertex traces its own guide ray)\n"
     "  --adaptive         adaptive sampling: each pass gives pixels samples by their relative variance\n"
     "                     (measured by a pilot that is not part of the image: still unbiased); --spp\n"
     "                     then counts passes of about 4 samples per pixel (and one pilot sample)\n"

@@ -70,7 +70,9 @@ typedef struct lucent_tracer_desc {
      * plain_flights: every free flight inside a medium asks Embree for the boundary ahead, instead of
      * skipping the query when the flight ends inside a sphere known to hold no surface;
      * nee_every_vertex: next-event estimation from every volume vertex, instead of playing Russian
-     * roulette with it at vertices deeper than a few mean free paths (weighted by 1 / probability). */
+     * roulette with it at vertices deeper than a few mean free paths (weighted by 1 / probability) and
+     * on its exit, each with its own ray toward the light for its guide (not one a vertex within a mean
+     * free path traced). */
     bool plain_flights;
     bool nee_every_vertex;
 } lucent_tracer_desc;

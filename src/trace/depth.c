@@ -119,15 +119,15 @@ double tr_depth_known_bound(const tr_depth *z, v3 x) { return lattice_bound(z, N
 
 /* Sphere tracing (Hart 1996) through the known vertices: each step is the lattice's bound at the
  * point reached, less the margin, so the ray from x meets no surface before the t returned. It stops
- * at t_stop, after FREE_RUN_STEPS steps, or once a step would be below FREE_RUN_SMALL of the spacing
- * (within a cell diagonal of a surface the bound is mostly 0). */
+ * once past t_stop, after FREE_RUN_STEPS steps, or once a step would be below FREE_RUN_SMALL of the
+ * spacing (within a cell diagonal of a surface the bound is mostly 0). */
 #define FREE_RUN_STEPS 32
 #define FREE_RUN_SMALL 0.05 /* of the spacing: 0.1 mean free path at the spacing of 2 */
 
 double tr_depth_free_run(const tr_depth *z, v3 x, v3 w, double t, double t_stop, double margin)
 {
     double small = FREE_RUN_SMALL * z->h;
-    for (int i = 0; i < FREE_RUN_STEPS && t < t_stop; i++) {
+    for (int i = 0; i < FREE_RUN_STEPS && t <= t_stop; i++) {
         double r = tr_depth_known_bound(z, v3_madd(x, w, t)) - margin;
         if (!(r > small)) break;
         t += r;

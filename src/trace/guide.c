@@ -12,7 +12,15 @@
  * BTDF toward the light divided by q stays bounded: the lobe follows the integrand. Light from the
  * environment has no direction: q is then the phase function alone. At a boundary vertex (where a
  * camera path enters, or reflects inside) the BSDF's inward directions take the phase function's
- * place. */
+ * place.
+ *
+ * A volume vertex within GUIDE_REUSE_MFP (integrator.c) of where an earlier vertex of its walk traced
+ * the ray toward the same light takes that ray's direction and n0 instead of tracing its own
+ * (tr_guide_move): the lobe is then the one built there, still a density over w that covers the
+ * integrand where the phase share does, and it is a function of the path so far only, so the estimate
+ * stays unbiased; the multiple importance sampling evaluates q(w) with the same stored n0 (the guide
+ * is copied into the MIS record). A vertex hands on only what it prepared or inherited itself, for
+ * one light, and preparing for another light traces a ray as before. */
 #include <math.h>
 
 #include "trace/guide.h"
@@ -28,6 +36,17 @@ void tr_guide_select(tr_guide *g, const tr_light *l)
     g->prepared = g->has_n0 = false;
 }
 
+void tr_guide_move(tr_guide *g, v3 x, int object, double radius)
+{
+    tr_guide_prep next = g->inherited;
+    if (g->prepared && g->has_n0)
+        next = (tr_guide_prep){.light = g->light, .from = g->from, .toward = g->toward, .n0 = g->n0};
+    if (g->object != object || v3_dot(v3_sub(x, next.from), v3_sub(x, next.from)) > radius * radius) next.light = NULL;
+    g->inherited = next;
+    g->x = x, g->object = object, g->surface = false;
+    g->light = NULL, g->prepared = g->has_n0 = false;
+}
+
 void tr_guide_prepare(const lucent_tracer *tr, tr_guide *g, const tr_light *l)
 {
     tr_guide_select(g, l);
@@ -35,13 +54,18 @@ void tr_guide_prepare(const lucent_tracer *tr, tr_guide *g, const tr_light *l)
     v3 from = g->surface ? v3_madd(g->x, g->n, -tr->eps) : g->x;
     g->prepared = true;
     if (!has_target(g)) return;
+    if (g->inherited.light == l) {
+        g->has_n0 = true;
+        g->from = g->inherited.from, g->toward = g->inherited.toward, g->n0 = g->inherited.n0;
+        return;
+    }
     g->toward = l->type == LUCENT_LIGHT_DIRECTIONAL ? l->toward : v3_normalize(v3_sub(l->position, g->x));
     tr_hit h;
     if (tr_intersect(tr->geometry, from, g->toward, 0.0, INFINITY, &h) && h.object == g->object &&
         v3_dot(h.n, g->toward) > 0) {
         g->has_n0 = true;
         g->n0 = h.n;
-        g->y0 = v3_madd(from, g->toward, h.t);
+        g->from = from;
     }
 }
 

@@ -125,8 +125,9 @@ void tr_depth_destroy(tr_depth *z);
 double tr_depth_bound(const tr_depth *z, const tr_geometry *g, v3 x);
 /* The same bound from the vertices already known, without filling any (0 where none is). */
 double tr_depth_known_bound(const tr_depth *z, v3 x);
-/* Sphere tracing from x + t w along unit w through the known vertices, each step less margin, until
- * t_stop (or until the steps get small): the ray from x meets no surface before the t returned. */
+/* Sphere tracing from x + t w along unit w (no surface before t) through the known vertices, each
+ * step less margin, until past t_stop (or until the steps get small): the ray from x meets no surface
+ * before the t returned. */
 double tr_depth_free_run(const tr_depth *z, v3 x, v3 w, double t, double t_stop, double margin);
 
 /* Ray queries (tr_intersect, tr_occluded) and distance queries this thread has made so far. */

@@ -104,18 +104,25 @@ static double exit_probability(const tr_path *p, const tr_object *ob, double s, 
     return lucent_at_most(1.0, exp(e) * weight);
 }
 
-/* The exit roulette decided before the exit ray where it can be, from the lattice's free run along w
- * (depth.c; the margin is integrator.c's): u is drawn once P is sure to be below 1 (a free run past
- * (1 + ln weight) / sigma_min), and the connection ends without the ray when the free run passes the
- * s at which P falls to u. It is the decision the roulette would make after the ray, since s is at
- * least the free run: the same estimator, with the ray skipped for 64% of the connections it ends on
- * the dragon in marble. *u stays NaN when not drawn. */
-static bool exit_roulette_early(tr_path *p, const tr_object *ob, v3 x, v3 w, double weight, double *u)
+/* The exit roulette decided before the exit ray where it can be, from a lower bound on the ray's
+ * distance: how far it stays in the vertex's safe sphere, then the lattice's free run (depth.c; the
+ * margin is integrator.c's). u is drawn once P is sure to be below 1 (the bound past (1 + ln weight) /
+ * sigma_min), and the connection ends without the ray when the bound passes the s at which P falls to
+ * u. It is the decision the roulette would make after the ray, since s is at least the bound: the same
+ * estimator. A volume vertex whose safe sphere leaves less than FREE_RUN_DEPTH_MFP does not try (its
+ * run mostly stops at once). *u stays NaN when not drawn. */
+#define FREE_RUN_DEPTH_MFP 0.1
+
+static bool exit_roulette_early(tr_path *p, const tr_guide *g, double weight, v3 w, double *u)
 {
+    const tr_object *ob = &p->tr->objects[g->object];
     *u = NAN;
     if (!ob->depth || !ob->dense || p->tr->desc.nee_every_vertex) return true;
-    double sigma = ob->sigma_t_min, lw = log(weight), t_sure = (1.0 + lw) / sigma;
-    double margin = 4.0 * p->tr->eps, t = tr_depth_free_run(ob->depth, x, w, 0.0, t_sure, margin);
+    double sigma = ob->sigma_t_min;
+    if (!g->surface && !(g->depth > FREE_RUN_DEPTH_MFP / sigma)) return true;
+    v3 x = g->surface ? v3_madd(g->x, g->n, -p->tr->eps) : g->x;
+    double lw = log(weight), t_sure = (1.0 + lw) / sigma, margin = 4.0 * p->tr->eps;
+    double t = tr_depth_free_run(ob->depth, x, w, g->surface ? 0.0 : tr_path_safe_run(p, x, w), t_sure, margin);
     if (!(t > t_sure)) return true;
     *u = tr_u(p);
     double t_kill = (1.0 + lw - log(*u)) / sigma;
@@ -148,7 +155,7 @@ void tr_nee_through(tr_path *p, tr_guide *g)
     tr_guide_select(g, l);
     if (tr_guide_draw_needs_ray(g, u0)) tr_guide_prepare(tr, g, l);
     double weight = p->nee_weight, u;
-    if (!tr_guide_sample(tr, g, u0, u1, u2, &w) || !exit_roulette_early(p, ob, from, w, weight, &u) ||
+    if (!tr_guide_sample(tr, g, u0, u1, u2, &w) || !exit_roulette_early(p, g, weight, w, &u) ||
         !exit_point(tr, from, w, g->object, &h))
         return;
     v3 y = v3_madd(from, w, h.t);

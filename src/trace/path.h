@@ -72,6 +72,16 @@ typedef struct tr_path {
 
 static inline double tr_u(tr_path *p) { return lucent_rng_uniform(p->rng); }
 
+/* How far the ray from x along unit w stays inside the path's safe sphere, where no surface is (0 when
+ * x is not inside one). */
+static inline double tr_path_safe_run(const tr_path *p, v3 x, v3 w)
+{
+    if (!(p->safe_r > 0)) return 0;
+    v3 e = v3_sub(x, p->safe_c);
+    double b = v3_dot(e, w), c = v3_dot(e, e) - p->safe_r * p->safe_r;
+    return c < 0 ? -b + sqrt(b * b - c) : 0.0;
+}
+
 /* Where the transform's weights have grown past this, the walk goes on analog: in dense media, many
  * short steps under a coarse field multiply small mismatches into fireflies. Decided at scattering
  * vertices only, so that everything sampled from a vertex (and its MIS weights) uses one mode. */
