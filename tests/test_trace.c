@@ -677,6 +677,7 @@ static void merge_batches(lucent_trace_result batch[BATCHES])
             m->coverage->data[p] = fminf(m->coverage->data[p], batch[k].coverage->data[p]);
         m->cost.paths += batch[k].cost.paths, m->cost.scatters += batch[k].cost.scatters;
         m->cost.photons += batch[k].cost.photons, m->cost.nee += batch[k].cost.nee;
+        m->cost.entry_ended += batch[k].cost.entry_ended;
     }
     for (size_t i = 0; i < 3 * n; i++) m->image->data[i] /= BATCHES, m->variance->data[i] /= (float)(BATCHES * BATCHES);
 }
@@ -739,7 +740,7 @@ TEST(deep_nee_roulette_is_unbiased)
  * that the two estimate the same image: chi2 per degree of freedom of the batches' merged means
  * between 0.7 and 1.5, the pooled difference within 4.5 of its standard error from the batches'
  * spread, and photons traced only with light paths. */
-static void check_light_paths_agree(lucent_scene *sc, int total_spp, lucent_pool *pool)
+static double check_light_paths_agree(lucent_scene *sc, int total_spp, lucent_pool *pool)
 {
     lucent_trace_result cams[BATCHES] = {{0}}, lps[BATCHES] = {{0}};
     int spp = total_spp / SLOW / BATCHES > 0 ? total_spp / SLOW / BATCHES : 1;
@@ -751,15 +752,18 @@ static void check_light_paths_agree(lucent_scene *sc, int total_spp, lucent_pool
     const lucent_trace_result *cam = &cams[0], *lp = &lps[0];
     printf("  %d pixel channels: chi2/dof %.3f; %d batches each of %d spp: light paths / camera paths %.4f +- %.4f "
            "(z %.2f; the per-pixel variances give z %.2f); %.2f light paths and %.1f scatterings per camera path "
-           "(camera paths alone: %.1f)\n",
+           "(camera paths alone: %.1f); %.1f%% of the photons ended at entry\n",
            c.n, c.chi2, BATCHES, spp, c.ratio, c.se, c.z, c.z_pixels, (double)lp->cost.photons / (double)lp->cost.paths,
-           (double)lp->cost.scatters / (double)lp->cost.paths, (double)cam->cost.scatters / (double)cam->cost.paths);
+           (double)lp->cost.scatters / (double)lp->cost.paths, (double)cam->cost.scatters / (double)cam->cost.paths,
+           100.0 * (double)lp->cost.entry_ended / (double)(lp->cost.photons ? lp->cost.photons : 1));
+    double ended = (double)lp->cost.entry_ended / (double)(lp->cost.photons ? lp->cost.photons : 1);
     CHECK(c.n > 600);
     CHECK_MSG(c.chi2 > 0.7 && c.chi2 < 1.5, "chi2/dof %.3f", c.chi2);
     CHECK_MSG(fabs(c.z) < 4.5, "pooled z over batches %.2f", c.z);
     CHECK_MSG(lp->cost.photons > 0 && cam->cost.photons == 0, "light paths: %llu photons with, %llu without",
               (unsigned long long)lp->cost.photons, (unsigned long long)cam->cost.photons);
     for (int k = 0; k < BATCHES; k++) lucent_trace_result_free(&cams[k]), lucent_trace_result_free(&lps[k]);
+    return ended;
 }
 
 /* Light paths (photons from the lights connected to the camera through the boundary) and camera paths
@@ -868,6 +872,25 @@ TEST(light_shares_follow_what_each_light_brings)
     CHECK_MSG(share[1] < 0.4, "the light from behind's share %.3f", share[1]);
     lucent_trace_result_free(&r);
     lucent_tracer_destroy(tr);
+    lucent_pool_destroy(pool);
+    lucent_scene_destroy(sc);
+}
+
+/* The entry roulette (docs/trace.md, "The entry roulette"): on the dense ball lit by suns of equal
+ * power from the camera's side and from behind, the photons from behind arrive where the camera does
+ * not see what they bring, and once the cells there are measured they go on with probability below 1
+ * (weighted by its inverse). The image must still be the camera paths' (check_light_paths_agree: 8
+ * independent batches, each a tracer that learns its own probabilities), and the roulette must engage
+ * (4.4% of all photons end at entry; without the weight 1 / q the ratio falls to 0.960, z -4.9). */
+TEST(entry_roulette_leaves_the_image_unchanged)
+{
+    lucent_scene *sc = dense_lit("{\"type\": \"directional\", \"direction\": [0.1, 0.1, -1], \"intensity\": 1},"
+                                 " {\"type\": \"directional\", \"direction\": [0.1, 0.1, 1], \"intensity\": 1}",
+                                 32);
+    lucent_pool *pool = lucent_pool_create(2);
+    CHECK(sc != NULL);
+    double ended = sc ? check_light_paths_agree(sc, 96, pool) : 0;
+    CHECK_MSG(ended > 0.02, "the entry roulette ended %.1f%% of the photons", 100 * ended);
     lucent_pool_destroy(pool);
     lucent_scene_destroy(sc);
 }
@@ -1182,4 +1205,5 @@ TEST_MAIN(TEST_ENTRY(furnace_index_matched_non_absorbing), TEST_ENTRY(furnace_ad
           TEST_ENTRY(light_paths_agree_for_point_lights), TEST_ENTRY(light_paths_agree_for_sphere_lights),
           TEST_ENTRY(light_paths_leave_unserved_objects_to_camera_paths),
           TEST_ENTRY(light_paths_agree_beside_a_dark_light), TEST_ENTRY(light_shares_follow_what_each_light_brings),
+          TEST_ENTRY(entry_roulette_leaves_the_image_unchanged),
           TEST_ENTRY(sphere_light_gives_a_point_lights_irradiance))

@@ -128,6 +128,7 @@ typedef struct lucent_trace_cost {
     uint64_t free_flights; /* free flights inside a medium that needed no ray query */
     uint64_t nee;          /* next-event estimates made from volume vertices */
     uint64_t photons;      /* light paths (docs/trace.md); their queries count in rays and points */
+    uint64_t entry_ended;  /* photons the entry roulette ended where they first arrived at an object */
 } lucent_trace_cost;
 
 typedef struct lucent_trace_result {

@@ -51,6 +51,8 @@ void tr_film_reset(tr_film *f)
     memset(f->light, 0, n * TR_FILM_ACC * sizeof *f->light);
     f->light_passes = 0;
     memset(f->light_m2, 0, sizeof f->light_m2), memset(f->light_n, 0, sizeof f->light_n);
+    memset(f->entry_m2, 0, sizeof f->entry_m2), memset(f->entry_cost, 0, sizeof f->entry_cost);
+    memset(f->entry_n, 0, sizeof f->entry_n), memset(f->entry_arrived, 0, sizeof f->entry_arrived);
     if (f->pilot) memset(f->pilot, 0, n * TR_FILM_ACC * sizeof *f->pilot);
     if (f->carry) memset(f->carry, 0, n * sizeof *f->carry);
     for (size_t p = 0; p < n; p++) f->quota[p] = 1;
@@ -126,6 +128,7 @@ void tr_film_add_stats(tr_stats *into, const tr_stats *s)
     into->escaped += s->escaped, into->truncated += s->truncated, into->nonfinite += s->nonfinite;
     into->rays += s->rays, into->points += s->points, into->free_flights += s->free_flights, into->nee += s->nee;
     into->photons += s->photons;
+    into->entry_ended += s->entry_ended;
 }
 
 uint64_t tr_film_pass_samples(const tr_film *f)
@@ -195,19 +198,19 @@ lucent_status tr_film_total(const tr_film *f, lucent_status status, tr_film **de
     t->light_passes = f->light_passes;
     t->adaptive = f->adaptive, t->seed = f->seed, t->passes = f->passes, t->seconds = f->seconds;
     t->stats = f->stats;
-    uint64_t stats[11] = {t->stats.paths,        t->stats.scatters,  t->stats.bounces, t->stats.escaped,
+    uint64_t stats[12] = {t->stats.paths,        t->stats.scatters,  t->stats.bounces, t->stats.escaped,
                           t->stats.truncated,    t->stats.nonfinite, t->stats.rays,    t->stats.points,
-                          t->stats.free_flights, t->stats.nee,       t->stats.photons};
+                          t->stats.free_flights, t->stats.nee,       t->stats.photons, t->stats.entry_ended};
     s = lucent_dist_sum(LUCENT_OK, LUCENT_DIST_F64, t->acc, n * TR_FILM_ACC);
     s = lucent_dist_sum(s, LUCENT_DIST_U32, t->count, n);
     s = lucent_dist_sum(s, LUCENT_DIST_U32, t->hits, n);
-    s = lucent_dist_sum(s, LUCENT_DIST_I64, stats, 11);
+    s = lucent_dist_sum(s, LUCENT_DIST_I64, stats, 12);
     if (s != LUCENT_OK) {
         tr_film_destroy(t);
         return s;
     }
-    t->stats = (tr_stats){stats[0], stats[1], stats[2], stats[3], stats[4], stats[5],
-                          stats[6], stats[7], stats[8], stats[9], stats[10]};
+    t->stats = (tr_stats){stats[0], stats[1], stats[2], stats[3], stats[4],  stats[5],
+                          stats[6], stats[7], stats[8], stats[9], stats[10], stats[11]};
     *dest = t;
     return LUCENT_OK;
 }

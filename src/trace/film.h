@@ -29,6 +29,11 @@ typedef struct tr_film {
      * connections scaled to a pick probability of 1, and the photons */
     double light_m2[TR_MAX_LIGHTS];
     uint64_t light_n[TR_MAX_LIGHTS];
+    /* per cell of the entry grid (light_paths.c, entry_probabilities): over the passes so far, the
+     * photons that went on from their first arrival there, the sum of their squared connections
+     * scaled to a pick probability and an entry probability of 1, and of their scatterings */
+    double entry_m2[TR_ENTRY_CELLS], entry_cost[TR_ENTRY_CELLS];
+    uint32_t entry_n[TR_ENTRY_CELLS], entry_arrived[TR_ENTRY_CELLS]; /* arrived: went on or not */
     tr_stats stats;
 } tr_film;
 

@@ -129,7 +129,8 @@ lucent_status tr_film_result(const tr_film *f, lucent_trace_result *r)
                                   .points = st->points,
                                   .free_flights = st->free_flights,
                                   .nee = st->nee,
-                                  .photons = st->photons};
+                                  .photons = st->photons,
+                                  .entry_ended = st->entry_ended};
     return LUCENT_OK;
 }
 

@@ -77,6 +77,25 @@ static void pass_through(tr_path *p, const tr_hit *h, v3 y)
     p->o = v3_madd(y, h->n, entering ? -p->tr->eps : p->tr->eps);
 }
 
+/* A photon's first arrival at a served object, y on its boundary: the entry roulette (light_paths.c).
+ * False when the photon ends there. */
+static bool entry_roulette(tr_path *p, v3 y)
+{
+    tr_photon_entry *e = p->entry;
+    e->arrived = true;
+    e->cell = tr_entry_cell(p->tr, y);
+    e->q_cell = e->q && e->cell >= 0 ? e->q[e->cell] : 1.0;
+    e->went_on = e->q_cell >= 1.0 || tr_u(p) < e->q_cell;
+    if (!e->went_on) {
+        p->stats->entry_ended++;
+        p->done = true;
+        return false;
+    }
+    if (e->q_cell < 1.0)
+        for (int c = 0; c < 3; c++) p->beta[c] /= e->q_cell;
+    return true;
+}
+
 static void surface(tr_path *p, const tr_hit *h)
 {
     const lucent_tracer *tr = p->tr;
@@ -94,6 +113,8 @@ static void surface(tr_path *p, const tr_hit *h)
         pass_through(p, h, y);
         return;
     }
+    if (p->entry && !p->entry->arrived && !inside && tr->objects[h->object].light_paths && !entry_roulette(p, y))
+        return;
     tr_guide g = {.x = y, .surface = true, .n = n, .o = v3_neg(p->d), .object = h->object};
     /* a light path connects to the camera from inside only: what the boundary reflects from outside
      * toward the camera is the camera paths' */
@@ -366,7 +387,7 @@ bool tr_trace_path(const lucent_tracer *tr, double px, double py, lucent_rng *rn
 }
 
 void tr_trace_light_path(const lucent_tracer *tr, v3 o, v3 d, const double beta[3], double scale, lucent_rng *rng,
-                         struct tr_splats *splats, tr_stats *stats)
+                         struct tr_splats *splats, tr_photon_entry *entry, tr_stats *stats)
 {
     tr_path p = {.tr = tr,
                  .rng = rng,
@@ -382,7 +403,8 @@ void tr_trace_light_path(const lucent_tracer *tr, v3 o, v3 d, const double beta[
                  .d = d,
                  .to_camera = true,
                  .splats = splats,
-                 .splat_scale = scale};
+                 .splat_scale = scale,
+                 .entry = entry};
     stats->photons++;
     run(&p);
 }

@@ -190,6 +190,8 @@ struct lucent_tracer {
     int camera_side_lights; /* lights left to camera paths that enter a light-path object */
     tr_light camera_light;
     double emit_centre[3], emit_radius; /* photons start on a disc of this radius about the centre */
+    double entry_lo[3], entry_h;        /* the entry grid over the scene's bounds: cubes of side entry_h */
+    int entry_n[3];                     /* cells per axis, TR_ENTRY_RES at most */
     double eps;                         /* ray offset from surfaces, mm */
     bool has_matched;                   /* some object is index matched (shadow rays must pass through it) */
     const tr_light *walk_target;        /* the strongest light with a direction (NULL: none) */
@@ -276,6 +278,7 @@ typedef struct tr_stats {
     uint64_t free_flights; /* free flights inside a medium that needed no ray query (within a safe sphere) */
     uint64_t nee;          /* next-event estimates made from volume vertices */
     uint64_t photons;      /* light paths (light_paths.c); their queries count in rays and points */
+    uint64_t entry_ended;  /* photons the entry roulette ended (integrator.c) */
 } tr_stats;
 
 /* Estimates the radiance through image point (px, py); dest receives RGB. Returns whether the camera
@@ -290,10 +293,25 @@ struct tr_splats;
  * objects are built). */
 void tr_light_paths_setup(lucent_tracer *tr);
 
+/* The light paths' entry roulette (light_paths.c): where a photon first arrives at an object the
+ * light paths serve, it goes on with the probability q of that point's cell of the entry grid, and
+ * is weighted by 1 / q. In: q per cell (NULL: 1 everywhere). Out: whether it arrived, the cell, and
+ * the probability it was given there. */
+enum { TR_ENTRY_RES = 24, TR_ENTRY_CELLS = TR_ENTRY_RES * TR_ENTRY_RES * TR_ENTRY_RES };
+typedef struct tr_photon_entry {
+    const float *q;
+    bool arrived, went_on;
+    int cell;
+    double q_cell;
+} tr_photon_entry;
+
+/* The cell of the entry grid that holds y (-1: none). */
+int tr_entry_cell(const lucent_tracer *tr, v3 y);
+
 /* One light path from a photon leaving o along d with power per channel beta (relative) whose connections to
- * the camera land in splats, scaled by scale (integrator.c). */
+ * the camera land in splats, scaled by scale, through the entry roulette of entry (integrator.c). */
 void tr_trace_light_path(const lucent_tracer *tr, v3 o, v3 d, const double beta[3], double scale,
-                         struct lucent_rng *rng, struct tr_splats *splats, tr_stats *stats);
+                         struct lucent_rng *rng, struct tr_splats *splats, tr_photon_entry *entry, tr_stats *stats);
 
 /* Multiplies le (a camera-light sample's 1 / d^2 at boundary point y) by the camera's importance
  * there: a pixel is the mean radiance over its area A of the image plane at unit distance, so a

@@ -75,6 +75,25 @@ static double emit_factor(const lucent_tracer *tr, const tr_light *l)
     return l->delta ? disc : l->solid_angle * disc;
 }
 
+static uint64_t pass_photons(const lucent_tracer *tr);
+
+/* The entry grid: cubes over the scene's bounds (grown by 2%), res along the longest side, res^2 about
+ * a 64th of a pass's photons (an object's surface crosses some 3 res^2 cells: about ten arrivals per
+ * cell and pass where every photon arrives), between 4 and TR_ENTRY_RES (24 from 192 x 192 pixels). */
+static void entry_grid(lucent_tracer *tr, const double lo[3], const double hi[3])
+{
+    double size = 0, res = round(sqrt((double)pass_photons(tr) / 64.0));
+    res = res < 4 ? 4 : res > TR_ENTRY_RES ? TR_ENTRY_RES : res;
+    for (int a = 0; a < 3; a++) size = fmax(size, hi[a] - lo[a]);
+    tr->entry_h = size > 0 ? 1.02 * size / res : 1.0;
+    for (int a = 0; a < 3; a++) {
+        double mid = lo[a] <= hi[a] ? 0.5 * (lo[a] + hi[a]) : 0.0;
+        int n = (int)ceil(1.02 * (hi[a] - lo[a]) / tr->entry_h);
+        tr->entry_n[a] = n < 1 ? 1 : n > (int)res ? (int)res : n;
+        tr->entry_lo[a] = mid - 0.5 * tr->entry_n[a] * tr->entry_h;
+    }
+}
+
 void tr_light_paths_setup(lucent_tracer *tr)
 {
     const lucent_tracer_desc *d = &tr->desc;
@@ -102,6 +121,7 @@ void tr_light_paths_setup(lucent_tracer *tr)
         if (!l->light_paths) rest += l->select;
     }
     tr->light_paths = lights;
+    entry_grid(tr, lo, hi);
     tr->camera_side_lights = 0;
     for (int i = 0; i < tr->light_count; i++) {
         tr_light *l = &tr->lights[i];
@@ -117,6 +137,21 @@ void tr_light_paths_setup(lucent_tracer *tr)
                                   .position = v3_load(eye),
                                   .delta = true,
                                   .select = 1.0};
+}
+
+/* ---- the entry grid ---- */
+
+int tr_entry_cell(const lucent_tracer *tr, v3 y)
+{
+    double p[3];
+    v3_store(y, p);
+    int c[3];
+    for (int a = 0; a < 3; a++) {
+        double u = (p[a] - tr->entry_lo[a]) / tr->entry_h;
+        if (!(u >= 0 && u < tr->entry_n[a])) return -1;
+        c[a] = (int)u;
+    }
+    return (c[2] * tr->entry_n[1] + c[1]) * tr->entry_n[0] + c[0];
 }
 
 /* ---- the camera's importance and the splats ---- */
@@ -168,9 +203,24 @@ typedef struct lp_moments {
     uint64_t n[TR_MAX_LIGHTS];
 } lp_moments;
 
+/* A photon's first arrival (tr_photon_entry), for the entry grid's sums (fold). */
+typedef struct lp_entry {
+    int cell;
+    bool went_on;
+    double m2, cost; /* its squared connections at pick and entry probability 1; its scatterings */
+} lp_entry;
+
+typedef struct lp_entries {
+    lp_entry *items;
+    size_t n, cap;
+    bool failed;
+} lp_entries;
+
 typedef struct lp_job {
     const lucent_tracer *tr;
     struct tr_splats *lists; /* one per chunk */
+    lp_entries *entries;     /* one per chunk */
+    const float *q;          /* the entry roulette's probabilities (NULL: none this pass) */
     lp_moments *moments;     /* one per chunk */
     tr_stats *stats;         /* one per thread */
     uint64_t pass, per_chunk;
@@ -206,6 +256,50 @@ static void emitter_shares(const lucent_tracer *tr, const tr_film *f, double sha
         double p = total > 0 ? tr->lights[i].power / total : 0;
         share[i] = measured ? LP_POWER_SHARE * p + (1.0 - LP_POWER_SHARE) * root[i] / roots : p;
     }
+}
+
+#define ENTRY_MIN_PHOTONS 32 /* photons that went on from a cell before its probability is measured */
+#define ENTRY_Q_MIN 0.2 /* the least entry probability (0.05 gave half the cost and 1.25x the noise on the dragon) */
+
+/* The entry roulette's probability per cell of the entry grid; false when nothing is measured yet (q
+ * is then 1 everywhere). A photon that arrives at a served object in cell c goes on with probability
+ * q_c (weighted by 1 / q_c). If the photons that arrive there bring M_c (the mean of their squared
+ * connections at q = 1) and cost S_c (their scatterings, plus 1 for the arrival), the cells add
+ * V = sum_c a_c M_c / q_c to the variance (a_c arrivals) and C = sum_c a_c (1 + q_c S_c) to the cost;
+ * at fixed cost V is least for q_c proportional to sqrt(M_c / S_c) (the optimum of Russian roulette
+ * and splitting for efficiency, as in Vorba and Krivanek 2016), so q_c = clamp(lambda sqrt(M_c / S_c),
+ * ENTRY_Q_MIN, 1), with the lambda of least V C over a geometric ladder (and lambda infinite: no
+ * roulette). Photons that arrive nowhere and the camera paths are left out of C. A pass's
+ * probabilities depend on earlier passes only, so each pass stays unbiased (as the light shares). On
+ * the dragon, the photons that enter where the camera does not see their light were 38% of the walks'
+ * scatterings. */
+static bool entry_probabilities(const tr_film *f, float *q)
+{
+    double r_max = 0;
+    for (int c = 0; c < TR_ENTRY_CELLS; c++) {
+        q[c] = 1.0f;
+        if (f->entry_n[c] >= ENTRY_MIN_PHOTONS)
+            r_max = fmax(r_max, sqrt(f->entry_m2[c] / (f->entry_cost[c] + f->entry_n[c])));
+    }
+    if (!(r_max > 0)) return false;
+    double best = INFINITY, best_lambda = INFINITY;
+    for (int k = 0; k <= 64; k++) {
+        double lambda = k < 64 ? exp2(0.25 * k) / r_max : INFINITY, V = 0, C = 0;
+        for (int c = 0; c < TR_ENTRY_CELLS; c++) {
+            if (!f->entry_arrived[c]) continue;
+            double n = f->entry_n[c] ? f->entry_n[c] : 1, M = f->entry_m2[c] / n, S = f->entry_cost[c] / n + 1.0;
+            double qc = f->entry_n[c] >= ENTRY_MIN_PHOTONS ? fmin(1.0, fmax(ENTRY_Q_MIN, lambda * sqrt(M / S))) : 1.0;
+            V += f->entry_arrived[c] * M / qc, C += f->entry_arrived[c] * (1.0 + qc * S);
+        }
+        if (V * C < best) best = V * C, best_lambda = lambda;
+    }
+    if (!isfinite(best_lambda)) return false;
+    for (int c = 0; c < TR_ENTRY_CELLS; c++)
+        if (f->entry_n[c] >= ENTRY_MIN_PHOTONS) {
+            double n = f->entry_n[c], M = f->entry_m2[c] / n, S = f->entry_cost[c] / n + 1.0;
+            q[c] = (float)fmin(1.0, fmax(ENTRY_Q_MIN, best_lambda * sqrt(M / S)));
+        }
+    return true;
 }
 
 /* A pass's photons are stratified. Light l takes a block of them, first[l] .. first[l + 1] - 1, whose
@@ -258,12 +352,22 @@ static int stratum(const lp_job *job, int lights, uint64_t i, double u[4])
     return -1;
 }
 
-/* Sum over a photon's connections (items from `from` on) of their squared values. */
+/* What a photon adds to the sum of the pixels' second moments: over the pixels its connections (items
+ * from `from` on) land in, the square of their sum there (a photon's connections from nearby vertices
+ * often share a pixel, and then add before they are squared). */
 static double squared_connections(const struct tr_splats *s, size_t from)
 {
     double m2 = 0;
-    for (size_t k = from; k < s->n; k++)
-        for (int c = 0; c < 3; c++) m2 += s->items[k].v[c] * s->items[k].v[c];
+    for (size_t k = from; k < s->n; k++) {
+        bool seen = false;
+        for (size_t j = from; j < k && !seen; j++) seen = s->items[j].pixel == s->items[k].pixel;
+        if (seen) continue;
+        double v[3] = {0, 0, 0};
+        for (size_t j = k; j < s->n; j++)
+            if (s->items[j].pixel == s->items[k].pixel)
+                for (int c = 0; c < 3; c++) v[c] += s->items[j].v[c];
+        m2 += v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    }
     return m2;
 }
 
@@ -301,6 +405,20 @@ static void emit(const lucent_tracer *tr, const tr_light *l, const double u[4], 
     *o = tr_disc_start(v3_load(tr->emit_centre), tr->emit_radius, v3_neg(*d), u[0], u[1]);
 }
 
+static void entry_push(lp_entries *s, const lp_entry *e)
+{
+    if (s->n == s->cap) {
+        size_t cap = s->cap ? 2 * s->cap : 256;
+        lp_entry *grown = realloc(s->items, cap * sizeof *grown);
+        if (!grown) {
+            s->failed = true;
+            return;
+        }
+        s->items = grown, s->cap = cap;
+    }
+    s->items[s->n++] = *e;
+}
+
 static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64_t end, int thread)
 {
     lp_job *job = ctx;
@@ -323,8 +441,16 @@ static lucent_status photon_chunk(void *ctx, uint64_t chunk, uint64_t begin, uin
         emit(tr, l, u, &o, &d);
         double y = tr_luminance(l->radiance), beta[3] = {l->radiance[0] / y, l->radiance[1] / y, l->radiance[2] / y};
         size_t from = job->lists[chunk].n;
-        tr_trace_light_path(tr, o, d, beta, l->power / (job->share[k] * photons), &rng, &job->lists[chunk], &stats);
-        mo->m2[k] += squared_connections(&job->lists[chunk], from) * job->share[k] * job->share[k], mo->n[k]++;
+        uint64_t scatters = stats.scatters;
+        tr_photon_entry e = {.q = job->q, .cell = -1};
+        tr_trace_light_path(tr, o, d, beta, l->power / (job->share[k] * photons), &rng, &job->lists[chunk], &e, &stats);
+        double m2 = squared_connections(&job->lists[chunk], from) * job->share[k] * job->share[k];
+        mo->m2[k] += m2, mo->n[k]++;
+        if (e.arrived && e.cell >= 0)
+            entry_push(&job->entries[chunk], &(lp_entry){.cell = e.cell,
+                                                         .went_on = e.went_on,
+                                                         .m2 = m2 * e.q_cell * e.q_cell,
+                                                         .cost = (double)(stats.scatters - scatters)});
     }
     tr_film_add_stats(&job->stats[thread], &stats);
     return LUCENT_OK;
@@ -360,6 +486,13 @@ static void fold(const lp_job *job, tr_film *f, double *image)
     for (int ch = 0; ch < LP_CHUNKS; ch++)
         for (int i = 0; i < job->tr->light_count; i++)
             f->light_m2[i] += job->moments[ch].m2[i], f->light_n[i] += job->moments[ch].n[i];
+    for (int ch = 0; ch < LP_CHUNKS; ch++)
+        for (size_t i = 0; i < job->entries[ch].n; i++) {
+            const lp_entry *e = &job->entries[ch].items[i];
+            f->entry_arrived[e->cell]++;
+            if (!e->went_on) continue;
+            f->entry_n[e->cell]++, f->entry_m2[e->cell] += e->m2, f->entry_cost[e->cell] += e->cost;
+        }
     f->light_passes++;
 }
 
@@ -372,20 +505,25 @@ lucent_status tr_light_pass(const lucent_tracer *tr, tr_film *f, lucent_pool *po
     lp_job job = {.tr = tr, .pass = f->light_passes, .per_chunk = photons / LP_CHUNKS, .deadline = deadline};
     emitter_shares(tr, f, job.share);
     strata(&job, tr, photons);
+    float *q = malloc(TR_ENTRY_CELLS * sizeof *q);
+    job.q = q && entry_probabilities(f, q) ? q : NULL;
+    job.entries = calloc(LP_CHUNKS, sizeof *job.entries);
     job.lists = calloc(LP_CHUNKS, sizeof *job.lists);
     job.moments = calloc(LP_CHUNKS, sizeof *job.moments);
     job.stats = calloc((size_t)threads, sizeof *job.stats);
     double *image = malloc((size_t)f->width * (size_t)f->height * 3 * sizeof *image);
-    lucent_status s = job.lists && job.moments && job.stats && image
+    lucent_status s = q && job.entries && job.lists && job.moments && job.stats && image
                           ? LUCENT_OK
                           : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory");
     if (s == LUCENT_OK) s = lucent_parallel_for(pool, photons, job.per_chunk, photon_chunk, &job);
     for (int ch = 0; s == LUCENT_OK && job.lists && ch < LP_CHUNKS; ch++)
-        if (job.lists[ch].failed) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory for light paths");
+        if (job.lists[ch].failed || job.entries[ch].failed)
+            s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "trace: out of memory for light paths");
     *cut = atomic_load(&job.cut);
     if (s == LUCENT_OK && !*cut) fold(&job, f, image); /* a cut pass is dropped whole: unbiased */
     for (int t = 0; job.stats && t < threads; t++) tr_film_add_stats(&f->stats, &job.stats[t]);
     for (int ch = 0; job.lists && ch < LP_CHUNKS; ch++) free(job.lists[ch].items);
-    free(job.lists), free(job.moments), free(job.stats), free(image);
+    for (int ch = 0; job.entries && ch < LP_CHUNKS; ch++) free(job.entries[ch].items);
+    free(job.lists), free(job.entries), free(job.moments), free(job.stats), free(image), free(q);
     return s;
 }

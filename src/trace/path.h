@@ -65,6 +65,7 @@ typedef struct tr_path {
     bool to_camera;
     struct tr_splats *splats;
     double splat_scale;
+    tr_photon_entry *entry; /* a light path's entry roulette (NULL: a camera path) */
     /* A camera path before its first refracting surface (primary), and once it entered a light-path
      * object there (camera_side): the light-path lights' share of its light is the light paths' */
     bool primary, camera_side;

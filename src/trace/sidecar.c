@@ -29,6 +29,7 @@ static cJSON *cost_json(const lucent_trace_cost *c)
     cJSON_AddNumberToObject(j, "free_flights_without_query", per(c->free_flights, c->scatters + c->bounces));
     cJSON_AddNumberToObject(j, "nee_per_volume_vertex", per(c->nee, c->scatters));
     cJSON_AddNumberToObject(j, "light_paths", (double)c->photons);
+    cJSON_AddNumberToObject(j, "light_paths_ended_at_entry", per(c->entry_ended, c->photons));
     return j;
 }
 
