@@ -295,8 +295,8 @@ static void references(lucent_pool *pool)
            "estimation from every vertex), the camera paths alone (light paths off) and the default one, interleaved, "
            "%.0f s each (CPU over %d threads); "
            "anchor (issue 12): dragon-marble 22 spp in 60 s, 28%% noise; goal 10%% in 60 s, 5%% in 300 s; measured "
-           "(docs/trace.md, 2026-12-03, eighth pass): default 10.5%% at 60 s, 264 s to 5%%, before section 3 "
-           "1704 s\n",
+           "(docs/trace.md, 2026-12-03, ninth pass): default 9.5%% at 60 s (9.7%% at the anchor's speed), 213 s to "
+           "5%%, before section 3 1656 s\n",
            budget, g_threads);
     const char *square[] = {"render.width=256", "render.height=256"},
                *wide[] = {"render.width=384", "render.height=128"};
