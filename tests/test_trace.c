@@ -889,7 +889,9 @@ TEST(entry_roulette_leaves_the_image_unchanged)
                                  32);
     lucent_pool *pool = lucent_pool_create(2);
     CHECK(sc != NULL);
-    double ended = sc ? check_light_paths_agree(sc, 96, pool) : 0;
+    /* 12 passes per batch in every build (the grid measures a cell from its 32nd photon that went on,
+     * after a few passes at 32 x 32): not divided by SLOW like the others */
+    double ended = sc ? check_light_paths_agree(sc, 96 * SLOW, pool) : 0;
     CHECK_MSG(ended > 0.02, "the entry roulette ended %.1f%% of the photons", 100 * ended);
     lucent_pool_destroy(pool);
     lucent_scene_destroy(sc);
