@@ -273,14 +273,24 @@ static void emitter_shares(const lucent_tracer *tr, const tr_film *f, double sha
  * probabilities depend on earlier passes only, so each pass stays unbiased (as the light shares). On
  * the dragon, the photons that enter where the camera does not see their light were 38% of the walks'
  * scatterings. */
+static double entry_ratio(const tr_film *f, int c)
+{
+    double n = f->entry_n[c] ? f->entry_n[c] : 1;
+    return sqrt(f->entry_m2[c] / (f->entry_cost[c] + n)); /* sqrt(M_c / S_c), S_c with the arrival's 1 */
+}
+
+/* q_c for lambda: 1 until ENTRY_MIN_PHOTONS went on from the cell. */
+static double entry_q(const tr_film *f, int c, double lambda)
+{
+    if (f->entry_n[c] < ENTRY_MIN_PHOTONS) return 1.0;
+    return fmin(1.0, fmax(ENTRY_Q_MIN, lambda * entry_ratio(f, c)));
+}
+
 static bool entry_probabilities(const tr_film *f, float *q)
 {
     double r_max = 0;
-    for (int c = 0; c < TR_ENTRY_CELLS; c++) {
-        q[c] = 1.0f;
-        if (f->entry_n[c] >= ENTRY_MIN_PHOTONS)
-            r_max = fmax(r_max, sqrt(f->entry_m2[c] / (f->entry_cost[c] + f->entry_n[c])));
-    }
+    for (int c = 0; c < TR_ENTRY_CELLS; c++)
+        if (f->entry_n[c] >= ENTRY_MIN_PHOTONS) r_max = fmax(r_max, entry_ratio(f, c));
     if (!(r_max > 0)) return false;
     double best = INFINITY, best_lambda = INFINITY;
     for (int k = 0; k <= 64; k++) {
@@ -288,17 +298,13 @@ static bool entry_probabilities(const tr_film *f, float *q)
         for (int c = 0; c < TR_ENTRY_CELLS; c++) {
             if (!f->entry_arrived[c]) continue;
             double n = f->entry_n[c] ? f->entry_n[c] : 1, M = f->entry_m2[c] / n, S = f->entry_cost[c] / n + 1.0;
-            double qc = f->entry_n[c] >= ENTRY_MIN_PHOTONS ? fmin(1.0, fmax(ENTRY_Q_MIN, lambda * sqrt(M / S))) : 1.0;
+            double qc = entry_q(f, c, lambda);
             V += f->entry_arrived[c] * M / qc, C += f->entry_arrived[c] * (1.0 + qc * S);
         }
         if (V * C < best) best = V * C, best_lambda = lambda;
     }
     if (!isfinite(best_lambda)) return false;
-    for (int c = 0; c < TR_ENTRY_CELLS; c++)
-        if (f->entry_n[c] >= ENTRY_MIN_PHOTONS) {
-            double n = f->entry_n[c], M = f->entry_m2[c] / n, S = f->entry_cost[c] / n + 1.0;
-            q[c] = (float)fmin(1.0, fmax(ENTRY_Q_MIN, best_lambda * sqrt(M / S)));
-        }
+    for (int c = 0; c < TR_ENTRY_CELLS; c++) q[c] = (float)entry_q(f, c, best_lambda);
     return true;
 }
 
