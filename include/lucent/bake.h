@@ -12,8 +12,13 @@
  *   sog            the profile, desc.sog_count                 lucent_sog_fit, variances shared by
  *                                                              the channels (d'Eon & Luebke 2007)
  *   rd             the material only                           lucent_profile_mc_total (cached): the
- *                                                              Monte Carlo total diffuse reflectance,
- *                                                              the real-time methods' albedo */
+ *                                                              Monte Carlo total diffuse reflectance
+ *                                                              under a smooth boundary (MCML's)
+ *   boundary       the material, desc.roughness                lucent_boundary_run (cached): the path
+ *                                                              tracer's rough boundary on a half-space,
+ *                                                              the real-time methods' albedo and their
+ *                                                              entry and exit factors (docs/render.md,
+ *                                                              "One boundary") */
 #ifndef LUCENT_BAKE_H
 #define LUCENT_BAKE_H
 
@@ -36,7 +41,8 @@ enum {
     LUCENT_BAKE_TRANSMITTANCE = 1u << 2, /* bakes the profile too for the "profile" model */
     LUCENT_BAKE_SIGMA0 = 1u << 3,
     LUCENT_BAKE_SOG = 1u << 4, /* bakes the profile too */
-    LUCENT_BAKE_RD = 1u << 5
+    LUCENT_BAKE_RD = 1u << 5,
+    LUCENT_BAKE_BOUNDARY = 1u << 6
 };
 
 /* The defaults of lucent_bake_desc's photon counts, stated once. */
@@ -45,8 +51,10 @@ enum {
     LUCENT_BAKE_TRANSMIT_PHOTONS = 20000, /* slab transmittance: per channel and thickness */
     LUCENT_BAKE_SIGMA0_PHOTONS = 40000,   /* sigma0 fit: per channel and sphere */
     LUCENT_BAKE_SIGMA0_BINS = 18,         /* sigma0 fit: theta bins of each sphere */
-    LUCENT_BAKE_RD_PHOTONS = 400000       /* total diffuse reflectance: per channel (Skin1's blue
+    LUCENT_BAKE_RD_PHOTONS = 400000,      /* total diffuse reflectance: per channel (Skin1's blue
                                              0.113 +- 0.0005) */
+    LUCENT_BAKE_BOUNDARY_PHOTONS = 2000   /* boundary: per channel and incidence bin (about 1% per table
+                                             entry for Skin1, 2% for marble; 0.8 s and 6 s of CPU) */
 };
 
 enum { LUCENT_BAKE_TRANSMIT_SIZE = 256 }; /* samples of the transmittance table */
@@ -59,6 +67,9 @@ typedef struct lucent_bake_desc {
     uint64_t transmit_photons;              /* 0: LUCENT_BAKE_TRANSMIT_PHOTONS */
     uint64_t sigma0_photons;                /* 0: LUCENT_BAKE_SIGMA0_PHOTONS */
     int sog_count;                          /* Gaussians of the sog part, 1..LUCENT_SOG_MAX (0: 6) */
+    double roughness;                       /* boundary: the GGX alpha of the object's boundary, [0, 1]
+                                               (0: smooth, Fresnel's) */
+    uint64_t boundary_photons;              /* 0: LUCENT_BAKE_BOUNDARY_PHOTONS */
     lucent_pool *pool;                      /* NULL: serial */
 } lucent_bake_desc;
 
@@ -79,10 +90,22 @@ typedef struct lucent_baked {
     bool rd_cached;         /* read from the disk cache */
     bool sigma0_cached;     /* read from the disk cache */
     lucent_sog sog;         /* the profile as a sum of Gaussians with shared variances */
+    /* The path tracer's boundary on a half-space of the material at boundary_roughness
+     * (lucent_boundary_run; docs/render.md, "One boundary"), as the real-time methods use it: the
+     * albedo of uniform light (the hemispherical albedo, boundary_albedo), the exit curve E(mu_o)
+     * (the exit under uniform light over the albedo, 2 int E mu dmu = 1) and the entry factor
+     * A(mu_i, mu_o) = pi f(mu_i, mu_o) / (albedo E(mu_o)) (2 int A mu_i dmu_i = 1), so that a surface lit
+     * at mu_i shows albedo A(mu_i, mu_o) E(mu_o) E_light mu_i / pi. boundary[((row x BINS) + o) x 3 + c]:
+     * rows 0..BINS-1 A at the incidence bins' centres, row BINS E, exit bins o (lucent/profile.h). */
+    double boundary_albedo[3];
+    double boundary_roughness;
+    float boundary[(LUCENT_BOUNDARY_BINS + 1) * LUCENT_BOUNDARY_BINS * 3];
+    bool boundary_cached; /* read from the disk cache */
     /* What each part was built from ("dipole", "dipole/preint/1/17", ...): a part is rebuilt when its
      * key changes. */
     char profile_key[LUCENT_BAKE_KEY_SIZE], taps_key[LUCENT_BAKE_KEY_SIZE];
     char transmit_key[LUCENT_BAKE_KEY_SIZE], sigma0_key[LUCENT_BAKE_KEY_SIZE], sog_key[LUCENT_BAKE_KEY_SIZE];
+    char boundary_key[LUCENT_BAKE_KEY_SIZE];
 } lucent_baked;
 
 /* Bakes what desc asks for into baked, reusing the parts whose settings did not change. cache may

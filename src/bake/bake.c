@@ -1,6 +1,7 @@
 /* What a renderer needs from a material (lucent/bake.h), each part rebuilt only when the settings it
  * depends on changed, the Monte Carlo parts kept in the disk cache. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "lucent/bake.h"
@@ -15,6 +16,7 @@ static lucent_bake_desc resolve(const lucent_bake_desc *d, lucent_render_setting
     if (!r.transmit_photons) r.transmit_photons = LUCENT_BAKE_TRANSMIT_PHOTONS;
     if (!r.sigma0_photons) r.sigma0_photons = LUCENT_BAKE_SIGMA0_PHOTONS;
     if (!r.sog_count) r.sog_count = 6;
+    if (!r.boundary_photons) r.boundary_photons = LUCENT_BAKE_BOUNDARY_PHOTONS;
     if (r.what & (LUCENT_BAKE_TAPS | LUCENT_BAKE_SOG)) r.what |= LUCENT_BAKE_PROFILE;
     if ((r.what & LUCENT_BAKE_TRANSMITTANCE) && r.settings->translucency.transmittance == LUCENT_TRANSMIT_PROFILE)
         r.what |= LUCENT_BAKE_PROFILE;
@@ -233,6 +235,90 @@ static lucent_status bake_sog(const lucent_material *m, const lucent_bake_desc *
     return LUCENT_OK;
 }
 
+/* ---- boundary: the path tracer's rough boundary on a half-space (docs/render.md, "One boundary") ---- */
+
+enum { BB = LUCENT_BOUNDARY_BINS };
+
+/* The methods' albedo, exit curve and entry factor (lucent/bake.h) from the table of pi f and its
+ * standard errors, made symmetric first: light and viewer both outside, the reflectance is reciprocal
+ * (Helmholtz; the boundary's BSDF keeps the generalised reciprocity of Walter et al. 2007 eq. 21,
+ * azimuth averaging keeps it), f(mu_i, mu_o) = f(mu_o, mu_i), so the table and its transpose are two
+ * estimates of the same values; their inverse-variance mean has less variance than either (the exit
+ * bins near the normal, fed by a narrow cone inside, are the noisiest: their transposes help most). */
+static void boundary_factors(const double (*reflect)[BB][BB], const double (*se)[BB][BB], lucent_baked *b)
+{
+    for (int c = 0; c < 3; c++) {
+        double exit[BB], albedo = 0; /* exit[o]: pi f under uniform light, int pi f(mu_i, mu_o) 2 mu_i dmu_i */
+        double sym[BB][BB];
+        for (int i = 0; i < BB; i++)
+            for (int o = 0; o < BB; o++) {
+                double va = se[c][i][o] * se[c][i][o], vb = se[c][o][i] * se[c][o][i];
+                sym[i][o] = va + vb > 0 ? (reflect[c][i][o] * vb + reflect[c][o][i] * va) / (va + vb)
+                                        : 0.5 * (reflect[c][i][o] + reflect[c][o][i]);
+            }
+        for (int o = 0; o < BB; o++) {
+            exit[o] = 0;
+            for (int i = 0; i < BB; i++) exit[o] += sym[i][o] * (2.0 * i + 1.0) / (BB * BB);
+            albedo += exit[o] * (2.0 * o + 1.0) / (BB * BB);
+        }
+        b->boundary_albedo[c] = albedo;
+        for (int o = 0; o < BB; o++) {
+            double e = albedo > 0 ? exit[o] / albedo : 1.0;
+            b->boundary[(BB * BB + o) * 3 + c] = (float)e;
+            for (int i = 0; i < BB; i++)
+                b->boundary[((size_t)i * BB + o) * 3 + c] = exit[o] > 0 ? (float)(sym[i][o] / exit[o]) : 1.0f;
+        }
+    }
+}
+
+static lucent_status bake_boundary(const lucent_material *m, const lucent_bake_desc *d, lucent_cache *cache,
+                                   lucent_baked *b)
+{
+    char key[LUCENT_BAKE_KEY_SIZE];
+    snprintf(key, sizeof key, "%.17g/%llu", d->roughness, (unsigned long long)d->boundary_photons);
+    if ((b->have & LUCENT_BAKE_BOUNDARY) && !strcmp(key, b->boundary_key)) return LUCENT_OK;
+    b->have &= ~(unsigned)LUCENT_BAKE_BOUNDARY, b->boundary_key[0] = '\0';
+    char mat[512], ckey[768];
+    material_key(m, mat, sizeof mat);
+    snprintf(ckey, sizeof ckey, "boundary v1 %s roughness %.17g photons %llu bins %d seed 1", mat, d->roughness,
+             (unsigned long long)d->boundary_photons, BB);
+    double(*reflect)[BB][BB] = malloc(6 * sizeof *reflect), (*se)[BB][BB] = reflect ? reflect + 3 : NULL;
+    if (!reflect) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    b->boundary_cached = lucent_cache_get(cache, "boundary", ckey, "reflect", 3 * BB * BB, &reflect[0][0][0]) &&
+                         lucent_cache_get(cache, "boundary", ckey, "reflect_se", 3 * BB * BB, &se[0][0][0]);
+    lucent_status s = LUCENT_OK;
+    if (!b->boundary_cached) {
+        lucent_boundary_result *r = malloc(sizeof *r);
+        double t0 = lucent_clock_seconds();
+        s = r ? lucent_boundary_run(&(lucent_boundary_desc){.material = m,
+                                                            .roughness = d->roughness,
+                                                            .photons = d->boundary_photons,
+                                                            .seed = 1,
+                                                            .pool = d->pool,
+                                                            .label = "the boundary's tables"},
+                                    r)
+              : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+        if (s == LUCENT_OK) {
+            memcpy(reflect, r->reflect, 3 * sizeof *reflect);
+            memcpy(se, r->reflect_se, 3 * sizeof *se);
+            lucent_log(LUCENT_LOG_INFO, "boundary tables of %s at roughness %g in %.1f s", m->name, d->roughness,
+                       lucent_clock_seconds() - t0);
+            lucent_cache_field f[2] = {{"reflect", &r->reflect[0][0][0], 3 * BB * BB},
+                                       {"reflect_se", &r->reflect_se[0][0][0], 3 * BB * BB}};
+            lucent_cache_put(cache, "boundary", ckey, f, 2);
+        }
+        free(r);
+    }
+    if (s == LUCENT_OK) {
+        boundary_factors((const double(*)[BB][BB])reflect, (const double(*)[BB][BB])se, b);
+        b->boundary_roughness = d->roughness;
+        snprintf(b->boundary_key, sizeof b->boundary_key, "%s", key);
+        b->have |= LUCENT_BAKE_BOUNDARY;
+    }
+    free(reflect);
+    return s == LUCENT_OK ? s : lucent_error_context(s, "material %s: boundary tables", m->name);
+}
+
 lucent_status lucent_material_bake(const lucent_material *material, const lucent_bake_desc *desc, lucent_cache *cache,
                                    lucent_baked *baked)
 {
@@ -245,6 +331,13 @@ lucent_status lucent_material_bake(const lucent_material *material, const lucent
     if (s == LUCENT_OK && (d.what & LUCENT_BAKE_SIGMA0)) s = bake_sigma0(material, &d, cache, baked);
     if (s == LUCENT_OK && (d.what & LUCENT_BAKE_SOG)) s = bake_sog(material, &d, baked);
     if (s == LUCENT_OK && (d.what & LUCENT_BAKE_RD)) s = bake_rd(material, &d, cache, baked);
+    if (s == LUCENT_OK && (d.what & LUCENT_BAKE_BOUNDARY)) {
+        if (!(d.roughness >= 0) || d.roughness > 1)
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                                "material %s: boundary roughness must be in [0, 1] (got %g)", material->name,
+                                d.roughness);
+        s = bake_boundary(material, &d, cache, baked);
+    }
     return s;
 }
 

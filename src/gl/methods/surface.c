@@ -1,7 +1,6 @@
 /* The surface and compose passes shared by the mesh methods (surface.h). */
 #include <string.h>
 
-#include "base/optics.h"
 #include "gl/methods/surface.h"
 
 lucent_status gl_surface_program(lucent_renderer *r, const char *frag, const char *defines, GLuint *dest)
@@ -19,7 +18,6 @@ void gl_surface_material_uniforms(const lucent_renderer *r, int i, GLuint p)
     glUniform3f(glGetUniformLocation(p, "u_albedo"), (float)a[0], (float)a[1], (float)a[2]);
     glUniform1f(glGetUniformLocation(p, "u_roughness"), (float)o->roughness);
     glUniform1f(glGetUniformLocation(p, "u_eta"), (float)o->material.eta);
-    glUniform1f(glGetUniformLocation(p, "u_mean_ft"), (float)lucent_fresnel_mean_transmittance(o->material.eta));
     glUniform1f(glGetUniformLocation(p, "u_material"), (float)r->tables.object_material[i]);
     glUniform1f(glGetUniformLocation(p, "u_object"), (float)i);
     glUniform1f(glGetUniformLocation(p, "u_shadow_offset"), 1.5f);

@@ -20,6 +20,18 @@ double gl_ref_lut(const lucent_image *lut, double sigma_max, double cos_theta, d
     return (1 - fy) * top + fy * bottom;
 }
 
+double gl_ref_boundary(const float *table, int c, double mu_i, double mu_o, bool exit)
+{
+    enum { N = LUCENT_BOUNDARY_BINS };
+    double x = fmin(fmax(mu_o * N - 0.5, 0), N - 1), y = exit ? N : fmin(fmax(mu_i * N, 0.5), N - 0.5) - 0.5;
+    int x0 = (int)fmin(floor(x), N - 2), y0 = exit ? N : (int)fmin(floor(y), N - 2);
+    double fx = x - x0, fy = exit ? 0 : y - y0;
+    const float *r0 = table + (size_t)y0 * N * 3, *r1 = exit ? r0 : r0 + N * 3;
+    double top = (1 - fx) * r0[x0 * 3 + c] + fx * r0[(x0 + 1) * 3 + c];
+    double bottom = (1 - fx) * r1[x0 * 3 + c] + fx * r1[(x0 + 1) * 3 + c];
+    return (1 - fy) * top + fy * bottom;
+}
+
 /* Direction toward light l from p and the irradiance on a surface facing it. */
 static double incident(const lucent_light *l, const double *p, double *dir)
 {
@@ -62,6 +74,7 @@ void gl_ref_shade(const lucent_scene *scene, lucent_render_method method, lucent
     double v[3], e_sum[3] = {0}, ambient[3] = {0}, spec[3] = {0};
     for (int i = 0; i < 3; i++) v[i] = scene->camera.position[i] - p->position[i];
     normalise3(v);
+    double mu_o = fmin(fmax(dot3(p->normal, v), 0), 1);
     int k = 0; /* index among the non-environment lights (the visibility array's order) */
     for (int i = 0; i < scene->light_count; i++) {
         const lucent_light *l = &scene->lights[i];
@@ -76,16 +89,14 @@ void gl_ref_shade(const lucent_scene *scene, lucent_render_method method, lucent
             double f = method == LUCENT_METHOD_LAMBERT
                            ? fmax(ndl, 0)
                            : cdrf_value(variant, lut, sigma_max, ndl, m->sigma0[c] * p->curvature); /* Kubo Eq. 4, 5 */
-            e_sum[c] += e * l->color[c] * f * vis;
+            e_sum[c] += e * l->color[c] * f * vis * gl_ref_boundary(m->boundary, c, fmax(ndl, 0), mu_o, false);
             spec[c] += e * l->color[c] * vis * s;
         }
         k++;
     }
-    /* the diffuse light leaves toward the viewer with F_t(w_o) / its hemispherical mean (Jensen 2001) */
-    double ft = (1 - lucent_fresnel_dielectric(fmin(fmax(dot3(p->normal, v), 0), 1), m->eta, NULL)) /
-                fmax(lucent_fresnel_mean_transmittance(m->eta), 1e-3);
+    /* the diffuse light leaves toward the viewer by the boundary's exit curve (docs/render.md) */
     for (int c = 0; c < 3; c++) {
-        diffuse[c] = ft * m->albedo[c] * (e_sum[c] / M_PI + ambient[c]);
+        diffuse[c] = gl_ref_boundary(m->boundary, c, 0, mu_o, true) * m->albedo[c] * (e_sum[c] / M_PI + ambient[c]);
         specular[c] = spec[c];
     }
 }

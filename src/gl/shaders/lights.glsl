@@ -1,4 +1,5 @@
 // Lights, shadow maps, shadow-map thickness and the specular lobe. Needs common.glsl.
+#include "boundary.glsl"
 layout(binding = 1) uniform sampler2DArrayShadow u_shadow_cmp; // depth compare (PCF)
 layout(binding = 2) uniform sampler2DArray u_shadow_depth;     // the same depths, read raw
 layout(binding = 4) uniform sampler2D u_transmit;              // T(s) per channel; a row per material
@@ -120,17 +121,6 @@ float boundary_reflection(vec3 n, vec3 v, vec3 l, float alpha, float eta)
     float a = max(alpha, 1e-3); // the tracer's smooth limit is a delta: no highlight a pixel could see
     float f = fresnel_dielectric(om, eta) * ggx_d(dot(n, m), a) * ggx_g1(ci, a) * ggx_g1(co, a) / (4.0 * ci * co);
     return f * ci;
-}
-
-// Diffuse light leaves through the boundary toward the viewer with F_t(w_o) = 1 - F(n.v), normalised
-// by its hemispherical mean mean_ft (Jensen et al. 2001, S_d's F_t(w_o) / the mean); the methods apply
-// it after any blur, where the light leaves. F_t(w_i) is left out: the rough boundary (GGX) lets in
-// more at grazing incidence than the smooth F_t says, and the equator bench's subsurface-only
-// reference agrees with F_t(w_o) alone within 5% from 25 to 65 degrees, with both within 10%
-// (docs/compare.md).
-float diffuse_exit(vec3 n, vec3 v, float eta, float mean_ft)
-{
-    return (1.0 - fresnel_dielectric(clamp(dot(n, v), 0.0, 1.0), eta)) / max(mean_ft, 1e-3);
 }
 
 // The boundary's reflection for an object described by its normal-incidence reflectance f0: the same

@@ -18,7 +18,6 @@ uniform int u_use_map;          // albedo from u_albedo_map (linear RGB)
 uniform int u_sigma0_from_map;  // sigma0 = d_c^2 (Kubo Eq. 6) from the diffuse map
 uniform float u_roughness;
 uniform float u_eta;           // the material's index of refraction (the boundary's Fresnel)
-uniform float u_mean_ft;       // 2 int (1 - F(mu)) mu dmu (lucent_fresnel_mean_transmittance)
 uniform float u_strength;       // ssss: the blur's share here (object's sss_strength x settings)
 uniform float u_material;       // material index (kernel and transmittance row)
 uniform float u_object;
@@ -27,7 +26,7 @@ uniform int u_transmit_albedo;  // 1: T is the profile's T(s) / T(0), times the 
 uniform float u_shadow_offset;  // normal offset, in shadow-map texels
 
 layout(location = 0) out vec4 o_diffuse;  // rgb: diffuse radiance; a: blur strength
-layout(location = 1) out vec4 o_specular; // rgb: specular radiance; a: the diffuse light's way out
+layout(location = 1) out vec4 o_specular; // rgb: specular radiance; a: the view cosine mu_o (the exit)
 layout(location = 2) out vec2 o_depth;    // x: linear depth (mm, 0 = background); y: material
 #if AOV
 layout(location = 3) out vec4 o_aov_normal;   // xyz: shading normal; w: curvature
@@ -86,6 +85,7 @@ void main()
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;
     vec3 v = normalize(u_eye.xyz - v_position);
+    float mu_o = clamp(dot(n, v), 0.0, 1.0);
     vec3 albedo = u_use_map != 0 ? texture(u_albedo_map, v_uv).rgb : u_albedo;
     vec3 sigma0 = u_sigma0_from_map != 0 ? albedo * albedo : u_sigma0;
     vec3 irradiance = vec3(0.0), transmitted_e = vec3(0.0), specular = vec3(0.0);
@@ -94,15 +94,16 @@ void main()
         vec3 l, e = light_incident(i, v_position, l);
         float ndl = dot(n, l), offset = u_light_texel[i].x * u_shadow_offset;
         float vis = method_visibility(i, n, l, ndl, offset);
-        irradiance += method_irradiance(e, ndl, sigma0) * vis;
+        irradiance += method_irradiance(e, ndl, sigma0) * vis * boundary_entry(max(ndl, 0.0), mu_o, u_material);
         transmitted_e += transmitted(i, n, e, ndl, offset, sigma0, albedo);
         specular += e * boundary_reflection(n, v, l, u_roughness, u_eta) * vis;
         if (i == 0) vis0 = vis;
     }
     vec3 through = transmitted_e / PI;
     o_diffuse = vec4(albedo * (irradiance / PI + u_ambient.rgb) + through, u_strength);
-    // The diffuse light's way out toward the viewer (lights.glsl), applied by the compose pass after any blur.
-    o_specular = vec4(specular, diffuse_exit(n, v, u_eta, u_mean_ft));
+    // The diffuse light's way out toward the viewer (boundary.glsl) is applied by the compose pass after
+    // any blur, from the view cosine here and the material.
+    o_specular = vec4(specular, mu_o);
     o_depth = vec2(dot(v_position - u_eye.xyz, u_forward.xyz), u_material);
 #if AOV
     o_aov_normal = vec4(n, v_curvature);
