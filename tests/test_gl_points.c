@@ -82,7 +82,8 @@ static lucent_scene *plane_scene(const char *ply, const char *material, double h
 static lucent_image *render(const lucent_scene *sc, lucent_pool *pool)
 {
     lucent_renderer *r = NULL;
-    lucent_renderer_desc d = {.pool = pool, .boundary_photons = 400}; /* the tables' noise: the same in both */
+    lucent_renderer_desc d = {
+        .pool = pool, .boundary_photons = 400, .sphere_photons = 2000}; /* the tables' noise: the same in both */
     lucent_render_result res = {0};
     if (sc && context()) CHECK_OK(lucent_renderer_create(g_ctx, sc, &d, &r));
     if (r) CHECK_OK(lucent_render(r, NULL, &res));

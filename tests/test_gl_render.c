@@ -38,11 +38,12 @@ static lucent_renderer *renderer_with(const lucent_scene *sc, const lucent_rende
 /* The boundary's tables with few photons (about 5% per entry): no test here measures them (the
  * reference comparisons read the table the renderer used; test_gl_boundary holds the tables to the
  * path tracer), and every renderer of a test bakes its own. */
-enum { TEST_BOUNDARY_PHOTONS = 400 };
+enum { TEST_BOUNDARY_PHOTONS = 400, TEST_SPHERE_PHOTONS = 2000 };
 
 static lucent_renderer *renderer_of(const lucent_scene *sc)
 {
-    return renderer_with(sc, &(lucent_renderer_desc){.boundary_photons = TEST_BOUNDARY_PHOTONS});
+    return renderer_with(
+        sc, &(lucent_renderer_desc){.boundary_photons = TEST_BOUNDARY_PHOTONS, .sphere_photons = TEST_SPHERE_PHOTONS});
 }
 
 /* ---- the CDRF and Lambert passes against the CPU reference ---- */
@@ -68,9 +69,13 @@ static double shading_error(lucent_renderer *r, const lucent_scene *sc, const lu
     CHECK_OK(gl_renderer_read_aov(r, 0, &nk));
     CHECK_OK(gl_renderer_read_aov(r, 1, &pos));
     const lucent_scene_object *o = &sc->objects[0];
+    const lucent_baked *b = gl_tables_of(&r->tables, 0); /* the tables it used */
+    bool curved = s->view.method == LUCENT_METHOD_CDRF && s->cdrf.curved_parts;
     gl_ref_material m = {.roughness = o->roughness,
                          .eta = o->material.eta,
-                         .boundary = gl_tables_of(&r->tables, 0)->boundary}; /* the tables it used */
+                         .boundary = b->boundary,
+                         .spheres = curved ? b->spheres : NULL,
+                         .sphere_r0 = b->sphere_r0};
     lucent_render_object_info info;
     CHECK_OK(lucent_renderer_object_info(r, 0, &info)); /* the albedo it shaded with: the boundary's */
     for (int c = 0; c < 3; c++) m.albedo[c] = info.albedo[c], m.sigma0[c] = o->sigma0[c];
@@ -101,24 +106,27 @@ TEST(cdrf_and_lambert_equal_cpu_reference)
     static const struct {
         lucent_render_method m;
         lucent_cdrf_variant v;
-        bool lut;
-    } cases[] = {{LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, true},
-                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_COLLOMB, true},
-                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, false},
-                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_COLLOMB, false},
-                 {LUCENT_METHOD_LAMBERT, LUCENT_CDRF_KUBO, false}};
+        bool lut, curved;
+    } cases[] = {{LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, true, false},
+                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_COLLOMB, true, false},
+                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, false, false},
+                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_COLLOMB, false, false},
+                 {LUCENT_METHOD_LAMBERT, LUCENT_CDRF_KUBO, false, false},
+                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, true, true}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         lucent_render_settings s = sc->render;
         s.view.method = cases[k].m, s.cdrf.variant = cases[k].v, s.cdrf.lut = cases[k].lut;
+        s.cdrf.curved_parts = cases[k].curved;
         lucent_cdrf_lut_desc ld = lucent_cdrf_lut_defaults();
         ld.variant = cases[k].v;
         lucent_image *lut = NULL;
         CHECK_OK(lucent_cdrf_lut_build(&ld, &lut));
         double max_sigma = 0, err = shading_error(r, sc, &s, lut, &max_sigma);
+        const char *how = s.cdrf.curved_parts ? "curved parts" : s.cdrf.lut ? "LUT" : "closed form";
         CHECK_MSG(err >= 0 && err <= 1e-3, "%s %s %s: max |GPU - CPU| = %.3g", lucent_render_method_name(s.view.method),
-                  lucent_cdrf_variant_name(s.cdrf.variant), s.cdrf.lut ? "LUT" : "closed form", err);
+                  lucent_cdrf_variant_name(s.cdrf.variant), how, err);
         printf("     %s %s %s: max |GPU - CPU| = %.3g (sigma up to %.2f)\n", lucent_render_method_name(s.view.method),
-               lucent_cdrf_variant_name(s.cdrf.variant), s.cdrf.lut ? "LUT" : "closed form", err, max_sigma);
+               lucent_cdrf_variant_name(s.cdrf.variant), how, err, max_sigma);
         if (k == 0) CHECK_MSG(max_sigma > 1.5, "the torus exercises sigma up to %.2f only", max_sigma);
         lucent_image_destroy(lut);
     }
@@ -258,8 +266,9 @@ TEST(slab_translucency_matches_monte_carlo_transmittance)
 {
     enum { TABLE_PHOTONS = 20000 };
     lucent_scene *sc = scene_from(k_slab);
-    lucent_renderer *r = renderer_with(
-        sc, &(lucent_renderer_desc){.transmit_photons = TABLE_PHOTONS, .boundary_photons = TEST_BOUNDARY_PHOTONS});
+    lucent_renderer *r = renderer_with(sc, &(lucent_renderer_desc){.transmit_photons = TABLE_PHOTONS,
+                                                                   .boundary_photons = TEST_BOUNDARY_PHOTONS,
+                                                                   .sphere_photons = TEST_SPHERE_PHOTONS});
     if (r) {
         lucent_render_settings s = sc->render;
         s.view.shadow_map_size = 4096;
@@ -431,9 +440,10 @@ TEST(scene_changes_and_adopted_bakes_give_a_fresh_renderers_pixels)
         lucent_renderer_desc rd = lucent_renderer_defaults();
         lucent_baked b = {0}, copy = {0};
         unsigned what = lucent_renderer_bakes(m, &other->render);
-        /* the boundary's tables (the albedo and the entry and exit factors) with every method */
-        CHECK(what == (LUCENT_BAKE_TAPS | LUCENT_BAKE_BOUNDARY) ||
-              what == (LUCENT_BAKE_TAPS | LUCENT_BAKE_TRANSMITTANCE | LUCENT_BAKE_BOUNDARY));
+        /* the boundary's tables (the albedo and the entry and exit factors) with every method; ssss's
+         * curved parts (on by default) */
+        unsigned ssss = LUCENT_BAKE_TAPS | LUCENT_BAKE_SPHERES | LUCENT_BAKE_BOUNDARY;
+        CHECK(what == ssss || what == (ssss | LUCENT_BAKE_TRANSMITTANCE));
         CHECK_OK(lucent_material_bake(&other->objects[0].material,
                                       &(lucent_bake_desc){.what = what,
                                                           .settings = &other->render,
@@ -441,7 +451,8 @@ TEST(scene_changes_and_adopted_bakes_give_a_fresh_renderers_pixels)
                                                           .transmit_photons = rd.transmit_photons,
                                                           .sigma0_photons = rd.sigma0_photons,
                                                           .roughness = other->objects[0].roughness,
-                                                          .boundary_photons = rd.boundary_photons},
+                                                          .boundary_photons = TEST_BOUNDARY_PHOTONS,
+                                                          .sphere_photons = TEST_SPHERE_PHOTONS},
                                       NULL, &b));
         CHECK_OK(lucent_baked_copy(&b, &copy));
         lucent_baked_free(&b); /* the copy stands alone */
@@ -456,17 +467,21 @@ TEST(scene_changes_and_adopted_bakes_give_a_fresh_renderers_pixels)
         lucent_material_preset_find("ketchup", &ketchup);
         CHECK_ERR(lucent_renderer_adopt_baked(m, &ketchup, &copy), LUCENT_ERR_NOT_FOUND, "Ketchup");
         /* what each method bakes: lambert only the boundary's tables; cdrf no sigma0 fit where the
-         * scene gives sigma0; the boundary's tables also where the scene gives its colour (the entry
-         * and exit factors) */
+         * scene gives sigma0, the spheres with curved parts (the default); the boundary's tables also
+         * where the scene gives its colour (the entry and exit factors) */
         lucent_render_settings s = other->render;
+        unsigned curved = LUCENT_BAKE_SPHERES | LUCENT_BAKE_BOUNDARY;
         s.view.method = LUCENT_METHOD_LAMBERT;
         CHECK(lucent_renderer_bakes(m, &s) == LUCENT_BAKE_BOUNDARY);
         s.view.method = LUCENT_METHOD_CDRF, s.cdrf.sigma0 = LUCENT_SIGMA0_FIT;
+        CHECK(lucent_renderer_bakes(m, &s) == curved);
+        s.cdrf.curved_parts = false;
         CHECK(lucent_renderer_bakes(m, &s) == LUCENT_BAKE_BOUNDARY);
+        s.cdrf.curved_parts = true;
         other->objects[0].sigma0_set = false;
-        CHECK(lucent_renderer_bakes(m, &s) == (LUCENT_BAKE_SIGMA0 | LUCENT_BAKE_BOUNDARY));
+        CHECK(lucent_renderer_bakes(m, &s) == (LUCENT_BAKE_SIGMA0 | curved));
         other->objects[0].albedo_source = LUCENT_ALBEDO_COLOR;
-        CHECK(lucent_renderer_bakes(m, &s) == (LUCENT_BAKE_SIGMA0 | LUCENT_BAKE_BOUNDARY));
+        CHECK(lucent_renderer_bakes(m, &s) == (LUCENT_BAKE_SIGMA0 | curved));
         lucent_baked_free(&copy);
     }
     lucent_renderer_destroy(m);

@@ -20,7 +20,7 @@ static lucent_gl_context *g_ctx;
 
 /* The boundary's tables with few photons (about 5% per entry): the tests compare tsd with other
  * methods and references that read the same tables. */
-static const lucent_renderer_desc k_desc = {.boundary_photons = 400};
+static const lucent_renderer_desc k_desc = {.boundary_photons = 400, .sphere_photons = 2000};
 
 /* ---- meshes written for the scenes ---- */
 

@@ -18,7 +18,12 @@
  *                                                              tracer's rough boundary on a half-space,
  *                                                              the real-time methods' albedo and their
  *                                                              entry and exit factors (docs/render.md,
- *                                                              "One boundary") */
+ *                                                              "One boundary")
+ *   spheres        the boundary (its roughness),               lucent_cdrf_sphere_run (cached): the
+ *                  desc.sphere_photons                         exitance of Monte Carlo spheres of the
+ *                                                              material behind the same boundary over
+ *                                                              theta and radius (docs/render.md,
+ *                                                              "Curved parts") */
 #ifndef LUCENT_BAKE_H
 #define LUCENT_BAKE_H
 
@@ -42,7 +47,8 @@ enum {
     LUCENT_BAKE_SIGMA0 = 1u << 3,
     LUCENT_BAKE_SOG = 1u << 4, /* bakes the profile too */
     LUCENT_BAKE_RD = 1u << 5,
-    LUCENT_BAKE_BOUNDARY = 1u << 6
+    LUCENT_BAKE_BOUNDARY = 1u << 6,
+    LUCENT_BAKE_SPHERES = 1u << 7 /* bakes the boundary too */
 };
 
 /* The defaults of lucent_bake_desc's photon counts, stated once. */
@@ -53,9 +59,13 @@ enum {
     LUCENT_BAKE_SIGMA0_BINS = 18,         /* sigma0 fit: theta bins of each sphere */
     LUCENT_BAKE_RD_PHOTONS = 400000,      /* total diffuse reflectance: per channel (Skin1's blue
                                              0.113 +- 0.0005) */
-    LUCENT_BAKE_BOUNDARY_PHOTONS = 2000   /* boundary: per channel and incidence bin (about 1% per table
+    LUCENT_BAKE_BOUNDARY_PHOTONS = 2000,  /* boundary: per channel and incidence bin (about 1% per table
                                              entry for Skin1, 2% for marble; 0.8 s and 6 s of CPU) */
+    LUCENT_BAKE_SPHERE_PHOTONS = 20000    /* spheres: per channel and radius */
 };
+
+/* The spheres part's table: radii r0 2^(k/2), k < LUCENT_BAKE_SPHERE_RADII, and theta bins of pi / BINS. */
+enum { LUCENT_BAKE_SPHERE_RADII = 16, LUCENT_BAKE_SPHERE_BINS = 18 };
 
 enum { LUCENT_BAKE_TRANSMIT_SIZE = 256 }; /* samples of the transmittance table */
 
@@ -70,6 +80,7 @@ typedef struct lucent_bake_desc {
     double roughness;                       /* boundary: the GGX alpha of the object's boundary, [0, 1]
                                                (0: smooth, Fresnel's) */
     uint64_t boundary_photons;              /* 0: LUCENT_BAKE_BOUNDARY_PHOTONS */
+    uint64_t sphere_photons;                /* 0: LUCENT_BAKE_SPHERE_PHOTONS */
     lucent_pool *pool;                      /* NULL: serial */
 } lucent_bake_desc;
 
@@ -101,11 +112,20 @@ typedef struct lucent_baked {
     double boundary_roughness;
     float boundary[(LUCENT_BOUNDARY_BINS + 1) * LUCENT_BOUNDARY_BINS * 3];
     bool boundary_cached; /* read from the disk cache */
+    /* Curved parts (LUCENT_BAKE_SPHERES): Monte Carlo spheres of the material behind the boundary,
+     * radius sphere_r0 2^(k/2) mm (sphere_r0 a quarter of the material's shortest diffusion length
+     * 1 / sigma_tr), lit from one side; the exitance of each band of theta (the angle from the light)
+     * over the half-space's exitance at the band's incidence, a(max(cos theta, 0)) (the boundary's table):
+     * the factor that replaces max(cos theta, 0) for a point of curvature 1 / r. spheres[((k x BINS) + j)
+     * x 3 + c]; row k = RADII is the flat limit, the bin's mean of max(cos theta, 0). */
+    double sphere_r0;
+    float spheres[(LUCENT_BAKE_SPHERE_RADII + 1) * LUCENT_BAKE_SPHERE_BINS * 3];
+    bool spheres_cached;
     /* What each part was built from ("dipole", "dipole/preint/1/17", ...): a part is rebuilt when its
      * key changes. */
     char profile_key[LUCENT_BAKE_KEY_SIZE], taps_key[LUCENT_BAKE_KEY_SIZE];
     char transmit_key[LUCENT_BAKE_KEY_SIZE], sigma0_key[LUCENT_BAKE_KEY_SIZE], sog_key[LUCENT_BAKE_KEY_SIZE];
-    char boundary_key[LUCENT_BAKE_KEY_SIZE];
+    char boundary_key[LUCENT_BAKE_KEY_SIZE], spheres_key[LUCENT_BAKE_KEY_SIZE];
 } lucent_baked;
 
 /* Bakes what desc asks for into baked, reusing the parts whose settings did not change. cache may

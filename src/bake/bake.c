@@ -17,6 +17,8 @@ static lucent_bake_desc resolve(const lucent_bake_desc *d, lucent_render_setting
     if (!r.sigma0_photons) r.sigma0_photons = LUCENT_BAKE_SIGMA0_PHOTONS;
     if (!r.sog_count) r.sog_count = 6;
     if (!r.boundary_photons) r.boundary_photons = LUCENT_BAKE_BOUNDARY_PHOTONS;
+    if (!r.sphere_photons) r.sphere_photons = LUCENT_BAKE_SPHERE_PHOTONS;
+    if (r.what & LUCENT_BAKE_SPHERES) r.what |= LUCENT_BAKE_BOUNDARY;
     if (r.what & (LUCENT_BAKE_TAPS | LUCENT_BAKE_SOG)) r.what |= LUCENT_BAKE_PROFILE;
     if ((r.what & LUCENT_BAKE_TRANSMITTANCE) && r.settings->translucency.transmittance == LUCENT_TRANSMIT_PROFILE)
         r.what |= LUCENT_BAKE_PROFILE;
@@ -157,7 +159,7 @@ static void sigma0_cache_key(const lucent_material *m, lucent_cdrf_variant v, ui
     material_key(m, mat, sizeof mat);
     for (int i = 0; i < LUCENT_CDRF_FIT_RADIUS_COUNT; i++)
         snprintf(list + strlen(list), sizeof list - strlen(list), "%s%g", i ? "," : "", radii[i]);
-    snprintf(dest, size, "v2 %s %s photons %llu radii %s bins %d seed 1", mat, lucent_cdrf_variant_name(v),
+    snprintf(dest, size, "v3 %s %s photons %llu radii %s bins %d seed 1", mat, lucent_cdrf_variant_name(v),
              (unsigned long long)photons, list, LUCENT_BAKE_SIGMA0_BINS);
 }
 
@@ -319,6 +321,94 @@ static lucent_status bake_boundary(const lucent_material *m, const lucent_bake_d
     return s == LUCENT_OK ? s : lucent_error_context(s, "material %s: boundary tables", m->name);
 }
 
+/* ---- spheres: the curved parts' exitance (docs/render.md, "Curved parts") ---- */
+
+enum { SR = LUCENT_BAKE_SPHERE_RADII, SB = LUCENT_BAKE_SPHERE_BINS };
+
+/* The half-space's exitance per unit irradiance at incidence cosine mu, a(mu): albedo x the entry
+ * factor's mean over exit (lucent/bake.h), linear in mu between the incidence bins' centres. */
+static double half_space_albedo(const lucent_baked *b, int c, double mu)
+{
+    double y = fmin(fmax(mu * BB - 0.5, 0), BB - 1);
+    int i0 = (int)fmin(floor(y), BB - 2);
+    double f = y - i0, a[2] = {0, 0};
+    for (int k = 0; k < 2; k++)
+        for (int o = 0; o < BB; o++)
+            a[k] += b->boundary[((size_t)(i0 + k) * BB + o) * 3 + c] * b->boundary[(BB * BB + o) * 3 + c] *
+                    (2.0 * o + 1.0) / (BB * BB);
+    return b->boundary_albedo[c] * ((1 - f) * a[0] + f * a[1]);
+}
+
+static double sphere_r0(const lucent_material *m)
+{
+    lucent_material_derived md;
+    lucent_material_derive(m, &md);
+    double tr = fmax(md.sigma_tr[0], fmax(md.sigma_tr[1], md.sigma_tr[2]));
+    return 0.25 / fmax(tr, 1e-3);
+}
+
+static void spheres_table(const double (*exitance)[SR][SB], lucent_baked *b)
+{
+    for (int c = 0; c < 3; c++)
+        for (int j = 0; j < SB; j++) {
+            double ta = M_PI * j / SB, tb = M_PI * (j + 1) / SB;
+            double flat = (sin(fmin(tb, M_PI / 2)) - sin(fmin(ta, M_PI / 2))) / (tb - ta); /* mean of max(cos, 0) */
+            double a = half_space_albedo(b, c, fmax(cos(0.5 * (ta + tb)), 0));
+            for (int k = 0; k < SR; k++)
+                b->spheres[((size_t)k * SB + j) * 3 + c] = a > 0 ? (float)(exitance[c][k][j] / a) : 0.0f;
+            b->spheres[((size_t)SR * SB + j) * 3 + c] = (float)flat;
+        }
+}
+
+static lucent_status bake_spheres(const lucent_material *m, const lucent_bake_desc *d, lucent_cache *cache,
+                                  lucent_baked *b)
+{
+    char key[LUCENT_BAKE_KEY_SIZE];
+    snprintf(key, sizeof key, "%.64s/%llu", b->boundary_key, (unsigned long long)d->sphere_photons);
+    if ((b->have & LUCENT_BAKE_SPHERES) && !strcmp(key, b->spheres_key)) return LUCENT_OK;
+    b->have &= ~(unsigned)LUCENT_BAKE_SPHERES, b->spheres_key[0] = '\0';
+    char mat[512], ckey[768];
+    material_key(m, mat, sizeof mat);
+    double r0 = sphere_r0(m);
+    snprintf(ckey, sizeof ckey, "spheres v1 %s roughness %.17g photons %llu radii %d from %.17g bins %d seed 1", mat,
+             d->roughness, (unsigned long long)d->sphere_photons, SR, r0, SB);
+    double(*exitance)[SR][SB] = malloc(3 * sizeof *exitance);
+    if (!exitance) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    b->spheres_cached = lucent_cache_get(cache, "spheres", ckey, "exitance", 3 * SR * SB, &exitance[0][0][0]);
+    lucent_status s = LUCENT_OK;
+    if (!b->spheres_cached) {
+        double t0 = lucent_clock_seconds();
+        for (int k = 0; k < SR && s == LUCENT_OK; k++) {
+            lucent_cdrf_sphere_result r;
+            lucent_cdrf_sphere_desc sd = {.material = m,
+                                          .radius = r0 * pow(2.0, 0.5 * k),
+                                          .roughness = d->roughness,
+                                          .photons = d->sphere_photons,
+                                          .bins = SB,
+                                          .batches = 8,
+                                          .seed = 1 + (uint64_t)k,
+                                          .pool = d->pool,
+                                          .label = "curved parts: Monte Carlo spheres"};
+            s = lucent_cdrf_sphere_run(&sd, &r);
+            for (int c = 0; s == LUCENT_OK && c < 3; c++) memcpy(exitance[c][k], r.exitance[c], sizeof exitance[c][k]);
+        }
+        if (s == LUCENT_OK) {
+            lucent_log(LUCENT_LOG_INFO, "spheres of %s at roughness %g: %d radii from %.3g mm in %.1f s", m->name,
+                       d->roughness, SR, r0, lucent_clock_seconds() - t0);
+            lucent_cache_field f[1] = {{"exitance", &exitance[0][0][0], 3 * SR * SB}};
+            lucent_cache_put(cache, "spheres", ckey, f, 1);
+        }
+    }
+    if (s == LUCENT_OK) {
+        spheres_table((const double(*)[SR][SB])exitance, b);
+        b->sphere_r0 = r0;
+        snprintf(b->spheres_key, sizeof b->spheres_key, "%s", key);
+        b->have |= LUCENT_BAKE_SPHERES;
+    }
+    free(exitance);
+    return s == LUCENT_OK ? s : lucent_error_context(s, "material %s: curved parts", m->name);
+}
+
 lucent_status lucent_material_bake(const lucent_material *material, const lucent_bake_desc *desc, lucent_cache *cache,
                                    lucent_baked *baked)
 {
@@ -338,6 +428,7 @@ lucent_status lucent_material_bake(const lucent_material *material, const lucent
                                 d.roughness);
         s = bake_boundary(material, &d, cache, baked);
     }
+    if (s == LUCENT_OK && (d.what & LUCENT_BAKE_SPHERES)) s = bake_spheres(material, &d, cache, baked);
     return s;
 }
 

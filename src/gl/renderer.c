@@ -12,6 +12,7 @@ lucent_renderer_desc lucent_renderer_defaults(void)
     return (lucent_renderer_desc){.sigma0_photons = LUCENT_BAKE_SIGMA0_PHOTONS,
                                   .transmit_photons = LUCENT_BAKE_TRANSMIT_PHOTONS,
                                   .boundary_photons = LUCENT_BAKE_BOUNDARY_PHOTONS,
+                                  .sphere_photons = LUCENT_BAKE_SPHERE_PHOTONS,
                                   .profile_photons = LUCENT_BAKE_PROFILE_PHOTONS};
 }
 
@@ -23,6 +24,7 @@ lucent_bake_desc gl_renderer_bake_desc(const lucent_renderer *r, const lucent_re
                               .transmit_photons = r->desc.transmit_photons,
                               .sigma0_photons = r->desc.sigma0_photons,
                               .boundary_photons = r->desc.boundary_photons,
+                              .sphere_photons = r->desc.sphere_photons,
                               .pool = r->desc.pool};
 }
 
@@ -70,6 +72,7 @@ static lucent_renderer_desc resolve(const lucent_renderer_desc *d)
     if (!r.sigma0_photons) r.sigma0_photons = def.sigma0_photons;
     if (!r.transmit_photons) r.transmit_photons = def.transmit_photons;
     if (!r.boundary_photons) r.boundary_photons = def.boundary_photons;
+    if (!r.sphere_photons) r.sphere_photons = def.sphere_photons;
     if (!r.profile_photons) r.profile_photons = def.profile_photons;
     return r;
 }

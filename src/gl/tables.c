@@ -53,6 +53,7 @@ lucent_status gl_tables_recollect(gl_tables *t, const lucent_scene *scene)
         if (!kept[j]) lucent_baked_free(&old.baked[j]);
     if (old.transmit_tex) glDeleteTextures(1, &old.transmit_tex);
     if (old.boundary_tex) glDeleteTextures(1, &old.boundary_tex);
+    if (old.spheres_tex) glDeleteTextures(1, &old.spheres_tex);
     free(old.object_material);
     return s;
 }
@@ -62,7 +63,7 @@ lucent_status gl_tables_adopt(gl_tables *t, const lucent_material *m, const luce
     bool found = false;
     for (int k = 0; k < t->count; k++)
         if (same_material(&t->material[k], m)) {
-            t->transmit_key[0] = t->boundary_key[0] = '\0'; /* the rows may have changed under the same key */
+            t->transmit_key[0] = t->boundary_key[0] = t->spheres_key[0] = '\0'; /* rows may change under a key */
             lucent_status s = lucent_baked_copy(baked, &t->baked[k]);
             if (s != LUCENT_OK) return s;
             found = true;
@@ -117,6 +118,26 @@ lucent_status gl_tables_upload_boundary(gl_tables *t)
     return gl_check("uploading the boundary's tables");
 }
 
+lucent_status gl_tables_upload_spheres(gl_tables *t)
+{
+    char key[sizeof t->spheres_key] = "";
+    for (int m = 0; m < t->count; m++)
+        snprintf(key + strlen(key), sizeof key - strlen(key), "%s|", t->baked[m].spheres_key);
+    if (t->spheres_tex && !strcmp(t->spheres_key, key)) return LUCENT_OK;
+    enum { W = LUCENT_BAKE_SPHERE_BINS, H = LUCENT_BAKE_SPHERE_RADII + 1 };
+    if (t->spheres_tex) glDeleteTextures(1, &t->spheres_tex);
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t->spheres_tex);
+    glTextureStorage3D(t->spheres_tex, 1, GL_RGB32F, W, H, t->count > 0 ? t->count : 1);
+    for (int m = 0; m < t->count; m++)
+        glTextureSubImage3D(t->spheres_tex, 0, 0, 0, m, W, H, 1, GL_RGB, GL_FLOAT, t->baked[m].spheres);
+    glTextureParameteri(t->spheres_tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(t->spheres_tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(t->spheres_tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(t->spheres_tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    snprintf(t->spheres_key, sizeof t->spheres_key, "%s", key);
+    return gl_check("uploading the curved parts' tables");
+}
+
 const lucent_baked *gl_tables_of(const gl_tables *t, int object) { return &t->baked[t->object_material[object]]; }
 
 void gl_tables_free(gl_tables *t)
@@ -124,6 +145,7 @@ void gl_tables_free(gl_tables *t)
     for (int i = 0; i < t->count; i++) lucent_baked_free(&t->baked[i]);
     if (t->transmit_tex) glDeleteTextures(1, &t->transmit_tex);
     if (t->boundary_tex) glDeleteTextures(1, &t->boundary_tex);
+    if (t->spheres_tex) glDeleteTextures(1, &t->spheres_tex);
     free(t->object_material);
     memset(t, 0, sizeof *t);
 }

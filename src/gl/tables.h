@@ -10,11 +10,9 @@
 #include "lucent/bake.h"
 #include "lucent/scene.h"
 
-enum { GLR_MAX_MATERIALS = 8 };
-enum {
-    GL_BOUNDARY_UNIT = 9
-};
-    /* the texture unit of the boundary's tables in every pass (lights.glsl) */ /* distinct materials in one scene (kernel rows, transmittance rows) */
+enum { GLR_MAX_MATERIALS = 8 }; /* distinct materials in one scene (kernel rows, transmittance rows) */
+enum { GL_BOUNDARY_UNIT = 9 };  /* the texture unit of the boundary's tables in every pass (lights.glsl) */
+enum { GL_SPHERES_UNIT = 10 };  /* the curved parts' tables (cdrf with cdrf_spheres) */
 
 typedef struct gl_tables {
     int count;
@@ -25,6 +23,8 @@ typedef struct gl_tables {
     GLuint transmit_tex;  /* RGB32F, LUCENT_BAKE_TRANSMIT_SIZE x count */
     char transmit_key[GLR_MAX_MATERIALS * LUCENT_BAKE_KEY_SIZE];
     GLuint boundary_tex; /* RGB32F array: LUCENT_BOUNDARY_BINS x (BINS + 1), a layer per material (bake.h) */
+    GLuint spheres_tex;  /* RGB32F array: SPHERE_BINS x (SPHERE_RADII + 1), a layer per material */
+    char spheres_key[GLR_MAX_MATERIALS * LUCENT_BAKE_KEY_SIZE];
     char boundary_key[GLR_MAX_MATERIALS * LUCENT_BAKE_KEY_SIZE];
 } gl_tables;
 
@@ -51,6 +51,10 @@ lucent_status gl_tables_upload_transmittance(gl_tables *t);
 /* Uploads the boundary's tables (after a bake with LUCENT_BAKE_BOUNDARY) unless they are on the GPU
  * already. */
 lucent_status gl_tables_upload_boundary(gl_tables *t);
+
+/* Uploads the curved parts' tables (after a bake with LUCENT_BAKE_SPHERES) unless they are on the GPU
+ * already. */
+lucent_status gl_tables_upload_spheres(gl_tables *t);
 
 /* The baked parts of object i's material. */
 const lucent_baked *gl_tables_of(const gl_tables *t, int object);

@@ -7,6 +7,7 @@
 #ifndef LUCENT_SRC_GL_REFERENCE_REFERENCE_H
 #define LUCENT_SRC_GL_REFERENCE_REFERENCE_H
 
+#include "lucent/bake.h"
 #include "lucent/cdrf.h"
 #include "lucent/profile.h"
 #include "lucent/render.h"
@@ -27,7 +28,13 @@ typedef struct gl_ref_material {
     double sigma0[3];
     double roughness, eta; /* the boundary: GGX alpha and the material's index */
     const float *boundary; /* the boundary's entry factors and exit curve (lucent_baked.boundary) */
+    const float *spheres;  /* curved parts (lucent_baked.spheres; NULL: the CDRF or Lambert alone) */
+    double sphere_r0;      /* mm: the spheres' first radius (lucent_baked.sphere_r0) */
 } gl_ref_material;
+
+/* The curved parts' factor of channel c for n.l = ndl and mean curvature kappa from table
+ * (lucent_baked.spheres), read as surface.glsl's curved_factor reads its texture. */
+double gl_ref_curved(const float *table, double r0, int c, double ndl, double kappa);
 
 /* The boundary's entry factor A(mu_i, mu_o) (exit < 0) or exit curve E(mu_o) (exit >= 0) of channel c
  * from table (lucent_baked.boundary), read bilinearly between the bins' centres as the GPU's

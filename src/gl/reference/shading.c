@@ -32,6 +32,20 @@ double gl_ref_boundary(const float *table, int c, double mu_i, double mu_o, bool
     return (1 - fy) * top + fy * bottom;
 }
 
+double gl_ref_curved(const float *table, double r0, int c, double ndl, double kappa)
+{
+    enum { NB = LUCENT_BAKE_SPHERE_BINS, NR = LUCENT_BAKE_SPHERE_RADII };
+    double last = NR - 1, rmax = r0 * pow(2.0, 0.5 * last), k = fmax(kappa, 0);
+    double y = k * rmax >= 1 ? fmin(fmax(2 * log2(1 / (k * r0)), 0), last) : last + (1 - k * rmax);
+    double x = fmin(fmax(acos(fmin(fmax(ndl, -1), 1)) / M_PI * NB - 0.5, 0), NB - 1);
+    int x0 = (int)fmin(floor(x), NB - 2), y0 = (int)fmin(floor(y), NR - 1);
+    double fx = x - x0, fy = y - y0;
+    const float *r0w = table + (size_t)y0 * NB * 3, *r1w = r0w + NB * 3;
+    double top = (1 - fx) * r0w[x0 * 3 + c] + fx * r0w[(x0 + 1) * 3 + c];
+    double bottom = (1 - fx) * r1w[x0 * 3 + c] + fx * r1w[(x0 + 1) * 3 + c];
+    return (1 - fy) * top + fy * bottom;
+}
+
 /* Direction toward light l from p and the irradiance on a surface facing it. */
 static double incident(const lucent_light *l, const double *p, double *dir)
 {
@@ -86,9 +100,10 @@ void gl_ref_shade(const lucent_scene *scene, lucent_render_method method, lucent
         double vis = p->visibility ? p->visibility[k] : 1,
                s = boundary_reflection(p->normal, v, dir, m->roughness, m->eta);
         for (int c = 0; c < 3; c++) {
-            double f = method == LUCENT_METHOD_LAMBERT
-                           ? fmax(ndl, 0)
-                           : cdrf_value(variant, lut, sigma_max, ndl, m->sigma0[c] * p->curvature); /* Kubo Eq. 4, 5 */
+            double f = method == LUCENT_METHOD_LAMBERT ? fmax(ndl, 0)
+                       : m->spheres
+                           ? gl_ref_curved(m->spheres, m->sphere_r0, c, ndl, p->curvature)          /* curved parts */
+                           : cdrf_value(variant, lut, sigma_max, ndl, m->sigma0[c] * p->curvature); /* Kubo 4-5 */
             e_sum[c] += e * l->color[c] * f * vis * gl_ref_boundary(m->boundary, c, fmax(ndl, 0), mu_o, false);
             spec[c] += e * l->color[c] * vis * s;
         }

@@ -47,6 +47,41 @@ uniform vec3 u_tr_sog_w[6]; // and weights summing to 1 per channel
 uniform float u_convex_carried; // 1: the method's own diffusion carries the light through convex bodies
                                 // (the CDRF, fitted to Monte Carlo spheres whose dark side holds it)
 
+#if CURVED
+// Curved parts (render.curved_parts; docs/render.md, "Curved parts"): the exitance of the material's
+// Monte Carlo spheres behind the tracer's boundary (the spheres bake), over the half-space's at the
+// same incidence, per 10 degrees of theta (across) and radius r0 2^(k/2) (down; a last row for the flat
+// limit, max(cos theta, 0)), a layer per material: the factor that replaces max(n.l, 0) (or Kubo's
+// CDRF) for a point of mean curvature kappa. Past the terminator it holds the light that crosses the
+// body, so the convex-body branch of translucency adds none (u_convex_carried).
+layout(binding = 10) uniform sampler2DArray u_spheres;
+uniform float u_sphere_r0;       // mm: the first row's radius
+uniform float u_sphere_reach;    // mm: how far toward the light a point past the terminator is lit from
+const float SPHERE_RADII = 16.0; // LUCENT_BAKE_SPHERE_RADII
+
+// The row of curvature kappa: 2 log2(r / r0) for r = 1 / kappa up to the last radius, then linear in
+// kappa to the flat row at kappa 0 (concave points are flat).
+vec3 curved_factor(float ndl, float kappa)
+{
+    float last = SPHERE_RADII - 1.0, rmax = u_sphere_r0 * exp2(0.5 * last), k = max(kappa, 0.0);
+    float y = k * rmax >= 1.0 ? clamp(2.0 * log2(1.0 / (k * u_sphere_r0)), 0.0, last) : last + (1.0 - k * rmax);
+    float theta = acos(clamp(ndl, -1.0, 1.0));
+    return texture(u_spheres, vec3(theta / PI, (y + 0.5) / (SPHERE_RADII + 1.0), u_material)).rgb;
+}
+
+// Past the terminator a point is lit through its body from where the light ray enters it (the shadow
+// map's thickness, up to u_sphere_reach): that entry point's visibility.
+float curved_visibility(int i, vec3 n, vec3 l, float ndl, float offset)
+{
+    float through = 0.0;
+    if (ndl < 0.0) {
+        float s = shadow_thickness(i, v_position - n * offset);
+        if (s >= 0.0) through = min(s, u_sphere_reach) + 2.0 * offset;
+    }
+    return shadow_visibility(i, v_position + n * offset + l * through);
+}
+#endif
+
 // The profile's power outside radius s over its total, sum_k w_k exp(-s^2 / (2 v_k)) (Jimenez 2010).
 vec3 profile_tail(float s)
 {
