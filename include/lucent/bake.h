@@ -65,7 +65,7 @@ enum {
 };
 
 /* The spheres part's table: radii r0 2^(k/2), k < LUCENT_BAKE_SPHERE_RADII, and theta bins of pi / BINS. */
-enum { LUCENT_BAKE_SPHERE_RADII = 16, LUCENT_BAKE_SPHERE_BINS = 18 };
+enum { LUCENT_BAKE_SPHERE_RADII = 16, LUCENT_BAKE_SPHERE_BINS = 36 };
 
 enum { LUCENT_BAKE_TRANSMIT_SIZE = 256 }; /* samples of the transmittance table */
 
@@ -117,9 +117,13 @@ typedef struct lucent_baked {
      * 1 / sigma_tr), lit from one side; the exitance of each band of theta (the angle from the light)
      * over the half-space's exitance at the band's incidence, a(max(cos theta, 0)) (the boundary's table):
      * the factor that replaces max(cos theta, 0) for a point of curvature 1 / r. spheres[((k x BINS) + j)
-     * x 3 + c]; row k = RADII is the flat limit, the bin's mean of max(cos theta, 0). */
+     * x 3 + c]; row k = RADII is the flat limit, the bin's mean of max(cos theta, 0). Then as many rows
+     * (k + RADII + 1) of beta, how the exit leans down the surface away from the light on a sphere:
+     * the radiance toward v is the exitance's times (1 + beta v . f), f the unit tangent away from the
+     * light (beta = 4 <t . f> over the exits, for an exit lobe 1 + beta t . f over a cosine one; the
+     * flat row 0). */
     double sphere_r0;
-    float spheres[(LUCENT_BAKE_SPHERE_RADII + 1) * LUCENT_BAKE_SPHERE_BINS * 3];
+    float spheres[2 * (LUCENT_BAKE_SPHERE_RADII + 1) * LUCENT_BAKE_SPHERE_BINS * 3];
     bool spheres_cached;
     /* What each part was built from ("dipole", "dipole/preint/1/17", ...): a part is rebuilt when its
      * key changes. */

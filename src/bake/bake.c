@@ -347,16 +347,20 @@ static double sphere_r0(const lucent_material *m)
     return 0.25 / fmax(tr, 1e-3);
 }
 
-static void spheres_table(const double (*exitance)[SR][SB], lucent_baked *b)
+static void spheres_table(const double (*exitance)[SR][SB], const double (*flow)[SR][SB], lucent_baked *b)
 {
+    size_t beta = (size_t)(SR + 1) * SB * 3; /* the second half: beta */
     for (int c = 0; c < 3; c++)
         for (int j = 0; j < SB; j++) {
             double ta = M_PI * j / SB, tb = M_PI * (j + 1) / SB;
             double flat = (sin(fmin(tb, M_PI / 2)) - sin(fmin(ta, M_PI / 2))) / (tb - ta); /* mean of max(cos, 0) */
             double a = half_space_albedo(b, c, fmax(cos(0.5 * (ta + tb)), 0));
-            for (int k = 0; k < SR; k++)
+            for (int k = 0; k < SR; k++) {
                 b->spheres[((size_t)k * SB + j) * 3 + c] = a > 0 ? (float)(exitance[c][k][j] / a) : 0.0f;
+                b->spheres[beta + ((size_t)k * SB + j) * 3 + c] = (float)(4.0 * flow[c][k][j]);
+            }
             b->spheres[((size_t)SR * SB + j) * 3 + c] = (float)flat;
+            b->spheres[beta + ((size_t)SR * SB + j) * 3 + c] = 0.0f;
         }
 }
 
@@ -370,11 +374,12 @@ static lucent_status bake_spheres(const lucent_material *m, const lucent_bake_de
     char mat[512], ckey[768];
     material_key(m, mat, sizeof mat);
     double r0 = sphere_r0(m);
-    snprintf(ckey, sizeof ckey, "spheres v1 %s roughness %.17g photons %llu radii %d from %.17g bins %d seed 1", mat,
+    snprintf(ckey, sizeof ckey, "spheres v2 %s roughness %.17g photons %llu radii %d from %.17g bins %d seed 1", mat,
              d->roughness, (unsigned long long)d->sphere_photons, SR, r0, SB);
-    double(*exitance)[SR][SB] = malloc(3 * sizeof *exitance);
+    double(*exitance)[SR][SB] = malloc(6 * sizeof *exitance), (*flow)[SR][SB] = exitance ? exitance + 3 : NULL;
     if (!exitance) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
-    b->spheres_cached = lucent_cache_get(cache, "spheres", ckey, "exitance", 3 * SR * SB, &exitance[0][0][0]);
+    b->spheres_cached = lucent_cache_get(cache, "spheres", ckey, "exitance", 3 * SR * SB, &exitance[0][0][0]) &&
+                        lucent_cache_get(cache, "spheres", ckey, "flow", 3 * SR * SB, &flow[0][0][0]);
     lucent_status s = LUCENT_OK;
     if (!b->spheres_cached) {
         double t0 = lucent_clock_seconds();
@@ -390,17 +395,21 @@ static lucent_status bake_spheres(const lucent_material *m, const lucent_bake_de
                                           .pool = d->pool,
                                           .label = "curved parts: Monte Carlo spheres"};
             s = lucent_cdrf_sphere_run(&sd, &r);
-            for (int c = 0; s == LUCENT_OK && c < 3; c++) memcpy(exitance[c][k], r.exitance[c], sizeof exitance[c][k]);
+            for (int c = 0; s == LUCENT_OK && c < 3; c++) {
+                memcpy(exitance[c][k], r.exitance[c], sizeof exitance[c][k]);
+                memcpy(flow[c][k], r.flow[c], sizeof flow[c][k]);
+            }
         }
         if (s == LUCENT_OK) {
             lucent_log(LUCENT_LOG_INFO, "spheres of %s at roughness %g: %d radii from %.3g mm in %.1f s", m->name,
                        d->roughness, SR, r0, lucent_clock_seconds() - t0);
-            lucent_cache_field f[1] = {{"exitance", &exitance[0][0][0], 3 * SR * SB}};
-            lucent_cache_put(cache, "spheres", ckey, f, 1);
+            lucent_cache_field f[2] = {{"exitance", &exitance[0][0][0], 3 * SR * SB},
+                                       {"flow", &flow[0][0][0], 3 * SR * SB}};
+            lucent_cache_put(cache, "spheres", ckey, f, 2);
         }
     }
     if (s == LUCENT_OK) {
-        spheres_table((const double(*)[SR][SB])exitance, b);
+        spheres_table((const double(*)[SR][SB])exitance, (const double(*)[SR][SB])flow, b);
         b->sphere_r0 = r0;
         snprintf(b->spheres_key, sizeof b->spheres_key, "%s", key);
         b->have |= LUCENT_BAKE_SPHERES;

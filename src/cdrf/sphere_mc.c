@@ -50,8 +50,9 @@ static v3 ggx_sample(v3 wi, v3 n, double alpha, lucent_rng *rng)
 typedef struct sphere_job {
     lucent_cdrf_sphere_desc d;
     uint64_t per_batch;
-    int stride;    /* doubles per (channel, batch): 2 bins + 4 */
-    double *tally; /* [3 * batches][stride]: bins, then entered, exited, absorbed, capped, exitance bins */
+    int stride;    /* doubles per (channel, batch): 3 bins + 4 */
+    double *tally; /* [3 * batches][stride]: bins, then entered, exited, absorbed, capped, exitance bins,
+                      flow bins */
     double cos_cone;
     lucent_progress *progress;
 } sphere_job;
@@ -69,6 +70,10 @@ static void score(const sphere_job *job, double *tally, v3 p, v3 t, double w)
     int bin = (int)(theta / M_PI * job->d.bins);
     if (bin >= job->d.bins) bin = job->d.bins - 1;
     tally[job->d.bins + 4 + bin] += w; /* the exitance, every direction */
+    /* the flow: t . f, f the unit tangent at p away from the light (the light comes from +x) */
+    v3 n = v3_scale(p, 1.0 / job->d.radius), f = v3_add(v3_make(-1, 0, 0), v3_scale(n, n.x));
+    double fl = v3_length(f);
+    if (fl > 1e-9) tally[2 * job->d.bins + 4 + bin] += w * v3_dot(t, f) / fl;
     double rho = sqrt(p.y * p.y + p.z * p.z);
     if (!(rho > 0)) return;
     double tz = (p.y * t.y + p.z * t.z) / rho; /* t rotated about x with p onto (x, 0, rho) */
@@ -256,6 +261,10 @@ static void reduce(const sphere_job *job, lucent_cdrf_sphere_result *dest)
             for (int b = 0; b < B; b++)
                 e += job->tally[(size_t)(c * B + b) * (size_t)job->stride + (size_t)(bins + 4 + j)];
             dest->exitance[c][j] = e / (n * B) / area;
+            double fsum = 0;
+            for (int b = 0; b < B; b++)
+                fsum += job->tally[(size_t)(c * B + b) * (size_t)job->stride + (size_t)(2 * bins + 4 + j)];
+            dest->flow[c][j] = e > 0 ? fsum / e : 0;
         }
     }
     for (int c = 0; c < 3; c++) {
@@ -280,8 +289,8 @@ lucent_status lucent_cdrf_sphere_run(const lucent_cdrf_sphere_desc *desc, lucent
     lucent_status s = validate(d);
     if (s != LUCENT_OK) return s;
     job.per_batch = (d->photons + (uint64_t)d->batches - 1) / (uint64_t)d->batches;
-    job.stride = 2 * d->bins + 4; /* bins, entered, exited, absorbed, packets stopped at the step limit,
-                                     exitance bins */
+    job.stride = 3 * d->bins + 4; /* bins, entered, exited, absorbed, packets stopped at the step limit,
+                                     exitance bins, flow bins */
     job.cos_cone = cos(d->cone);
     job.tally = calloc((size_t)(3 * d->batches) * (size_t)job.stride, sizeof *job.tally);
     if (!job.tally) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "CDRF sphere: out of memory");

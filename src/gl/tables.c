@@ -124,7 +124,7 @@ lucent_status gl_tables_upload_spheres(gl_tables *t)
     for (int m = 0; m < t->count; m++)
         snprintf(key + strlen(key), sizeof key - strlen(key), "%s|", t->baked[m].spheres_key);
     if (t->spheres_tex && !strcmp(t->spheres_key, key)) return LUCENT_OK;
-    enum { W = LUCENT_BAKE_SPHERE_BINS, H = LUCENT_BAKE_SPHERE_RADII + 1 };
+    enum { W = LUCENT_BAKE_SPHERE_BINS, H = 2 * (LUCENT_BAKE_SPHERE_RADII + 1) };
     if (t->spheres_tex) glDeleteTextures(1, &t->spheres_tex);
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t->spheres_tex);
     glTextureStorage3D(t->spheres_tex, 1, GL_RGB32F, W, H, t->count > 0 ? t->count : 1);

@@ -23,7 +23,7 @@ typedef struct gl_tables {
     GLuint transmit_tex;  /* RGB32F, LUCENT_BAKE_TRANSMIT_SIZE x count */
     char transmit_key[GLR_MAX_MATERIALS * LUCENT_BAKE_KEY_SIZE];
     GLuint boundary_tex; /* RGB32F array: LUCENT_BOUNDARY_BINS x (BINS + 1), a layer per material (bake.h) */
-    GLuint spheres_tex;  /* RGB32F array: SPHERE_BINS x (SPHERE_RADII + 1), a layer per material */
+    GLuint spheres_tex;  /* RGB32F array: SPHERE_BINS x 2 (SPHERE_RADII + 1), a layer per material */
     char spheres_key[GLR_MAX_MATERIALS * LUCENT_BAKE_KEY_SIZE];
     char boundary_key[GLR_MAX_MATERIALS * LUCENT_BAKE_KEY_SIZE];
 } gl_tables;

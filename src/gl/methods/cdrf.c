@@ -164,9 +164,9 @@ static lucent_status prepare(lucent_renderer *r, void *state, const lucent_rende
     if (e == LUCENT_OK && translucency) e = gl_translucency_prepare(r, s);
     if (e == LUCENT_OK && s->cdrf.curved_parts) e = gl_curved_prepare(r, s);
     char defines[128];
-    snprintf(defines, sizeof defines,
-             "#define CDRF_LUT %d\n#define CDRF_VARIANT %d\n#define TRANSLUCENCY %d\n#define CURVED %d\n",
-             s->cdrf.lut ? 1 : 0, s->cdrf.variant, translucency ? 1 : 0, s->cdrf.curved_parts ? 1 : 0);
+    snprintf(defines, sizeof defines, "#define CDRF_LUT %d\n#define CDRF_VARIANT %d\n#define TRANSLUCENCY %d\n%s",
+             s->cdrf.lut ? 1 : 0, s->cdrf.variant, translucency ? 1 : 0,
+             s->cdrf.curved_parts ? "#define CURVED 1\n" : "");
     if (e == LUCENT_OK) e = gl_surface_program(r, "cdrf.frag.glsl", defines, &st->program);
     return e;
 }

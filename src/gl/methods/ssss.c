@@ -114,8 +114,7 @@ static lucent_status prepare(lucent_renderer *r, void *state, const lucent_rende
     if (e == LUCENT_OK) e = gl_blur_resize(&st->blur, r->targets.width, r->targets.height);
     if (e == LUCENT_OK) e = prepare_blur(r, st, s);
     if (e == LUCENT_OK)
-        e = gl_surface_program(r, "ssss.frag.glsl", s->cdrf.curved_parts ? "#define CURVED 1\n" : "#define CURVED 0\n",
-                               &st->program);
+        e = gl_surface_program(r, "ssss.frag.glsl", s->cdrf.curved_parts ? "#define CURVED 1\n" : NULL, &st->program);
     return e;
 }
 

@@ -36,6 +36,10 @@ typedef struct gl_ref_material {
  * (lucent_baked.spheres), read as surface.glsl's curved_factor reads its texture. */
 double gl_ref_curved(const float *table, double r0, int c, double ndl, double kappa);
 
+/* How light from unit l leaves toward unit v at normal n: 1 + beta v . f (surface.glsl's curved_lean). */
+double gl_ref_curved_lean(const float *table, double r0, int c, const double n[3], const double l[3], const double v[3],
+                          double kappa);
+
 /* The boundary's entry factor A(mu_i, mu_o) (exit < 0) or exit curve E(mu_o) (exit >= 0) of channel c
  * from table (lucent_baked.boundary), read bilinearly between the bins' centres as the GPU's
  * boundary.glsl reads its texture. */

@@ -32,7 +32,9 @@ double gl_ref_boundary(const float *table, int c, double mu_i, double mu_o, bool
     return (1 - fy) * top + fy * bottom;
 }
 
-double gl_ref_curved(const float *table, double r0, int c, double ndl, double kappa)
+/* The row of curvature kappa (surface.glsl's curved_row) and a bilinear read of the table's half
+ * `half` (0: the exitance factor, 1: beta) at theta = acos(ndl). */
+static double curved_read(const float *table, double r0, int c, double ndl, double kappa, int half)
 {
     enum { NB = LUCENT_BAKE_SPHERE_BINS, NR = LUCENT_BAKE_SPHERE_RADII };
     double last = NR - 1, rmax = r0 * pow(2.0, 0.5 * last), k = fmax(kappa, 0);
@@ -40,10 +42,25 @@ double gl_ref_curved(const float *table, double r0, int c, double ndl, double ka
     double x = fmin(fmax(acos(fmin(fmax(ndl, -1), 1)) / M_PI * NB - 0.5, 0), NB - 1);
     int x0 = (int)fmin(floor(x), NB - 2), y0 = (int)fmin(floor(y), NR - 1);
     double fx = x - x0, fy = y - y0;
-    const float *r0w = table + (size_t)y0 * NB * 3, *r1w = r0w + NB * 3;
+    const float *r0w = table + ((size_t)half * (NR + 1) + (size_t)y0) * NB * 3, *r1w = r0w + NB * 3;
     double top = (1 - fx) * r0w[x0 * 3 + c] + fx * r0w[(x0 + 1) * 3 + c];
     double bottom = (1 - fx) * r1w[x0 * 3 + c] + fx * r1w[(x0 + 1) * 3 + c];
     return (1 - fy) * top + fy * bottom;
+}
+
+double gl_ref_curved(const float *table, double r0, int c, double ndl, double kappa)
+{
+    return curved_read(table, r0, c, ndl, kappa, 0);
+}
+
+double gl_ref_curved_lean(const float *table, double r0, int c, const double n[3], const double l[3], const double v[3],
+                          double kappa)
+{
+    double ndl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2], f[3], fl = 0, vf = 0;
+    for (int i = 0; i < 3; i++) f[i] = n[i] * ndl - l[i], fl += f[i] * f[i];
+    fl = sqrt(fl);
+    if (fl > 1e-6) vf = (v[0] * f[0] + v[1] * f[1] + v[2] * f[2]) / fl;
+    return fmax(1 + curved_read(table, r0, c, ndl, kappa, 1) * vf, 0);
 }
 
 /* Direction toward light l from p and the irradiance on a surface facing it. */
@@ -104,7 +121,9 @@ void gl_ref_shade(const lucent_scene *scene, lucent_render_method method, lucent
                        : m->spheres
                            ? gl_ref_curved(m->spheres, m->sphere_r0, c, ndl, p->curvature)          /* curved parts */
                            : cdrf_value(variant, lut, sigma_max, ndl, m->sigma0[c] * p->curvature); /* Kubo 4-5 */
-            e_sum[c] += e * l->color[c] * f * vis * gl_ref_boundary(m->boundary, c, fmax(ndl, 0), mu_o, false);
+            double lean =
+                m->spheres ? gl_ref_curved_lean(m->spheres, m->sphere_r0, c, p->normal, dir, v, p->curvature) : 1;
+            e_sum[c] += e * l->color[c] * f * vis * gl_ref_boundary(m->boundary, c, fmax(ndl, 0), mu_o, false) * lean;
             spec[c] += e * l->color[c] * vis * s;
         }
         k++;

@@ -19,7 +19,7 @@ uniform float u_tail_reach;     // mm: how far through the body the tail's light
 // point's (the shadow map's thickness along the light), as far as the tail reaches.
 float method_visibility(int i, vec3 n, vec3 l, float ndl, float offset)
 {
-#if CURVED
+#ifdef CURVED
     return curved_visibility(i, n, l, ndl, offset);
 #endif
     float shift = u_cdrf_reach * (1.0 - max(ndl, 0.0));
@@ -36,7 +36,7 @@ float method_visibility(int i, vec3 n, vec3 l, float ndl, float offset)
 // Kubo Eq. 5 with the profile's Gaussians (cdrf.c, objects_sog), the larger of the two.
 vec3 method_irradiance(vec3 e, float ndl, vec3 sigma0)
 {
-#if CURVED
+#ifdef CURVED
     return e * curved_factor(ndl, v_curvature);
 #endif
     vec3 kubo = cdrf3(ndl, sigma0 * v_curvature); // Kubo Eq. 5

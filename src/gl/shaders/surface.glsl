@@ -47,7 +47,7 @@ uniform vec3 u_tr_sog_w[6]; // and weights summing to 1 per channel
 uniform float u_convex_carried; // 1: the method's own diffusion carries the light through convex bodies
                                 // (the CDRF, fitted to Monte Carlo spheres whose dark side holds it)
 
-#if CURVED
+#ifdef CURVED
 // Curved parts (render.curved_parts; docs/render.md, "Curved parts"): the exitance of the material's
 // Monte Carlo spheres behind the tracer's boundary (the spheres bake), over the half-space's at the
 // same incidence, per 10 degrees of theta (across) and radius r0 2^(k/2) (down; a last row for the flat
@@ -60,13 +60,30 @@ uniform float u_sphere_reach;    // mm: how far toward the light a point past th
 const float SPHERE_RADII = 16.0; // LUCENT_BAKE_SPHERE_RADII
 
 // The row of curvature kappa: 2 log2(r / r0) for r = 1 / kappa up to the last radius, then linear in
-// kappa to the flat row at kappa 0 (concave points are flat).
-vec3 curved_factor(float ndl, float kappa)
+// kappa to the flat row at kappa 0 (concave points are flat), as a texture coordinate.
+float curved_row(float kappa)
 {
     float last = SPHERE_RADII - 1.0, rmax = u_sphere_r0 * exp2(0.5 * last), k = max(kappa, 0.0);
-    float y = k * rmax >= 1.0 ? clamp(2.0 * log2(1.0 / (k * u_sphere_r0)), 0.0, last) : last + (1.0 - k * rmax);
-    float theta = acos(clamp(ndl, -1.0, 1.0));
-    return texture(u_spheres, vec3(theta / PI, (y + 0.5) / (SPHERE_RADII + 1.0), u_material)).rgb;
+    return k * rmax >= 1.0 ? clamp(2.0 * log2(1.0 / (k * u_sphere_r0)), 0.0, last) : last + (1.0 - k * rmax);
+}
+
+// The spheres' exitance factor for light at n.l = ndl (the table's first half).
+vec3 curved_factor(float ndl, float kappa)
+{
+    float x = acos(clamp(ndl, -1.0, 1.0)) / PI;
+    return texture(u_spheres, vec3(x, (curved_row(kappa) + 0.5) / (2.0 * (SPHERE_RADII + 1.0)), u_material)).rgb;
+}
+
+// How the light from l leaves toward v: on a small body it leans down the surface, away from the light,
+// 1 + beta v . f with f the unit tangent away from the light (the table's second half).
+vec3 curved_lean(float ndl, float kappa, vec3 n, vec3 l, vec3 v)
+{
+    float x = acos(clamp(ndl, -1.0, 1.0)) / PI;
+    vec3 beta = texture(u_spheres, vec3(x, (curved_row(kappa) + SPHERE_RADII + 1.5) / (2.0 * (SPHERE_RADII + 1.0)),
+                                        u_material)).rgb;
+    vec3 f = n * ndl - l;
+    float fl = length(f), vf = fl > 1e-6 ? dot(v, f) / fl : 0.0;
+    return max(1.0 + beta * vf, vec3(0.0));
 }
 
 // Past the terminator a point is lit through its body from where the light ray enters it (the shadow
@@ -129,7 +146,11 @@ void main()
         vec3 l, e = light_incident(i, v_position, l);
         float ndl = dot(n, l), offset = u_light_texel[i].x * u_shadow_offset;
         float vis = method_visibility(i, n, l, ndl, offset);
-        irradiance += method_irradiance(e, ndl, sigma0) * vis * boundary_entry(max(ndl, 0.0), mu_o, u_material);
+        vec3 entry = boundary_entry(max(ndl, 0.0), mu_o, u_material);
+#ifdef CURVED
+        entry *= curved_lean(ndl, v_curvature, n, l, v);
+#endif
+        irradiance += method_irradiance(e, ndl, sigma0) * vis * entry;
         transmitted_e += transmitted(i, n, e, ndl, offset, sigma0, albedo);
         specular += e * boundary_reflection(n, v, l, u_roughness, u_eta) * vis;
         if (i == 0) vis0 = vis;
