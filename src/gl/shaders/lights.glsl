@@ -6,6 +6,15 @@ layout(binding = 4) uniform sampler2D u_transmit;              // T(s) per chann
 uniform float u_transmit_range; // mm: thickness where the table ends
 uniform float u_transmit_v;     // the material's row, as a texture coordinate
 
+// A shading normal seen from behind (interpolated across a silhouette, or on faces wound the other way
+// round: on the dragon they reach n.v = -0.9) is bent toward the viewer until it faces it, n.v = 0.01:
+// seen from behind, the boundary passes no light toward the viewer and such pixels were black (issue 31).
+vec3 face_viewer(vec3 n, vec3 v)
+{
+    float c = dot(n, v);
+    return c >= 0.01 ? n : normalize(n + (0.01 - c) * v);
+}
+
 // The direction toward light i from p and the irradiance it gives a surface facing it
 // (directional: colour x intensity; point: intensity / d^2).
 vec3 light_incident(int i, vec3 p, out vec3 l)

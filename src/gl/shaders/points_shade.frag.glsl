@@ -33,7 +33,7 @@ void main()
         return;
     }
     vec4 gn = texelFetch(u_g_normal, px, 0), ga = texelFetch(u_g_albedo, px, 0);
-    vec3 p = g.xyz / g.w, n = normalize(gn.xyz), albedo = ga.rgb / g.w, v = normalize(u_eye.xyz - p);
+    vec3 p = g.xyz / g.w, albedo = ga.rgb / g.w, v = normalize(u_eye.xyz - p), n = face_viewer(normalize(gn.xyz), v);
     float f0 = gn.w / g.w, roughness = ga.a / g.w;
     vec4 go = texelFetch(u_g_object, px, 0);
     bool mesh = go.y > 0.5;

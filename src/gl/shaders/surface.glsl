@@ -137,6 +137,7 @@ void main()
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;
     vec3 v = normalize(u_eye.xyz - v_position);
+    n = face_viewer(n, v);
     float mu_o = clamp(dot(n, v), 0.0, 1.0);
     vec3 albedo = u_use_map != 0 ? texture(u_albedo_map, v_uv).rgb : u_albedo;
     vec3 sigma0 = u_sigma0_from_map != 0 ? albedo * albedo : u_sigma0;

@@ -35,6 +35,7 @@ void main()
     vec3 n = n2 > 0.0 ? v_normal * inversesqrt(n2) : vec3(0.0); // zero: a vertex without a face of area
     if (!gl_FrontFacing) n = -n;
     vec3 v = normalize(u_eye.xyz - v_position), specular = vec3(0.0), local = vec3(0.0);
+    if (n2 > 0.0) n = face_viewer(n, v);
     float mu_o = clamp(dot(n, v), 0.0, 1.0);
     float vis0 = 1.0;
     for (int i = 0; i < u_counts.x; i++) {
