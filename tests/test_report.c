@@ -75,7 +75,19 @@ TEST(svg_rejects_empty_figures)
 /* Two scenes with two methods each; one name needs escaping. The first scene's errors, net of its
  * 1% noise: lambert sqrt(25^2 - 1) = 24.98%, ssss 4.90%; the second's: cdrf 12.46%, x<y 49.99%. */
 static const lucent_compare_method k_methods[2][2] = {
-    {{"lambert", "a/lambert.png", "a/lambert-err.png", 0.25, {0.3, 0.2, 0.1}, 1.5, 10, "Blinn-Phong", NULL, {0}},
+    {{"lambert",
+      "a/lambert.png",
+      "a/lambert-err.png",
+      0.25,
+      {0.3, 0.2, 0.1},
+      1.5,
+      10,
+      "Blinn-Phong",
+      NULL,
+      {0},
+      false,
+      0,
+      NULL},
      {"ssss:preint",
       "a/ssss.png",
       "a/ssss-err.png",
@@ -85,9 +97,12 @@ static const lucent_compare_method k_methods[2][2] = {
       300,
       "17 taps",
       "a/ssss-worst.png",
-      {8, 4, 16}}},
-    {{"cdrf", "b/cdrf.png", "b/cdrf-err.png", 0.125, {0.1, 0.1, 0.2}, 1.75, 900, "LUT", NULL, {0}},
-     {"x<y&\"z\"", "b/x.png", "b/x-err.png", 0.5, {0.5, 0.5, 0.5}, 3, 1, "a, b", NULL, {0}}}};
+      {8, 4, 16},
+      false,
+      0,
+      NULL}},
+    {{"cdrf", "b/cdrf.png", "b/cdrf-err.png", 0.125, {0.1, 0.1, 0.2}, 1.75, 900, "LUT", NULL, {0}, false, 0, NULL},
+     {"x<y&\"z\"", "b/x.png", "b/x-err.png", 0.5, {0.5, 0.5, 0.5}, 3, 1, "a, b", NULL, {0}, false, 0, NULL}}};
 
 static void make_scenes(lucent_compare_scene sc[2])
 {
@@ -119,8 +134,9 @@ TEST(compare_html_has_every_scene_method_and_image)
     if (!html) return;
     CHECK(strstr(html, "<title>Lucent &lt;test&gt;</title>") != NULL);
     CHECK(count_of(html, "<section id=") == 2);
-    /* the summary (a header, the noise row, a row per method name) and per scene a header and two rows */
-    CHECK(count_of(html, "<tr") == (2 + 4) + 2 * 3);
+    /* the summary (a header, the noise and spread rows, a row per method name) and per scene a header and
+     * two rows */
+    CHECK(count_of(html, "<tr") == (3 + 4) + 2 * 3);
     CHECK(strstr(html, "Summary across scenes") < strstr(html, "<section id="));
     CHECK(count_of(html, "class=\"best\"") == 2);
     /* the ranked table: ssss:preint (5% < 25%) first, bold, rank 1 */
