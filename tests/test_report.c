@@ -266,8 +266,109 @@ TEST(compare_chart_has_a_marker_per_method)
     free(svg);
 }
 
+/* ---- the error-against-time chart ---- */
+
+typedef struct pt {
+    double x, y;
+} pt;
+
+/* The centres of the data markers: the shapes drawn inside the clipped group (squares, triangles,
+ * diamonds, stars as polygons or rects, crosses as paths); the centre of a polygon is the mean of its
+ * vertices (a triangle's is 0.1 of its size off the point, well inside its 9 px). */
+static int marker_centres(const char *svg, pt *dest, int max)
+{
+    const char *g = strstr(svg, "<g clip-path"), *end = g ? strstr(g, "</g>") : NULL;
+    int n = 0;
+    for (const char *p = g; p && p < end && n < max; p++) {
+        double x, y, w;
+        if (sscanf(p, "<rect x=\"%lf\" y=\"%lf\" width=\"%lf\"", &x, &y, &w) == 3 && w < 10) {
+            dest[n++] = (pt){x + w / 2, y + w / 2};
+        } else if (!strncmp(p, "<polygon points=\"", 17) || !strncmp(p, "<path d=\"M", 10)) {
+            const char *q = p + (p[1] == 'p' && p[2] == 'o' ? 17 : 10);
+            double sx = 0, sy = 0;
+            int k = 0;
+            while (k < 12 && sscanf(q, "%lf%*[, ]%lf", &x, &y) == 2) {
+                sx += x, sy += y, k++;
+                while (*q && *q != ' ' && *q != 'L' && *q != 'M' && *q != '"') q++;
+                if (*q == ' ' || *q == 'L' || *q == 'M') q++;
+                if (*q == '"') break;
+                while (*q && *q != ' ' && *q != 'L' && *q != 'M' && *q != '"') q++;
+                if (*q == '"') break;
+                q++;
+            }
+            if (k) dest[n++] = (pt){sx / k, sy / k};
+        }
+    }
+    return n;
+}
+
+/* Eleven methods as compare runs them on llvmpipe, six of them within a few percent and 0.2 ms of each
+ * other, two a thousand times slower: the time axis is logarithmic (whole decades from 0.1 to 100000
+ * ms), every label (at the points and in the legend) lies clear of every other and of every data
+ * marker, and the legend covers no marker. Text boxes as the plots measure them (7 px a character,
+ * 14 px high). */
+TEST(compare_chart_has_a_log_time_axis_and_labels_apart)
+{
+    static const char *names[11] = {"lambert",   "cdrf",        "cdrf+translucency", "ssss:preint",  "ssss:svd1",
+                                    "ssss:svd3", "ssss:guided", "ssss:manual",       "ssss:jimenez", "tsd",
+                                    "points"};
+    static const double ms[11] = {0.4, 0.45, 0.46, 0.9, 0.85, 0.95, 0.92, 0.88, 0.9, 33000, 13000};
+    static const double err[11] = {0.36, 0.20, 0.205, 0.203, 0.208, 0.201, 0.204, 0.22, 0.21, 0.19, 0.25};
+    lucent_compare_method m[11];
+    for (int i = 0; i < 11; i++) m[i] = (lucent_compare_method){.name = names[i], .rel_rms = err[i], .frame_ms = ms[i]};
+    lucent_compare_scene sc = {
+        .name = "bunny", .reference_spp = 256, .reference_noise = 0.05, .methods = m, .method_count = 11};
+    const char *path = test_path("chart-log.svg");
+    CHECK_OK(lucent_compare_write_chart(path, &sc));
+    char *svg;
+    size_t size;
+    CHECK_OK(lucent_read_file(path, &svg, &size));
+    if (!svg) return;
+    for (int e = -1; e <= 5; e++) { /* a labelled tick per decade */
+        char want[64];
+        snprintf(want, sizeof want, "text-anchor=\"middle\">%g</text>", pow(10, e));
+        CHECK_MSG(strstr(svg, want) != NULL, "no tick %s", want);
+    }
+    CHECK(strstr(svg, "logarithmic") != NULL);
+    pt markers[64];
+    int nm = marker_centres(svg, markers, 64);
+    CHECK_MSG(nm == 11, "%d markers", nm);
+    const char *legend = strstr(svg, "fill-opacity=\"0.85\"");
+    double lx = 0, ly = 0, lw = 0, lh = 0;
+    while (legend && legend > svg && strncmp(legend, "<rect", 5)) legend--;
+    CHECK(legend && sscanf(legend, "<rect x=\"%lf\" y=\"%lf\" width=\"%lf\" height=\"%lf\"", &lx, &ly, &lw, &lh) == 4);
+    for (int i = 0; i < nm; i++)
+        CHECK_MSG(!(markers[i].x > lx && markers[i].x < lx + lw && markers[i].y > ly && markers[i].y < ly + lh),
+                  "the legend covers a marker at (%g, %g)", markers[i].x, markers[i].y);
+    /* every start-anchored text after the data: the legend's and the points' labels */
+    double box[64][4];
+    int nb = 0;
+    for (const char *p = strstr(svg, "</g>"); p && (p = strstr(p, "<text x=\"")) && nb < 64; p++) {
+        double x, y;
+        char anchor[16], text[64];
+        if (sscanf(p, "<text x=\"%lf\" y=\"%lf\" text-anchor=\"%15[a-z]\">%63[^<]", &x, &y, anchor, text) != 4 ||
+            strcmp(anchor, "start"))
+            continue;
+        box[nb][0] = x, box[nb][1] = y - 11, box[nb][2] = x + 7.0 * strlen(text), box[nb][3] = y + 3, nb++;
+    }
+    CHECK_MSG(nb == 2 * 11 + 1, "%d labels", nb); /* each name twice, and the noise band's */
+    int overlaps = 0, covered = 0;
+    for (int i = 0; i < nb; i++) {
+        for (int j = i + 1; j < nb; j++)
+            overlaps +=
+                box[i][0] < box[j][2] && box[j][0] < box[i][2] && box[i][1] < box[j][3] && box[j][1] < box[i][3];
+        for (int k = 0; k < nm; k++)
+            covered += markers[k].x > box[i][0] && markers[k].x < box[i][2] && markers[k].y > box[i][1] &&
+                       markers[k].y < box[i][3];
+    }
+    CHECK_MSG(overlaps == 0, "%d pairs of labels overlap", overlaps);
+    CHECK_MSG(covered == 0, "%d markers under a label", covered);
+    free(svg);
+}
+
 TEST_MAIN(TEST_ENTRY(nice_ticks_are_1_2_5_steps), TEST_ENTRY(svg_has_a_curve_per_series_and_log_decades),
           TEST_ENTRY(svg_rejects_empty_figures), TEST_ENTRY(compare_html_has_every_scene_method_and_image),
           TEST_ENTRY(compare_markdown_and_csv_tables), TEST_ENTRY(compare_rank_ties_methods_within_the_noise),
           TEST_ENTRY(compare_reports_of_a_one_spp_reference_warn_and_rank_nothing),
-          TEST_ENTRY(net_error_takes_the_noise_out_in_quadrature), TEST_ENTRY(compare_chart_has_a_marker_per_method))
+          TEST_ENTRY(net_error_takes_the_noise_out_in_quadrature), TEST_ENTRY(compare_chart_has_a_marker_per_method),
+          TEST_ENTRY(compare_chart_has_a_log_time_axis_and_labels_apart))

@@ -270,6 +270,17 @@ lucent_status lucent_image_percentile(const lucent_image *img, int c, double p, 
  * the ramp's sRGB colours). scale <= 0: the 99th percentile of the values (1 when that is 0). */
 lucent_status lucent_image_heatmap(const lucent_image *values, float scale, lucent_image **dest);
 
+/* The scale lucent_image_heatmap uses: scale when > 0, else the 99th percentile of the values (1 when
+ * that is 0). */
+lucent_status lucent_image_heatmap_scale(const lucent_image *values, float scale, float *dest);
+
+/* The heat map of values (as lucent_image_heatmap) with its colour bar below: the ramp from 0 to the
+ * scale, labelled with 0, the middle and the scale, and `label` (what the values are, e.g. "A-B";
+ * NULL: none). The image is at least 200 pixels wide (the map at the top left, on black). *used (may
+ * be NULL) receives the scale. */
+lucent_status lucent_image_heatmap_with_bar(const lucent_image *values, float scale, const char *label,
+                                            lucent_image **dest, float *used);
+
 #ifdef __cplusplus
 }
 #endif

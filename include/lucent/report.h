@@ -44,6 +44,8 @@ typedef struct lucent_plot_panel {
     double y_min, y_max; /* both 0: fit the data (points outside [x_min, x_max] do not count) */
     const lucent_plot_series *series;
     int series_count;
+    bool legend_outside;     /* the legend right of the axes, which give it room (else inside, in a
+                                corner clear of the data where one is) */
     double band_y0, band_y1; /* a shaded horizontal band between these y (both 0: none) */
     const char *band_label;  /* its legend text */
 } lucent_plot_panel;

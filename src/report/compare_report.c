@@ -664,6 +664,7 @@ lucent_status lucent_compare_write_chart(const char *path, const lucent_compare_
     lucent_plot_panel panel = {.title = title,
                                .x_label = "frame time (ms, GPU; logarithmic)",
                                .log_x = true,
+                               .legend_outside = true,
                                .y_label = known ? "relative RMS error net of the reference's noise (%)"
                                                 : "relative RMS error (%)",
                                .series = series,

@@ -290,9 +290,10 @@ static int point_boxes(const frame *f, const lucent_plot_panel *p, box *dest, in
 enum { MAX_PLACED = 256 };
 
 /* Writes every point label where it overlaps least what is placed already (the points, the legend,
- * the labels before it): the first of 16 places around its point (up right first, then the other
- * sides, then farther out) that overlaps nothing and stays inside the panel, else the least
- * overlapping of them. */
+ * the labels before it): the first of the places around its point (up right first, then the other
+ * sides, then farther out, ring after ring up to 12 rings of 8 px) that overlaps nothing and stays
+ * inside the panel, else the least overlapping of them; a label set away from its point gets a thin
+ * line to it. */
 static void place_labels(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p, box legend)
 {
     box taken[MAX_PLACED];
@@ -306,9 +307,10 @@ static void place_labels(lucent_strbuf *b, const frame *f, const lucent_plot_pan
             double x = px(f, ser->x[i]), y = py(f, ser->y[i]), w, h, best = INFINITY;
             lucent_plot_text_box((int)strlen(ser->point_labels[i]), &w, &h);
             box pick = {x + 7, y - 5 - h, x + 7 + w, y - 5};
-            for (int ring = 1; ring <= 3 && best > 0; ring++)
+            int placed_ring = 1;
+            for (int ring = 1; ring <= 12 && best > 0; ring++)
                 for (int k = 0; k < 8 && best > 0; k++) {
-                    double gap = 7 * ring, cx = x + dir[k][0] * gap, cy = y + dir[k][1] * gap;
+                    double gap = 8 * ring - 1, cx = x + dir[k][0] * gap, cy = y + dir[k][1] * gap;
                     double bx = dir[k][0] > 0 ? cx : dir[k][0] < 0 ? cx - w : cx - w / 2;
                     double by = dir[k][1] > 0 ? cy : dir[k][1] < 0 ? cy - h : cy - h / 2;
                     box c = {bx, by, bx + w, by + h};
@@ -316,9 +318,16 @@ static void place_labels(lucent_strbuf *b, const frame *f, const lucent_plot_pan
                     for (int t = 0; t < n; t++) cost += overlap(c, taken[t]);
                     if (c.x0 < f->left || c.x1 > f->left + f->width || c.y0 < f->top || c.y1 > f->top + f->height)
                         cost += w * h; /* outside the panel: as bad as covering a label */
-                    if (cost < best) best = cost, pick = c;
+                    if (cost < best) best = cost, pick = c, placed_ring = ring;
                 }
             if (n < MAX_PLACED) taken[n++] = pick;
+            if (placed_ring > 1) { /* a leader from the point to the label's nearest edge */
+                double lx = fmin(fmax(x, pick.x0), pick.x1), ly = fmin(fmax(y, pick.y0), pick.y1);
+                lucent_strbuf_printf(b,
+                                     "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#999\" "
+                                     "stroke-width=\"0.8\"/>\n",
+                                     x, y, lx, ly);
+            }
             axis_label(b, pick.x0, pick.y1 - 3, "start", 0, ser->point_labels[i]);
         }
     }
@@ -411,6 +420,8 @@ static void draw_panel(lucent_strbuf *b, const lucent_plot_desc *d, int index, d
                .top = top + MARGIN_TOP,
                .width = w - MARGIN_LEFT - MARGIN_RIGHT,
                .height = h - MARGIN_TOP - MARGIN_BOTTOM};
+    box legend = legend_size(p);
+    if (p->legend_outside && legend.x1 > 0) f.width = fmax(f.width - legend.x1 - 12, 0.25 * f.width);
     fit_ranges(p, &f);
     lucent_strbuf_printf(b,
                          "<clipPath id=\"clip%d\"><rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" "
@@ -425,7 +436,10 @@ static void draw_panel(lucent_strbuf *b, const lucent_plot_desc *d, int index, d
     for (int s = 0; s < p->series_count; s++)
         draw_series(b, &f, p, &p->series[s], p->series[s].color ? p->series[s].color : k_palette[s % PALETTE]);
     lucent_strbuf_printf(b, "</g>\n");
-    box legend = legend_box(&f, p);
+    if (p->legend_outside)
+        legend = (box){f.left + f.width + 12, f.top, f.left + f.width + 12 + legend.x1, f.top + legend.y1};
+    else
+        legend = legend_box(&f, p);
     draw_legend(b, p, legend);
     place_labels(b, &f, p, legend);
     if (p->title) axis_label(b, f.left + f.width / 2, f.top - 12, "middle", 0, p->title);
