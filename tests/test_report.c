@@ -366,9 +366,51 @@ TEST(compare_chart_has_a_log_time_axis_and_labels_apart)
     free(svg);
 }
 
+/* The summary (issue 35): what a tie means said once, the spread per scene, the methods ranked best
+ * first, bold only for a best rank that is apart from some other method; no "(=1)" cells. Scene 1:
+ * three methods the paired test separates (z 10 and 20); scene 2: two it cannot (z 1). */
+TEST(compare_summary_says_once_what_a_tie_is_and_puts_the_distinguishable_first)
+{
+    lucent_compare_method m1[3] = {
+        {.name = "lambert", .rel_rms = 0.30}, {.name = "svd3", .rel_rms = 0.12}, {.name = "cdrf", .rel_rms = 0.20}};
+    lucent_compare_method m2[2] = {{.name = "lambert", .rel_rms = 0.105}, {.name = "svd3", .rel_rms = 0.10}};
+    /* se of e_i^2 - e_j^2 chosen for z: svd3-cdrf (0.0144 - 0.04) / se = -10, cdrf-lambert -20 */
+    double se1[9] = {0, 0.0756 / 20, 0.05 / 20, 0.0756 / 20, 0, 0.0256 / 10, 0.05 / 20, 0.0256 / 10, 0};
+    double se2[4] = {0, 0.001025, 0.001025, 0};
+    lucent_compare_scene sc[2] = {
+        {.name = "one", .reference_spp = 64, .reference_noise = 0.01, .methods = m1, .method_count = 3, .pair_se = se1},
+        {.name = "two",
+         .reference_spp = 64,
+         .reference_noise = 0.01,
+         .methods = m2,
+         .method_count = 2,
+         .pair_se = se2}};
+    const char *path = test_path("summary.html");
+    CHECK_OK(lucent_compare_write_html(path, "summary", sc, 2));
+    char *html;
+    size_t size;
+    CHECK_OK(lucent_read_file(path, &html, &size));
+    if (!html) return;
+    const char *sum = strstr(html, "Summary across scenes"), *end = sum ? strstr(sum, "</table>") : NULL;
+    CHECK(sum && end);
+    if (!sum || !end) return;
+    CHECK(count_of(sum, "cannot be told apart") >= 1 && strstr(sum, "(=") == NULL);
+    const char *svd3 = strstr(sum, "<tr><td>svd3"), *cdrf = strstr(sum, "<tr><td>cdrf"),
+               *lambert = strstr(sum, "<tr><td>lambert");
+    /* mean ranks: svd3 1, lambert (3 + 1) / 2 = 2, cdrf 2 (then the order of first appearance) */
+    CHECK(svd3 && cdrf && lambert && svd3 < lambert && lambert < cdrf);
+    /* scene one's spread: net sqrt(0.12^2 - 0.01^2) = 11.96% to sqrt(0.3^2 - 0.01^2) = 29.98%, 3 ranks */
+    CHECK(strstr(sum, "<td>11.96% to 29.98% (3)</td>") != NULL);
+    CHECK(strstr(sum, "<td><b>11.96% (1)</b></td>") != NULL); /* svd3 in one: apart from the rest */
+    CHECK(strstr(sum, "<td>9.95% (1)</td>") != NULL);         /* svd3 in two: tied, not bold */
+    CHECK(strstr(sum, "<td>10.45% (1)</td>") != NULL);        /* lambert in two: the same rank */
+    free(html);
+}
+
 TEST_MAIN(TEST_ENTRY(nice_ticks_are_1_2_5_steps), TEST_ENTRY(svg_has_a_curve_per_series_and_log_decades),
           TEST_ENTRY(svg_rejects_empty_figures), TEST_ENTRY(compare_html_has_every_scene_method_and_image),
           TEST_ENTRY(compare_markdown_and_csv_tables), TEST_ENTRY(compare_rank_ties_methods_within_the_noise),
           TEST_ENTRY(compare_reports_of_a_one_spp_reference_warn_and_rank_nothing),
           TEST_ENTRY(net_error_takes_the_noise_out_in_quadrature), TEST_ENTRY(compare_chart_has_a_marker_per_method),
-          TEST_ENTRY(compare_chart_has_a_log_time_axis_and_labels_apart))
+          TEST_ENTRY(compare_chart_has_a_log_time_axis_and_labels_apart),
+          TEST_ENTRY(compare_summary_says_once_what_a_tie_is_and_puts_the_distinguishable_first))

@@ -170,7 +170,7 @@ static void print_scene(const lucent_compare_scene *r)
             for (int j = 0; j < r->method_count; j++) tie |= j != i && rank[j] == rank[i];
             snprintf(rk, sizeof rk, "%s%d", tie ? "=" : "", rank[i]);
             snprintf(net, sizeof net, "%.2f%%", 100 * lucent_compare_net_error(m->rel_rms, r->reference_noise));
-            double zn = k + 1 < r->method_count ? -lucent_compare_pair_z(r, i, order[k + 1]) : NAN;
+            double zn = k + 1 < r->method_count ? fabs(lucent_compare_pair_z(r, i, order[k + 1])) : NAN;
             if (isinf(zn))
                 snprintf(z, sizeof z, "exact");
             else if (isfinite(zn))

@@ -144,7 +144,7 @@ static void z_next(const lucent_compare_scene *sc, const int *order, int k, char
 {
     dest[0] = '\0';
     if (k + 1 >= sc->method_count || !sc->pair_se) return;
-    double z = -lucent_compare_pair_z(sc, order[k], order[k + 1]);
+    double z = fabs(lucent_compare_pair_z(sc, order[k], order[k + 1])); /* sorted: at or above 0 */
     if (isinf(z))
         snprintf(dest, size, "exact");
     else if (isfinite(z))
