@@ -5,6 +5,7 @@
  * Lambert). compare's run itself needs GL: tests/test_gl_eval.c. */
 #include <cjson/cJSON.h>
 
+#include "eval/internal.h"
 #include "lucent/eval.h"
 #include "test.h"
 
@@ -543,10 +544,66 @@ TEST(region_measures_follow_their_definitions)
     lucent_image_destroy(ref), lucent_image_destroy(img), lucent_image_destroy(var);
 }
 
+/* ---- compare's reused reference: reference.json ---- */
+
+/* Replaces the first `from` in text by `to` (into a static buffer). */
+static const char *edited(const char *text, const char *from, const char *to)
+{
+    static char buf[8192];
+    const char *at = strstr(text, from);
+    if (!at) return text;
+    snprintf(buf, sizeof buf, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
+    return buf;
+}
+
+/* The reference.json a run wrote (tests/fixtures/compare: the test sphere, 16 spp) reads back; a
+ * malformed one, or one made of another scene, is refused with the file and the field named. */
+TEST(reference_json_reads_back_and_refuses_what_does_not_match)
+{
+    char scene_path[600], ref_path[600];
+    snprintf(scene_path, sizeof scene_path, "%s/tests/fixtures/scenes/sphere.json", LUCENT_SOURCE_DIR);
+    snprintf(ref_path, sizeof ref_path, "%s/tests/fixtures/compare/reference.json", LUCENT_SOURCE_DIR);
+    lucent_scene *scene = NULL;
+    CHECK_OK(lucent_scene_load(scene_path, &(lucent_scene_load_desc){.skip_meshes = true}, &scene));
+    char *text = NULL;
+    size_t size;
+    CHECK_OK(lucent_read_file(ref_path, &text, &size));
+    if (!scene || !text) return;
+    eval_reference r;
+    CHECK_OK(eval_reference_parse(text, "r.json", scene, &r));
+    CHECK(r.runs == 1 && r.result.spp == 16 && r.result.samples == 30720 && r.result.seed == 1);
+    CHECK_ERR(eval_reference_parse(edited(text, "\"runs\":\t1", "\"runs\":\t3"), "r.json", scene, &r),
+              LUCENT_ERR_INVALID_ARGUMENT, "r.json", "runs", "must be 1 or 2, got 3");
+    CHECK_ERR(eval_reference_parse(edited(text, "\"runs\":\t1", "\"runs\":\t2"), "r.json", scene, &r),
+              LUCENT_ERR_INVALID_ARGUMENT, "run_results", "expected 2 runs, got 0");
+    CHECK_ERR(eval_reference_parse(edited(text, "\"spp\":\t16", "\"spp\":\t-1"), "r.json", scene, &r),
+              LUCENT_ERR_INVALID_ARGUMENT, "result.spp", "got -1");
+    CHECK_ERR(eval_reference_parse(edited(text, "\"spp\":\t16", "\"spp\":\t\"x\""), "r.json", scene, &r),
+              LUCENT_ERR_PARSE, "result.spp");
+    CHECK_ERR(eval_reference_parse(edited(text, "\"skin1\"", "\"skin2\""), "r.json", scene, &r),
+              LUCENT_ERR_INVALID_ARGUMENT, "r.json: objects[0].material: the reference was made with \"skin2\"",
+              "has \"skin1\"");
+    CHECK_ERR(eval_reference_parse(edited(text, "\"48\"", "\"96\""), "r.json", scene, &r), LUCENT_ERR_INVALID_ARGUMENT,
+              "render.width", "\"96\"", "\"48\"");
+    CHECK_ERR(eval_reference_parse(edited(text, "\"intensity\":\t3", "\"power\":\t3"), "r.json", scene, &r),
+              LUCENT_ERR_INVALID_ARGUMENT, "lights[0].power");
+    char truncated[64];
+    snprintf(truncated, sizeof truncated, "%.40s", text);
+    CHECK(eval_reference_parse(truncated, "r.json", scene, &r) != LUCENT_OK && strstr(lucent_last_error(), "r.json"));
+    CHECK_ERR(eval_reference_parse("[]", "r.json", scene, &r), LUCENT_ERR_PARSE, "r.json");
+    /* the images beside it are read too: a folder without them names the first missing */
+    char dir[600];
+    snprintf(dir, sizeof dir, "%s/tests/fixtures/compare", LUCENT_SOURCE_DIR);
+    CHECK_ERR(eval_reference_read(dir, scene, &r), LUCENT_ERR_IO, "compare/reference.exr");
+    free(text);
+    lucent_scene_destroy(scene);
+}
+
 TEST_MAIN(TEST_ENTRY(object_mask_keeps_pixels_whose_3x3_neighbourhood_is_covered),
           TEST_ENTRY(paired_test_separates_methods_a_known_amount_apart_and_not_identical_ones),
           TEST_ENTRY(paired_test_standard_error_is_calibrated_by_two_runs_where_pixels_share_noise),
           TEST_ENTRY(region_measures_follow_their_definitions),
+          TEST_ENTRY(reference_json_reads_back_and_refuses_what_does_not_match),
           TEST_ENTRY(reference_noise_is_sqrt_of_summed_variance_over_summed_squares),
           TEST_ENTRY(error_map_is_signed_full_at_half_relative_error_and_black_outside_the_mask),
           TEST_ENTRY(worst_region_holds_the_largest_error),

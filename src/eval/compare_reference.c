@@ -297,8 +297,8 @@ static lucent_status load_image(const char *dir, const char *stem, const char *s
     return s;
 }
 
-static lucent_status read_result(const lucent_json_node *n, const char *dir, const char *stem, int w, int h,
-                                 lucent_trace_result *dest)
+/* The numbers of one run's result (no images). */
+static lucent_status read_numbers(const lucent_json_node *n, lucent_trace_result *dest)
 {
     double spp, samples, seed, seconds, photons;
     lucent_status s = lucent_json_number(n, "spp", &spp);
@@ -306,14 +306,28 @@ static lucent_status read_result(const lucent_json_node *n, const char *dir, con
     if (s == LUCENT_OK) s = lucent_json_number(n, "seed", &seed);
     if (s == LUCENT_OK) s = lucent_json_number(n, "seconds", &seconds);
     if (s == LUCENT_OK) s = lucent_json_number_or(n, "photons", 0, &photons);
-    if (s == LUCENT_OK && !(spp >= 0 && spp < 1e12 && samples >= 0 && samples < 1e18 && seed >= 0 && seconds >= 0 &&
-                            photons >= 0 && seed < 1.9e19 && photons < 1.9e19))
-        s = lucent_json_fail(n, "spp", LUCENT_ERR_INVALID_ARGUMENT, "out of range");
     if (s != LUCENT_OK) return s;
+    const struct {
+        const char *key;
+        double v, hi;
+    } range[] = {{"spp", spp, 1e12},
+                 {"samples", samples, 1e18},
+                 {"seed", seed, 9007199254740992.0},
+                 {"seconds", seconds, 1e12},
+                 {"photons", photons, 1e19}};
+    for (size_t k = 0; k < sizeof range / sizeof range[0]; k++)
+        if (!(range[k].v >= 0 && range[k].v <= range[k].hi))
+            return lucent_json_fail(n, range[k].key, LUCENT_ERR_INVALID_ARGUMENT, "expected 0 to %g, got %g",
+                                    range[k].hi, range[k].v);
     dest->spp = (uint64_t)spp, dest->samples = (uint64_t)samples, dest->seed = (uint64_t)seed;
     dest->seconds = seconds, dest->cost.photons = (uint64_t)photons;
     dest->samples_per_second = seconds > 0 ? samples / seconds : 0;
-    s = load_image(dir, stem, "", w, h, 3, &dest->image);
+    return LUCENT_OK;
+}
+
+static lucent_status read_images(const char *dir, const char *stem, int w, int h, lucent_trace_result *dest)
+{
+    lucent_status s = load_image(dir, stem, "", w, h, 3, &dest->image);
     if (s == LUCENT_OK) s = load_image(dir, stem, "-variance", w, h, 3, &dest->variance);
     if (s == LUCENT_OK) s = load_image(dir, stem, "-coverage", w, h, 1, &dest->coverage);
     return s;
@@ -342,33 +356,47 @@ static lucent_status check_identity(const lucent_json_node *root, const lucent_s
     return s;
 }
 
-lucent_status eval_reference_read(const char *dir, const lucent_scene *scene, eval_reference *dest)
+lucent_status eval_reference_parse(const char *text, const char *file, const lucent_scene *scene, eval_reference *dest)
 {
     *dest = (eval_reference){0};
-    char file[EVAL_PATH_SIZE];
-    lucent_status s = eval_path_printf(file, sizeof file, "%s/reference.json", dir);
     cJSON *json = NULL;
-    if (s == LUCENT_OK) s = lucent_json_parse_file(file, &json);
+    lucent_status s = lucent_json_parse_text(text, file, &json);
     if (s != LUCENT_OK) return s;
     lucent_json_node root = lucent_json_root(json, file, ""), res, runs, item;
     s = check_identity(&root, scene, file);
     double count = 0;
-    int w = scene->render.view.width, h = scene->render.view.height;
     if (s == LUCENT_OK) s = lucent_json_number(&root, "runs", &count);
     if (s == LUCENT_OK && count != 1 && count != 2)
         s = lucent_json_fail(&root, "runs", LUCENT_ERR_INVALID_ARGUMENT, "must be 1 or 2, got %g", count);
     if (s == LUCENT_OK) s = lucent_json_object(&root, "result", true, &res);
-    if (s == LUCENT_OK) s = read_result(&res, dir, "reference", w, h, &dest->result);
-    dest->runs = (int)count;
+    if (s == LUCENT_OK) s = read_numbers(&res, &dest->result);
+    dest->runs = s == LUCENT_OK ? (int)count : 0;
     int nruns = 0;
     if (s == LUCENT_OK && dest->runs == 2) s = lucent_json_array(&root, "run_results", true, &runs, &nruns);
     if (s == LUCENT_OK && dest->runs == 2 && nruns != 2)
         s = lucent_json_fail(&root, "run_results", LUCENT_ERR_INVALID_ARGUMENT, "expected 2 runs, got %d", nruns);
     for (int k = 0; k < RUN_FILES && s == LUCENT_OK && dest->runs == 2; k++) {
         s = lucent_json_element(&runs, k, &item);
-        if (s == LUCENT_OK) s = read_result(&item, dir, k_run_stem[k], w, h, &dest->run[k]);
+        if (s == LUCENT_OK) s = read_numbers(&item, &dest->run[k]);
     }
     cJSON_Delete(json);
+    return s;
+}
+
+lucent_status eval_reference_read(const char *dir, const lucent_scene *scene, eval_reference *dest)
+{
+    *dest = (eval_reference){0};
+    char file[EVAL_PATH_SIZE];
+    lucent_status s = eval_path_printf(file, sizeof file, "%s/reference.json", dir);
+    char *text = NULL;
+    size_t size = 0;
+    if (s == LUCENT_OK) s = lucent_read_file(file, &text, &size);
+    if (s == LUCENT_OK) s = eval_reference_parse(text, file, scene, dest);
+    free(text);
+    int w = scene->render.view.width, h = scene->render.view.height;
+    if (s == LUCENT_OK) s = read_images(dir, "reference", w, h, &dest->result);
+    for (int k = 0; k < RUN_FILES && s == LUCENT_OK && dest->runs == 2; k++)
+        s = read_images(dir, k_run_stem[k], w, h, &dest->run[k]);
     if (s != LUCENT_OK) eval_reference_free(dest);
     return s;
 }

@@ -81,6 +81,11 @@ lucent_status eval_reference_identity(const lucent_scene *scene, struct cJSON **
 lucent_status eval_reference_write(const char *dir, const lucent_scene *scene, const eval_reference *ref,
                                    lucent_eval_event_fn on_event, void *user);
 
+/* Reads the numbers of a reference.json's text (file names it in errors) into dest (no images), after
+ * checking that it was made of the same scene and settings (else an error naming the file and the
+ * first field that differs). */
+lucent_status eval_reference_parse(const char *text, const char *file, const lucent_scene *scene, eval_reference *dest);
+
 /* Reads what eval_reference_write wrote into dir, after checking that it was made of the same scene
  * and settings (else an error naming reference.json and the first field that differs). */
 lucent_status eval_reference_read(const char *dir, const lucent_scene *scene, eval_reference *dest);
