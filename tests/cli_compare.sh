@@ -59,6 +59,15 @@ else
   _report 0 "script (util-linux) is needed to test the terminal's progress"
 fi
 
+# tsd and points are not among the defaults; asked for on a software GL renderer, they are announced
+# before any work with an estimate (here the run then fails on its scene, so it costs nothing).
+if "$LUCENT" --version 2>/dev/null | grep -q "^gl .*llvmpipe"; then
+  expect_fail 1 "warning: tsd is slow on a software GL renderer" -- "${GLRUN[@]}" compare "$SC/missing-mesh.json" \
+    --methods lambert,tsd --frames 2 --spp 1 --out "$TMP/c7"
+  expect_fail 1 "3 frames a scene (--frames 2 and the first)" -- "${GLRUN[@]}" compare "$SC/missing-mesh.json" \
+    --methods tsd --frames 2 --spp 1 --out "$TMP/c7"
+fi
+
 # A reference reused (--reference): not traced again, the same errors; refused for another scene.
 expect_ok -- "${GLRUN[@]}" compare "$SC/sphere.json" --methods lambert --reference "$TMP/cmp" --set render.taps=17 \
   --frames 1 --out "$TMP/cmp-reuse"
