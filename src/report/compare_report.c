@@ -379,25 +379,26 @@ static int method_index(const lucent_compare_scene *sc, const char *name)
     return -1;
 }
 
-/* The summary's row order: by mean rank over the scenes that rank (unranked last, in their order of
- * first appearance). */
+/* The summary's row order: by mean rank over the scenes that rank, then by mean net error (unranked
+ * last, in their order of first appearance). */
 static void summary_order(const lucent_compare_scene *scenes, int count, const summary_scene *ss, const char **names,
                           int n)
 {
-    double key[64];
+    double key[64][2];
     for (int j = 0; j < n; j++) {
-        double sum = 0;
+        double sum = 0, err = 0;
         int c = 0;
         for (int i = 0; i < count; i++) {
             int k = method_index(&scenes[i], names[j]);
-            if (k >= 0 && ss[i].ranked) sum += ss[i].rank[k], c++;
+            if (k >= 0 && ss[i].ranked) sum += ss[i].rank[k], err += net_of(&scenes[i], k), c++;
         }
-        key[j] = c ? sum / c : INFINITY;
+        key[j][0] = c ? sum / c : INFINITY, key[j][1] = c ? err / c : INFINITY;
     }
     for (int i = 1; i < n; i++) /* stable insertion sort */
-        for (int k = i; k > 0 && key[k] < key[k - 1]; k--) {
-            double t = key[k];
-            key[k] = key[k - 1], key[k - 1] = t;
+        for (int k = i;
+             k > 0 && (key[k][0] < key[k - 1][0] || (key[k][0] == key[k - 1][0] && key[k][1] < key[k - 1][1])); k--) {
+            double t0 = key[k][0], t1 = key[k][1];
+            key[k][0] = key[k - 1][0], key[k][1] = key[k - 1][1], key[k - 1][0] = t0, key[k - 1][1] = t1;
             const char *u = names[k];
             names[k] = names[k - 1], names[k - 1] = u;
         }
