@@ -312,7 +312,7 @@ TEST(compare_reuses_a_reference_only_for_the_same_scene_and_measures_each_light)
               sc->lights[0].regions[LUCENT_COMPARE_REGION_LIT].pixels == sc->regions[LUCENT_COMPARE_REGION_LIT].pixels);
     }
     lucent_compare_result_free(&b);
-    d.out = dir; /* the reference's own folder: read, not rewritten */
+    d.out = dir, d.per_light = false; /* the reference's own folder: read, not rewritten */
     CHECK_OK(lucent_compare_run(&d, &b));
     lucent_compare_result_free(&b);
     d.overrides = other;
