@@ -64,7 +64,7 @@ static void html_region_table(lucent_strbuf *b, const lucent_compare_scene *sc, 
         html_pct(b, g->energy);
         html_pct(b, g->reference_noise);
         for (int m = 0; m < sc->method_count; m++) {
-            if (!g->pixels) {
+            if (!g->pixels || !isfinite(g->rel_rms[m]) || !isfinite(g->ratio[m])) {
                 lucent_strbuf_printf(b, "<td>&ndash;</td>");
                 continue;
             }
@@ -112,11 +112,10 @@ void report_html_lights(lucent_strbuf *b, const lucent_compare_scene *sc)
         lucent_strbuf_printf(b, "</td><td>%d</td>", li->reference_spp);
         html_pct(b, li->reference_noise);
         for (int m = 0; m < sc->method_count; m++) {
-            lucent_strbuf_printf(b, "<td>%.1f%%, ", 100 * li->rel_rms[m]);
-            if (isfinite(li->ratio[m]))
-                lucent_strbuf_printf(b, "%.2f</td>", li->ratio[m]);
+            if (isfinite(li->rel_rms[m]) && isfinite(li->ratio[m]))
+                lucent_strbuf_printf(b, "<td>%.1f%%, %.2f</td>", 100 * li->rel_rms[m], li->ratio[m]);
             else
-                lucent_strbuf_printf(b, "&ndash;</td>");
+                lucent_strbuf_printf(b, "<td>&ndash;</td>");
         }
         lucent_strbuf_printf(b, "</tr>\n");
     }
@@ -146,7 +145,7 @@ static void md_region_table(lucent_strbuf *b, const lucent_compare_scene *sc, co
         if (isfinite(g->reference_noise)) snprintf(noise, sizeof noise, "%.1f%%", 100 * g->reference_noise);
         lucent_strbuf_printf(b, "| %s | %llu | %s | %s |", g->name, (unsigned long long)g->pixels, energy, noise);
         for (int m = 0; m < sc->method_count; m++) {
-            if (g->pixels)
+            if (g->pixels && isfinite(g->rel_rms[m]) && isfinite(g->ratio[m]))
                 lucent_strbuf_printf(b, " %.1f%%, %.2f, %.0f%% |", 100 * g->rel_rms[m], g->ratio[m],
                                      100 * g->error_share[m]);
             else
@@ -179,7 +178,10 @@ void report_md_lights(lucent_strbuf *b, const lucent_compare_scene *sc)
         if (isfinite(li->reference_noise)) snprintf(noise, sizeof noise, "%.1f%%", 100 * li->reference_noise);
         lucent_strbuf_printf(b, "| %s | %d | %s |", li->name, li->reference_spp, noise);
         for (int m = 0; m < sc->method_count; m++)
-            lucent_strbuf_printf(b, " %.1f%%, %.2f |", 100 * li->rel_rms[m], li->ratio[m]);
+            if (isfinite(li->rel_rms[m]) && isfinite(li->ratio[m]))
+                lucent_strbuf_printf(b, " %.1f%%, %.2f |", 100 * li->rel_rms[m], li->ratio[m]);
+            else
+                lucent_strbuf_printf(b, " - |");
         lucent_strbuf_printf(b, "\n");
     }
     for (int l = 0; l < sc->light_count; l++) {
