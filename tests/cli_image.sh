@@ -22,6 +22,13 @@ expect_ok -- "$LUCENT" image diff "$img/a.png" "$img/a.pfm" --out "$img/heat.png
 expect_true "diff --out writes the heat map" -- test -s "$img/heat.png"
 expect_ok -- "$LUCENT" image diff "$img/a.png" "$img/a.pfm" --mask "$img/a.png" --out "$img/d.exr"
 expect_ok -- "$LUCENT" image info "$img/heat.png"
+expect_true "the heat map carries its colour bar below (at least 200 wide)" -- grep -qE '^[^:]*: (2[0-9][0-9]|[3-9][0-9][0-9])x' <<<"$OUT"
+# a fixed scale (issue 35): the same error, the same colour in every map; the line says which scale
+expect_ok -- "$LUCENT" image diff "$img/a.png" "$img/a.pfm" --out "$img/heat-fixed.png" --scale 0.5
+expect_true "diff --scale says the map's scale" -- grep -q "white at |A - B| 0.5, --scale" <<<"$OUT"
+expect_ok -- "$LUCENT" image diff "$img/a.png" "$img/a.pfm" --out "$img/heat-fixed.png" --scale 0.5 --json
+expect_true "diff --json gives the heat map's scale" -- grep -q '"heat_scale": 0.5}' <<<"$OUT"
+expect_fail 2 "--scale needs the error drawn white" -- "$LUCENT" image diff "$img/a.png" "$img/a.pfm" --scale 0
 
 # ---- malformed input: exit 1, a message naming the file ----
 echo "definitely not a picture" > "$img/text.png"

@@ -99,6 +99,10 @@ void lucent_progress_set_output(FILE *out);
  * every progress function accepts NULL and then does nothing. */
 lucent_progress *lucent_progress_begin(const char *label, uint64_t total);
 
+/* Names the task's unit ("frame"): the bar then also says which unit is under way, "frame k of n"
+ * (NULL or "": none, the default). */
+void lucent_progress_set_unit(lucent_progress *p, const char *unit);
+
 /* Makes the bar also follow a time limit of `seconds` from the task's start (<= 0: none): it shows
  * the larger of the units' fraction and the elapsed time's, and the ETA of whichever ends first. */
 void lucent_progress_set_deadline(lucent_progress *p, double seconds);
