@@ -61,10 +61,11 @@ while IFS= read -r line; do
   fi
   extra=""
   [ "${LUCENT_README_FULL:-0}" = 1 ] || [[ "$cmd" != lucent* ]] || extra=$(small_options "$sub")
-  if out=$(cd "$work" && bash -c "$cmd $extra" 2>&1 </dev/null); then
+  out=$(cd "$work" && bash -c "$cmd $extra" 2>&1 </dev/null); rc=$?
+  if [ "$rc" = 0 ]; then
     passed=$((passed + 1)); echo "ok   $line"
   else
-    failed=$((failed + 1)); echo "FAIL $line"; printf '%s\n' "$out" | tail -5 | sed 's/^/     /'
+    failed=$((failed + 1)); echo "FAIL $line (exit $rc)"; { grep '^lucent' <<<"$out" | tail -5; printf '%s\n' "$out" | tail -5; } | sed 's/^/     /'
   fi
 done <<<"$examples"
 echo "$passed passed, $failed failed, $skipped skipped"
