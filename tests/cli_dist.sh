@@ -15,6 +15,8 @@ done
 expect_true "a part writes OUTPUT.part-K-of-N, not the output" -- \
   test -f "$D/parts/three_layers.mco.part-3-of-4" -a ! -e "$D/parts/three_layers.mco"
 expect_ok -- "$LUCENT" merge "$D"/parts/three_layers.mco.part-*-of-4 -- --out-dir "$D/merged"
+expect_true "merge prints no photon rate: nothing was simulated (issue 35)" -- \
+  eval 'grep -q "photons)" <<<"$OUT" && ! grep -q "photons/s" <<<"$OUT"'
 expect_true "mcml: 4 merged parts give the single run's .mco byte for byte" -- \
   cmp "$D/one/three_layers.mco" "$D/merged/three_layers.mco"
 expect_ok -- "$LUCENT" mcml "$MCI3" --out-dir "$D/one" --seed 7 --quiet

@@ -27,6 +27,8 @@ typedef struct cli_common {
     bool quiet;         /* --quiet / -q: no progress bars, no info lines */
     int threads;        /* --threads N (0: LUCENT_THREADS or all cores) */
     int part_k, part_n; /* --part K/N (0/0: none): this job's share of the Monte Carlo (lucent/dist.h) */
+    bool merging;       /* the command runs on merged part files (lucent merge): nothing is simulated here,
+                           so it has no rate to print */
 } cli_common;
 
 extern cli_common g_cli;

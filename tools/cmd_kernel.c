@@ -156,7 +156,7 @@ static void report(const options *o, const lucent_kernel *k, const lucent_kernel
     if (!o->out || !gt) return;
     double rms[3];
     lucent_kernel_rms(k, gt, rms);
-    cli_info("%s %s rank %d: grid %d x %d of %.4g mm, kernel-space RMS %.3g %.3g %.3g, taps to %.4g mm", name,
+    cli_info("%s %s rank %d: grid %d x %d of %.4g mm, kernel-space RMS %.3g %.3g %.3g mm^-2, taps to %.4g mm", name,
              lucent_kernel_model_name(k->model), k->rank, 2 * gt->half + 1, 2 * gt->half + 1, gt->h, rms[0], rms[1],
              rms[2], o->taps.range > 0 ? o->taps.range : k->range);
     if (k->model == LUCENT_KERNEL_GUIDED) cli_info("guided: 1-norm constraint error %.3g", k->constraint_error);

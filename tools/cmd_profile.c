@@ -56,6 +56,8 @@ enum { MAX_LAYERS = 16 };
 typedef struct options {
     const char *spec;
     lucent_material material;
+    lucent_material title; /* the material as outputs name it: a layered slab by its layers */
+    bool layered;          /* --layers given: the outputs record the layers and are named after them */
     int models[MODEL_COUNT], model_count;
     bool compare;
     uint64_t photons, seed;
@@ -293,6 +295,32 @@ static lucent_status make_profile(const options *o, int model, const lucent_prof
 
 /* ---- the command ---- */
 
+/* "Skin1 1mm + Skin2 2mm": a layered slab named by its layers and thicknesses (the chart, the CSV). */
+static void layers_name(const options *o, char *dest, size_t size)
+{
+    dest[0] = '\0';
+    for (int i = 0; i < o->layer_count; i++) {
+        const lucent_layer *l = &o->layers[i];
+        size_t n = strlen(dest);
+        if (isinf(l->slab.thickness))
+            snprintf(dest + n, size - n, "%s%s", i ? " + " : "", l->material.name);
+        else
+            snprintf(dest + n, size - n, "%s%s %gmm", i ? " + " : "", l->material.name, l->slab.thickness);
+    }
+}
+
+/* "Skin1-1mm_Skin2-2mm": the same as a file name. */
+static void layers_stem(const options *o, char *dest, size_t size)
+{
+    dest[0] = '\0';
+    for (int i = 0; i < o->layer_count; i++) {
+        const lucent_layer *l = &o->layers[i];
+        size_t n = strlen(dest);
+        snprintf(dest + n, size - n, isinf(l->slab.thickness) ? "%s%s" : "%s%s-%gmm", i ? "_" : "", l->material.name,
+                 l->slab.thickness);
+    }
+}
+
 /* Sets up the material and its layers once the arguments are read. */
 static lucent_status prepare(options *o, const char *layers)
 {
@@ -307,6 +335,9 @@ static lucent_status prepare(options *o, const char *layers)
         o->layers[0] = (lucent_layer){.material = o->material, .slab = {.thickness = d}};
         o->layer_count = 1;
     }
+    o->title = o->material;
+    o->layered = layers != NULL;
+    if (o->layered) layers_name(o, o->title.name, sizeof o->title.name);
     bool multipole = false;
     for (int m = 0; m < o->model_count; m++) multipole |= o->models[m] == MODEL_MULTIPOLE;
     if (multipole && !layers && !(o->thickness > 0))
@@ -317,7 +348,12 @@ static lucent_status prepare(options *o, const char *layers)
 static void default_prefix(const options *o, char *dest, size_t size)
 {
     const char *model = o->compare ? "compare" : k_models[o->models[0]];
-    if (snprintf(dest, size, "%s-%s", o->material.name, model) >= (int)size) dest[size - 1] = '\0';
+    char stem[256];
+    if (o->layered)
+        layers_stem(o, stem, sizeof stem);
+    else
+        snprintf(stem, sizeof stem, "%s", o->material.name);
+    if (snprintf(dest, size, "%s-%s", stem, model) >= (int)size) dest[size - 1] = '\0';
     for (char *p = dest; *p; p++)
         if (*p == '/' || *p == ' ') *p = '_';
 }
@@ -344,14 +380,19 @@ static lucent_status write_profile(const options *o, const char *prefix, const l
     lucent_sog sog;
     char path[600];
     lucent_status s = with_sog ? lucent_sog_fit(p, &(lucent_sog_desc){.count = o->sog}, &sog) : LUCENT_OK;
-    lucent_profile_report report = {
-        .material = &o->material, .profile = p, .photons = o->photons, .seed = o->seed, .sog = with_sog ? &sog : NULL};
+    lucent_profile_report report = {.material = &o->material,
+                                    .profile = p,
+                                    .photons = o->photons,
+                                    .seed = o->seed,
+                                    .sog = with_sog ? &sog : NULL,
+                                    .layers = o->layered ? o->layers : NULL,
+                                    .layer_count = o->layered ? o->layer_count : 0};
     path_for(o, prefix, p, "json", path, sizeof path);
     if (s == LUCENT_OK) s = wrote(lucent_profile_write_json(path, &report), path);
     path_for(o, prefix, p, "csv", path, sizeof path);
-    if (s == LUCENT_OK) s = wrote(lucent_profile_write_csv(path, &o->material, p), path);
+    if (s == LUCENT_OK) s = wrote(lucent_profile_write_csv(path, &o->title, p), path);
     snprintf(path, sizeof path, "%s.svg", prefix);
-    if (s == LUCENT_OK && !o->compare) s = wrote(lucent_profile_write_svg(path, &o->material, p, report.sog), path);
+    if (s == LUCENT_OK && !o->compare) s = wrote(lucent_profile_write_svg(path, &o->title, p, report.sog), path);
     return s;
 }
 
@@ -363,9 +404,9 @@ static lucent_status write_outputs(const options *o, const char *prefix, lucent_
     char path[600];
     snprintf(path, sizeof path, "%s.svg", prefix);
     if (s == LUCENT_OK && o->compare)
-        s = wrote(lucent_profile_write_compare_svg(path, &o->material, (const lucent_profile *const *)profiles,
-                                                   o->model_count),
-                  path);
+        s = wrote(
+            lucent_profile_write_compare_svg(path, &o->title, (const lucent_profile *const *)profiles, o->model_count),
+            path);
     return s;
 }
 

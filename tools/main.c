@@ -406,6 +406,7 @@ static int cmd_merge(int argc, char **argv)
     if (!all) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory"), cli_fail();
     memcpy(all, cargv, (size_t)cargc * sizeof *all);
     memcpy(all + cargc, argv + extra, (size_t)(argc - extra) * sizeof *all);
+    g_cli.merging = true;
     int rc = cmd->run(n, all);
     free(all);
     if (rc == CLI_OK && lucent_dist_merge_check_used() != LUCENT_OK) rc = cli_fail();

@@ -363,8 +363,11 @@ lucent_status lucent_kernel_eval_write_json(const char *path, const lucent_kerne
 typedef struct lucent_profile_report {
     const lucent_material *material;
     const lucent_profile *profile;
-    uint64_t photons, seed; /* recorded when the profile's model is "mc" */
-    const lucent_sog *sog;  /* a sum-of-Gaussians fit to record (NULL: none) */
+    uint64_t photons, seed;     /* recorded when the profile's model is "mc" */
+    const lucent_sog *sog;      /* a sum-of-Gaussians fit to record (NULL: none) */
+    const lucent_layer *layers; /* the layered slab the profile is of, top first, recorded as "layers"
+                                   (each material and thickness_mm; NULL: none) */
+    int layer_count;
 } lucent_profile_report;
 
 /* The profile as JSON: model, material, units, grid, totals, radii, values and errors per channel. */

@@ -6,6 +6,12 @@
 #include "lucent/bake.h"
 #include "lucent/cdrf.h"
 
+const char *lucent_transmittance_name(lucent_transmittance_model model)
+{
+    static const char *const names[] = {"slab", "profile"};
+    return model >= 0 && model < (int)(sizeof names / sizeof names[0]) ? names[model] : "unknown";
+}
+
 /* The desc with its zeros resolved. */
 static lucent_bake_desc resolve(const lucent_bake_desc *d, lucent_render_settings *defaults)
 {

@@ -17,9 +17,6 @@ lucent_status eval_path_printf(char *dest, size_t size, const char *fmt, ...) LU
 /* mkdir -p. */
 lucent_status eval_make_dirs(const char *path);
 
-/* mkdir of one folder (its parent must exist); an existing folder is fine. */
-lucent_status eval_make_dir(const char *dir);
-
 /* "ssss:svd3" -> "ssss-svd3", "cdrf+translucency" -> "cdrf-translucency": a file stem. */
 void eval_file_stem(const char *name, char *dest, size_t size);
 
