@@ -66,8 +66,10 @@ static int parse_args(int argc, char **argv, options *o)
             o->in = argv[i];
         } else if (!o->out) {
             o->out = argv[i];
-            fprintf(stderr, "lucent mesh-uv: note: the output as a second argument is Lucent 0.1's form; "
-                            "write --out %s\n", argv[i]);
+            fprintf(stderr,
+                    "lucent mesh-uv: note: the output as a second argument is Lucent 0.1's form; "
+                    "write --out %s\n",
+                    argv[i]);
         } else {
             return cli_usage_error("mesh-uv", "expected one mesh (got '%s' too)", argv[i]);
         }
