@@ -131,6 +131,9 @@ cases = [
     ("kernel(threads=2**31)", "lucent.kernel('skin1', threads=2**31)", "value", ["threads"]),
     ("curvature(smooth=2**32)", "lucent.curvature(M, smooth=2**32)", "value", ["smooth"]),
     ("curvature(mm_per_unit=10**400)", "lucent.curvature(M, mm_per_unit=10**400)", "value", ["mm_per_unit"]),
+    ("material(sigma_a=10**400)", "lucent.material('x', sigma_a=10**400, sigma_s=1)", "value", ["sigma_a[0]"]),
+    ("trace(settings={width: 10**400})", "lucent.trace(S, settings={'render.width': 10**400})", "lucent",
+     ["render.width"]),
     # -- floats where whole numbers are expected: 1.5 is refused, 17.0 is 17 (the CLI takes "1e6")
     ("profile(photons=1.5)", "lucent.profile('skin1', photons=1.5)", "value", ["photons", "whole", "1.5"]),
     ("kernel(taps=17.5)", "lucent.kernel('skin1', taps=17.5)", "value", ["taps", "whole"]),

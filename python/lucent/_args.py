@@ -244,9 +244,12 @@ def three(name, value):
         item = "%s[%d]" % (name, c)
         if isinstance(x, bool) or not isinstance(x, numbers.Real):
             raise ArgumentTypeError("%s: expected a number, got %s (%s)" % (item, _shown(x), _type_name(x)))
-        x = float(x)
+        try:
+            x = float(x)
+        except OverflowError:
+            x = math.inf
         if not math.isfinite(x):
-            raise ArgumentError("%s: must be finite, got %r" % (item, x))
+            raise ArgumentError("%s: must be finite, got %s" % (item, _shown(items[c])))
         out.append(x)
     return out
 
@@ -279,7 +282,9 @@ def overrides(name, values):
         elif isinstance(v, (list, tuple, dict)):
             v = json.dumps(v)
         elif isinstance(v, numbers.Real):
-            if not math.isfinite(float(v)):
+            if isinstance(v, numbers.Integral) and not isinstance(v, bool):
+                v = int(v)  # exact, however large: the scene reader checks its range
+            elif not math.isfinite(float(v)):
                 raise ArgumentError("%s[%r]: must be finite, got %r" % (name, key, v))
         elif not isinstance(v, str):
             raise ArgumentTypeError("%s[%r]: expected a string, a number or a bool, got %s (%s)"
