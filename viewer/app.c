@@ -342,7 +342,12 @@ lucent_status viewer_redraw_sync(viewer *v)
     unsigned long want = v->gen;
     while (st == LUCENT_OK &&
            (!v->shown.count || v->shown.gen < want || v->changed || v->adopt_count || viewer_worker_busy(v))) {
-        if (!v->ready) viewer_settle(v);
+        if (!v->ready) {
+            viewer_settle(v);
+            if (!v->ready) /* the first bake failed: there is nothing to draw */
+                return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s",
+                                    v->bake_failed ? v->bake_error : "nothing to draw: the first bake did not finish");
+        }
         if (!v->ui) { /* no window to keep: sleep until the render thread is done */
             viewer_frame f;
             if (viewer_worker_take(v, &f, 50)) { /* put it back for exchange to take */

@@ -89,25 +89,26 @@ static unsigned long worker_frames(viewer *v)
  * 60 a second): how the window keeps its rate while a frame renders (issue 32 item 13). */
 static lucent_status ui_frames(viewer *v, double seconds)
 {
-    unsigned long frames0 = v->ui_frames, rendered0 = worker_frames(v);
-    double t0 = lucent_clock_seconds(), slowest = 0;
-    bool busy_all = true;
+    unsigned long frames0 = v->ui_frames, rendered0 = worker_frames(v), busy_frames = 0;
+    double t0 = lucent_clock_seconds(), slowest = 0, busy_time = 0;
     lucent_status st = LUCENT_OK;
     while (st == LUCENT_OK && lucent_clock_seconds() - t0 < seconds) {
         double a = lucent_clock_seconds();
+        bool busy = viewer_worker_busy(v);
         if (v->window) glfwPollEvents();
         st = viewer_redraw(v);
-        busy_all = busy_all && viewer_worker_busy(v);
-        double spent = lucent_clock_seconds() - a, left = 1.0 / 60 - spent;
-        if (spent > slowest) slowest = spent;
+        double left = 1.0 / 60 - (lucent_clock_seconds() - a);
         if (left > 0) nanosleep(&(struct timespec){0, (long)(left * 1e9)}, NULL);
+        double spent = lucent_clock_seconds() - a;
+        if (spent > slowest) slowest = spent;
+        if (busy && viewer_worker_busy(v)) busy_frames++, busy_time += spent; /* a frame rendered all along */
     }
     double t = lucent_clock_seconds() - t0;
     unsigned long n = v->ui_frames - frames0;
-    printf("ui-frames: %lu window frames in %.2f s (%.1f a second), the slowest %.1f ms; the render thread finished "
-           "%lu frames%s\n",
-           n, t, n / (t > 0 ? t : 1), 1e3 * slowest, worker_frames(v) - rendered0,
-           busy_all ? " and was rendering the whole time" : "");
+    printf("ui-frames: %lu window frames in %.2f s (%.1f a second), the slowest %.1f ms; while the render thread "
+           "rendered: %lu in %.2f s (%.1f a second); it finished %lu frames\n",
+           n, t, n / (t > 0 ? t : 1), 1e3 * slowest, busy_frames, busy_time,
+           busy_frames / (busy_time > 0 ? busy_time : 1), worker_frames(v) - rendered0);
     fflush(stdout);
     return st;
 }

@@ -420,7 +420,7 @@ void viewer_step(viewer *v)
         job_join(v);
         if (j->status != LUCENT_OK) {
             viewer_status(v, true, "bake failed: %s", j->error);
-            v->bake_failed = true;
+            v->bake_failed = true, v->first_failed = !v->ready;
             snprintf(v->bake_error, sizeof v->bake_error, "bake failed: %s", j->error);
             v->wanted = v->applied, v->method_b = v->applied_b; /* back to what works */
             for (int i = 0; i < v->scene->object_count; i++) v->wanted_material[i] = v->scene->objects[i].material;
@@ -431,8 +431,9 @@ void viewer_step(viewer *v)
         }
     }
     if (j->running) return;
-    bool differ =
-        !v->ready || settings_differ(&v->wanted, &v->applied) || v->method_b != v->applied_b || materials_differ(v);
+    /* (the first bake failing is not tried again until something changes: it would fail again) */
+    bool differ = (!v->ready && !v->first_failed) || settings_differ(&v->wanted, &v->applied) ||
+                  v->method_b != v->applied_b || materials_differ(v);
     if (!differ) return;
     if (job_start(v) != LUCENT_OK) {
         viewer_status(v, true, "%s", lucent_last_error());

@@ -185,6 +185,7 @@ struct viewer {
     double slowest_ui_ms;    /* the longest window frame (ui-frames) */
     int keys[64], key_count; /* key presses queued by the GLFW callback, not yet handled */
     bool bake_failed;        /* the last bake failed (scripts exit 1) */
+    bool first_failed;       /* the first bake failed: nothing to draw until a change */
     char bake_error[1100];
 
     /* The reference (lucent trace's EXR) and the error of method A against it. */
