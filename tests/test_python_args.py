@@ -70,6 +70,11 @@ cases = [
     ("material(sigma_a='abc')", "lucent.material('x', sigma_a='abc', sigma_s=1)", "type", ["sigma_a"]),
     ("material(g=[0, 'a', 0])", "lucent.material('x', sigma_a=1, sigma_s=1, g=[0, 'a', 0])", "type", ["g[1]"]),
     ("mcml(write='yes')", "lucent.mcml(MCI, write='yes')", "type", ["write"]),
+    ("mcml(write=2**63)", "lucent.mcml(MCI, write=2**63)", "type", ["write"]),
+    # -- what fuzz/fuzz_python_args.py found: an out_dir that cannot be a folder raised OSError
+    ("mcml(out_dir=a file)", "lucent.mcml(MCI, out_dir=MCI)", "lucent", ["cannot create the folder"]),
+    ("mcml(out_dir='x' * 5000)", "lucent.mcml(MCI, out_dir=os.path.join(TMP, 'x' * 5000))", "lucent",
+     ["cannot create the folder"]),
     # -- wrong-length lists (ctypes said "Can only assign sequence of same size")
     ("material(sigma_a=[1, 2])", "lucent.material('x', sigma_a=[1, 2], sigma_s=[1, 1, 1])", "value",
      ["sigma_a", "three", "got 2"]),

@@ -239,7 +239,11 @@ def mcml(mci, seed=1, out_dir=None, threads=0, write=True):
             try:
                 if write:
                     if out_dir:
-                        os.makedirs(out_dir, exist_ok=True)
+                        try:
+                            os.makedirs(out_dir, exist_ok=True)
+                        except OSError as e:  # a LucentError naming the folder, as the library would
+                            raise LucentError(3, "%s: cannot create the folder: %s" % (os.fsdecode(out_dir),
+                                                                                       e.strerror or e))
                     _check(_L.lucent_mcml_write(path, ctypes.byref(run), ctypes.byref(r)))
                 res = {n: getattr(r, n) for n in _lib.MC_TOTALS}
                 res["photons"], res["mco"] = r.photons, os.fsdecode(path) if write else None

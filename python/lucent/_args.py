@@ -187,7 +187,8 @@ def optional(checker, name, value, *rule):
 
 
 def flag(name, value):
-    if not isinstance(value, (bool, int)) or isinstance(value, float):
+    """True or False (or 1, 0)."""
+    if not isinstance(value, numbers.Integral) or value not in (0, 1):
         raise ArgumentTypeError("%s: expected True or False, got %s (%s)" % (name, _shown(value), _type_name(value)))
     return bool(value)
 
