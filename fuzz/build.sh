@@ -5,7 +5,8 @@
 #   fuzz/build.sh [SECONDS_PER_TARGET] [TARGET...]     (make fuzz FUZZ_SECONDS=600)
 # Targets: mesh (PLY/OBJ/STL/OFF/glTF import), ply (the PLY property API), material, scene (+ --set),
 # mcml (.mci/.mco), image (PNG/EXR/PFM), part (the part files of --part K/N that lucent merge reads),
-# reference (compare's reference.json). Findings land in build-fuzz/artifacts_<target>/; each run's
+# reference (compare's reference.json), view_script (`lucent view --script` files, checked whole).
+# Findings land in build-fuzz/artifacts_<target>/; each run's
 # last lines (executions, coverage) in build-fuzz/fuzz_<target>.log. Exit status 1 when a target found
 # a crash, a leak or a timeout.
 set -euo pipefail
@@ -13,7 +14,7 @@ cd "$(dirname "$0")/.."
 secs=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(mesh ply material scene mcml image part reference)
+[ ${#targets[@]} -gt 0 ] || targets=(mesh ply material scene mcml image part reference view_script)
 command -v clang >/dev/null || { echo "fuzz: clang is needed (Debian: clang)"; exit 1; }
 out=build-fuzz
 cmake -S . -B "$out" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DLUCENT_FUZZ=ON -DLUCENT_MPI=OFF \
@@ -45,6 +46,7 @@ seed material tests/fixtures/materials/*.json data/materials.json
 seed mcml tests/fixtures/mcml/*.mci tests/fixtures/mcml/mco/*.mco
 seed scene data/scenes/*.json tests/fixtures/scenes/*.json
 seed reference tests/fixtures/compare/reference.json
+seed view_script tests/fixtures/view/*.txt
 mkdir -p "$out/corpus_image"
 for f in tests/fixtures/images/*.png; do [ -f "$f" ] && { printf '\0'; cat "$f"; } >"$out/corpus_image/$(basename "$f")"; done
 for f in tests/fixtures/images/*.exr; do [ -f "$f" ] && { printf '\1'; cat "$f"; } >"$out/corpus_image/$(basename "$f")"; done

@@ -273,7 +273,7 @@ static void material(viewer *v)
     edited |= ui_drag_double("eta", &m->eta, LUCENT_MATERIAL_ETA_MIN, LUCENT_MATERIAL_ETA_MAX, false, "%.3f");
     ui_tooltip("relative index of refraction");
     if (edited) viewer_material_edited(v, v->object);
-    plots(v);
+    if (ui_header("Profile, kernel and taps", false)) plots(v); /* closed: the panel fits a 768-row screen */
 }
 
 static void lights(viewer *v)

@@ -334,6 +334,7 @@ static bool looks_like_file(const char *spec)
 
 lucent_status lucent_material_resolve(const char *spec, lucent_material *dest)
 {
+    if (!spec) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "material: no name or file given (NULL)");
     const char *hash = strrchr(spec, '#');
     if (hash) {
         char *file = strndup(spec, (size_t)(hash - spec));

@@ -204,6 +204,7 @@ lucent_status lucent_mcml_parse(const char *text, const char *name, lucent_mcml_
 lucent_status lucent_mcml_load(const char *path, lucent_mcml_file *dest)
 {
     memset(dest, 0, sizeof *dest);
+    if (!path) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "mcml: no .mci file given (NULL path)");
     char *text;
     lucent_status s = lucent_read_text_file(path, &text);
     if (s != LUCENT_OK) return s;
@@ -310,6 +311,7 @@ static void write_results(FILE *f, const lucent_mc_result *r, double *rd_r, doub
 
 lucent_status lucent_mcml_write(const char *path, const lucent_mcml_run *run, const lucent_mc_result *result)
 {
+    if (!path) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "mcml: no .mco file given (NULL path)");
     const lucent_mc_result *r = result;
     size_t nr = (size_t)r->grid.nr, nz = (size_t)r->grid.nz, na = (size_t)r->grid.na;
     double *buf = malloc((2 * nr + nz + na) * sizeof *buf);
