@@ -66,7 +66,8 @@ for c in range(3):
     rd = ap / 2 * (1 + math.exp(-4 / 3 * A * s)) * math.exp(-s)
     check("dipole rd_total[%d] = Jensen's Rd %.6f" % (c, rd), abs(d.rd_total[c] - rd) < 1e-4 * rd, d.rd_total[c])
 check("material().derived() rd = the closed form", abs(m.derived()["rd"][0] - d.rd_total[0]) < 1e-4)
-check("eleven presets", len(lucent.materials()) == 11 and lucent.materials()[0].name == "Apple")
+check("eleven RGB presets, then the spectral skins", len(lucent.materials()) == 19 and lucent.materials()[0].name == "Apple"
+      and lucent.materials()[11].name == "Skin-VeryLight")
 for model in ("better-dipole", "burley"):
     b = lucent.profile("marble", model=model)
     check("%s profile of Marble: positive, decreasing" % model,

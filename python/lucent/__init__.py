@@ -105,6 +105,7 @@ def material(spec, sigma_a=None, sigma_s=None, g=0.0, eta=1.3):
     c = _lib.Material()
     if sigma_a is None:
         _check(_L.lucent_material_resolve(_b(spec), ctypes.byref(c)))
+        _check(_L.lucent_skin_resolve(ctypes.byref(c)))  # a spectral skin's equivalent medium (docs/skin.md)
     else:
         three = lambda v: [float(x) for x in (v if hasattr(v, "__len__") else (v, v, v))]
         c.name = _b(spec)[:63]
@@ -114,11 +115,12 @@ def material(spec, sigma_a=None, sigma_s=None, g=0.0, eta=1.3):
 
 
 def materials():
-    """The presets (Jensen et al. 2001's eleven measured materials)."""
+    """The presets: Jensen et al. 2001's eleven measured materials, then the spectral skins."""
     out = []
     for i in range(_L.lucent_material_preset_count()):
         c = _lib.Material()
         _check(_L.lucent_material_preset(i, ctypes.byref(c)))
+        _check(_L.lucent_skin_resolve(ctypes.byref(c)))
         out.append(Material(c))
     return out
 

@@ -44,9 +44,19 @@ def load():
                       + ("; tried " + ", ".join(tried) if tried else ""))
 
 
+class SkinLayer(ctypes.Structure):  # lucent_skin_layer (material.h)
+    _fields_ = [("kind", ctypes.c_int), ("reserved", ctypes.c_int)] + [
+        (n, ctypes.c_double) for n in ("thickness", "melanin", "eumelanin", "blood", "oxygenation", "scatter",
+                                       "f_rayleigh", "b_mie", "g")]
+
+
+class Skin(ctypes.Structure):  # lucent_skin (material.h)
+    _fields_ = [("layer_count", ctypes.c_int), ("resolved", ctypes.c_int), ("layer", SkinLayer * 3)]
+
+
 class Material(ctypes.Structure):  # lucent_material (material.h)
     _fields_ = [("name", ctypes.c_char * 64), ("sigma_a", ctypes.c_double * 3), ("sigma_s", ctypes.c_double * 3),
-                ("g", ctypes.c_double * 3), ("eta", ctypes.c_double)]
+                ("g", ctypes.c_double * 3), ("eta", ctypes.c_double), ("skin", Skin)]
 
 
 DERIVED_FIELDS = ["sigma_s_prime", "sigma_t", "sigma_t_prime", "albedo", "albedo_prime", "sigma_tr", "diffusion",
@@ -201,6 +211,7 @@ def declare(lib):
         "lucent_material_preset_count": (ctypes.c_int, []),
         "lucent_material_preset": (st, [ctypes.c_int, P(Material)]),
         "lucent_material_resolve": (st, [c_char_p, P(Material)]),
+        "lucent_skin_resolve": (st, [P(Material)]),
         "lucent_material_validate": (st, [P(Material)]),
         "lucent_material_derive": (None, [P(Material), P(Derived)]),
         "lucent_profile_grid_resolve": (st, [P(Grid), P(Material), P(Grid)]),
