@@ -16,9 +16,9 @@ static const char k_usage[] =
     "classical-dipole total diffuse reflectance Rd (Jensen et al. 2001).\n"
     "Without arguments: the 11 measured presets of Jensen et al. 2001 and the spectral skins.\n"
     "Arguments name presets (case-insensitive) or material files (docs/materials.md).\n"
-    "A spectral skin (docs/skin.md) shows its equivalent medium in the tables and, in a table\n"
-    "of its own, its layers, the CIELAB colour and ITA of its total diffuse reflectance under\n"
-    "D65 and its linear sRGB.\n"
+    "A spectral skin (docs/skin.md) shows its equivalent medium in the tables and, in tables\n"
+    "of its own, its layers and the CIELAB colour, ITA and linear sRGB of its total diffuse\n"
+    "reflectance under D65 (Monte Carlo per band, kept in the disk cache: $LUCENT_CACHE_DIR).\n"
     "\n"
     "options:\n"
     "  --json        print JSON (coefficients in mm^-1, lengths in mm) instead of tables\n"
@@ -36,6 +36,7 @@ static const char k_usage[] =
     "  lucent materials skin-light skin-dark\n";
 
 typedef struct options {
+    lucent_cache *cache; /* the skins' Monte Carlo colours */
     bool json;
     const char *out;
     const char *swatches;
@@ -180,6 +181,13 @@ static void print_anisotropic(const row *rows, int count)
     }
 }
 
+/* A skin's colour by the Monte Carlo per band (the truth; kept in the disk cache). */
+static lucent_status skin_color(const options *o, const lucent_material *m, lucent_skin_color *c)
+{
+    lucent_skin_desc d = {.transport = "mc", .seed = 1, .pool = cli_pool(), .cache = o->cache};
+    return lucent_skin_color_of(m, &d, c);
+}
+
 /* Prints a length in mm, or "inf" for a semi-infinite layer, in 8 columns. */
 static void print_thickness(double v)
 {
@@ -217,14 +225,16 @@ static lucent_status print_skins(const options *o, int name_width)
         }
         putchar('\n');
     }
-    printf("\nSpectral skin colour: total diffuse reflectance, %d bands over 380-780 nm, CIE 1931 2 deg under D65\n"
+    printf("\nSpectral skin colour: total diffuse reflectance (Monte Carlo, %d photons per band), %d bands over\n"
+           "380-780 nm, CIE 1931 2 deg under D65\n"
            "%-*s %7s %7s %7s %7s  %-13s %7s %7s %7s\n",
-           LUCENT_BANDS_DEFAULT, name_width, "name", "L*", "a*", "b*", "ITA", "ITA category", "R", "G", "B");
+           LUCENT_SKIN_COLOR_PHOTONS, LUCENT_BANDS_DEFAULT, name_width, "name", "L*", "a*", "b*", "ITA", "ITA category",
+           "R", "G", "B");
     for (int i = 0; i < o->count; i++) {
         const lucent_material *m = &o->list[i];
         if (!m->skin.layer_count) continue;
         lucent_skin_color c;
-        lucent_status s = lucent_skin_color_of(m, 0, &c);
+        lucent_status s = skin_color(o, m, &c);
         if (s != LUCENT_OK) return s;
         printf("%-*s %7.2f %7.2f %7.2f %7.2f  %-13s", name_width, m->name, c.lab[0], c.lab[1], c.lab[2], c.ita,
                c.category);
@@ -276,12 +286,16 @@ enum { SWATCH_SIZE = 96, SWATCH_GAP = 8, SWATCH_LABEL = 14 };
 
 /* Draws one swatch: the material's dipole Rd (a spectral skin: its bands' total reflectance through the
  * colour weights) as a linear RGB colour, its name below. */
-static void draw_swatch(lucent_image *img, int index, const lucent_material *m)
+static lucent_status draw_swatch(const options *o, lucent_image *img, int index, const lucent_material *m)
 {
     lucent_material_derived d;
     lucent_material_derive(m, &d);
     lucent_skin_color sc;
-    if (m->skin.layer_count > 0 && lucent_skin_color_of(m, 0, &sc) == LUCENT_OK) memcpy(d.rd, sc.rgb, sizeof d.rd);
+    if (m->skin.layer_count > 0) {
+        lucent_status s = skin_color(o, m, &sc);
+        if (s != LUCENT_OK) return s;
+        memcpy(d.rd, sc.rgb, sizeof d.rd);
+    }
     int x0 = SWATCH_GAP + index * (SWATCH_SIZE + SWATCH_GAP);
     for (int y = SWATCH_GAP; y < SWATCH_GAP + SWATCH_SIZE; y++)
         for (int x = x0; x < x0 + SWATCH_SIZE; x++)
@@ -289,6 +303,7 @@ static void draw_swatch(lucent_image *img, int index, const lucent_material *m)
     static const float ink[3] = {0.85f, 0.85f, 0.85f};
     int tw = lucent_image_text_width(m->name, 1);
     lucent_image_draw_text(img, x0 + (SWATCH_SIZE - tw) / 2, SWATCH_GAP + SWATCH_SIZE + 4, 1, ink, m->name);
+    return LUCENT_OK;
 }
 
 static lucent_status write_swatches(const options *o)
@@ -298,8 +313,8 @@ static lucent_status write_swatches(const options *o)
     lucent_status s = lucent_image_create(width, SWATCH_SIZE + 2 * SWATCH_GAP + SWATCH_LABEL, 3, &img);
     if (s != LUCENT_OK) return s;
     for (int c = 0; c < 3; c++) lucent_image_fill(img, c, 0.18f); /* middle grey backdrop */
-    for (int i = 0; i < o->count; i++) draw_swatch(img, i, &o->list[i]);
-    s = lucent_image_write(o->swatches, img, NULL);
+    for (int i = 0; i < o->count && s == LUCENT_OK; i++) s = draw_swatch(o, img, i, &o->list[i]);
+    if (s == LUCENT_OK) s = lucent_image_write(o->swatches, img, NULL);
     lucent_image_destroy(img);
     if (s != LUCENT_OK) return s;
     char names[2048] = "";
@@ -381,10 +396,14 @@ int cmd_materials(int argc, char **argv)
     int rc = parse_args(argc, argv, &o, &specs);
     if (rc == CLI_OK) rc = check_outputs(&o, argv + 1, specs);
     if (rc == CLI_OK) {
-        lucent_status s = gather(&o, argv + 1, specs);
+        char buf[4096];
+        const char *cdir = cli_cache_dir(NULL, false, buf, sizeof buf);
+        lucent_status s = cdir ? lucent_cache_create(cdir, &o.cache) : LUCENT_OK;
+        if (s == LUCENT_OK) s = gather(&o, argv + 1, specs);
         if (s == LUCENT_OK) s = emit(&o);
         if (s != LUCENT_OK) rc = cli_fail();
     }
+    lucent_cache_destroy(o.cache);
     free(o.list);
     return rc;
 }

@@ -22,16 +22,20 @@
 extern "C" {
 #endif
 
-enum { LUCENT_SKIN_MC_PHOTONS = 20000 }; /* per band, the "mc" transport's default */
+enum {
+    LUCENT_SKIN_MC_PHOTONS = 20000,   /* per band: the "mc" profile's default */
+    LUCENT_SKIN_COLOR_PHOTONS = 5000  /* per band: the "mc" colour's default (about 1% per band) */
+};
 
 /* How to carry a skin through its bands; zero fields mean the default. */
 typedef struct lucent_skin_desc {
     int bands;             /* 1..LUCENT_BANDS_MAX (0: LUCENT_BANDS_DEFAULT) */
     const char *transport; /* "multipole" (NULL) or "mc" */
-    uint64_t photons;      /* mc: per band (0: LUCENT_SKIN_MC_PHOTONS) */
+    uint64_t photons;      /* mc: per band (0: LUCENT_SKIN_MC_PHOTONS, colour: LUCENT_SKIN_COLOR_PHOTONS) */
     uint64_t seed;         /* mc: band b is seeded seed * LUCENT_BANDS_MAX + b */
     lucent_pool *pool;     /* mc only; NULL: serial */
     lucent_profile_grid grid; /* zero fields: the Freude Table 6.1 grid of the equivalent medium */
+    lucent_cache *cache;   /* mc colour: kept between runs (NULL: none) */
 } lucent_skin_desc;
 
 /* What a skin looks like: its total diffuse reflectance per band (specular reflection excluded, normal
@@ -40,6 +44,7 @@ typedef struct lucent_skin_color {
     int bands;
     double center[LUCENT_BANDS_MAX];      /* nm */
     double reflectance[LUCENT_BANDS_MAX]; /* per band */
+    double reflectance_se[LUCENT_BANDS_MAX]; /* its standard error (0 for the multipole) */
     double xyz[3];                        /* CIE XYZ under D65, Y of a perfect white = 1 */
     double lab[3];                        /* CIELAB, D65 white */
     double rgb[3];                        /* linear sRGB, white balanced (flat R -> (R, R, R)) */
@@ -56,9 +61,10 @@ lucent_status lucent_skin_layers(const lucent_material *m, const double nm[3], l
  * layer semi-infinite when it is); dest has room for LUCENT_SKIN_MAX_LAYERS. */
 lucent_status lucent_skin_mc_layers(const lucent_material *m, double nm, lucent_mc_layer *dest, int *count);
 
-/* The total diffuse reflectance per band by the layered multipole (the transforms at k = 0), and its
- * colour (bands 0: the default). */
-lucent_status lucent_skin_color_of(const lucent_material *m, int bands, lucent_skin_color *dest);
+/* The total diffuse reflectance per band and its colour: by the layered multipole (the transforms at
+ * k = 0; fast, the diffusion approximation's error) or by the Monte Carlo ("mc": transport theory, the
+ * standard errors in reflectance_se; what the bake's albedo uses). desc NULL: multipole, default bands. */
+lucent_status lucent_skin_color_of(const lucent_material *m, const lucent_skin_desc *desc, lucent_skin_color *dest);
 
 /* Fills m's sigma_a, sigma_s and g with the equivalent homogeneous medium (see above) and sets
  * m->skin.resolved. A material that is not a skin is left as it is (LUCENT_OK). */

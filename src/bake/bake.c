@@ -212,11 +212,19 @@ static lucent_status bake_sigma0(const lucent_material *m, const lucent_bake_des
 static lucent_status bake_rd(const lucent_material *m, const lucent_bake_desc *d, lucent_cache *cache, lucent_baked *b)
 {
     if (b->have & LUCENT_BAKE_RD) return LUCENT_OK;
-    if (m->skin.layer_count > 0) { /* a spectral skin: its bands' totals through the colour weights */
+    if (m->skin.layer_count > 0) { /* a spectral skin: its bands' Monte Carlo totals through the colour weights */
         lucent_skin_color c;
-        lucent_status s = lucent_skin_color_of(m, 0, &c);
+        lucent_bands bands;
+        lucent_skin_desc sd = {
+            .transport = "mc", .photons = LUCENT_BAKE_SKIN_RD_PHOTONS, .seed = 1, .pool = d->pool, .cache = cache};
+        lucent_status s = lucent_skin_color_of(m, &sd, &c);
+        if (s == LUCENT_OK) s = lucent_bands_make(c.bands, &bands);
         if (s != LUCENT_OK) return lucent_error_context(s, "material %s: total diffuse reflectance", m->name);
-        for (int i = 0; i < 3; i++) b->rd[i] = c.rgb[i], b->rd_se[i] = 0.0;
+        for (int i = 0; i < 3; i++) {
+            double var = 0.0;
+            for (int k = 0; k < c.bands; k++) var += pow(bands.rgb[i][k] * c.reflectance_se[k], 2);
+            b->rd[i] = c.rgb[i], b->rd_se[i] = sqrt(var);
+        }
         b->rd_cached = false;
         b->have |= LUCENT_BAKE_RD;
         return LUCENT_OK;

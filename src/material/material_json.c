@@ -234,8 +234,8 @@ static lucent_status read_skin_layer(const lucent_json_node *n, int kind, bool l
 
 static lucent_status read_skin(const lucent_json_node *n, lucent_material *m)
 {
-    double scale;
-    lucent_json_node skin, layer;
+    double scale = 1.0;
+    lucent_json_node skin = {0}, layer;
     lucent_status s = read_units(n, true, "skin", &scale);
     if (s == LUCENT_OK) s = lucent_json_object(n, "skin", true, &skin);
     if (s == LUCENT_OK && lucent_json_has(n, "g"))
@@ -246,6 +246,7 @@ static lucent_status read_skin(const lucent_json_node *n, lucent_material *m)
                 s = lucent_json_fail(&skin, c->string, LUCENT_ERR_PARSE,
                                      "unknown layer (known, top down: epidermis, dermis, hypodermis)");
     if (s == LUCENT_OK) s = lucent_json_check_keys(&skin, k_skin_layers);
+    if (s != LUCENT_OK) return s;
     int last = -1;
     for (int k = 0; k < 3; k++)
         if (lucent_json_has(&skin, k_skin_layers[k])) last = k;

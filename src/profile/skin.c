@@ -122,19 +122,71 @@ static lucent_status make_sets(const lucent_material *m, const lucent_bands *b, 
     return LUCENT_OK;
 }
 
-lucent_status lucent_skin_color_of(const lucent_material *m, int bands, lucent_skin_color *dest)
+/* The Monte Carlo total of every band (the truth the multipole approximates), from the cache when there. */
+static lucent_status mc_totals(const lucent_material *m, const lucent_skin_desc *d, const lucent_bands *b, double *r,
+                               double *se)
 {
+    uint64_t photons = d->photons ? d->photons : LUCENT_SKIN_COLOR_PHOTONS;
+    char key[1024];
+    int n = snprintf(key, sizeof key, "skin-colour v1 eta %.17g bands %d photons %llu seed %llu layers", m->eta,
+                     b->count, (unsigned long long)photons, (unsigned long long)d->seed);
+    for (int i = 0; i < m->skin.layer_count && n > 0 && (size_t)n < sizeof key; i++) {
+        const lucent_skin_layer *l = &m->skin.layer[i];
+        n += snprintf(key + n, sizeof key - (size_t)n, " [%d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g]",
+                      l->kind, l->thickness, l->melanin, l->eumelanin, l->blood, l->oxygenation, l->scatter,
+                      l->f_rayleigh, l->b_mie, l->g);
+    }
+    if (lucent_cache_get(d->cache, "skin", key, "reflectance", b->count, r) &&
+        lucent_cache_get(d->cache, "skin", key, "reflectance_se", b->count, se))
+        return LUCENT_OK;
+    for (int k = 0; k < b->count; k++) {
+        lucent_mc_layer layers[LUCENT_SKIN_MAX_LAYERS];
+        int count;
+        lucent_mc_result res = {0};
+        char label[48];
+        snprintf(label, sizeof label, "Monte Carlo %.0f nm", b->center[k]);
+        lucent_status s = lucent_skin_mc_layers(m, b->center[k], layers, &count);
+        lucent_mc_desc md = {.layers = layers,
+                             .layer_count = count,
+                             .photons = photons,
+                             .seed = d->seed * LUCENT_BANDS_MAX + (uint64_t)k,
+                             .grid = {.dr = 1e3, .nr = 1}, /* totals only */
+                             .pool = d->pool,
+                             .label = label};
+        if (s == LUCENT_OK) s = lucent_mc_run(&md, &res);
+        if (s != LUCENT_OK) return lucent_error_context(s, "%s: skin colour (mc, %.0f nm)", m->name, b->center[k]);
+        r[k] = res.rd, se[k] = res.rd_se;
+        lucent_mc_result_free(&res);
+    }
+    lucent_cache_field f[2] = {{"reflectance", r, b->count}, {"reflectance_se", se, b->count}};
+    lucent_cache_put(d->cache, "skin", key, f, 2);
+    return LUCENT_OK;
+}
+
+lucent_status lucent_skin_color_of(const lucent_material *m, const lucent_skin_desc *desc, lucent_skin_color *dest)
+{
+    static const lucent_skin_desc zero = {0};
+    const lucent_skin_desc *d = desc ? desc : &zero;
+    const char *transport = d->transport ? d->transport : "multipole";
+    bool mc = !strcmp(transport, "mc");
+    if (!mc && strcmp(transport, "multipole"))
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "skin: unknown transport \"%s\" (multipole, mc)", transport);
     lucent_bands b;
-    lucent_layer *sets = NULL;
     lucent_status s = check_skin(m);
-    if (s == LUCENT_OK) s = lucent_bands_make(bands, &b);
-    if (s == LUCENT_OK) s = make_sets(m, &b, &sets);
+    if (s == LUCENT_OK) s = lucent_bands_make(d->bands, &b);
     if (s != LUCENT_OK) return s;
     memset(dest, 0, sizeof *dest);
     dest->bands = b.count;
     memcpy(dest->center, b.center, sizeof b.center);
-    band_hats(&b, sets, m->skin.layer_count, 0.0, dest->reflectance);
-    free(sets);
+    if (mc) {
+        s = mc_totals(m, d, &b, dest->reflectance, dest->reflectance_se);
+    } else {
+        lucent_layer *sets = NULL;
+        s = make_sets(m, &b, &sets);
+        if (s == LUCENT_OK) band_hats(&b, sets, m->skin.layer_count, 0.0, dest->reflectance);
+        free(sets);
+    }
+    if (s != LUCENT_OK) return s;
     lucent_bands_xyz(&b, dest->reflectance, dest->xyz);
     lucent_bands_rgb(&b, dest->reflectance, dest->rgb);
     lucent_xyz_to_lab(dest->xyz, b.white_xyz, dest->lab);
