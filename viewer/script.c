@@ -34,13 +34,49 @@ static lucent_status numbers(char **w, int n, double *dest, const char *usage)
     return LUCENT_OK;
 }
 
-/* material PRESET | material KEY=R,G,B ... (sigma_a, sigma_s_prime, g per channel; eta one number) */
+/* material melanin=X eumelanin=X blood=X oxygenation=X on a spectral skin: the epidermis's melanin and
+ * eumelanin share, the dermis's blood and oxygenation (docs/skin.md); its equivalent medium resolved. */
+static lucent_status skin_material(viewer *v, char **w, int n)
+{
+    lucent_material m = v->wanted_material[v->object];
+    for (int i = 1; i < n; i++) {
+        char *eq = strchr(w[i], '=');
+        double x;
+        if (!eq || !number(eq + 1, &x))
+            return lucent_error(LUCENT_ERR_PARSE, "'%s': expected KEY=NUMBER (melanin, eumelanin, blood, oxygenation)",
+                                w[i]);
+        *eq = '\0';
+        bool epi = !strcmp(w[i], "melanin") || !strcmp(w[i], "eumelanin");
+        if (!epi && strcmp(w[i], "blood") && strcmp(w[i], "oxygenation"))
+            return lucent_error(LUCENT_ERR_PARSE, "material: unknown key '%s' of a skin (melanin, eumelanin, blood, "
+                                "oxygenation)", w[i]);
+        int kind = epi ? LUCENT_SKIN_EPIDERMIS : LUCENT_SKIN_DERMIS, k = 0;
+        while (k < m.skin.layer_count && m.skin.layer[k].kind != kind) k++;
+        if (k == m.skin.layer_count)
+            return lucent_error(LUCENT_ERR_PARSE, "material: %s has no %s", m.name, lucent_skin_layer_name(kind));
+        lucent_skin_layer *l = &m.skin.layer[k];
+        *(!strcmp(w[i], "melanin")     ? &l->melanin
+          : !strcmp(w[i], "eumelanin") ? &l->eumelanin
+          : !strcmp(w[i], "blood")     ? &l->blood
+                                       : &l->oxygenation) = x;
+    }
+    m.skin.resolved = 0;
+    lucent_status st = lucent_skin_resolve(&m);
+    if (st != LUCENT_OK) return st;
+    v->wanted_material[v->object] = m;
+    viewer_material_edited(v, v->object);
+    return LUCENT_OK;
+}
+
+/* material PRESET | material KEY=R,G,B ... (sigma_a, sigma_s_prime, g per channel; eta one number); on a
+ * spectral skin, its chromophores (skin_material) */
 static lucent_status material(viewer *v, char **w, int n)
 {
     const char *usage = "material PRESET | material [sigma_a=R,G,B] [sigma_s_prime=R,G,B] [g=R,G,B] [eta=X]";
     lucent_status st = need(n, 2, 6, usage);
     if (st != LUCENT_OK) return st;
     if (!strchr(w[1], '=')) return n == 2 ? viewer_material_preset(v, v->object, w[1]) : need(0, 1, 1, usage);
+    if (v->wanted_material[v->object].skin.layer_count > 0) return skin_material(v, w, n);
     lucent_material m = v->wanted_material[v->object];
     for (int i = 1; i < n; i++) {
         char *eq = strchr(w[i], '=');

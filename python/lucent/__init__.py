@@ -166,6 +166,9 @@ def profile(spec, model="mc", photons=1000000, seed=1, dr=None, bins=None, threa
     count), "dipole", "better-dipole" or "burley". Grid: Freude Table 6.1 unless dr/bins."""
     m = material(spec)
     g = _grid(m, dr, bins)
+    if m._c.skin.layer_count > 0:  # a spectral skin, band by band (docs/skin.md)
+        return skin_profile(m, transport="mc" if model == "mc" else model, photons=3 * int(photons) // 20,
+                            seed=seed, dr=dr, bins=bins, threads=threads)
     if model == "mc":
         return _profile_mc(m, g, int(photons), int(seed), threads)
     if model == "dipole":
@@ -178,6 +181,31 @@ def profile(spec, model="mc", photons=1000000, seed=1, dr=None, bins=None, threa
         d = _lib.SourceDesc(b"burley", 0, 0, None)
         return _take_profile(lambda dest: _L.lucent_profile_from_source(ctypes.byref(d), ctypes.byref(m._c), dest))
     raise LucentError(1, "unknown profile model \"%s\" (mc, dipole, better-dipole, burley)" % model)
+
+
+def skin_profile(spec, transport="multipole", bands=0, photons=0, seed=1, dr=None, bins=None, threads=0):
+    """The linear sRGB profile of a spectral skin (docs/skin.md): every band carried by the layered
+    "multipole" or the "mc" (photons per band), weighted per radius through CIE 1931 under D65."""
+    m = material(spec)
+    if transport not in ("multipole", "mc"):
+        raise LucentError(1, "skin: unknown transport \"%s\" (multipole, mc)" % transport)
+    g = _lib.Grid(float(dr or 0), int(bins or 0))
+    d = _lib.SkinDesc(bands=int(bands), transport=_b(transport), photons=int(photons), seed=int(seed),
+                      pool=_pool(threads), grid=g)
+    return _take_profile(lambda dest: _L.lucent_profile_skin(ctypes.byref(m._c), ctypes.byref(d), dest))
+
+
+def skin_color(spec, transport="multipole", bands=0, photons=0, seed=1, threads=0):
+    """A spectral skin's total diffuse reflectance per band and its colour under D65: a dict with
+    center (nm), reflectance, xyz, lab, rgb (linear sRGB), ita (degrees) and category."""
+    m = material(spec)
+    d = _lib.SkinDesc(bands=int(bands), transport=_b(transport), photons=int(photons), seed=int(seed),
+                      pool=_pool(threads))
+    c = _lib.SkinColor()
+    _check(_L.lucent_skin_color_of(ctypes.byref(m._c), ctypes.byref(d), ctypes.byref(c)))
+    n = c.bands
+    return {"center": tuple(c.center[:n]), "reflectance": tuple(c.reflectance[:n]), "xyz": tuple(c.xyz),
+            "lab": tuple(c.lab), "rgb": tuple(c.rgb), "ita": c.ita, "category": c.category.decode()}
 
 
 def _profile_mc(m, g, photons, seed, threads):

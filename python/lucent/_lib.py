@@ -76,6 +76,17 @@ class Grid(ctypes.Structure):  # lucent_profile_grid
     _fields_ = [("dr", ctypes.c_double), ("count", ctypes.c_int)]
 
 
+class SkinDesc(ctypes.Structure):  # lucent_skin_desc (skin.h)
+    _fields_ = [("bands", ctypes.c_int), ("transport", c_char_p), ("photons", ctypes.c_uint64),
+                ("seed", ctypes.c_uint64), ("pool", c_void_p), ("grid", Grid), ("cache", c_void_p)]
+
+
+class SkinColor(ctypes.Structure):  # lucent_skin_color (skin.h)
+    _fields_ = [("bands", ctypes.c_int), ("center", ctypes.c_double * 80), ("reflectance", ctypes.c_double * 80),
+                ("reflectance_se", ctypes.c_double * 80), ("xyz", ctypes.c_double * 3), ("lab", ctypes.c_double * 3),
+                ("rgb", ctypes.c_double * 3), ("ita", ctypes.c_double), ("category", c_char_p)]
+
+
 class SourceDesc(ctypes.Structure):  # lucent_profile_source_desc
     _fields_ = [("source", c_char_p), ("photons", ctypes.c_uint64), ("seed", ctypes.c_uint64), ("pool", c_void_p)]
 
@@ -212,6 +223,8 @@ def declare(lib):
         "lucent_material_preset": (st, [ctypes.c_int, P(Material)]),
         "lucent_material_resolve": (st, [c_char_p, P(Material)]),
         "lucent_skin_resolve": (st, [P(Material)]),
+        "lucent_skin_color_of": (st, [P(Material), P(SkinDesc), P(SkinColor)]),
+        "lucent_profile_skin": (st, [P(Material), P(SkinDesc), P(P(ProfileC))]),
         "lucent_material_validate": (st, [P(Material)]),
         "lucent_material_derive": (None, [P(Material), P(Derived)]),
         "lucent_profile_grid_resolve": (st, [P(Grid), P(Material), P(Grid)]),
