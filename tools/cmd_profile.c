@@ -25,6 +25,7 @@ static const char k_usage[] =
     "  better-dipole  d'Eon 2012\n"
     "  multipole      a slab of --thickness mm (Donner & Jensen 2005)\n"
     "  burley         normalized diffusion (Christensen & Burley 2015), --burley-fit\n"
+    "  shortcut       a spectral skin's three-coefficient shortcut (docs/skin.md), to compare\n"
     "\n"
     "options:\n"
     "  --model M          one model (default: mc)\n"
@@ -53,8 +54,8 @@ static const char k_usage[] =
     "  lucent profile skin1 --layers skin1:0.25,skin2:inf --model mc --out out/skin-layers\n"
     "  lucent profile skin-light --model multipole --out out/skin-light\n";
 
-static const char *const k_models[] = {"mc", "dipole", "better-dipole", "multipole", "burley"};
-enum { MODEL_MC, MODEL_DIPOLE, MODEL_BETTER, MODEL_MULTIPOLE, MODEL_BURLEY, MODEL_COUNT };
+static const char *const k_models[] = {"mc", "dipole", "better-dipole", "multipole", "burley", "shortcut"};
+enum { MODEL_MC, MODEL_DIPOLE, MODEL_BETTER, MODEL_MULTIPOLE, MODEL_BURLEY, MODEL_SHORTCUT, MODEL_COUNT };
 enum { MAX_LAYERS = 16 };
 
 typedef struct options {
@@ -92,7 +93,7 @@ static int parse_models(const char *list, options *o)
         if (m < 0)
             return cli_usage_error("profile",
                                    "unknown model '%s' (mc, dipole, better-dipole, "
-                                   "multipole, burley)",
+                                   "multipole, burley, shortcut)",
                                    t);
         if (o->model_count == MODEL_COUNT) return cli_usage_error("profile", "too many models");
         o->models[o->model_count++] = m;
@@ -287,14 +288,15 @@ static lucent_status profile_multipole(const options *o, const lucent_profile_gr
  * carry layers. */
 static lucent_status profile_skin(const options *o, int model, const lucent_profile_grid *g, lucent_profile **dest)
 {
-    if (model != MODEL_MC && model != MODEL_MULTIPOLE)
+    if (model != MODEL_MC && model != MODEL_MULTIPOLE && model != MODEL_SHORTCUT)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
-                            "%s: %s is a spectral skin, carried in its layers band by band: --model mc or multipole",
+                            "%s: %s is a spectral skin, carried in its layers band by band: --model mc, multipole "
+                            "or shortcut",
                             k_models[model], o->material.name);
     int bands = o->bands ? o->bands : LUCENT_BANDS_DEFAULT;
     uint64_t per_band = 3 * o->photons / (uint64_t)bands;
     lucent_skin_desc d = {.bands = bands,
-                          .transport = model == MODEL_MC ? "mc" : "multipole",
+                          .transport = model == MODEL_MC ? "mc" : model == MODEL_SHORTCUT ? "shortcut" : "multipole",
                           .photons = per_band ? per_band : 1,
                           .seed = o->seed,
                           .pool = cli_pool(),
@@ -305,6 +307,10 @@ static lucent_status profile_skin(const options *o, int model, const lucent_prof
 static lucent_status make_profile(const options *o, int model, const lucent_profile_grid *g, lucent_profile **dest)
 {
     if (o->material.skin.layer_count > 0) return profile_skin(o, model, g, dest);
+    if (model == MODEL_SHORTCUT)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "shortcut: the three-coefficient shortcut of a spectral skin "
+                                                         "(docs/skin.md); %s is not one",
+                            o->material.name);
     if (o->layer_count > 1 && model != MODEL_MC && model != MODEL_MULTIPOLE)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: a layered slab needs --model mc or multipole",
                             k_models[model]);

@@ -30,7 +30,8 @@ enum {
 /* How to carry a skin through its bands; zero fields mean the default. */
 typedef struct lucent_skin_desc {
     int bands;             /* 1..LUCENT_BANDS_MAX (0: LUCENT_BANDS_DEFAULT) */
-    const char *transport; /* "multipole" (NULL) or "mc" */
+    const char *transport; /* "multipole" (NULL), "mc", or "shortcut": the three-coefficient shortcut
+                              (lucent_skin_shortcut_layers), for comparison */
     uint64_t photons;      /* mc: per band (0: LUCENT_SKIN_MC_PHOTONS, colour: LUCENT_SKIN_COLOR_PHOTONS) */
     uint64_t seed;         /* mc: band b is seeded seed * LUCENT_BANDS_MAX + b */
     lucent_pool *pool;     /* mc only; NULL: serial */
@@ -63,7 +64,9 @@ lucent_status lucent_skin_mc_layers(const lucent_material *m, double nm, lucent_
 
 /* The total diffuse reflectance per band and its colour: by the layered multipole (the transforms at
  * k = 0; fast, the diffusion approximation's error) or by the Monte Carlo ("mc": transport theory, the
- * standard errors in reflectance_se; what the bake's albedo uses). desc NULL: multipole, default bands. */
+ * standard errors in reflectance_se; what the bake's albedo uses). desc NULL: multipole, default bands.
+ * "shortcut": the colour of the three-coefficient shortcut's totals (rgb, and xyz, lab, ita from it;
+ * no spectrum: reflectance is 0). */
 lucent_status lucent_skin_color_of(const lucent_material *m, const lucent_skin_desc *desc, lucent_skin_color *dest);
 
 /* Fills m's sigma_a, sigma_s and g with the equivalent homogeneous medium (see above) and sets
@@ -72,11 +75,12 @@ lucent_status lucent_skin_resolve(lucent_material *m);
 
 /* The linear sRGB radial profile of a skin: every band carried by desc->transport on one grid, the
  * bands weighted per radius (multipole: the weighted transforms inverted once; mc: the bands' histograms
- * weighted, standard errors combined). Model "skin-multipole" or "skin-mc". */
+ * weighted, standard errors combined). Model "skin-multipole" or "skin-mc"; "shortcut": the layered
+ * multipole of the shortcut's three channels ("skin-shortcut"). */
 lucent_status lucent_profile_skin(const lucent_material *m, const lucent_skin_desc *desc, lucent_profile **dest);
 
-/* The three-coefficient shortcut: each layer's coefficients averaged per channel first (weights |W_cb|
- * of lucent_bands), then one layered multipole per channel. dest has room for LUCENT_SKIN_MAX_LAYERS. */
+/* The three-coefficient shortcut: each layer's coefficients averaged per channel first (weights the
+ * positive part of lucent_bands' W_cb), then one layered multipole per channel. dest has room for LUCENT_SKIN_MAX_LAYERS. */
 lucent_status lucent_skin_shortcut_layers(const lucent_material *m, int bands, lucent_layer *dest, int *count);
 
 #ifdef __cplusplus

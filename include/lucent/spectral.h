@@ -43,6 +43,10 @@ lucent_status lucent_bands_make(int count, lucent_bands *dest);
 void lucent_bands_xyz(const lucent_bands *b, const double *reflectance, double xyz[3]);
 void lucent_bands_rgb(const lucent_bands *b, const double *reflectance, double rgb[3]);
 
+/* The XYZ of a white-balanced linear sRGB colour under these bands (the inverse of lucent_bands_rgb's
+ * mapping for a spectrum: the white balance undone, the sRGB matrix inverted). */
+void lucent_bands_rgb_to_xyz(const lucent_bands *b, const double rgb[3], double xyz[3]);
+
 /* CIELAB (CIE 15:2004) of XYZ relative to the white white_xyz (the bands' white_xyz: D65 through the
  * same tables, so a flat reflector has a* = b* = 0). */
 void lucent_xyz_to_lab(const double xyz[3], const double white_xyz[3], double lab[3]);

@@ -187,8 +187,8 @@ def skin_profile(spec, transport="multipole", bands=0, photons=0, seed=1, dr=Non
     """The linear sRGB profile of a spectral skin (docs/skin.md): every band carried by the layered
     "multipole" or the "mc" (photons per band), weighted per radius through CIE 1931 under D65."""
     m = material(spec)
-    if transport not in ("multipole", "mc"):
-        raise LucentError(1, "skin: unknown transport \"%s\" (multipole, mc)" % transport)
+    if transport not in ("multipole", "mc", "shortcut"):
+        raise LucentError(1, "skin: unknown transport \"%s\" (multipole, mc, shortcut)" % transport)
     g = _lib.Grid(float(dr or 0), int(bins or 0))
     d = _lib.SkinDesc(bands=int(bands), transport=_b(transport), photons=int(photons), seed=int(seed),
                       pool=_pool(threads), grid=g)
@@ -196,8 +196,9 @@ def skin_profile(spec, transport="multipole", bands=0, photons=0, seed=1, dr=Non
 
 
 def skin_color(spec, transport="multipole", bands=0, photons=0, seed=1, threads=0):
-    """A spectral skin's total diffuse reflectance per band and its colour under D65: a dict with
-    center (nm), reflectance, xyz, lab, rgb (linear sRGB), ita (degrees) and category."""
+    """A spectral skin's total diffuse reflectance per band and its colour under D65 (transport
+    "multipole", "mc", or "shortcut": the three-coefficient shortcut): a dict with center (nm),
+    reflectance, xyz, lab, rgb (linear sRGB), ita (degrees) and category."""
     m = material(spec)
     d = _lib.SkinDesc(bands=int(bands), transport=_b(transport), photons=int(photons), seed=int(seed),
                       pool=_pool(threads))
@@ -206,6 +207,12 @@ def skin_color(spec, transport="multipole", bands=0, photons=0, seed=1, threads=
     n = c.bands
     return {"center": tuple(c.center[:n]), "reflectance": tuple(c.reflectance[:n]), "xyz": tuple(c.xyz),
             "lab": tuple(c.lab), "rgb": tuple(c.rgb), "ita": c.ita, "category": c.category.decode()}
+
+
+def ciede2000(lab1, lab2):
+    """The CIEDE2000 colour difference of two CIELAB colours (Sharma, Wu & Dalal 2005)."""
+    a, b = (ctypes.c_double * 3)(*lab1), (ctypes.c_double * 3)(*lab2)
+    return _L.lucent_ciede2000(a, b)
 
 
 def _profile_mc(m, g, photons, seed, threads):

@@ -224,6 +224,7 @@ def declare(lib):
         "lucent_material_resolve": (st, [c_char_p, P(Material)]),
         "lucent_skin_resolve": (st, [P(Material)]),
         "lucent_skin_color_of": (st, [P(Material), P(SkinDesc), P(SkinColor)]),
+        "lucent_ciede2000": (ctypes.c_double, [c_double_p, c_double_p]),
         "lucent_profile_skin": (st, [P(Material), P(SkinDesc), P(P(ProfileC))]),
         "lucent_material_validate": (st, [P(Material)]),
         "lucent_material_derive": (None, [P(Material), P(Derived)]),

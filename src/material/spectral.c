@@ -225,6 +225,21 @@ void lucent_bands_rgb(const lucent_bands *b, const double *reflectance, double r
     }
 }
 
+void lucent_bands_rgb_to_xyz(const lucent_bands *b, const double rgb[3], double xyz[3])
+{
+    const double *m = lucent_spectra_get()->xyz_to_rgb; /* the bands exist: the tables were read */
+    double u[3], inv[9];
+    for (int c = 0; c < 3; c++) u[c] = rgb[c] * b->rgb_unbalanced[c];
+    double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+                 m[2] * (m[3] * m[7] - m[4] * m[6]);
+    inv[0] = (m[4] * m[8] - m[5] * m[7]) / det, inv[1] = (m[2] * m[7] - m[1] * m[8]) / det;
+    inv[2] = (m[1] * m[5] - m[2] * m[4]) / det, inv[3] = (m[5] * m[6] - m[3] * m[8]) / det;
+    inv[4] = (m[0] * m[8] - m[2] * m[6]) / det, inv[5] = (m[2] * m[3] - m[0] * m[5]) / det;
+    inv[6] = (m[3] * m[7] - m[4] * m[6]) / det, inv[7] = (m[1] * m[6] - m[0] * m[7]) / det;
+    inv[8] = (m[0] * m[4] - m[1] * m[3]) / det;
+    for (int i = 0; i < 3; i++) xyz[i] = inv[3 * i] * u[0] + inv[3 * i + 1] * u[1] + inv[3 * i + 2] * u[2];
+}
+
 /* CIE 15:2004, CIELAB. */
 static double lab_f(double t)
 {

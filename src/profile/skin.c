@@ -168,9 +168,10 @@ lucent_status lucent_skin_color_of(const lucent_material *m, const lucent_skin_d
     static const lucent_skin_desc zero = {0};
     const lucent_skin_desc *d = desc ? desc : &zero;
     const char *transport = d->transport ? d->transport : "multipole";
-    bool mc = !strcmp(transport, "mc");
-    if (!mc && strcmp(transport, "multipole"))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "skin: unknown transport \"%s\" (multipole, mc)", transport);
+    bool mc = !strcmp(transport, "mc"), shortcut = !strcmp(transport, "shortcut");
+    if (!mc && !shortcut && strcmp(transport, "multipole"))
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "skin: unknown transport \"%s\" (multipole, mc, shortcut)",
+                            transport);
     lucent_bands b;
     lucent_status s = check_skin(m);
     if (s == LUCENT_OK) s = lucent_bands_make(d->bands, &b);
@@ -178,6 +179,20 @@ lucent_status lucent_skin_color_of(const lucent_material *m, const lucent_skin_d
     memset(dest, 0, sizeof *dest);
     dest->bands = b.count;
     memcpy(dest->center, b.center, sizeof b.center);
+    if (shortcut) { /* three channels, no spectrum: the colour from the shortcut's totals */
+        lucent_layer layers[LUCENT_SKIN_MAX_LAYERS];
+        int count;
+        double td[3];
+        if ((s = lucent_skin_shortcut_layers(m, b.count, layers, &count)) == LUCENT_OK &&
+            (s = layered_mix_check(layers, count)) == LUCENT_OK)
+            layered_hat(layers, count, 0.0, dest->rgb, td);
+        if (s != LUCENT_OK) return s;
+        lucent_bands_rgb_to_xyz(&b, dest->rgb, dest->xyz);
+        lucent_xyz_to_lab(dest->xyz, b.white_xyz, dest->lab);
+        dest->ita = lucent_ita(dest->lab);
+        dest->category = lucent_ita_category(dest->ita);
+        return LUCENT_OK;
+    }
     if (mc) {
         s = mc_totals(m, d, &b, dest->reflectance, dest->reflectance_se);
     } else {
@@ -354,15 +369,28 @@ lucent_status lucent_profile_skin(const lucent_material *m, const lucent_skin_de
     const lucent_skin_desc *d = desc ? desc : &zero;
     *dest = NULL;
     const char *transport = d->transport ? d->transport : "multipole";
-    bool mc = !strcmp(transport, "mc");
-    if (!mc && strcmp(transport, "multipole"))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "skin: unknown transport \"%s\" (multipole, mc)", transport);
+    bool mc = !strcmp(transport, "mc"), shortcut = !strcmp(transport, "shortcut");
+    if (!mc && !shortcut && strcmp(transport, "multipole"))
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "skin: unknown transport \"%s\" (multipole, mc, shortcut)",
+                            transport);
     lucent_bands b;
     lucent_profile_grid g;
     lucent_status s = check_skin(m);
     if (s == LUCENT_OK) s = lucent_bands_make(d->bands, &b);
     if (s == LUCENT_OK) s = skin_grid(m, d, &g);
     if (s != LUCENT_OK) return s;
+    if (shortcut) {
+        lucent_layer layers[LUCENT_SKIN_MAX_LAYERS];
+        lucent_profile *pair[2] = {NULL, NULL};
+        int count;
+        s = lucent_skin_shortcut_layers(m, b.count, layers, &count);
+        if (s == LUCENT_OK) s = lucent_profile_layered(layers, count, &g, pair);
+        if (s != LUCENT_OK) return lucent_error_context(s, "%s: skin shortcut", m->name);
+        lucent_profile_destroy(pair[1]);
+        snprintf(pair[0]->model, sizeof pair[0]->model, "skin-shortcut");
+        *dest = pair[0];
+        return LUCENT_OK;
+    }
     return mc ? profile_mc(m, d, &b, &g, dest) : profile_multipole(m, &b, &g, dest);
 }
 
@@ -380,7 +408,7 @@ lucent_status lucent_skin_shortcut_layers(const lucent_material *m, int bands, l
             double a, sp;
             lucent_skin_coefficients(&m->skin, i, b.center[k], &a, &sp);
             for (int c = 0; c < 3; c++) {
-                double w = fabs(b.rgb[c][k]);
+                double w = fmax(b.rgb[c][k], 0.0); /* the channel's positive lobe */
                 sa[c] += w * a, ssp[c] += w * sp, wsum[c] += w;
             }
         }
