@@ -139,17 +139,17 @@ TEST(ita_follows_melanin)
  * flushed one redder (a* up), the pale one less red. */
 TEST(ita_presets_in_categories)
 {
-    static const char *const names[][2] = {{"Skin-VeryLight", "very light"}, {"Skin-Dark", "dark"},
-                                           {"Skin-Light", "light"},          {"Skin-Medium", "intermediate"},
-                                           {"Skin-Tan", "tan"},              {"Skin-Brown", "brown"}};
+    static const char *const names[][2] = {
+        {"Skin-VeryLight", "very light"}, {"Skin-Dark", "dark"}, {"Skin-Light", "light"},
+        {"Skin-Medium", "intermediate"},  {"Skin-Tan", "tan"},   {"Skin-Brown", "brown"}};
     int count = SLOW > 1 ? 2 : 6; /* under the sanitizers the two with the widest margins */
     for (int i = 0; i < count; i++) {
         lucent_material m = preset(names[i][0]);
         lucent_skin_color c;
         lucent_skin_desc d = {.transport = "mc", .photons = 5000 / SLOW, .seed = 1};
         CHECK_OK(lucent_skin_color_of(&m, &d, &c));
-        CHECK_MSG(!strcmp(c.category, names[i][1]), "%s: ITA %.2f is %s, expected %s", names[i][0], c.ita,
-                  c.category, names[i][1]);
+        CHECK_MSG(!strcmp(c.category, names[i][1]), "%s: ITA %.2f is %s, expected %s", names[i][0], c.ita, c.category,
+                  names[i][1]);
     }
     lucent_skin_color light, pale, flushed;
     lucent_material l = preset("Skin-Light"), p = preset("Skin-Pale"), f = preset("Skin-Flushed");
@@ -205,7 +205,8 @@ TEST(spectrum_w_shape)
         CHECK_NEAR(c.center[maxima[0]], 560.0, 5.0);
     }
     CHECK_OK(lucent_skin_color_of(&dark, &(lucent_skin_desc){.bands = 80}, &c));
-    for (int k = lo; k < hi; k++) CHECK_MSG(c.reflectance[k + 1] > c.reflectance[k], "dark: a dip at %g nm", c.center[k]);
+    for (int k = lo; k < hi; k++)
+        CHECK_MSG(c.reflectance[k + 1] > c.reflectance[k], "dark: a dip at %g nm", c.center[k]);
 }
 
 /* The layered multipole against the Monte Carlo, band by band, for the same layers (Skin-Light): the
@@ -228,13 +229,13 @@ TEST(multipole_against_mc_per_band)
         for (int k = 0; k < 2; k++) {
             lucent_mc_layer ml[LUCENT_SKIN_MAX_LAYERS];
             CHECK_OK(lucent_skin_mc_layers(&m, three[k], ml, &count));
-            lucent_mc_desc d = {.layers = ml, .layer_count = count, .photons = 6000 / SLOW, .seed = 7,
-                                .grid = {.dr = 1e3, .nr = 1}};
+            lucent_mc_desc d = {
+                .layers = ml, .layer_count = count, .photons = 6000 / SLOW, .seed = 7, .grid = {.dr = 1e3, .nr = 1}};
             lucent_mc_result r = {0};
             CHECK_OK(lucent_mc_run(&d, &r));
             double rel = (rt[k] - r.rd) / r.rd, tol = three[k] < 600 ? 0.30 : 0.12;
-            CHECK_MSG(rt[k] > r.rd - 3 * r.rd_se, "%g nm: multipole %.4f below mc %.4f +- %.4f", three[k], rt[k],
-                      r.rd, r.rd_se);
+            CHECK_MSG(rt[k] > r.rd - 3 * r.rd_se, "%g nm: multipole %.4f below mc %.4f +- %.4f", three[k], rt[k], r.rd,
+                      r.rd_se);
             CHECK_MSG(rel < tol, "%g nm: multipole %.4f vs mc %.4f +- %.4f (%+.1f%%)", three[k], rt[k], r.rd, r.rd_se,
                       100 * rel);
             lucent_mc_result_free(&r);
@@ -366,11 +367,12 @@ TEST(format_errors_name_file_and_field)
                                     "\"skin\": {\"dermis\": {}}}",
                                     "t.json", &m, &n),
               LUCENT_ERR_PARSE, "t.json: sigma_a", "skin");
-    CHECK_ERR(lucent_material_parse("{\"units\": \"mm\", \"eta\": 1.4, \"g\": 0.5, \"skin\": {\"dermis\": {}}}", "t.json",
-                                    &m, &n),
+    CHECK_ERR(lucent_material_parse("{\"units\": \"mm\", \"eta\": 1.4, \"g\": 0.5, \"skin\": {\"dermis\": {}}}",
+                                    "t.json", &m, &n),
               LUCENT_ERR_PARSE, "t.json: g", "per layer");
-    CHECK_ERR(lucent_material_parse("{\"units\": \"mm^-1\", \"eta\": 1.4, \"skin\": {\"dermis\": {}}}", "t.json", &m, &n),
-              LUCENT_ERR_PARSE, "t.json: units");
+    CHECK_ERR(
+        lucent_material_parse("{\"units\": \"mm^-1\", \"eta\": 1.4, \"skin\": {\"dermis\": {}}}", "t.json", &m, &n),
+        LUCENT_ERR_PARSE, "t.json: units");
     CHECK_ERR(lucent_material_parse("{\"eta\": 1.4, \"skin\": {\"dermis\": {}}}", "t.json", &m, &n), LUCENT_ERR_PARSE,
               "t.json", "units");
     lucent_skin sk = {.layer_count = 1};

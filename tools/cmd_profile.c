@@ -296,7 +296,9 @@ static lucent_status profile_skin(const options *o, int model, const lucent_prof
     int bands = o->bands ? o->bands : LUCENT_BANDS_DEFAULT;
     uint64_t per_band = 3 * o->photons / (uint64_t)bands;
     lucent_skin_desc d = {.bands = bands,
-                          .transport = model == MODEL_MC ? "mc" : model == MODEL_SHORTCUT ? "shortcut" : "multipole",
+                          .transport = model == MODEL_MC         ? "mc"
+                                       : model == MODEL_SHORTCUT ? "shortcut"
+                                                                 : "multipole",
                           .photons = per_band ? per_band : 1,
                           .seed = o->seed,
                           .pool = cli_pool(),
@@ -308,8 +310,9 @@ static lucent_status make_profile(const options *o, int model, const lucent_prof
 {
     if (o->material.skin.layer_count > 0) return profile_skin(o, model, g, dest);
     if (model == MODEL_SHORTCUT)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "shortcut: the three-coefficient shortcut of a spectral skin "
-                                                         "(docs/skin.md); %s is not one",
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                            "shortcut: the three-coefficient shortcut of a spectral skin "
+                            "(docs/skin.md); %s is not one",
                             o->material.name);
     if (o->layer_count > 1 && model != MODEL_MC && model != MODEL_MULTIPOLE)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: a layered slab needs --model mc or multipole",

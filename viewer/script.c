@@ -48,8 +48,10 @@ static lucent_status skin_material(viewer *v, char **w, int n)
         *eq = '\0';
         bool epi = !strcmp(w[i], "melanin") || !strcmp(w[i], "eumelanin");
         if (!epi && strcmp(w[i], "blood") && strcmp(w[i], "oxygenation"))
-            return lucent_error(LUCENT_ERR_PARSE, "material: unknown key '%s' of a skin (melanin, eumelanin, blood, "
-                                "oxygenation)", w[i]);
+            return lucent_error(LUCENT_ERR_PARSE,
+                                "material: unknown key '%s' of a skin (melanin, eumelanin, blood, "
+                                "oxygenation)",
+                                w[i]);
         int kind = epi ? LUCENT_SKIN_EPIDERMIS : LUCENT_SKIN_DERMIS, k = 0;
         while (k < m.skin.layer_count && m.skin.layer[k].kind != kind) k++;
         if (k == m.skin.layer_count)

@@ -23,34 +23,34 @@ extern "C" {
 #endif
 
 enum {
-    LUCENT_SKIN_MC_PHOTONS = 20000,   /* per band: the "mc" profile's default */
-    LUCENT_SKIN_COLOR_PHOTONS = 5000  /* per band: the "mc" colour's default (about 1% per band) */
+    LUCENT_SKIN_MC_PHOTONS = 20000,  /* per band: the "mc" profile's default */
+    LUCENT_SKIN_COLOR_PHOTONS = 5000 /* per band: the "mc" colour's default (about 1% per band) */
 };
 
 /* How to carry a skin through its bands; zero fields mean the default. */
 typedef struct lucent_skin_desc {
-    int bands;             /* 1..LUCENT_BANDS_MAX (0: LUCENT_BANDS_DEFAULT) */
-    const char *transport; /* "multipole" (NULL), "mc", or "shortcut": the three-coefficient shortcut
+    int bands;                /* 1..LUCENT_BANDS_MAX (0: LUCENT_BANDS_DEFAULT) */
+    const char *transport;    /* "multipole" (NULL), "mc", or "shortcut": the three-coefficient shortcut
                               (lucent_skin_shortcut_layers), for comparison */
-    uint64_t photons;      /* mc: per band (0: LUCENT_SKIN_MC_PHOTONS, colour: LUCENT_SKIN_COLOR_PHOTONS) */
-    uint64_t seed;         /* mc: band b is seeded seed * LUCENT_BANDS_MAX + b */
-    lucent_pool *pool;     /* mc only; NULL: serial */
+    uint64_t photons;         /* mc: per band (0: LUCENT_SKIN_MC_PHOTONS, colour: LUCENT_SKIN_COLOR_PHOTONS) */
+    uint64_t seed;            /* mc: band b is seeded seed * LUCENT_BANDS_MAX + b */
+    lucent_pool *pool;        /* mc only; NULL: serial */
     lucent_profile_grid grid; /* zero fields: the Freude Table 6.1 grid of the equivalent medium */
-    lucent_cache *cache;   /* mc colour: kept between runs (NULL: none) */
+    lucent_cache *cache;      /* mc colour: kept between runs (NULL: none) */
 } lucent_skin_desc;
 
 /* What a skin looks like: its total diffuse reflectance per band (specular reflection excluded, normal
  * incidence) and the colour of that spectrum. */
 typedef struct lucent_skin_color {
     int bands;
-    double center[LUCENT_BANDS_MAX];      /* nm */
-    double reflectance[LUCENT_BANDS_MAX]; /* per band */
+    double center[LUCENT_BANDS_MAX];         /* nm */
+    double reflectance[LUCENT_BANDS_MAX];    /* per band */
     double reflectance_se[LUCENT_BANDS_MAX]; /* its standard error (0 for the multipole) */
-    double xyz[3];                        /* CIE XYZ under D65, Y of a perfect white = 1 */
-    double lab[3];                        /* CIELAB, D65 white */
-    double rgb[3];                        /* linear sRGB, white balanced (flat R -> (R, R, R)) */
-    double ita;                           /* degrees */
-    const char *category;                 /* lucent_ita_category(ita) */
+    double xyz[3];                           /* CIE XYZ under D65, Y of a perfect white = 1 */
+    double lab[3];                           /* CIELAB, D65 white */
+    double rgb[3];                           /* linear sRGB, white balanced (flat R -> (R, R, R)) */
+    double ita;                              /* degrees */
+    const char *category;                    /* lucent_ita_category(ita) */
 } lucent_skin_color;
 
 /* The multipole layers of m at three wavelengths, one per channel (nm[c]); a semi-infinite last

@@ -27,12 +27,12 @@ enum {
  * and is sampled at its centre. */
 typedef struct lucent_bands {
     int count;
-    double width;                     /* nm */
-    double center[LUCENT_BANDS_MAX];  /* nm */
-    double rgb[3][LUCENT_BANDS_MAX];  /* linear sRGB weights, white balanced: each row sums to 1 */
-    double xyz[3][LUCENT_BANDS_MAX];  /* CIE XYZ weights under D65, Y of a flat reflector of 1 = 1 */
-    double white_xyz[3];              /* XYZ of a flat reflector of 1 (Y = 1) */
-    double rgb_unbalanced[3];         /* sRGB of that white before the white balance (~1) */
+    double width;                    /* nm */
+    double center[LUCENT_BANDS_MAX]; /* nm */
+    double rgb[3][LUCENT_BANDS_MAX]; /* linear sRGB weights, white balanced: each row sums to 1 */
+    double xyz[3][LUCENT_BANDS_MAX]; /* CIE XYZ weights under D65, Y of a flat reflector of 1 = 1 */
+    double white_xyz[3];             /* XYZ of a flat reflector of 1 (Y = 1) */
+    double rgb_unbalanced[3];        /* sRGB of that white before the white balance (~1) */
 } lucent_bands;
 
 /* Fills dest with count bands (1..LUCENT_BANDS_MAX; 0: LUCENT_BANDS_DEFAULT). The weights integrate

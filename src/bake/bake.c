@@ -273,7 +273,8 @@ lucent_status lucent_material_bake(const lucent_material *material, const lucent
     if (material->skin.layer_count > 0 && !material->skin.resolved) { /* its equivalent medium, for the parts
                                                                           that read coefficients */
         resolved = *material;
-        if ((s = lucent_skin_resolve(&resolved)) != LUCENT_OK) return lucent_error_context(s, "material %s", material->name);
+        if ((s = lucent_skin_resolve(&resolved)) != LUCENT_OK)
+            return lucent_error_context(s, "material %s", material->name);
         material = &resolved;
     }
     if (d.what & LUCENT_BAKE_PROFILE) s = bake_profile(material, &d, baked);

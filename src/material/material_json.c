@@ -178,8 +178,8 @@ static lucent_status check_layer_keys(const lucent_json_node *n)
                                 "unknown chromophore or field (chromophores: melanin, eumelanin, blood, oxygenation; "
                                 "fields: thickness, g, scattering)");
     }
-    return lucent_json_check_keys(n, (const char *const[]){"melanin", "eumelanin", "blood", "oxygenation",
-                                                              "thickness", "g", "scattering", NULL});
+    return lucent_json_check_keys(
+        n, (const char *const[]){"melanin", "eumelanin", "blood", "oxygenation", "thickness", "g", "scattering", NULL});
 }
 
 /* An optional number within r (default: *dest as it is). */
@@ -209,8 +209,7 @@ static lucent_status read_skin_scattering(const lucent_json_node *layer, double 
 }
 
 /* scale: mm per unit of the file. */
-static lucent_status read_skin_layer(const lucent_json_node *n, int kind, bool last, double scale,
-                                     lucent_skin_layer *l)
+static lucent_status read_skin_layer(const lucent_json_node *n, int kind, bool last, double scale, lucent_skin_layer *l)
 {
     lucent_skin_layer_defaults((lucent_skin_layer_kind)kind, l);
     if (!last && !isfinite(l->thickness)) l->thickness = 1.0; /* a dermis above a hypodermis: about 1 mm */
@@ -255,8 +254,7 @@ static lucent_status read_skin(const lucent_json_node *n, lucent_material *m)
     for (int k = 0; k <= last && s == LUCENT_OK; k++) {
         if (!lucent_json_has(&skin, k_skin_layers[k])) continue;
         s = lucent_json_object(&skin, k_skin_layers[k], true, &layer);
-        if (s == LUCENT_OK)
-            s = read_skin_layer(&layer, k, k == last, scale, &m->skin.layer[m->skin.layer_count++]);
+        if (s == LUCENT_OK) s = read_skin_layer(&layer, k, k == last, scale, &m->skin.layer[m->skin.layer_count++]);
     }
     if (s == LUCENT_OK && (s = lucent_skin_validate(&m->skin, m->name)) != LUCENT_OK)
         s = lucent_json_fail(n, "skin", LUCENT_ERR_PARSE, "%s", lucent_last_error());

@@ -50,7 +50,8 @@ static lucent_status validate_layer(const lucent_skin_layer *l, bool last, const
     if (!unit(l->blood)) return bad(name, l, "blood", l->blood, "in [0, 1]");
     if (!unit(l->oxygenation)) return bad(name, l, "oxygenation", l->oxygenation, "in [0, 1]");
     if (!(l->melanin + l->blood <= 1.0)) return bad(name, l, "melanin + blood", l->melanin + l->blood, "<= 1");
-    if (!(l->scatter > 0.0) || !isfinite(l->scatter)) return bad(name, l, "scattering.mus_prime_500", l->scatter, "finite and > 0");
+    if (!(l->scatter > 0.0) || !isfinite(l->scatter))
+        return bad(name, l, "scattering.mus_prime_500", l->scatter, "finite and > 0");
     if (!unit(l->f_rayleigh)) return bad(name, l, "scattering.f_rayleigh", l->f_rayleigh, "in [0, 1]");
     if (!(l->b_mie >= 0.0 && l->b_mie <= 4.0)) return bad(name, l, "scattering.b_mie", l->b_mie, "in [0, 4]");
     if (!(l->g > -1.0 && l->g < 1.0)) return bad(name, l, "g", l->g, "in (-1, 1)");
@@ -68,7 +69,8 @@ lucent_status lucent_skin_validate(const lucent_skin *skin, const char *name)
     for (int i = 0; i < skin->layer_count; i++) {
         const lucent_skin_layer *l = &skin->layer[i];
         if (!lucent_skin_layer_name(l->kind))
-            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: skin.layer[%d]: unknown layer kind %d", name, i, l->kind);
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: skin.layer[%d]: unknown layer kind %d", name, i,
+                                l->kind);
         if (i > 0 && l->kind <= skin->layer[i - 1].kind)
             return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
                                 "%s: skin.%s: layers go top down (epidermis, dermis, hypodermis), each at most once",

@@ -12,10 +12,10 @@
 enum { SPECTRA_CIE_COUNT = 81, SPECTRA_HB_COUNT = 201 };
 
 typedef struct lucent_spectra {
-    double cmf[3][SPECTRA_CIE_COUNT];   /* CIE 1931 xbar, ybar, zbar */
-    double d65[SPECTRA_CIE_COUNT];      /* D65, 100 at 560 nm */
-    double hb[2][SPECTRA_HB_COUNT];     /* molar extinction of HbO2, Hb, cm^-1 / (mol/L) */
-    double hb_molar_mass, hb_per_liter; /* g/mol, g/L */
+    double cmf[3][SPECTRA_CIE_COUNT];    /* CIE 1931 xbar, ybar, zbar */
+    double d65[SPECTRA_CIE_COUNT];       /* D65, 100 at 560 nm */
+    double hb[2][SPECTRA_HB_COUNT];      /* molar extinction of HbO2, Hb, cm^-1 / (mol/L) */
+    double hb_molar_mass, hb_per_liter;  /* g/mol, g/L */
     double eumelanin[2], pheomelanin[2]; /* a, b: a lambda^-b mm^-1 */
     double baseline[4];                  /* a, c, l0, w: a + c exp(-(lambda - l0) / w) mm^-1 */
     double scatter[3][3];                /* per layer kind: a' (mm^-1 at 500 nm), f_ray, b_mie */

@@ -164,7 +164,8 @@ static double integrate_product(const double *f, const double *g, double a, doub
 {
     double sum = 0.0, x = a;
     while (x < b - 1e-12) {
-        double knot = SPECTRA_CIE_START + SPECTRA_CIE_STEP * (floor((x - SPECTRA_CIE_START) / SPECTRA_CIE_STEP + 1e-9) + 1);
+        double knot =
+            SPECTRA_CIE_START + SPECTRA_CIE_STEP * (floor((x - SPECTRA_CIE_START) / SPECTRA_CIE_STEP + 1e-9) + 1);
         double y = fmin(knot, b), m = 0.5 * (x + y);
         double fx = lucent_spectra_lerp(f, SPECTRA_CIE_START, SPECTRA_CIE_STEP, SPECTRA_CIE_COUNT, x);
         double fm = lucent_spectra_lerp(f, SPECTRA_CIE_START, SPECTRA_CIE_STEP, SPECTRA_CIE_COUNT, m);
@@ -230,8 +231,8 @@ void lucent_bands_rgb_to_xyz(const lucent_bands *b, const double rgb[3], double 
     const double *m = lucent_spectra_get()->xyz_to_rgb; /* the bands exist: the tables were read */
     double u[3], inv[9];
     for (int c = 0; c < 3; c++) u[c] = rgb[c] * b->rgb_unbalanced[c];
-    double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
-                 m[2] * (m[3] * m[7] - m[4] * m[6]);
+    double det =
+        m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) + m[2] * (m[3] * m[7] - m[4] * m[6]);
     inv[0] = (m[4] * m[8] - m[5] * m[7]) / det, inv[1] = (m[2] * m[7] - m[1] * m[8]) / det;
     inv[2] = (m[1] * m[5] - m[2] * m[4]) / det, inv[3] = (m[5] * m[6] - m[3] * m[8]) / det;
     inv[4] = (m[0] * m[8] - m[2] * m[6]) / det, inv[5] = (m[2] * m[3] - m[0] * m[5]) / det;

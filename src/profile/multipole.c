@@ -303,10 +303,10 @@ static const double gl_w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810
 typedef struct inverse_ctx {
     const slab *slabs; /* stacks x count layers, stack t at slabs + t count */
     int count, edges;
-    int stacks;            /* 3, or 3 per set of a spectral mixture */
-    const double *weight;  /* NULL: channel c is stack c; else channel c is sum_t weight[c stacks + t] stack t */
+    int stacks;           /* 3, or 3 per set of a spectral mixture */
+    const double *weight; /* NULL: channel c is stack c; else channel c is sum_t weight[c stacks + t] stack t */
     double dr;
-    double *j1;            /* [edges]: J1(k r_e) of the node being added */
+    double *j1;        /* [edges]: J1(k r_e) of the node being added */
     double *cum[2][3]; /* C(r_e) = 2 pi int_0^{r_e} f r dr = int_0^inf F(k) r_e J1(k r_e) dk */
 } inverse_ctx;
 
