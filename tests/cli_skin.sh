@@ -6,14 +6,14 @@ SK=(env LUCENT_CACHE_DIR="$SKIN_CACHE")
 MATS=$FIXTURES/materials
 
 # materials: a file's skin, its layers and colour
-expect_ok -- "${SK[@]}" "$LUCENT" materials "$MATS/skin3.json"
+expect_ok -- "${SK[@]}" "$LUCENT" materials "$MATS/skin3.json" --photons 1000
 expect_true "materials shows a skin file's layers" -- grep -q "^skin3 .* 0.2500  0.0200  0.6000  1.5000" <<<"$OUT"
 expect_true "materials shows its ITA category" -- grep -Eq "^skin3 +[0-9.]+ .* (very light|light|intermediate|tan|brown|dark) " <<<"$OUT"
 expect_fail 1 "skin_bad.json: skin.epidermis.carotene: unknown chromophore" -- "$LUCENT" materials "$MATS/skin_bad.json"
 expect_ok -- "$LUCENT" materials skin-dark --json
 printf '%s\n' "$OUT" >"$TMP/skin-dark.json"
 expect_true "materials --json writes the chromophores" -- grep -q '"skin"' "$TMP/skin-dark.json"
-expect_ok -- "${SK[@]}" "$LUCENT" materials "$TMP/skin-dark.json"
+expect_ok -- "${SK[@]}" "$LUCENT" materials "$TMP/skin-dark.json" --photons 1000
 expect_true "the JSON reads back as the same skin" -- grep -q "^Skin-Dark .* 0.2500  0.0800" <<<"$OUT"
 
 # profile: band by band, multipole or mc
@@ -46,3 +46,4 @@ if [ -z "${LUCENT_GL_SKIP:-}" ]; then
     --set render.transmittance=profile --methods lambert,ssss --spp 1 --frames 1 --out "$TMP/skin/cmp"
   expect_true "compare compares on a skin" -- test -s "$TMP/skin/cmp/results.json"
 fi
+expect_fail 2 "--photons needs a whole number > 0" -- "$LUCENT" materials skin-light --photons 0

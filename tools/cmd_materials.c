@@ -23,6 +23,7 @@ static const char k_usage[] =
     "options:\n"
     "  --json        print JSON (coefficients in mm^-1, lengths in mm) instead of tables\n"
     "  --out FILE    write that JSON to FILE (atomically) instead of printing it\n"
+    "  --photons N   Monte Carlo photons per band of a spectral skin's colour (default 5000)\n"
     "  --swatches IMAGE\n"
     "                write a row of colour swatches, one per material, showing its total\n"
     "                diffuse reflectance Rd under white light (PNG, EXR or PFM by extension)\n"
@@ -37,6 +38,7 @@ static const char k_usage[] =
 
 typedef struct options {
     lucent_cache *cache; /* the skins' Monte Carlo colours */
+    int photons;         /* per band for them (0: LUCENT_SKIN_COLOR_PHOTONS) */
     bool json;
     const char *out;
     const char *swatches;
@@ -184,7 +186,8 @@ static void print_anisotropic(const row *rows, int count)
 /* A skin's colour by the Monte Carlo per band (the truth; kept in the disk cache). */
 static lucent_status skin_color(const options *o, const lucent_material *m, lucent_skin_color *c)
 {
-    lucent_skin_desc d = {.transport = "mc", .seed = 1, .pool = cli_pool(), .cache = o->cache};
+    lucent_skin_desc d = {
+        .transport = "mc", .photons = (uint64_t)o->photons, .seed = 1, .pool = cli_pool(), .cache = o->cache};
     return lucent_skin_color_of(m, &d, c);
 }
 
@@ -228,8 +231,8 @@ static lucent_status print_skins(const options *o, int name_width)
     printf("\nSpectral skin colour: total diffuse reflectance (Monte Carlo, %d photons per band), %d bands over\n"
            "380-780 nm, CIE 1931 2 deg under D65\n"
            "%-*s %7s %7s %7s %7s  %-13s %7s %7s %7s\n",
-           LUCENT_SKIN_COLOR_PHOTONS, LUCENT_BANDS_DEFAULT, name_width, "name", "L*", "a*", "b*", "ITA", "ITA category",
-           "R", "G", "B");
+           o->photons ? o->photons : LUCENT_SKIN_COLOR_PHOTONS, LUCENT_BANDS_DEFAULT, name_width, "name", "L*", "a*",
+           "b*", "ITA", "ITA category", "R", "G", "B");
     for (int i = 0; i < o->count; i++) {
         const lucent_material *m = &o->list[i];
         if (!m->skin.layer_count) continue;
@@ -351,6 +354,10 @@ static int parse_args(int argc, char **argv, options *o, int *specs)
             o->swatches = a[10] == '=' ? a + 11 : (i + 1 < argc ? argv[++i] : NULL);
             if (!o->swatches || !o->swatches[0])
                 return cli_usage_error("materials", "--swatches needs an image file name");
+        } else if (strcmp(a, "--photons") == 0 || strncmp(a, "--photons=", 10) == 0) {
+            const char *v = a[9] == '=' ? a + 10 : (i + 1 < argc ? argv[++i] : NULL);
+            if (!v || !cli_parse_int(v, &o->photons) || o->photons < 1)
+                return cli_usage_error("materials", "--photons needs a whole number > 0");
         } else if (a[0] == '-' && a[1]) {
             return cli_usage_error("materials", "unknown option '%s'", a);
         } else {
