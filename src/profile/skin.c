@@ -93,6 +93,27 @@ static void band_weights(const lucent_bands *b, int sets, double *weight)
         for (int t = 0; t < 3 * sets; t++) weight[c * 3 * sets + t] = t < b->count ? b->rgb[c][t] : 0.0;
 }
 
+/* The multipole puts a layer's source at depth 1/sigma_t': a layer much thinner than that (an anatomical
+ * epidermis of 0.1 mm in the red) comes out wrong (docs/skin.md). Logs one warning per call when some
+ * finite layer is thinner than half its transport mean free path in some band. */
+static void warn_thin(const lucent_material *m, const lucent_bands *b)
+{
+    for (int i = 0; i < m->skin.layer_count; i++) {
+        const lucent_skin_layer *l = &m->skin.layer[i];
+        double worst = 0.0, at = 0.0;
+        for (int k = 0; isfinite(l->thickness) && k < b->count; k++) {
+            double sa, ssp;
+            lucent_skin_coefficients(&m->skin, i, b->center[k], &sa, &ssp);
+            if (1.0 / (sa + ssp) > worst) worst = 1.0 / (sa + ssp), at = b->center[k];
+        }
+        if (worst > 2.0 * l->thickness)
+            lucent_log(LUCENT_LOG_WARN,
+                       "skin %s: the %s (%g mm) is thinner than half its transport mean free path (%.3g mm at %.0f "
+                       "nm): the layered multipole is wrong there; the Monte Carlo (transport mc) takes it",
+                       m->name, lucent_skin_layer_name(l->kind), l->thickness, worst, at);
+    }
+}
+
 /* ---- totals and colour ---- */
 
 /* F_c(k) of every band (f[band]), for the sets of band_sets. */
@@ -197,6 +218,7 @@ lucent_status lucent_skin_color_of(const lucent_material *m, const lucent_skin_d
         s = mc_totals(m, d, &b, dest->reflectance, dest->reflectance_se);
     } else {
         lucent_layer *sets = NULL;
+        warn_thin(m, &b);
         s = make_sets(m, &b, &sets);
         if (s == LUCENT_OK) band_hats(&b, sets, m->skin.layer_count, 0.0, dest->reflectance);
         free(sets);
@@ -391,6 +413,7 @@ lucent_status lucent_profile_skin(const lucent_material *m, const lucent_skin_de
         *dest = pair[0];
         return LUCENT_OK;
     }
+    if (!mc) warn_thin(m, &b);
     return mc ? profile_mc(m, d, &b, &g, dest) : profile_multipole(m, &b, &g, dest);
 }
 
