@@ -48,7 +48,7 @@ enum {
     LUCENT_BAKE_SIGMA0_BINS = 18,         /* sigma0 fit: theta bins of each sphere */
     LUCENT_BAKE_RD_PHOTONS = 400000,      /* total diffuse reflectance: per channel (Skin1's blue
                                              0.113 +- 0.0005) */
-    LUCENT_BAKE_SKIN_RD_PHOTONS = 20000   /* a spectral skin's: per band (lucent/skin.h) */
+    LUCENT_BAKE_SKIN_RD_PHOTONS = 10000   /* a spectral skin's: per band (lucent/skin.h) */
 };
 
 enum { LUCENT_BAKE_TRANSMIT_SIZE = 256 }; /* samples of the transmittance table */
