@@ -110,6 +110,15 @@ cases = [
     ("width_px(fov_y=0)", "K.width_px(fov_y=0)", "value", ["fov_y"]),
     ("width_px(depth_mm=-5)", "K.width_px(depth_mm=-5)", "value", ["depth_mm"]),
     ("mcml(seed=-1)", "lucent.mcml(MCI, seed=-1, write=False)", "value", ["seed"]),
+    # -- the spectral skin's functions (docs/skin.md)
+    ("skin_color(None)", "lucent.skin_color(None)", "type", ["spec", "None"]),
+    ("skin_color(bands=2**32+20)", "lucent.skin_color('skin-light', bands=2**32 + 20)", "value", ["bands"]),
+    ("skin_color(bands=-1)", "lucent.skin_color('skin-light', bands=-1)", "value", ["bands"]),
+    ("skin_profile(photons=1.5)", "lucent.skin_profile('skin-light', photons=1.5)", "value", ["photons"]),
+    ("skin_profile(transport=None)", "lucent.skin_profile('skin-light', transport=None)", "type", ["transport"]),
+    ("skin_profile(transport='x')", "lucent.skin_profile('skin-light', transport='x')", "lucent", ["transport"]),
+    ("ciede2000([1, 2], ...)", "lucent.ciede2000([1, 2], [0, 0, 0])", "value", ["lab1"]),
+    ("ciede2000(..., nan)", "lucent.ciede2000([50, 0, 0], [50, float('nan'), 0])", "value", ["lab2[1]"]),
     # -- NaN and infinities
     ("kernel(k=nan)", "lucent.kernel('skin1', k=float('nan'))", "value", ["k:", "finite"]),
     ("kernel(range_mm=nan)", "lucent.kernel('skin1', range_mm=float('nan'))", "value", ["range_mm"]),

@@ -162,6 +162,34 @@ wait $pid
 check "a changed scene file is read again" -- eval \
   'grep -q "^view: ssss" "$TMP/reload.out" && grep -q "^reloaded" "$TMP/reload.out" && tail -1 "$TMP/reload.out" | grep -q "^view: lambert"'
 
+# A spectral skin's melanin slider (docs/skin.md): more melanin bakes a darker skin whose blue falls more
+# than its red (melanin absorbs more the shorter the wavelength: Donner & Jensen 2006's lambda^-3.33), so
+# the lit sphere's mean B/R and G/R fall. The profile model of translucency keeps the bake short.
+printf 'set transmittance=profile\nmaterial skin-light\nscreenshot %s/skin0.png\nmaterial melanin=0.05\nscreenshot %s/skin1.png\nsave-scene %s/skin.json\nquit\n' \
+  "$TMP" "$TMP" "$TMP" >"$TMP/skin.txt"
+check "the melanin of a spectral skin moves in a scripted session" -- \
+  "$LUCENT" -q view "$SPHERE" --script "$TMP/skin.txt" --headless --no-cache
+check "the saved scene keeps the skin's chromophores" -- grep -q '"melanin":[[:space:]]*0.05' "$TMP/skin.json"
+if command -v python3 >/dev/null 2>&1; then
+  "$LUCENT" -q image convert "$TMP/skin0.exr" "$TMP/skin0.pfm" && "$LUCENT" -q image convert "$TMP/skin1.exr" "$TMP/skin1.pfm"
+  check "more melanin: a darker sphere, blue and green falling more than red" -- python3 - "$TMP/skin0.pfm" "$TMP/skin1.pfm" <<'PY'
+import struct, sys
+def mean(path):  # the mean colour of the pixels that differ from the background (the corner pixel)
+    f = open(path, "rb")
+    f.readline(); w, h = map(int, f.readline().split()); scale = float(f.readline())
+    d = struct.unpack(("<" if scale < 0 else ">") + "f" * (w * h * 3), f.read(12 * w * h))
+    bg, s, n = d[0:3], [0.0, 0.0, 0.0], 0
+    for k in range(w * h):
+        px = d[3 * k:3 * k + 3]
+        if max(abs(a - b) for a, b in zip(px, bg)) > 1e-4:
+            s, n = [s[c] + px[c] for c in range(3)], n + 1
+    return [x / n for x in s]
+a, b = mean(sys.argv[1]), mean(sys.argv[2])
+print("melanin 0.009:", a, "melanin 0.05:", b)
+sys.exit(0 if all(b[c] < a[c] for c in range(3)) and b[2] / b[0] < a[2] / a[0] and b[1] / b[0] < a[1] / a[0] else 1)
+PY
+fi
+
 # Bad scripts: the file and the line named, exit 1.
 printf 'orbit 10\n' >"$TMP/bad1.txt"
 fails "bad1.txt: line 1 (orbit): usage: orbit YAW PITCH" -- "$LUCENT" view "$SPHERE" --script "$TMP/bad1.txt" --headless --no-cache

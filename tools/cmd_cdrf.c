@@ -330,6 +330,7 @@ int cmd_cdrf_fit(int argc, char **argv)
     int rc = parse_fit_args(argc, argv, &o);
     if (rc != CLI_OK) return rc;
     if (lucent_material_resolve(o.spec, &o.material) != LUCENT_OK) return cli_fail();
+    if (lucent_skin_resolve(&o.material) != LUCENT_OK) return cli_fail(); /* a skin: its equivalent medium */
     char prefix[512], name[128];
     snprintf(name, sizeof name, "%s-cdrf", o.material.name);
     cli_out_prefix(o.out, name, prefix, sizeof prefix);

@@ -171,6 +171,7 @@ static lucent_status run(options *o)
     lucent_taps *t = NULL;
     char *text = NULL, label[160];
     lucent_status s = o->spec ? lucent_material_resolve(o->spec, &m) : LUCENT_OK;
+    if (s == LUCENT_OK && o->spec) s = lucent_skin_resolve(&m); /* a skin: its equivalent medium */
     if (s == LUCENT_OK && o->spec)
         s = lucent_profile_from_source(
             &(lucent_profile_source_desc){

@@ -141,6 +141,7 @@ static lucent_status run(const options *o)
 {
     lucent_material m;
     lucent_status s = lucent_material_resolve(o->spec, &m);
+    if (s == LUCENT_OK) s = lucent_skin_resolve(&m); /* a skin: its equivalent medium */
     if (s != LUCENT_OK) return s;
     char dir[512];
     if (o->out)

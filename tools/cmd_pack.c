@@ -511,6 +511,7 @@ static lucent_status run(const options *o)
     lucent_material m;
     lucent_render_settings rs = lucent_render_settings_defaults();
     lucent_status s = lucent_material_resolve(o->spec, &m);
+    if (s == LUCENT_OK) s = lucent_skin_resolve(&m); /* a skin: its equivalent medium (docs/skin.md) */
     if (s == LUCENT_OK) s = apply_sets(o, &rs);
     lucent_cache *cache = NULL;
     char buf[4096];

@@ -35,8 +35,17 @@ static void put(cJSON *o, const char *key, cJSON *value)
 static cJSON *material_json(const lucent_material *m)
 {
     lucent_material p;
-    if (lucent_material_preset_find(m->name, &p) == LUCENT_OK && !memcmp(&p, m, sizeof p))
+    if (lucent_material_preset_find(m->name, &p) == LUCENT_OK && lucent_skin_resolve(&p) == LUCENT_OK &&
+        !memcmp(&p, m, sizeof p))
         return cJSON_CreateString(m->name);
+    if (m->skin.layer_count > 0) { /* a spectral skin: its chromophores, as a material file has them */
+        char *text = NULL;
+        cJSON *doc = lucent_material_to_json(m, 1, false, &text) == LUCENT_OK ? cJSON_Parse(text) : NULL;
+        free(text);
+        cJSON *one = doc ? cJSON_DetachItemFromArray(cJSON_GetObjectItemCaseSensitive(doc, "materials"), 0) : NULL;
+        cJSON_Delete(doc);
+        return one;
+    }
     cJSON *o = cJSON_CreateObject();
     if (!o) return NULL;
     cJSON_AddStringToObject(o, "name", m->name);

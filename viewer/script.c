@@ -17,10 +17,43 @@
 
 enum { SCRIPT_MAX_BYTES = 16 << 20 };
 
-/* material PRESET | material KEY=R,G,B ... (sigma_a, sigma_s_prime, g per channel; eta one number) */
+/* The chromophore edits of a spectral skin (docs/skin.md): the epidermis's melanin and eumelanin share,
+ * the dermis's blood and oxygenation; the skin's equivalent medium is resolved again. */
+static lucent_status skin_material(viewer *v, const viewer_command *c)
+{
+    lucent_material m = v->wanted_material[v->object];
+    for (int e = 0; e < c->edit_count; e++) {
+        viewer_edit k = c->edit[e];
+        if (k < VIEWER_EDIT_MELANIN)
+            return lucent_error(LUCENT_ERR_PARSE,
+                                "material: %s is a spectral skin: its coefficients come from its chromophores "
+                                "(melanin, eumelanin, blood, oxygenation)",
+                                m.name);
+        bool epi = k == VIEWER_EDIT_MELANIN || k == VIEWER_EDIT_EUMELANIN;
+        int kind = epi ? LUCENT_SKIN_EPIDERMIS : LUCENT_SKIN_DERMIS, l = 0;
+        while (l < m.skin.layer_count && m.skin.layer[l].kind != kind) l++;
+        if (l == m.skin.layer_count)
+            return lucent_error(LUCENT_ERR_PARSE, "material: %s has no %s", m.name, lucent_skin_layer_name(kind));
+        lucent_skin_layer *layer = &m.skin.layer[l];
+        *(k == VIEWER_EDIT_MELANIN     ? &layer->melanin
+          : k == VIEWER_EDIT_EUMELANIN ? &layer->eumelanin
+          : k == VIEWER_EDIT_BLOOD     ? &layer->blood
+                                       : &layer->oxygenation) = c->edit_value[e][0];
+    }
+    m.skin.resolved = 0;
+    lucent_status st = lucent_skin_resolve(&m);
+    if (st != LUCENT_OK) return st;
+    v->wanted_material[v->object] = m;
+    viewer_material_edited(v, v->object);
+    return LUCENT_OK;
+}
+
+/* material PRESET | material KEY=R,G,B ... (sigma_a, sigma_s_prime, g per channel; eta one number); on a
+ * spectral skin, its chromophores (skin_material) */
 static lucent_status material(viewer *v, const viewer_command *c)
 {
     if (!c->edit_count) return viewer_material_preset(v, v->object, c->arg[0]);
+    if (v->wanted_material[v->object].skin.layer_count > 0) return skin_material(v, c);
     lucent_material m = v->wanted_material[v->object];
     for (int e = 0; e < c->edit_count; e++) {
         const double *x = c->edit_value[e];
@@ -35,6 +68,11 @@ static lucent_status material(viewer *v, const viewer_command *c)
             for (int ch = 0; ch < 3; ch++) m.g[ch] = x[ch], m.sigma_s[ch] = sp[ch] / (1 - x[ch]);
             break;
         case VIEWER_EDIT_ETA: m.eta = x[0]; break;
+        default:
+            return lucent_error(LUCENT_ERR_PARSE,
+                                "material: %s is not a spectral skin: melanin, eumelanin, blood and oxygenation "
+                                "are a skin's (docs/skin.md)",
+                                m.name);
         }
     }
     lucent_status st = lucent_material_validate(&m);

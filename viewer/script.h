@@ -54,7 +54,11 @@ typedef enum viewer_edit {
     VIEWER_EDIT_SIGMA_A = 0,
     VIEWER_EDIT_SIGMA_S_PRIME,
     VIEWER_EDIT_G,
-    VIEWER_EDIT_ETA
+    VIEWER_EDIT_ETA,
+    VIEWER_EDIT_MELANIN, /* a spectral skin's chromophores (docs/skin.md): one number in [0, 1] */
+    VIEWER_EDIT_EUMELANIN,
+    VIEWER_EDIT_BLOOD,
+    VIEWER_EDIT_OXYGENATION
 } viewer_edit;
 
 /* One checked line. */

@@ -31,7 +31,8 @@ static const action_info k_actions[VIEWER_ACTION_COUNT] = {
     [VIEWER_LAYOUT] = {"layout", 1, 2, "layout single|split|side [SPLIT]"},
     [VIEWER_OBJECT] = {"object", 1, 1, "object INDEX"},
     [VIEWER_MATERIAL] = {"material", 1, VIEWER_SCRIPT_EDITS,
-                         "material PRESET | material [sigma_a=R,G,B] [sigma_s_prime=R,G,B] [g=R,G,B] [eta=X]"},
+                         "material PRESET | material [sigma_a=R,G,B] [sigma_s_prime=R,G,B] [g=R,G,B] [eta=X] | "
+                         "material [melanin=X] [eumelanin=X] [blood=X] [oxygenation=X] (a spectral skin)"},
     [VIEWER_LOAD_REFERENCE] = {"load-reference", 1, 1, "load-reference FILE.exr"},
     [VIEWER_SHOW] = {"show", 1, 1, "show image|error|reference"},
     [VIEWER_SAVE_SCENE] = {"save-scene", 1, 1, "save-scene FILE.json"},
@@ -114,7 +115,8 @@ static lucent_status edit_values(const char *key, const char *text, double dest[
 
 static lucent_status material(viewer_command *c, const viewer_script_context *ctx)
 {
-    static const char *const keys[] = {"sigma_a", "sigma_s_prime", "g", "eta", NULL};
+    static const char *const keys[] = {"sigma_a",   "sigma_s_prime", "g",           "eta", "melanin",
+                                       "eumelanin", "blood",         "oxygenation", NULL};
     if (!strchr(c->arg[0], '=')) {
         if (c->argc != 1) return fail("usage: %s", k_actions[c->action].usage);
         lucent_material m;
@@ -126,7 +128,10 @@ static lucent_status material(viewer_command *c, const viewer_script_context *ct
         *eq = '\0';
         const char *key = c->arg[i], *value = eq + 1;
         int k = pick(key, keys);
-        if (k < 0) return fail("material: unknown key '%s' (sigma_a, sigma_s_prime, g, eta)", key);
+        if (k < 0)
+            return fail("material: unknown key '%s' (sigma_a, sigma_s_prime, g, eta; on a spectral skin melanin, "
+                        "eumelanin, blood, oxygenation)",
+                        key);
         double x[3];
         lucent_status st = edit_values(key, value, x);
         if (st != LUCENT_OK) return st;
@@ -139,6 +144,8 @@ static lucent_status material(viewer_command *c, const viewer_script_context *ct
                 return fail("material: g=%s: must be in (-1, 1) (sigma_s' is kept: sigma_s = sigma_s' / (1 - g))",
                             value);
         }
+        if (k >= VIEWER_EDIT_MELANIN && (x[0] != x[1] || x[0] != x[2] || !(x[0] >= 0 && x[0] <= 1)))
+            return fail("material: %s=%s: one fraction in [0, 1]", key, value);
         if (k == VIEWER_EDIT_ETA && (x[0] != x[1] || x[0] != x[2]))
             return fail("material: eta=%s: one number (it is not per channel)", value);
         if (k == VIEWER_EDIT_ETA && !(x[0] >= LUCENT_MATERIAL_ETA_MIN && x[0] <= LUCENT_MATERIAL_ETA_MAX))

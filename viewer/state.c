@@ -228,6 +228,7 @@ lucent_status viewer_material_preset(viewer *v, int object, const char *name)
 {
     lucent_material m;
     lucent_status st = lucent_material_resolve(name, &m);
+    if (st == LUCENT_OK) st = lucent_skin_resolve(&m); /* a spectral skin: its equivalent medium */
     if (st != LUCENT_OK) return st;
     v->wanted_material[object] = m;
     return LUCENT_OK;

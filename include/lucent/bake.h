@@ -13,7 +13,8 @@
  *                                                              the channels (d'Eon & Luebke 2007)
  *   rd             the material only                           lucent_profile_mc_total (cached): the
  *                                                              Monte Carlo total diffuse reflectance,
- *                                                              the real-time methods' albedo */
+ *                                                              the real-time methods' albedo (a spectral
+ *                                                              skin: lucent_skin_color_of, "mc", cached) */
 #ifndef LUCENT_BAKE_H
 #define LUCENT_BAKE_H
 
@@ -45,8 +46,9 @@ enum {
     LUCENT_BAKE_TRANSMIT_PHOTONS = 20000, /* slab transmittance: per channel and thickness */
     LUCENT_BAKE_SIGMA0_PHOTONS = 40000,   /* sigma0 fit: per channel and sphere */
     LUCENT_BAKE_SIGMA0_BINS = 18,         /* sigma0 fit: theta bins of each sphere */
-    LUCENT_BAKE_RD_PHOTONS = 400000       /* total diffuse reflectance: per channel (Skin1's blue
+    LUCENT_BAKE_RD_PHOTONS = 400000,      /* total diffuse reflectance: per channel (Skin1's blue
                                              0.113 +- 0.0005) */
+    LUCENT_BAKE_SKIN_RD_PHOTONS = 10000   /* a spectral skin's: per band (lucent/skin.h) */
 };
 
 enum { LUCENT_BAKE_TRANSMIT_SIZE = 256 }; /* samples of the transmittance table */

@@ -112,6 +112,7 @@ def material(spec, sigma_a=None, sigma_s=None, g=0.0, eta=1.3):
         if sigma_s is not None:
             raise ArgumentTypeError("sigma_a: expected a number or three (R, G, B) with sigma_s, got None")
         _check(_L.lucent_material_resolve(name, ctypes.byref(c)))
+        _check(_L.lucent_skin_resolve(ctypes.byref(c)))  # a spectral skin's equivalent medium (docs/skin.md)
     else:
         if sigma_s is None:
             raise ArgumentTypeError("sigma_s: expected a number or three (R, G, B) with sigma_a, got None")
@@ -123,11 +124,12 @@ def material(spec, sigma_a=None, sigma_s=None, g=0.0, eta=1.3):
 
 
 def materials():
-    """The presets (Jensen et al. 2001's eleven measured materials)."""
+    """The presets: Jensen et al. 2001's eleven measured materials, then the spectral skins."""
     out = []
     for i in range(_L.lucent_material_preset_count()):
         c = _lib.Material()
         _check(_L.lucent_material_preset(i, ctypes.byref(c)))
+        _check(_L.lucent_skin_resolve(ctypes.byref(c)))
         out.append(Material(c))
     return out
 
@@ -177,6 +179,9 @@ def profile(spec, model="mc", photons=1000000, seed=1, dr=None, bins=None, threa
     photons, seed = _args.integer("photons", photons), _args.integer("seed", seed)
     _pool(threads)
     g = _grid(m, dr, bins)
+    if m._c.skin.layer_count > 0:  # a spectral skin, band by band (docs/skin.md)
+        return skin_profile(m, transport="mc" if model == "mc" else model, photons=3 * int(photons) // 20,
+                            seed=seed, dr=dr, bins=bins, threads=threads)
     if model == "mc":
         return _profile_mc(m, g, photons, seed, threads)
     if model == "dipole":
@@ -189,6 +194,46 @@ def profile(spec, model="mc", photons=1000000, seed=1, dr=None, bins=None, threa
         d = _lib.SourceDesc(b"burley", 0, 0, None)
         return _take_profile(lambda dest: _L.lucent_profile_from_source(ctypes.byref(d), ctypes.byref(m._c), dest))
     raise LucentError(1, "unknown profile model \"%s\" (mc, dipole, better-dipole, burley)" % model)
+
+
+def _skin_args(transport, bands, photons, seed):
+    """The checked arguments of skin_profile and skin_color: transport as bytes, the counts as ints."""
+    transport = _args.text("transport", transport)
+    if transport not in (b"multipole", b"mc", b"shortcut"):
+        raise LucentError(1, "transport: unknown transport \"%s\" (multipole, mc, shortcut)" % transport.decode())
+    return (transport, _args.integer("bands", bands), _args.integer("photons", photons, "band_photons"),
+            _args.integer("seed", seed))
+
+
+def skin_profile(spec, transport="multipole", bands=0, photons=0, seed=1, dr=None, bins=None, threads=0):
+    """The linear sRGB profile of a spectral skin (docs/skin.md): every band carried by the layered
+    "multipole" or the "mc" (photons per band), weighted per radius through CIE 1931 under D65."""
+    m = material(spec)
+    transport, bands, photons, seed = _skin_args(transport, bands, photons, seed)
+    dr, bins = _args.optional(_args.real, "dr", dr), _args.optional(_args.integer, "bins", bins)
+    g = _lib.Grid(float(dr or 0), int(bins or 0))
+    d = _lib.SkinDesc(bands=bands, transport=transport, photons=photons, seed=seed, pool=_pool(threads), grid=g)
+    return _take_profile(lambda dest: _L.lucent_profile_skin(ctypes.byref(m._c), ctypes.byref(d), dest))
+
+
+def skin_color(spec, transport="multipole", bands=0, photons=0, seed=1, threads=0):
+    """A spectral skin's total diffuse reflectance per band and its colour under D65 (transport
+    "multipole", "mc", or "shortcut": the three-coefficient shortcut): a dict with center (nm),
+    reflectance, xyz, lab, rgb (linear sRGB), ita (degrees) and category."""
+    m = material(spec)
+    transport, bands, photons, seed = _skin_args(transport, bands, photons, seed)
+    d = _lib.SkinDesc(bands=bands, transport=transport, photons=photons, seed=seed, pool=_pool(threads))
+    c = _lib.SkinColor()
+    _check(_L.lucent_skin_color_of(ctypes.byref(m._c), ctypes.byref(d), ctypes.byref(c)))
+    n = c.bands
+    return {"center": tuple(c.center[:n]), "reflectance": tuple(c.reflectance[:n]), "xyz": tuple(c.xyz),
+            "lab": tuple(c.lab), "rgb": tuple(c.rgb), "ita": c.ita, "category": c.category.decode()}
+
+
+def ciede2000(lab1, lab2):
+    """The CIEDE2000 colour difference of two CIELAB colours (Sharma, Wu & Dalal 2005)."""
+    a, b = (ctypes.c_double * 3)(*_args.three("lab1", lab1)), (ctypes.c_double * 3)(*_args.three("lab2", lab2))
+    return _L.lucent_ciede2000(a, b)
 
 
 def _profile_mc(m, g, photons, seed, threads):

@@ -64,6 +64,7 @@ COPIED = {
     "LUCENT_CDRF_MAX_BINS": (720, "include/lucent/cdrf.h"),
     "LUCENT_CDRF_FIT_MAX_RADII": (16, "include/lucent/cdrf.h"),
     "POOL_MAX_THREADS": (256, "src/base/pool.c"),
+    "LUCENT_BANDS_MAX": (80, "include/lucent/spectral.h"),
 }
 _C = {k: v[0] for k, v in COPIED.items()}
 
@@ -114,6 +115,9 @@ def load(lib):
         "theta": real(-inf, inf, "radians"),
         "eta": real(-inf, inf, "lucent_material_validate checks its range"),
         "sigma": real(-inf, inf, "radians"),
+        # spectral skins (lucent/spectral.h): 0 bands is LUCENT_BANDS_DEFAULT, 0 photons the default
+        "bands": int_(1, _C["LUCENT_BANDS_MAX"], "LUCENT_BANDS_MAX", zero="the default"),
+        "band_photons": int_(1, _C["LUCENT_MC_MAX_PHOTONS"], "LUCENT_MC_MAX_PHOTONS", zero="the default"),
         # curvature (cmd_curvature.c)
         "smooth": int_(0, 1000, "lucent curvature --smooth"),
         "mm_per_unit": real(0, inf, "lucent curvature --mm-per-unit", lo_open=True),

@@ -8,6 +8,7 @@
 
 #include "base/mat4.h"
 #include "base/optics.h"
+#include "lucent/skin.h"
 #include "material/internal.h"
 #include "scene/internal.h"
 
@@ -209,12 +210,17 @@ static lucent_status read_material(const lucent_json_node *n, lucent_material *m
     lucent_json_node mat;
     lucent_status s = lucent_json_member(n, "material", true, &mat);
     if (s != LUCENT_OK) return s;
-    if (cJSON_IsObject(mat.json)) return material_read_json(&mat, "material", m);
-    if (!cJSON_IsString(mat.json))
+    if (cJSON_IsObject(mat.json)) {
+        s = material_read_json(&mat, "material", m);
+    } else if (!cJSON_IsString(mat.json)) {
         return lucent_json_fail(&mat, NULL, LUCENT_ERR_PARSE, "expected a preset name, a file or a material object");
-    if (lucent_material_resolve(mat.json->valuestring, m) != LUCENT_OK)
+    } else if (lucent_material_resolve(mat.json->valuestring, m) != LUCENT_OK) {
         return lucent_json_fail(&mat, NULL, LUCENT_ERR_PARSE, "%s", lucent_last_error());
-    return LUCENT_OK;
+    }
+    /* a spectral skin: its equivalent medium for the tracer and the coefficient readers (lucent/skin.h) */
+    if (s == LUCENT_OK && lucent_skin_resolve(m) != LUCENT_OK)
+        return lucent_json_fail(&mat, NULL, LUCENT_ERR_PARSE, "%s", lucent_last_error());
+    return s;
 }
 
 /* Latitude-longitude coordinates about the bounding-box centre of the mesh as loaded. */
