@@ -43,10 +43,15 @@ int cli_fail(void);
  * "lucent: ..."); returns CLI_USAGE. */
 int cli_usage_error(const char *command, const char *fmt, ...) LUCENT_PRINTF(2, 3);
 
-/* Refuses (a usage error, exit 2) outputs that name an input or the same file twice: flags[i] names
- * outputs[i] in the message ("--json"); NULL entries are skipped. */
+/* Refuses (a usage error, exit 2) outputs that name an input or the same file twice (several may name one
+ * device or FIFO): flags[i] names outputs[i] in the message ("--json"); NULL entries are skipped. Then checks
+ * that each can be written (lucent_output_check: its folder, what it names; exit 1 naming it), so that no
+ * work is lost to an unwritable output. Call it before the work starts. */
 int cli_check_outputs(const char *command, const char *const *inputs, int input_count, const char *const *outputs,
                       const char *const *flags, int output_count);
+
+/* The same check for the folder a command writes into (compare, pack, kernel-eval): CLI_OK or CLI_FAIL. */
+int cli_check_folder(const char *dir);
 
 /* The file a material spec reads (FILE.json, a path, or FILE#NAME without #NAME) into dest, for
  * cli_check_outputs; NULL for a preset name. */

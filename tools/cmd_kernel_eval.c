@@ -147,6 +147,7 @@ static lucent_status run(const options *o)
         snprintf(dir, sizeof dir, "%s", o->out);
     else
         snprintf(dir, sizeof dir, "%s-eval", m.name);
+    if ((s = lucent_output_check_folder(dir)) != LUCENT_OK) return s;
     lucent_kernel_eval_desc d = {
         .material = &m,
         .models = o->model_names,
