@@ -125,3 +125,14 @@ wait $pid
 rc=$?
 expect_true "SIGINT ends trace by the signal (exit $rc)" -- test "$rc" -eq 130
 expect_true "SIGINT leaves trace's previous outputs and nothing else" -- diff -r "$TMP/sigt" "$TMP/sigt-before"
+
+# ---- Issue 32 (hostile use: crashes, hangs, wrong numbers, bombs, merges) ----
+# 7. A taps' range far beyond the kernel's grid: no segfault (an int cast of a huge tap coordinate); the
+# library refuses ranges whose offsets leave double's range, the CLI says so as usage.
+for m in svd preint guided; do
+  expect_ok -- "$LUCENT" kernel skin1 --model "$m" --range 1e6 --export json --out "$TMP/k-far.json"
+done
+expect_true "taps at 1e6 mm: the centre tap holds the kernel, the others fall outside it" -- python3 -c "
+import json, sys; w = json.load(open(sys.argv[1]))['passes'][0]['weights']
+assert abs(w[0][0] - 1) < 1e-9 and all(v == 0 for row in w[1:] for v in row)" "$TMP/k-far.json"
+expect_fail 2 "--range needs a number > 0 and at most 1e6 (mm)" -- "$LUCENT" kernel skin1 --range 1e9 --export json --out "$TMP/k.json"
