@@ -136,3 +136,53 @@ expect_true "taps at 1e6 mm: the centre tap holds the kernel, the others fall ou
 import json, sys; w = json.load(open(sys.argv[1]))['passes'][0]['weights']
 assert abs(w[0][0] - 1) < 1e-9 and all(v == 0 for row in w[1:] for v in row)" "$TMP/k-far.json"
 expect_fail 2 "--range needs a number > 0 and at most 1e6 (mm)" -- "$LUCENT" kernel skin1 --range 1e9 --export json --out "$TMP/k.json"
+
+# 9. lucent merge: part files carry a CRC-32 of their body (format v2); damaged, negative or overflowing
+# tallies are refused naming the file; v1 parts (../shared/repro-3's, written before the checksum) name the
+# version. tamper MODE IN OUT: rewrites a part (recomputing the checksum unless MODE is "keep-crc").
+cat >"$TMP/tamper.py" <<'PY'
+import struct, sys, zlib
+mode, src, dst = sys.argv[1:4]
+b = bytearray(open(src, "rb").read())
+argc = struct.unpack_from("<I", b, 28)[0]  # after the magic (16), order, k and n
+at = 32
+for _ in range(argc):
+    at += 4 + struct.unpack_from("<I", b, at)[0]
+at += 4  # the tally count; tally 1 follows: u32 type, u64 count, values
+ttype, count = struct.unpack_from("<IQ", b, at)
+assert ttype == 0, "tally 1 of an mcml part is I64"
+at += 12
+if mode == "max":
+    struct.pack_into("<q", b, at, 2**63 - 1)
+elif mode == "negative":
+    for j in range(count):
+        struct.pack_into("<q", b, at + 8 * j, -1)
+elif mode == "keep-crc":
+    struct.pack_into("<q", b, at + 8, struct.unpack_from("<q", b, at + 8)[0] + 1)
+if mode != "keep-crc":
+    struct.pack_into("<I", b, len(b) - 4, zlib.crc32(bytes(b[:-4])))
+open(dst, "wb").write(b)
+PY
+MP="$TMP/merge32"
+for k in 1 2; do
+  expect_ok -- "$LUCENT" mcml "$FIXTURES/mcml/three_layers.mci" --out-dir "$MP" --seed 3 --part $k/2
+done
+P1="$MP/three_layers.mco.part-1-of-2" P2="$MP/three_layers.mco.part-2-of-2"
+for m in max negative keep-crc; do
+  python3 "$TMP/tamper.py" $m "$P1" "$MP/$m-1" && python3 "$TMP/tamper.py" $m "$P2" "$MP/$m-2"
+  mv "$MP/$m-1" "$MP/$m.part-1-of-2" && mv "$MP/$m-2" "$MP/$m.part-2-of-2"
+done
+expect_fail 1 "merge: tally 1 value 0 overflows when $MP/max.part-2-of-2 is added: damaged parts" -- \
+  "$LUCENT" merge "$MP/max.part-1-of-2" "$MP/max.part-2-of-2" -- --out-dir "$MP/out"
+expect_fail 1 "$MP/negative.part-1-of-2: tally 1: value 0 is negative (-1): a damaged part file" -- \
+  "$LUCENT" merge "$MP/negative.part-1-of-2" "$MP/negative.part-2-of-2" -- --out-dir "$MP/out"
+expect_fail 1 "$MP/keep-crc.part-1-of-2: the part's checksum does not match its contents: a damaged part file" -- \
+  "$LUCENT" merge "$MP/keep-crc.part-1-of-2" "$MP/keep-crc.part-2-of-2" -- --out-dir "$MP/out"
+expect_no_file "$MP/out/three_layers.mco"
+expect_ok -- "$LUCENT" merge "$P1" "$P2" -- --out-dir "$MP/out"
+expect_true "the untouched parts still merge" -- test -s "$MP/out/three_layers.mco"
+for f in "$FIXTURES"/bad-parts/*-1-of-2; do
+  expect_fail 1 "$f: header: a part file of format v1 (before checksums" -- \
+    "$LUCENT" merge "$f" "${f%-1-of-2}-2-of-2" -- --out-dir "$MP/v1"
+done
+expect_no_file "$MP/v1"
