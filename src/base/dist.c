@@ -514,12 +514,11 @@ static lucent_status read_part(part_file *p)
                             p->path);
     if (p->size < 16 || memcmp(p->data, PART_MAGIC, 16) != 0)
         return lucent_error(LUCENT_ERR_PARSE, "%s: header: not a Lucent part file (lucent ... --part K/N)", p->path);
-    s = check_sum(p);
-    if (s != LUCENT_OK) return s;
     s = take(p, magic, 16, "header");
     if (s == LUCENT_OK) s = take(p, &order, 4, "header");
-    if (s == LUCENT_OK && order != PART_ORDER)
+    if (s == LUCENT_OK && order != PART_ORDER) /* before the checksum, itself in the writer's byte order */
         s = lucent_error(LUCENT_ERR_PARSE, "%s: header: written on a machine of another byte order", p->path);
+    if (s == LUCENT_OK) s = check_sum(p);
     if (s == LUCENT_OK) s = take(p, &p->k, 4, "header");
     if (s == LUCENT_OK) s = take(p, &p->n, 4, "header");
     if (s == LUCENT_OK && (p->n < 1 || p->n > MAX_PARTS || p->k < 1 || p->k > p->n))
