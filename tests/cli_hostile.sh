@@ -186,3 +186,12 @@ for f in "$FIXTURES"/bad-parts/*-1-of-2; do
     "$LUCENT" merge "$f" "${f%-1-of-2}-2-of-2" -- --out-dir "$MP/v1"
 done
 expect_no_file "$MP/v1"
+
+# 3. A time limit that completes no pass: exit 1 naming the cause, no black image (it wrote zeros, exit 0).
+expect_fail 1 "trace-small.json: trace: no pass completed within the time limit of 0.001 s" -- \
+  "$LUCENT" trace "$FIXTURES/scenes/trace-small.json" --time 0.001 --out "$TMP/t0.png" --exr "$TMP/t0.exr"
+expect_fail 1 "no pass completed within the time limit of 1e-300 s" -- \
+  "$LUCENT" trace "$FIXTURES/scenes/trace-small.json" --set render.time_limit=1e-300 --out "$TMP/t0.png"
+expect_no_file "$TMP/t0.png" "$TMP/t0.exr"
+expect_fail 1 "sphere.json: reference test-sphere: no pass completed within the time limit" -- \
+  "${GLRUN[@]}" compare "$FIXTURES/scenes/sphere.json" --methods lambert --time 0.001 --out "$TMP/c0"
