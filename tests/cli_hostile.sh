@@ -195,3 +195,41 @@ expect_fail 1 "no pass completed within the time limit of 1e-300 s" -- \
 expect_no_file "$TMP/t0.png" "$TMP/t0.exr"
 expect_fail 1 "sphere.json: reference test-sphere: no pass completed within the time limit" -- \
   "${GLRUN[@]}" compare "$FIXTURES/scenes/sphere.json" --methods lambert --time 0.001 --out "$TMP/c0"
+
+# 6. Meshes and point clouds under hostile counts: .ply.gz bombs refused from the header (30 M faces in
+# 117 KB, 20 M points in 175 KB: 4.1 GB and 1.6 GB before) or as the gzip data inflate beyond 100:1; a read
+# limit (LUCENT_MESH_MAX_ELEMENTS); each point checked as it is read, and rows beyond the header refused
+# (10: they were ignored), as are duplicate properties and radii that render nothing.
+cloud_scene() { # cloud_scene PLY: a scene holding that cloud, written to $TMP/cloud-scene.json
+  printf '{"camera": {"position": [0, 0, 20], "target": [0, 0, 0], "fov_y": 40}, "lights": [{"type":
+  "directional", "direction": [0.3, -0.3, -1], "intensity": 2}], "objects": [{"points": "%s", "material":
+  "skin1"}], "render": {"width": 16, "height": 16}}\n' "$1" >"$TMP/cloud-scene.json"
+}
+for f in "$FIXTURES"/bad-points/*; do
+  cloud_scene "$f"
+  expect_fail 1 "objects[0].points: $f: " -- "$LUCENT" trace "$TMP/cloud-scene.json" --out "$TMP/cloud.png"
+done
+expect_no_file "$TMP/cloud.png"
+BP="$FIXTURES/bad-points"
+for c in "bomb-ply-gz-points-20m.ply.gz: the header declares 20000000 vertex entries" \
+  "hand-points-extra-rows.ply: line 14: more rows than the header declares" \
+  "hand-points-extra-rows-binary.ply: byte 217: data after the last element's rows" \
+  "hand-points-duplicate-property.ply: line 10: element vertex declares the property x twice" \
+  "hand-points-radius-tiny.ply: vertex 1: radius must be > 0, from 1e-18 to 1e+18" \
+  "hand-points-radius-huge.ply: vertex 2: radius must be > 0, from 1e-18 to 1e+18, got 3e+38" \
+  "hand-points-3dgs-scale-100.ply: vertex 1: the scales (scale_0..2) give a radius of 7.44015e-44" \
+  "hand-points-double-1e300.ply: vertex 2: x = 1e+300 does not fit a float" \
+  "hand-points-x-list.ply: no vertex positions (property x is a list, not a number)"; do
+  cloud_scene "$BP/${c%%: *}"
+  expect_fail 1 "$c" -- "$LUCENT" trace "$TMP/cloud-scene.json" --out "$TMP/cloud.png"
+done
+expect_fail 1 "bomb-ply-gz-mesh-30m-faces.ply.gz: the header declares 30000000 face entries" -- \
+  "$LUCENT" curvature "$FIXTURES/bad-meshes/bomb-ply-gz-mesh-30m-faces.ply.gz" --out "$TMP/x.csv"
+expect_fail 1 "hand-gz-list-bomb.ply.gz: gzip data inflating more than 100 times its size" -- \
+  "$LUCENT" curvature "$FIXTURES/bad-meshes/hand-gz-list-bomb.ply.gz" --out "$TMP/x.csv"
+expect_fail 1 "tetra.ply: the header declares 4 vertex entries (4 rows in all so far): above the read limit of 3" -- \
+  env LUCENT_MESH_MAX_ELEMENTS=3 "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/x.csv"
+expect_ok -- env LUCENT_MESH_MAX_ELEMENTS=8 "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/x.csv"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n' >"$TMP/four.obj"
+expect_fail 1 "four.obj: line 5: more than 4 vertices, texture coordinates and triangles: above the read limit" -- \
+  env LUCENT_MESH_MAX_ELEMENTS=4 "$LUCENT" curvature "$TMP/four.obj" --out "$TMP/x.csv"
