@@ -233,3 +233,27 @@ expect_ok -- env LUCENT_MESH_MAX_ELEMENTS=8 "$LUCENT" curvature "$FIXTURES/mesh/
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n' >"$TMP/four.obj"
 expect_fail 1 "four.obj: line 5: more than 4 vertices, texture coordinates and triangles: above the read limit" -- \
   env LUCENT_MESH_MAX_ELEMENTS=4 "$LUCENT" curvature "$TMP/four.obj" --out "$TMP/x.csv"
+
+# 10. Values accepted before that gave non-finite or silently different results, each refused naming the field.
+SM="$FIXTURES/scenes/trace-small.json"
+for c in 'render.background=1e308|render.background: must be in [0, 1e+30], got 1e+308' \
+  'objects[0].transform={"scale":1e300}|objects[0].transform.scale: must be within +-[1e-12, 1e12], got 1e+300' \
+  'objects[0].transform={"translate":[1e300,0,0]}|objects[0].transform: places vertex 0 at 1e+300 mm from the origin' \
+  'objects[0].mesh={"primitive":"icosphere","radius":0}|objects[0].mesh.radius: must be > 0' \
+  'objects[0].mesh={"primitive":"icosphere","axes":[1,0,1]}|objects[0].mesh.axes: the primitive icosphere has no axes' \
+  'objects[0].mesh={"primitive":"ellipsoid","axes":[1,0,1]}|objects[0].mesh.axes: each axis must be > 0' \
+  'objects[0].mesh={"primitive":"icosphere","subdivisions":0}|objects[0].mesh.subdivisions: must be in [1, 9], got 0'; do
+  expect_fail 1 "trace-small.json: ${c#*|}" -- "$LUCENT" trace "$SM" --spp 1 --set "${c%%|*}" --out "$TMP/v10.png"
+done
+expect_no_file "$TMP/v10.png"
+expect_fail 2 "--radii: '1e-300' is not a radius from 1e-06 to 1e+06 (mm)" -- \
+  "$LUCENT" cdrf-fit skin1 --radii 1e-300 --photons 2000 --out "$TMP/cf"
+expect_fail 2 "--screen needs WxH in pixels (1..65536 each), got '4294967297x1080'" -- \
+  "$LUCENT" pack skin1 --engine glsl --screen 4294967297x1080 --out "$TMP/pk"
+expect_fail 2 "--object-height needs a length from 0.001 mm to 1e12 mm" -- \
+  "$LUCENT" pack skin1 --engine glsl --object-height 1e-300mm --out "$TMP/pk"
+expect_fail 2 "--distance needs a length from 0.001 mm to 1e12 mm" -- \
+  "$LUCENT" kernel skin1 --export json --distance 1e-300 --out "$TMP/k.json"
+expect_fail 2 "--object-height and --distance: give one" -- \
+  "$LUCENT" pack skin1 --engine glsl --object-height 1m --distance 1m --out "$TMP/pk"
+expect_no_file "$TMP/pk" "$TMP/cf.json"

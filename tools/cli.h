@@ -86,6 +86,7 @@ typedef struct cli_view {
     double object_height_mm; /* > 0 */
     double distance_mm;      /* 0: from object_height_mm */
     bool given;              /* one of the options was given */
+    int depth_option;        /* which of --object-height (2) or --distance (3) was given; 0: neither */
 } cli_view;
 
 cli_view cli_view_defaults(void);
@@ -102,7 +103,10 @@ double cli_view_depth_mm(const cli_view *v);
  * radius_mm: W = 2 R lucent_screen_pixels_per_mm(H, F, Z), the renderer's scale (ssss.c). */
 void cli_print_kernel_width(FILE *out, double radius_mm, const cli_view *v);
 
-/* "1.8m", "180cm", "1800mm", "1.8" (m): a length > 0 in mm. */
+/* "1.8m", "180cm", "1800mm", "1.8" (m): a length in mm, from CLI_LENGTH_MIN_MM (1 um) to CLI_LENGTH_MAX_MM
+ * (beyond them the kernel's width in pixels has hundreds of digits, or none). */
+#define CLI_LENGTH_MIN_MM 1e-3
+#define CLI_LENGTH_MAX_MM 1e12
 bool cli_parse_length_mm(const char *text, double *mm);
 
 /* The prefix of a command that writes PREFIX.json, .csv, .svg (profile, cdrf-fit): --out as given;

@@ -157,15 +157,29 @@ bool cli_parse_length_mm(const char *text, double *mm)
     errno = 0;
     double v = strtod(text, &end);
     double unit = !strcmp(end, "") || !strcmp(end, "m") ? 1000 : !strcmp(end, "cm") ? 10 : !strcmp(end, "mm") ? 1 : 0;
-    if (errno || !(unit > 0) || !(v > 0) || !isfinite(v) || v > 1e12) return false;
+    if (errno || !(unit > 0) || !(v * unit >= CLI_LENGTH_MIN_MM && v * unit <= CLI_LENGTH_MAX_MM)) return false;
     *mm = v * unit;
+    return true;
+}
+
+/* One side of WxH: 1..65536, digits only (no sign, no wrap: 4294967297 was read as 1). */
+static bool parse_side(const char *p, const char *end, int *dest)
+{
+    long v = 0;
+    if (p == end || end - p > 6) return false;
+    for (; p < end; p++) {
+        if (*p < '0' || *p > '9') return false;
+        v = 10 * v + (*p - '0');
+    }
+    if (v < 1 || v > 65536) return false;
+    *dest = (int)v;
     return true;
 }
 
 bool cli_parse_size(const char *text, int *w, int *h)
 {
-    char tail;
-    return text && sscanf(text, "%dx%d%c", w, h, &tail) == 2 && *w > 0 && *h > 0 && *w <= 65536 && *h <= 65536;
+    const char *x = text ? strchr(text, 'x') : NULL;
+    return x && parse_side(text, x, w) && parse_side(x + 1, x + strlen(x), h);
 }
 
 void cli_out_prefix(const char *out, const char *default_name, char *dest, size_t size)
@@ -187,8 +201,9 @@ cli_view cli_view_defaults(void)
 int cli_view_option(const char *command, int argc, char **argv, int *i, cli_view *v)
 {
     static const char *const names[] = {"--screen", "--fov", "--object-height", "--distance"};
-    static const char *const wants[] = {"WxH in pixels", "degrees in (0, 180)", "a length > 0 (m, cm or mm)",
-                                        "a length > 0 (m, cm or mm)"};
+    static const char *const wants[] = {"WxH in pixels (1..65536 each)", "degrees in (0, 180)",
+                                        "a length from 0.001 mm to 1e12 mm (m, cm or mm)",
+                                        "a length from 0.001 mm to 1e12 mm (m, cm or mm)"};
     const char *t = NULL;
     int n = 0;
     while (n < 4 && !cli_option(argc, argv, i, names[n], &t)) n++;
@@ -198,6 +213,11 @@ int cli_view_option(const char *command, int argc, char **argv, int *i, cli_view
               : n == 2 ? cli_parse_length_mm(t, &v->object_height_mm)
                        : cli_parse_length_mm(t, &v->distance_mm);
     v->given = true;
+    if (ok && (n == 2 || n == 3)) {
+        if (v->depth_option && v->depth_option != n)
+            return cli_usage_error(command, "--object-height and --distance: give one (each sets the depth)");
+        v->depth_option = n;
+    }
     return ok ? CLI_OK : cli_usage_error(command, "%s needs %s, got '%s'", names[n], wants[n], t ? t : "");
 }
 
