@@ -33,7 +33,7 @@ expect_fail 1 "dense-1e300.json: layers[0].sigma_s: sigma_t" -- \
   "$LUCENT" profile "$FIXTURES/materials/dense-1e300.json" --model mc --out "$TMP/dense"
 expect_no_file "$TMP/dense.json" "$TMP/dense.csv"
 cp "$FIXTURES/mcml/drtiny.mci" "$TMP/"
-expect_fail 1 "drtiny.mci: line 3 (run): grid.dr" -- bash -c "cd '$TMP' && '$LUCENT' mcml drtiny.mci"
+expect_fail 1 "drtiny.mci: line 5 (the run of line 3): grid.dr" -- bash -c "cd '$TMP' && '$LUCENT' mcml drtiny.mci"
 expect_no_file "$TMP/drtiny.mco"
 # A material that does not absorb ends in bounded time with the step-limit warning.
 printf '{"name":"white","units":"mm^-1","sigma_a":[0,0,0],"sigma_s":[1,1,1],"g":0.9,"eta":1.0}\n' >"$TMP/white.json"
@@ -257,3 +257,21 @@ expect_fail 2 "--distance needs a length from 0.001 mm to 1e12 mm" -- \
 expect_fail 2 "--object-height and --distance: give one" -- \
   "$LUCENT" pack skin1 --engine glsl --object-height 1m --distance 1m --out "$TMP/pk"
 expect_no_file "$TMP/pk" "$TMP/cf.json"
+
+# 16-18. Messages that name the file, the field and the true cause.
+expect_fail 1 "dense-1e300.json: layers[0].sigma_s: sigma_t" -- \
+  "$LUCENT" kernel "$FIXTURES/materials/dense-1e300.json" --profile mc --export json --out "$TMP/k.json"
+expect_fail 1 "dense-1e300.json: layers[0].sigma_s: sigma_t" -- \
+  "$LUCENT" kernel-eval "$FIXTURES/materials/dense-1e300.json" --profile mc --out "$TMP/ke"
+expect_fail 1 "objects[0].material: /proc/self/mem: read failed: Input/output error" -- \
+  "$LUCENT" trace "$SM" --spp 1 --set 'objects[0].material=/proc/self/mem' --out "$TMP/t.png"
+printf '1.0\n1\nx.mco A\n100\n0.01 0.01\n10 10 5\n2\n1.0\n1.0 1 9 0.75 0.02\n1.4 1 1e14 0.9 0.05\n1.0\n' >"$TMP/dense-layer.mci"
+expect_fail 1 "dense-layer.mci: line 10 (the run of line 3): layers[1].sigma_s" -- \
+  "$LUCENT" mcml "$TMP/dense-layer.mci" --out-dir "$TMP/dl"
+printf '{"rend\300\200er": 1}' >"$TMP/utf8-key.json"
+expect_fail 1 "utf8-key.json: rend\\xC0\\x80er: unknown field" -- "$LUCENT" trace "$TMP/utf8-key.json" --out "$TMP/t.png"
+expect_fail 1 "override 'render.w\\x1B[31midth=3': no such member" -- \
+  "$LUCENT" trace "$SM" --set $'render.w\x1b[31midth=3' --out "$TMP/t.png"
+expect_fail 2 "LUCENT_THREADS='abc': needs a whole number from 1 to 256" -- env LUCENT_THREADS=abc "$LUCENT" materials
+expect_fail 2 "LUCENT_THREADS='-3': needs a whole number from 1 to 256" -- env LUCENT_THREADS=-3 "$LUCENT" materials
+expect_fail 2 "--threads needs a positive whole number, at most 256" -- "$LUCENT" materials --threads 300

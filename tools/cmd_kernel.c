@@ -177,6 +177,8 @@ static lucent_status run(options *o)
             &(lucent_profile_source_desc){
                 .source = o->profile, .photons = (uint64_t)o->photons, .seed = (uint64_t)o->seed, .pool = cli_pool()},
             &m, &p);
+    if (s != LUCENT_OK && o->spec && strncmp(lucent_last_error(), o->spec, strlen(o->spec)) != 0)
+        s = lucent_error_context(s, "%s", o->spec); /* the material's fields are the file's: name it */
     if (s == LUCENT_OK && p) s = lucent_kernel2d_from_profile(p, NULL, &gt);
     if (s == LUCENT_OK) s = lucent_kernel_build(gt, p, o->spec ? m.name : NULL, &o->desc, &k);
     if (s == LUCENT_OK) s = lucent_kernel_taps(k, &o->taps, &t);

@@ -187,5 +187,8 @@ int cmd_kernel_eval(int argc, char **argv)
     int rc = parse_args(argc, argv, &o);
     if (rc == CLI_OK) rc = choose_models(&o);
     if (rc != CLI_OK) return rc;
-    return run(&o) == LUCENT_OK ? CLI_OK : cli_fail();
+    lucent_status s = run(&o);
+    if (s != LUCENT_OK && strncmp(lucent_last_error(), "layers[", 7) == 0)
+        lucent_error_context(s, "%s", o.spec); /* the Monte Carlo's check of the material's fields: name its file */
+    return s == LUCENT_OK ? CLI_OK : cli_fail();
 }

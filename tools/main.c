@@ -270,8 +270,9 @@ int cli_common_options(int *argc, char **argv)
             remove_args(argc, argv, i, 1);
         } else if (strcmp(a, "--threads") == 0 || strncmp(a, "--threads=", 10) == 0) {
             const char *v = a[9] == '=' ? a + 10 : (i + 1 < *argc ? argv[i + 1] : NULL);
-            if (!cli_parse_int(v, &g_cli.threads) || g_cli.threads < 1)
-                return cli_usage_error(NULL, "--threads needs a positive whole number");
+            if (!cli_parse_int(v, &g_cli.threads) || g_cli.threads < 1 || g_cli.threads > LUCENT_POOL_MAX_THREADS)
+                return cli_usage_error(NULL, "--threads needs a positive whole number, at most %d",
+                                       LUCENT_POOL_MAX_THREADS);
             remove_args(argc, argv, i, a[9] == '=' ? 1 : 2);
         } else if (strcmp(a, "--part") == 0 || strncmp(a, "--part=", 7) == 0) {
             const char *v = a[6] == '=' ? a + 7 : (i + 1 < *argc ? argv[i + 1] : NULL);
@@ -288,6 +289,12 @@ int cli_common_options(int *argc, char **argv)
             i++;
         }
     }
+    const char *env = getenv("LUCENT_THREADS");
+    int env_threads;
+    if (!g_cli.threads && env && *env &&
+        (!cli_parse_int(env, &env_threads) || env_threads < 1 || env_threads > LUCENT_POOL_MAX_THREADS))
+        return cli_usage_error(NULL, "LUCENT_THREADS='%.32s': needs a whole number from 1 to %d (or unset: all cores)",
+                               env, LUCENT_POOL_MAX_THREADS);
     if (lucent_dist_rank() != 0) g_cli.quiet = true; /* rank 0 speaks for the job */
     if (!g_cli.quiet && isatty(STDERR_FILENO)) lucent_progress_set_output(stderr);
     lucent_files_create_parents(true); /* every command creates the folder of its outputs */

@@ -117,8 +117,13 @@ void lucent_progress_end(lucent_progress *p);
  * depend on the chunk index are identical whatever the number of threads. */
 typedef struct lucent_pool lucent_pool;
 
+/* The most threads a pool has. */
+#define LUCENT_POOL_MAX_THREADS 256
+
 /* Creates a pool of `threads` workers (0: LUCENT_THREADS from the environment, else all cores).
- * The calling thread works too, so a pool of 1 runs everything on the caller. */
+ * The calling thread works too, so a pool of 1 runs everything on the caller. More than
+ * LUCENT_POOL_MAX_THREADS, or a LUCENT_THREADS that is not a whole number from 1 to it, is said in a
+ * warning (lucent_log) and replaced: by the maximum, or by all cores. */
 lucent_pool *lucent_pool_create(int threads);
 void lucent_pool_destroy(lucent_pool *pool);
 

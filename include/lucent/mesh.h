@@ -263,7 +263,8 @@ typedef struct lucent_mesh_paint_desc {
                                   about +y toward +x, elevation raises it toward +y */
     const uint8_t *colors;     /* sRGB, 3 bytes per vertex (required) */
     float background[3];       /* linear RGB (default black) */
-    int supersample;           /* samples per pixel and axis, 1..8 (default 3) */
+    int supersample;           /* samples per pixel and axis, 1..8 (default 3); fewer where the supersampled picture
+                                  would pass 64 Mpixels */
 } lucent_mesh_paint_desc;
 
 /* Paints mesh with its vertex colours, seen orthographically with its bounding sphere filling 92% of
