@@ -275,3 +275,7 @@ expect_fail 1 "override 'render.w\\x1B[31midth=3': no such member" -- \
 expect_fail 2 "LUCENT_THREADS='abc': needs a whole number from 1 to 256" -- env LUCENT_THREADS=abc "$LUCENT" materials
 expect_fail 2 "LUCENT_THREADS='-3': needs a whole number from 1 to 256" -- env LUCENT_THREADS=-3 "$LUCENT" materials
 expect_fail 2 "--threads needs a positive whole number, at most 256" -- "$LUCENT" materials --threads 300
+
+# 8. 200 small spheres: the guiding field's pre-pass costs little per object (52 s for 1 spp before; the
+# timeout is a hang guard, not a timing) and a time limit holds in it.
+expect_ok -- timeout 120 "$LUCENT" trace "$FIXTURES/scenes/hang-trace-200-spheres.json" --spp 1 --out "$TMP/s200.png"
