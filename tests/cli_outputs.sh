@@ -100,3 +100,20 @@ expect_fail 1 "objects[0].material: $O/mat.json: this file is read by the comman
   timeout 20 "$LUCENT" trace "$O/scene.json" --time 60 --out "$O/i.png" --json "$O/mat.json"
 expect_true "the scene's material survives --json naming it" -- cmp "$O/mat.json" "$O/mat.orig"
 expect_no_file "$O/i.png"
+# The set still orders a written-through output: it is written when the command succeeds, so a command ended
+# part-way (SIGTERM in the second run of an .mci) writes nothing to the FIFO of its first run's output.
+mkdir -p "$O/sigf" && mkfifo "$O/sigf/1.mco"
+printf '1.0\n2\n1.mco A\n2000\n0.01 0.01\n10 10 5\n1\n1.0\n1.0 1 9 0.75 0.02\n1.0\n2.mco A\n2000000000\n0.01 0.01\n10 10 5\n1\n1.0\n1.0 1 9 0.75 0.02\n1.0\n' >"$O/sigf.mci"
+(timeout 30 cat "$O/sigf/1.mco" >"$O/sigf.got") &
+reader=$!
+"$LUCENT" mcml "$O/sigf.mci" --out-dir "$O/sigf" >/dev/null 2>&1 &
+pid=$!
+sleep 2
+kill -TERM $pid
+wait $pid
+rc=$?
+expect_true "SIGTERM ends mcml (exit $rc) while its first output waits for a FIFO" -- test "$rc" -eq 143
+timeout 10 bash -c ': >"$1"' _ "$O/sigf/1.mco" # an empty writer: the reader sees the end of file
+wait $reader
+expect_true "the FIFO got nothing from the interrupted command" -- test ! -s "$O/sigf.got"
+expect_true "the FIFO stays a FIFO" -- test -p "$O/sigf/1.mco"
