@@ -66,12 +66,15 @@ for f in tests/fixtures/images/*.exr tests/fixtures/bad-images/*.exr; do # scanl
 done
 for f in tests/fixtures/images/*.pfm; do [ -f "$f" ] && { printf '\2'; cat "$f"; } >"$out/corpus_image/$(basename "$f")"; done
 # a part file (src/base/dist.c's layout, v2, little-endian): part 1 of 1 of `mcml x.mci`, an int64 tally of
-# 2 values and a uint32 tally of 1, then the CRC-32 of all before it
+# 2 values and a uint32 tally of 1, then the CRC-32 of all before it; after the target's first byte (0: the
+# target writes the CRC itself, 1: the file as it is)
 mkdir -p "$out/corpus_part"
 python3 -c 'import struct, sys, zlib
 b = b"LUCENT-PART v2\n\0" + struct.pack("<5I", 0x01020304, 1, 1, 2, 4) + b"mcml" + struct.pack("<I", 5) + b"x.mci"
 b += struct.pack("<I", 2) + struct.pack("<IQqq", 0, 2, 7, 9) + struct.pack("<IQI", 2, 1, 3)
-open(sys.argv[1], "wb").write(b + struct.pack("<I", zlib.crc32(b)))' "$out/corpus_part/mcml-1-of-1"
+b += struct.pack("<I", zlib.crc32(b))
+open(sys.argv[1], "wb").write(b"\0" + b)
+open(sys.argv[2], "wb").write(b"\1" + b)' "$out/corpus_part/mcml-1-of-1" "$out/corpus_part/mcml-1-of-1-raw"
 status=0
 for t in "${targets[@]}"; do
   mkdir -p "$out/artifacts_$t"
