@@ -192,7 +192,11 @@ void lucent_rng_jump(lucent_rng *r);
 typedef struct lucent_atomic_file lucent_atomic_file;
 
 /* Opens a temporary file beside `path` for writing; *out receives its FILE*.
- * Fails (with a message naming path) when the directory is missing or not writable. */
+ * Fails (with a message naming path) when the directory is missing or not writable. A path that
+ * names a character device, a FIFO or a socket is written through instead (the bytes wait in an
+ * unlinked file of $TMPDIR and are copied into it on commit, or when the output set lands; it is
+ * never replaced by a file); a symbolic link to a regular file is followed (the file is replaced,
+ * the link kept); a folder, a block device or a link to nothing is refused (lucent/output.h). */
 lucent_status lucent_atomic_open(const char *path, lucent_atomic_file **dest, FILE **out);
 
 /* Flushes, syncs and renames the temporary file onto its target, then frees af.
