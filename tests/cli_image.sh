@@ -56,7 +56,7 @@ expect_fail 1 "x.tga: unknown image format" -- "$LUCENT" image convert "$img/a.p
 expect_ok -- "$LUCENT" image convert "$img/a.pfm" "$img/missing/x.png"
 expect_true "image convert creates the output's folder" -- test -s "$img/missing/x.png"
 : > "$img/plain"
-expect_fail 1 "plain/x.png: cannot create: Not a directory" -- "$LUCENT" image convert "$img/a.pfm" "$img/plain/x.png"
+expect_fail 1 "plain/x.png: cannot create: $img/plain is not a folder" -- "$LUCENT" image convert "$img/a.pfm" "$img/plain/x.png"
 expect_no_file "$img/missing"
 mkdir -p "$img/ro" && chmod 755 "$img" && chmod 555 "$img/ro"
 expect_fail 1 "ro/x.exr: cannot create" -- as_nobody "$LUCENT" image convert "$img/a.pfm" "$img/ro/x.exr"

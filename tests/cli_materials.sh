@@ -49,7 +49,7 @@ expect_true "materials --out wrote the 3 named materials" -- \
 expect_ok -- "$LUCENT" materials --out "$TMP/newdir/mat/x.json"
 expect_true "materials creates the folder of --out" -- test -s "$TMP/newdir/mat/x.json"
 mkdir -p "$TMP/ro" && chmod 555 "$TMP/ro"
-expect_fail 1 "$TMP/ro/x.json: cannot create: Permission denied" -- \
+expect_fail 1 "$TMP/ro/x.json: cannot create: the folder $TMP/ro is not writable (Permission denied)" -- \
   as_nobody "$LUCENT" materials --out "$TMP/ro/x.json"
 expect_no_file "$TMP/ro/x.json"
 

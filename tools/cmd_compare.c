@@ -226,6 +226,7 @@ int cmd_compare(int argc, char **argv)
     options o = {.frames = lucent_compare_defaults().frames, .out = "out/compare"};
     snprintf(o.methods_text, sizeof o.methods_text, "%s", DEFAULT_METHODS);
     int rc = parse_args(argc, argv, &o);
+    if (rc == CLI_OK) rc = cli_check_folder(o.out);
     if (rc != CLI_OK) return rc;
     lucent_compare_result result;
     static char command[8192];

@@ -229,6 +229,7 @@ static lucent_status write_colours(const char *path, const options *o, const luc
                                     .colors = rgb,
                                     .background = {0.05f, 0.05f, 0.05f}};
         s = lucent_mesh_paint(m, &d, &img);
+        if (s != LUCENT_OK) s = lucent_error_context(s, "%s: --size %dx%d", path, o->size[0], o->size[1]);
         if (s == LUCENT_OK) s = add_colour_bar(&img, range, o->scale_given);
         if (s == LUCENT_OK) s = lucent_image_write(path, img, NULL);
         lucent_image_destroy(img);
