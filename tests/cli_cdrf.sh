@@ -43,8 +43,8 @@ expect_true "cdrf-fit: 1 and 2 threads give identical CSV" -- cmp "$TMP/fit1.csv
 expect_ok -- "$LUCENT" cdrf-fit marble --radii 3 --photons 4000 --bins 6 --roughness 0.3 --variant collomb --out "$TMP/fitr"
 
 expect_fail 2 "expected a material" -- "$LUCENT" cdrf-fit --radii 2
-expect_fail 2 "--radii: 'x' is not a radius > 0 (mm)" -- "$LUCENT" cdrf-fit skin1 --radii 2,x
-expect_fail 2 "--radii: '-1' is not a radius > 0 (mm)" -- "$LUCENT" cdrf-fit skin1 --radii -1
+expect_fail 2 "--radii: 'x' is not a radius from 1e-06 to 1e+06 (mm)" -- "$LUCENT" cdrf-fit skin1 --radii 2,x
+expect_fail 2 "--radii: '-1' is not a radius from 1e-06 to 1e+06 (mm)" -- "$LUCENT" cdrf-fit skin1 --radii -1
 expect_fail 2 "--roughness needs a GGX alpha in [0, 1]" -- "$LUCENT" cdrf-fit skin1 --roughness 2
 expect_fail 2 "unknown option '--frob'" -- "$LUCENT" cdrf-fit skin1 --frob
 expect_fail 1 "$FIXTURES/materials/negative.json: sigma_a[1]: must be >= 0" -- \

@@ -26,6 +26,58 @@ expect_true "net of the reference's noise: sqrt(error^2 - noise^2), never above 
                    if (NF != 13 || $11 > $3 || (want - $11) ^ 2 > 1e-8 * (want * want + 1e-12)) bad = 1} END {exit bad}' \
   "$TMP/cmp/report.csv"
 
+# Provenance (issue 35): version, revision, command line, date, machine and GL renderer in the report
+# and results.json; the chart's time axis is logarithmic.
+expect_true "the HTML names version, revision and date" -- \
+  grep -qE 'Made by Lucent [0-9]+\.[0-9]+\.[0-9]+ \(revision [^)]+\) on [0-9]{4}-[0-9]{2}-[0-9]{2}T' "$TMP/cmp/report.html"
+expect_true "the HTML gives the command line" -- grep -q "Command: <code>lucent compare .*sphere.json --methods lambert,ssss:svd2" "$TMP/cmp/report.html"
+expect_true "the HTML names the machine and the GL renderer" -- grep -qE 'machine: [^;]+, [0-9]+ cores; GL renderer: .+' "$TMP/cmp/report.html"
+for key in lucent_version revision command date machine cores gl_renderer; do
+  expect_true "results.json's provenance has $key" -- grep -qE "\"$key\":[[:space:]]*[^[:space:]]" "$TMP/cmp/results.json"
+done
+expect_true "results.json's command is the one run" -- grep -q '"command":[[:space:]]*"lucent compare .*--spp 8 --frames 2' "$TMP/cmp/results.json"
+expect_true "the chart's time axis is logarithmic" -- grep -q "logarithmic" "$TMP/cmp/test-sphere/errors.svg"
+expect_true "the paired test is in results.json" -- grep -q '"paired_test"' "$TMP/cmp/results.json"
+expect_true "FLIP is beside the RMS in the terminal" -- grep -qE '^  =?[12] +lambert .* 0\.[0-9]{4}$' <<<"$OUT"
+
+# The README's default methods are the command's (issue 35).
+readme_defaults=$(awk '/^### `lucent compare`/{f=1; next} /^### /{f=0} f' "$TESTS/../README.md" | tr '\n' ' ' | \
+  sed -n 's/.*(default: \([^)]*\)).*/\1/p' | tr -d '` ' )
+help_defaults=$("$LUCENT" compare --help | sed -n 's/.*(default \([a-z0-9:+,]*\).*/\1/p' | head -1)
+expect_true "the README lists the default methods of 'compare --help' ($help_defaults)" -- \
+  test -n "$help_defaults" -a "$readme_defaults" = "$help_defaults"
+
+# The method phase talks (issue 35): on a terminal each method has a bar with its name, frame k of n,
+# the elapsed time and an ETA.
+if command -v script >/dev/null; then
+  printf -v cmdline '%q ' "${GLRUN[@]}" compare "$SC/sphere.json" --methods lambert,ssss:svd2 --spp 8 --frames 3 \
+    --out "$TMP/cmp-tty"
+  script -qec "$cmdline" /dev/null > "$TMP/tty.txt" 2>&1
+  expect_true "on a terminal the method phase shows each method, frame k of n, elapsed and ETA" -- \
+    grep -qE 'test-sphere 2/2 ssss:svd2 +\[[#.]+\] +[0-9.]+% frame [0-9] of 4 .* elapsed, ETA [0-9]+:[0-9]{2}' "$TMP/tty.txt"
+else
+  _report 0 "script (util-linux) is needed to test the terminal's progress"
+fi
+
+# tsd and points are not among the defaults; asked for on a software GL renderer, they are announced
+# before any work with an estimate (here the run then fails on its scene, so it costs nothing).
+if "$LUCENT" --version 2>/dev/null | grep -q "^gl .*llvmpipe"; then
+  expect_fail 1 "warning: tsd is slow on a software GL renderer" -- "${GLRUN[@]}" compare "$SC/missing-mesh.json" \
+    --methods lambert,tsd --frames 2 --spp 1 --out "$TMP/c7"
+  expect_fail 1 "3 frames a scene (--frames 2 and the first)" -- "${GLRUN[@]}" compare "$SC/missing-mesh.json" \
+    --methods tsd --frames 2 --spp 1 --out "$TMP/c7"
+fi
+
+# A reference reused (--reference): not traced again, the same errors; refused for another scene.
+expect_ok -- "${GLRUN[@]}" compare "$SC/sphere.json" --methods lambert --reference "$TMP/cmp" --set render.taps=17 \
+  --frames 1 --out "$TMP/cmp-reuse"
+expect_true "--reference: the same reference (its spp) and lambert's error" -- bash -c \
+  'grep -q "reference 8 spp" <<<"$0" && test "$(grep "^\"test-sphere\",\"lambert\"" "$1" | cut -d, -f3)" = "$(grep "^\"test-sphere\",\"lambert\"" "$2" | cut -d, -f3)"' \
+  "$OUT" "$TMP/cmp/report.csv" "$TMP/cmp-reuse/report.csv"
+expect_fail 1 "reference.json: objects[0].material: the reference was made with \"skin1\"" -- "${GLRUN[@]}" compare \
+  "$SC/sphere.json" --set 'objects[0].material=skin2' --methods lambert --reference "$TMP/cmp" --out "$TMP/c6"
+expect_no_file "$TMP/c6/report.html"
+
 # A 1-spp reference cannot estimate its own noise: unknown, a warning in the terminal and the HTML,
 # nothing ranked or bolded (issue 12, section 2).
 expect_ok -- "${GLRUN[@]}" compare "$SC/sphere.json" --methods lambert,ssss:svd2 --spp 1 --frames 1 --out "$TMP/cmp1"
@@ -54,6 +106,7 @@ expect_true "skip: the JSON lists it" -- grep -q '"method":[[:space:]]*"ssss:man
 expect_fail 2 "--methods: unknown method 'phong'" -- "${GLRUN[@]}" compare "$SC/sphere.json" --methods lambert,phong --out "$TMP/c1"
 expect_fail 2 "give at least one scene file" -- "${GLRUN[@]}" compare --out "$TMP/c2"
 expect_fail 2 "--spp needs a whole number >= 1" -- "${GLRUN[@]}" compare "$SC/sphere.json" --spp 0 --out "$TMP/c3"
+expect_fail 2 "--reference-runs needs 1 or 2" -- "${GLRUN[@]}" compare "$SC/sphere.json" --reference-runs 3 --out "$TMP/c3"
 expect_fail 1 "objects[0].mesh: cannot open" -- "${GLRUN[@]}" compare "$SC/missing-mesh.json" --spp 1 --out "$TMP/c4"
 expect_fail 1 "render.taps" -- "${GLRUN[@]}" compare "$SC/sphere.json" --set render.taps=4 --spp 1 --out "$TMP/c5"
 expect_no_file "$TMP/c1/report.html" "$TMP/c2/report.html" "$TMP/c3/report.html" "$TMP/c4/report.html" "$TMP/c5/report.html"

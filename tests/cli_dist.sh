@@ -15,6 +15,8 @@ done
 expect_true "a part writes OUTPUT.part-K-of-N, not the output" -- \
   test -f "$D/parts/three_layers.mco.part-3-of-4" -a ! -e "$D/parts/three_layers.mco"
 expect_ok -- "$LUCENT" merge "$D"/parts/three_layers.mco.part-*-of-4 -- --out-dir "$D/merged"
+expect_true "merge prints no photon rate: nothing was simulated (issue 35)" -- \
+  eval 'grep -q "photons)" <<<"$OUT" && ! grep -q "photons/s" <<<"$OUT"'
 expect_true "mcml: 4 merged parts give the single run's .mco byte for byte" -- \
   cmp "$D/one/three_layers.mco" "$D/merged/three_layers.mco"
 expect_ok -- "$LUCENT" mcml "$MCI3" --out-dir "$D/one" --seed 7 --quiet
@@ -28,12 +30,19 @@ expect_fail 1 "merge: part 4 of 4 is missing" -- "$LUCENT" merge "$P.part-1-of-4
 expect_fail 1 "merge: part 2 of 4 given twice" -- "$LUCENT" merge "$P.part-1-of-4" "$P.part-2-of-4" \
   "$P.part-2-of-4" "$P.part-4-of-4" -- --out-dir "$D/bad"
 expect_fail 1 "$MCI3: header: not a Lucent part file" -- "$LUCENT" merge "$MCI3"
-head -c 300 "$P.part-1-of-4" >"$D/bad/short.part"
+# fixcrc FILE: its last 4 bytes become the CRC-32 of the others, as a part's checksum (src/base/dist.c), so
+# that the damage below reaches the structure's checks rather than the checksum's.
+fixcrc() { python3 -c 'import sys, zlib; f = sys.argv[1]; b = bytearray(open(f, "rb").read())
+b[-4:] = zlib.crc32(bytes(b[:-4])).to_bytes(4, "little"); open(f, "wb").write(b)' "$1"; }
+head -c 300 "$P.part-1-of-4" >"$D/bad/short.part" && fixcrc "$D/bad/short.part"
 expect_fail 1 "$D/bad/short.part: tally 1:" -- "$LUCENT" merge "$D/bad/short.part"
+head -c 300 "$P.part-1-of-4" >"$D/bad/crc.part"
+expect_fail 1 "$D/bad/crc.part: the part's checksum does not match its contents" -- "$LUCENT" merge "$D/bad/crc.part"
 # damaged headers and tails (the layout: docs/scale.md, src/base/dist.c)
-cp "$P.part-1-of-4" "$D/bad/tail.part" && printf 'x' >>"$D/bad/tail.part"
-expect_fail 1 "$D/bad/tail.part: 1 bytes after the last tally" -- "$LUCENT" merge "$D/bad/tail.part"
+cp "$P.part-1-of-4" "$D/bad/tail.part" && printf 'x....' >>"$D/bad/tail.part" && fixcrc "$D/bad/tail.part"
+expect_fail 1 "$D/bad/tail.part: 5 bytes after the last tally" -- "$LUCENT" merge "$D/bad/tail.part"
 cp "$P.part-1-of-4" "$D/bad/k.part" && printf '\005' | dd of="$D/bad/k.part" bs=1 seek=20 conv=notrunc 2>/dev/null
+fixcrc "$D/bad/k.part"
 expect_fail 1 "$D/bad/k.part: header: part 5 of 4" -- "$LUCENT" merge "$D/bad/k.part"
 cp "$P.part-1-of-4" "$D/bad/order.part" && printf '\001\002\003\004' | dd of="$D/bad/order.part" bs=1 seek=16 \
   conv=notrunc 2>/dev/null

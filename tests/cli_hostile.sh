@@ -33,7 +33,7 @@ expect_fail 1 "dense-1e300.json: layers[0].sigma_s: sigma_t" -- \
   "$LUCENT" profile "$FIXTURES/materials/dense-1e300.json" --model mc --out "$TMP/dense"
 expect_no_file "$TMP/dense.json" "$TMP/dense.csv"
 cp "$FIXTURES/mcml/drtiny.mci" "$TMP/"
-expect_fail 1 "drtiny.mci: line 3 (run): grid.dr" -- bash -c "cd '$TMP' && '$LUCENT' mcml drtiny.mci"
+expect_fail 1 "drtiny.mci: line 5 (the run of line 3): grid.dr" -- bash -c "cd '$TMP' && '$LUCENT' mcml drtiny.mci"
 expect_no_file "$TMP/drtiny.mco"
 # A material that does not absorb ends in bounded time with the step-limit warning.
 printf '{"name":"white","units":"mm^-1","sigma_a":[0,0,0],"sigma_s":[1,1,1],"g":0.9,"eta":1.0}\n' >"$TMP/white.json"
@@ -65,8 +65,8 @@ expect_no_file "$TMP/k.png"
 # Every command that writes files checks them the same way, before any work.
 cp "$FIXTURES/mesh/tetra.ply" "$TMP/keep.ply"
 expect_fail 2 "--out '$TMP/keep.ply' names the input" -- "$LUCENT" curvature "$TMP/keep.ply" --out "$TMP/keep.ply"
-expect_fail 2 "names the input" -- "$LUCENT" mesh-uv "$TMP/keep.ply" "$TMP/uv.obj" --png "$TMP/keep.ply"
-expect_fail 2 "name the same file" -- "$LUCENT" mesh-uv "$TMP/keep.ply" "$TMP/uv.obj" --png "$TMP/uv.obj"
+expect_fail 2 "names the input" -- "$LUCENT" mesh-uv "$TMP/keep.ply" --out "$TMP/uv.obj" --png "$TMP/keep.ply"
+expect_fail 2 "name the same file" -- "$LUCENT" mesh-uv "$TMP/keep.ply" --out "$TMP/uv.obj" --png "$TMP/uv.obj"
 expect_no_file "$TMP/uv.obj"
 printf '{"name":"keep","units":"mm^-1","sigma_a":[0.1,0.1,0.1],"sigma_s":[1,1,1],"g":0,"eta":1.3}\n' >"$TMP/keepmat.json"
 cp "$TMP/keepmat.json" "$TMP/keepmat.orig"
@@ -125,3 +125,157 @@ wait $pid
 rc=$?
 expect_true "SIGINT ends trace by the signal (exit $rc)" -- test "$rc" -eq 130
 expect_true "SIGINT leaves trace's previous outputs and nothing else" -- diff -r "$TMP/sigt" "$TMP/sigt-before"
+
+# ---- Issue 32 (hostile use: crashes, hangs, wrong numbers, bombs, merges) ----
+# 7. A taps' range far beyond the kernel's grid: no segfault (an int cast of a huge tap coordinate); the
+# library refuses ranges whose offsets leave double's range, the CLI says so as usage.
+for m in svd preint guided; do
+  expect_ok -- "$LUCENT" kernel skin1 --model "$m" --range 1e6 --export json --out "$TMP/k-far.json"
+done
+expect_true "taps at 1e6 mm: the centre tap holds the kernel, the others fall outside it" -- python3 -c "
+import json, sys; w = json.load(open(sys.argv[1]))['passes'][0]['weights']
+assert abs(w[0][0] - 1) < 1e-9 and all(v == 0 for row in w[1:] for v in row)" "$TMP/k-far.json"
+expect_fail 2 "--range needs a number > 0 and at most 1e6 (mm)" -- "$LUCENT" kernel skin1 --range 1e9 --export json --out "$TMP/k.json"
+
+# 9. lucent merge: part files carry a CRC-32 of their body (format v2); damaged, negative or overflowing
+# tallies are refused naming the file; v1 parts (../shared/repro-3's, written before the checksum) name the
+# version. tamper MODE IN OUT: rewrites a part (recomputing the checksum unless MODE is "keep-crc").
+cat >"$TMP/tamper.py" <<'PY'
+import struct, sys, zlib
+mode, src, dst = sys.argv[1:4]
+b = bytearray(open(src, "rb").read())
+argc = struct.unpack_from("<I", b, 28)[0]  # after the magic (16), order, k and n
+at = 32
+for _ in range(argc):
+    at += 4 + struct.unpack_from("<I", b, at)[0]
+at += 4  # the tally count; tally 1 follows: u32 type, u64 count, values
+ttype, count = struct.unpack_from("<IQ", b, at)
+assert ttype == 0, "tally 1 of an mcml part is I64"
+at += 12
+if mode == "max":
+    struct.pack_into("<q", b, at, 2**63 - 1)
+elif mode == "negative":
+    for j in range(count):
+        struct.pack_into("<q", b, at + 8 * j, -1)
+elif mode == "keep-crc":
+    struct.pack_into("<q", b, at + 8, struct.unpack_from("<q", b, at + 8)[0] + 1)
+if mode != "keep-crc":
+    struct.pack_into("<I", b, len(b) - 4, zlib.crc32(bytes(b[:-4])))
+open(dst, "wb").write(b)
+PY
+MP="$TMP/merge32"
+for k in 1 2; do
+  expect_ok -- "$LUCENT" mcml "$FIXTURES/mcml/three_layers.mci" --out-dir "$MP" --seed 3 --part $k/2
+done
+P1="$MP/three_layers.mco.part-1-of-2" P2="$MP/three_layers.mco.part-2-of-2"
+for m in max negative keep-crc; do
+  python3 "$TMP/tamper.py" $m "$P1" "$MP/$m-1" && python3 "$TMP/tamper.py" $m "$P2" "$MP/$m-2"
+  mv "$MP/$m-1" "$MP/$m.part-1-of-2" && mv "$MP/$m-2" "$MP/$m.part-2-of-2"
+done
+expect_fail 1 "merge: tally 1 value 0 overflows when $MP/max.part-2-of-2 is added: damaged parts" -- \
+  "$LUCENT" merge "$MP/max.part-1-of-2" "$MP/max.part-2-of-2" -- --out-dir "$MP/out"
+expect_fail 1 "$MP/negative.part-1-of-2: tally 1: value 0 is negative (-1): a damaged part file" -- \
+  "$LUCENT" merge "$MP/negative.part-1-of-2" "$MP/negative.part-2-of-2" -- --out-dir "$MP/out"
+expect_fail 1 "$MP/keep-crc.part-1-of-2: the part's checksum does not match its contents: a damaged part file" -- \
+  "$LUCENT" merge "$MP/keep-crc.part-1-of-2" "$MP/keep-crc.part-2-of-2" -- --out-dir "$MP/out"
+expect_no_file "$MP/out/three_layers.mco"
+expect_ok -- "$LUCENT" merge "$P1" "$P2" -- --out-dir "$MP/out"
+expect_true "the untouched parts still merge" -- test -s "$MP/out/three_layers.mco"
+for f in "$FIXTURES"/bad-parts/*-1-of-2; do
+  expect_fail 1 "$f: header: a part file of format v1 (before checksums" -- \
+    "$LUCENT" merge "$f" "${f%-1-of-2}-2-of-2" -- --out-dir "$MP/v1"
+done
+expect_no_file "$MP/v1"
+
+# 3. A time limit that completes no pass: exit 1 naming the cause, no black image (it wrote zeros, exit 0).
+expect_fail 1 "trace-small.json: trace: no pass completed within the time limit of 0.001 s" -- \
+  "$LUCENT" trace "$FIXTURES/scenes/trace-small.json" --time 0.001 --out "$TMP/t0.png" --exr "$TMP/t0.exr"
+expect_fail 1 "no pass completed within the time limit of 1e-300 s" -- \
+  "$LUCENT" trace "$FIXTURES/scenes/trace-small.json" --set render.time_limit=1e-300 --out "$TMP/t0.png"
+expect_no_file "$TMP/t0.png" "$TMP/t0.exr"
+expect_fail 1 "sphere.json: reference test-sphere, run 1 of 2: no pass completed within the time limit" -- \
+  "${GLRUN[@]}" compare "$FIXTURES/scenes/sphere.json" --methods lambert --time 0.001 --out "$TMP/c0"
+
+# 6. Meshes and point clouds under hostile counts: .ply.gz bombs refused from the header (30 M faces in
+# 117 KB, 20 M points in 175 KB: 4.1 GB and 1.6 GB before) or as the gzip data inflate beyond 100:1; a read
+# limit (LUCENT_MESH_MAX_ELEMENTS); each point checked as it is read, and rows beyond the header refused
+# (10: they were ignored), as are duplicate properties and radii that render nothing.
+cloud_scene() { # cloud_scene PLY: a scene holding that cloud, written to $TMP/cloud-scene.json
+  printf '{"camera": {"position": [0, 0, 20], "target": [0, 0, 0], "fov_y": 40}, "lights": [{"type":
+  "directional", "direction": [0.3, -0.3, -1], "intensity": 2}], "objects": [{"points": "%s", "material":
+  "skin1"}], "render": {"width": 16, "height": 16}}\n' "$1" >"$TMP/cloud-scene.json"
+}
+for f in "$FIXTURES"/bad-points/*; do
+  cloud_scene "$f"
+  expect_fail 1 "objects[0].points: $f: " -- "$LUCENT" trace "$TMP/cloud-scene.json" --out "$TMP/cloud.png"
+done
+expect_no_file "$TMP/cloud.png"
+BP="$FIXTURES/bad-points"
+for c in "bomb-ply-gz-points-20m.ply.gz: the header declares 20000000 vertex entries" \
+  "hand-points-extra-rows.ply: line 14: more rows than the header declares" \
+  "hand-points-extra-rows-binary.ply: byte 217: data after the last element's rows" \
+  "hand-points-duplicate-property.ply: line 10: element vertex declares the property x twice" \
+  "hand-points-radius-tiny.ply: vertex 1: radius must be > 0, from 1e-18 to 1e+18" \
+  "hand-points-radius-huge.ply: vertex 2: radius must be > 0, from 1e-18 to 1e+18, got 3e+38" \
+  "hand-points-3dgs-scale-100.ply: vertex 1: the scales (scale_0..2) give a radius of 7.44015e-44" \
+  "hand-points-double-1e300.ply: vertex 2: x = 1e+300 does not fit a float" \
+  "hand-points-x-list.ply: no vertex positions (property x is a list, not a number)"; do
+  cloud_scene "$BP/${c%%: *}"
+  expect_fail 1 "$c" -- "$LUCENT" trace "$TMP/cloud-scene.json" --out "$TMP/cloud.png"
+done
+expect_fail 1 "bomb-ply-gz-mesh-30m-faces.ply.gz: the header declares 30000000 face entries" -- \
+  "$LUCENT" curvature "$FIXTURES/bad-meshes/bomb-ply-gz-mesh-30m-faces.ply.gz" --out "$TMP/x.csv"
+expect_fail 1 "hand-gz-list-bomb.ply.gz: gzip data inflating more than 100 times its size" -- \
+  "$LUCENT" curvature "$FIXTURES/bad-meshes/hand-gz-list-bomb.ply.gz" --out "$TMP/x.csv"
+expect_fail 1 "tetra.ply: the header declares 4 vertex entries (4 rows in all so far): above the read limit of 3" -- \
+  env LUCENT_MESH_MAX_ELEMENTS=3 "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/x.csv"
+expect_ok -- env LUCENT_MESH_MAX_ELEMENTS=8 "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/x.csv"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n' >"$TMP/four.obj"
+expect_fail 1 "four.obj: line 5: more than 4 vertices, texture coordinates and triangles: above the read limit" -- \
+  env LUCENT_MESH_MAX_ELEMENTS=4 "$LUCENT" curvature "$TMP/four.obj" --out "$TMP/x.csv"
+
+# 10. Values accepted before that gave non-finite or silently different results, each refused naming the field.
+SM="$FIXTURES/scenes/trace-small.json"
+for c in 'render.background=1e308|render.background: must be in [0, 1e+30], got 1e+308' \
+  'objects[0].transform={"scale":1e300}|objects[0].transform.scale: must be within +-[1e-12, 1e12], got 1e+300' \
+  'objects[0].transform={"translate":[1e300,0,0]}|objects[0].transform: places vertex 0 at 1e+300 mm from the origin' \
+  'objects[0].mesh={"primitive":"icosphere","radius":0}|objects[0].mesh.radius: must be > 0' \
+  'objects[0].mesh={"primitive":"icosphere","axes":[1,0,1]}|objects[0].mesh.axes: the primitive icosphere has no axes' \
+  'objects[0].mesh={"primitive":"ellipsoid","axes":[1,0,1]}|objects[0].mesh.axes: each axis must be > 0' \
+  'objects[0].mesh={"primitive":"icosphere","subdivisions":0}|objects[0].mesh.subdivisions: must be in [1, 9], got 0'; do
+  expect_fail 1 "trace-small.json: ${c#*|}" -- "$LUCENT" trace "$SM" --spp 1 --set "${c%%|*}" --out "$TMP/v10.png"
+done
+expect_no_file "$TMP/v10.png"
+expect_fail 2 "--radii: '1e-300' is not a radius from 1e-06 to 1e+06 (mm)" -- \
+  "$LUCENT" cdrf-fit skin1 --radii 1e-300 --photons 2000 --out "$TMP/cf"
+expect_fail 2 "--screen needs WxH in pixels (1..65536 each), got '4294967297x1080'" -- \
+  "$LUCENT" pack skin1 --engine glsl --screen 4294967297x1080 --out "$TMP/pk"
+expect_fail 2 "--object-height needs a length from 0.001 mm to 1e12 mm" -- \
+  "$LUCENT" pack skin1 --engine glsl --object-height 1e-300mm --out "$TMP/pk"
+expect_fail 2 "--distance needs a length from 0.001 mm to 1e12 mm" -- \
+  "$LUCENT" kernel skin1 --export json --distance 1e-300 --out "$TMP/k.json"
+expect_fail 2 "--object-height and --distance: give one" -- \
+  "$LUCENT" pack skin1 --engine glsl --object-height 1m --distance 1m --out "$TMP/pk"
+expect_no_file "$TMP/pk" "$TMP/cf.json"
+
+# 16-18. Messages that name the file, the field and the true cause.
+expect_fail 1 "dense-1e300.json: layers[0].sigma_s: sigma_t" -- \
+  "$LUCENT" kernel "$FIXTURES/materials/dense-1e300.json" --profile mc --export json --out "$TMP/k.json"
+expect_fail 1 "dense-1e300.json: layers[0].sigma_s: sigma_t" -- \
+  "$LUCENT" kernel-eval "$FIXTURES/materials/dense-1e300.json" --profile mc --out "$TMP/ke"
+expect_fail 1 "objects[0].material: /proc/self/mem: read failed: Input/output error" -- \
+  "$LUCENT" trace "$SM" --spp 1 --set 'objects[0].material=/proc/self/mem' --out "$TMP/t.png"
+printf '1.0\n1\nx.mco A\n100\n0.01 0.01\n10 10 5\n2\n1.0\n1.0 1 9 0.75 0.02\n1.4 1 1e14 0.9 0.05\n1.0\n' >"$TMP/dense-layer.mci"
+expect_fail 1 "dense-layer.mci: line 10 (the run of line 3): layers[1].sigma_s" -- \
+  "$LUCENT" mcml "$TMP/dense-layer.mci" --out-dir "$TMP/dl"
+printf '{"rend\300\200er": 1}' >"$TMP/utf8-key.json"
+expect_fail 1 "utf8-key.json: rend\\xC0\\x80er: unknown field" -- "$LUCENT" trace "$TMP/utf8-key.json" --out "$TMP/t.png"
+expect_fail 1 "override 'render.w\\x1B[31midth=3': no such member" -- \
+  "$LUCENT" trace "$SM" --set $'render.w\x1b[31midth=3' --out "$TMP/t.png"
+expect_fail 2 "LUCENT_THREADS='abc': needs a whole number from 1 to 256" -- env LUCENT_THREADS=abc "$LUCENT" materials
+expect_fail 2 "LUCENT_THREADS='-3': needs a whole number from 1 to 256" -- env LUCENT_THREADS=-3 "$LUCENT" materials
+expect_fail 2 "--threads needs a positive whole number, at most 256" -- "$LUCENT" materials --threads 300
+
+# 8. 200 small spheres: the guiding field's pre-pass costs little per object (52 s for 1 spp before; the
+# timeout is a hang guard, not a timing) and a time limit holds in it.
+expect_ok -- timeout 120 "$LUCENT" trace "$FIXTURES/scenes/hang-trace-200-spheres.json" --spp 1 --out "$TMP/s200.png"

@@ -22,6 +22,13 @@ expect_ok -- "$LUCENT" image diff "$img/a.png" "$img/a.pfm" --out "$img/heat.png
 expect_true "diff --out writes the heat map" -- test -s "$img/heat.png"
 expect_ok -- "$LUCENT" image diff "$img/a.png" "$img/a.pfm" --mask "$img/a.png" --out "$img/d.exr"
 expect_ok -- "$LUCENT" image info "$img/heat.png"
+expect_true "the heat map carries its colour bar below (at least 200 wide)" -- grep -qE '^[^:]*: (2[0-9][0-9]|[3-9][0-9][0-9])x' <<<"$OUT"
+# a fixed scale (issue 35): the same error, the same colour in every map; the line says which scale
+expect_ok -- "$LUCENT" image diff "$img/a.png" "$img/a.pfm" --out "$img/heat-fixed.png" --scale 0.5
+expect_true "diff --scale says the map's scale" -- grep -q "white at |A - B| 0.5, --scale" <<<"$OUT"
+expect_ok -- "$LUCENT" image diff "$img/a.png" "$img/a.pfm" --out "$img/heat-fixed.png" --scale 0.5 --json
+expect_true "diff --json gives the heat map's scale" -- grep -q '"heat_scale": 0.5}' <<<"$OUT"
+expect_fail 2 "--scale needs the error drawn white" -- "$LUCENT" image diff "$img/a.png" "$img/a.pfm" --scale 0
 
 # ---- malformed input: exit 1, a message naming the file ----
 echo "definitely not a picture" > "$img/text.png"
@@ -49,7 +56,7 @@ expect_fail 1 "x.tga: unknown image format" -- "$LUCENT" image convert "$img/a.p
 expect_ok -- "$LUCENT" image convert "$img/a.pfm" "$img/missing/x.png"
 expect_true "image convert creates the output's folder" -- test -s "$img/missing/x.png"
 : > "$img/plain"
-expect_fail 1 "plain/x.png: cannot create: Not a directory" -- "$LUCENT" image convert "$img/a.pfm" "$img/plain/x.png"
+expect_fail 1 "plain/x.png: cannot create: $img/plain is not a folder" -- "$LUCENT" image convert "$img/a.pfm" "$img/plain/x.png"
 expect_no_file "$img/missing"
 mkdir -p "$img/ro" && chmod 755 "$img" && chmod 555 "$img/ro"
 expect_fail 1 "ro/x.exr: cannot create" -- as_nobody "$LUCENT" image convert "$img/a.pfm" "$img/ro/x.exr"

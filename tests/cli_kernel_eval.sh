@@ -21,6 +21,10 @@ expect_ok -- "$LUCENT" kernel-eval marble --models preint,svd-r2 --signal shapes
 expect_true "kernel-eval says what it wrote" -- grep -q "^wrote $TMP/eval-shapes/results.json$" <<<"$OUT"
 expect_true "kernel-eval --table65 on request" -- grep -q '"table65"' "$TMP/eval-shapes/results.json"
 expect_true "kernel-eval --taps 0 writes no tap images" -- test ! -e "$TMP/eval-shapes/preint-taps.png"
+# --out's missing parents are created, as every command does (issue 35).
+expect_ok -- "$LUCENT" kernel-eval marble --models preint --size 32 --taps 0 --mm-per-pixel 0.5 \
+  --out "$TMP/eval-deep/a/b/c"
+expect_true "kernel-eval creates --out's parents" -- test -s "$TMP/eval-deep/a/b/c/results.json"
 
 # A user image with its own scale.
 expect_ok -- "$LUCENT" kernel-eval skin2 --models preint --signal "$TMP/eval-shapes/signal.png" \

@@ -31,6 +31,17 @@ expect_true "--compare writes one table per model and one chart" -- \
 expect_true "--sog records the Gaussians" -- grep -q '"sum_of_gaussians"' "$TMP/cmp-dipole.json"
 expect_ok -- "$LUCENT" profile skin1 --model multipole --thickness 2 --out "$TMP/slab"
 expect_ok -- "$LUCENT" profile skin1 --layers skin1:1,skin2:2 --model multipole --out "$TMP/layers"
+# A layered slab is recorded and named by its layers (issue 35): the JSON's "layers", the default name.
+expect_true "profile --layers records each layer's material and thickness" -- \
+  python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); \
+assert [(l["material"]["name"], l["thickness_mm"]) for l in d["layers"]] == [("Skin1", 1), ("Skin2", 2)]' \
+  "$TMP/layers.json"
+mkdir -p "$TMP/layers-default"
+expect_ok -- "$LUCENT" profile --layers skin1:0.5,skin2:inf --model mc --photons 2000 --out "$TMP/layers-default/"
+expect_true "profile --layers names the files after the layers" -- \
+  test -s "$TMP/layers-default/Skin1-0.5mm_Skin2-mc.json" -a -s "$TMP/layers-default/Skin1-0.5mm_Skin2-mc.svg"
+expect_true "profile --layers names the chart after the layers" -- \
+  grep -q "Skin1 0.5mm + Skin2" "$TMP/layers-default/Skin1-0.5mm_Skin2-mc.svg"
 
 # Bad input and usage.
 expect_fail 1 "multipole: give the slab --thickness" -- "$LUCENT" profile skin1 --model multipole

@@ -28,9 +28,12 @@ expect_true "1 and 2 threads give the same EXR" -- cmp "$TMP/a.exr" "$TMP/b.exr"
 expect_ok -- "$LUCENT" trace "$SMALL" --time 0.2 --spp 1000000 --subsurface-only --out "$TMP/timed.png"
 expect_true "--time stops early" -- \
   awk -F'[:,]' '/"spp":/ {gsub(/[ \t]/, "", $2); n = $2 + 0; exit !(n > 0 && n < 1000000)}' "$TMP/timed.json"
+expect_true "a time-limited trace without --adaptive does not call itself adaptive (issue 35)" -- \
+  eval '! grep -q adaptive <<<"$OUT"' 
 expect_true "the sidecar says subsurface only" -- json_has "$TMP/timed.json" subsurface_only true
 expect_ok -- "$LUCENT" trace "$SMALL" --spp 6 --adaptive --out "$TMP/ad.png"
-expect_true "--adaptive says how many samples it took" -- grep -q "^trace: adaptive: .* samples per pixel on average" <<<"$OUT"
+expect_true "--adaptive counts passes, not spp, and says how many samples it took (issue 35)" -- \
+  grep -q "^trace: 6 adaptive passes ([0-9.]* samples per pixel on average)" <<<"$OUT"
 expect_true "the sidecar says adaptive" -- json_has "$TMP/ad.json" adaptive true
 
 # Refusal, bad input, bad usage; nothing partial is left.

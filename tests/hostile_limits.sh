@@ -31,6 +31,16 @@ done
 for f in "$FIXTURES"/bad-images/*; do
   [ -f "$f" ] && run "$(basename "$f")" -- "$LUCENT" image info "$f"
 done
+# Point clouds (issue 32): each through a scene that holds it.
+for f in "$FIXTURES"/bad-points/*; do
+  printf '{"camera": {"position": [0, 0, 20], "target": [0, 0, 0]}, "lights": [{"type": "directional", "direction":
+    [0, 0, -1], "intensity": 1}], "objects": [{"points": "%s", "material": "skin1"}]}\n' "$f" >"$TMP/cloud.json"
+  run "$(basename "$f")" -- "$LUCENT" trace "$TMP/cloud.json" --out "$TMP/x.png"
+done
+# Part files of an older format (issue 32; their tallies overflow, are negative or were changed).
+for f in "$FIXTURES"/bad-parts/*-1-of-2; do
+  run "$(basename "$f")" -- "$LUCENT" merge "$f" "${f%-1-of-2}-2-of-2" -- --out-dir "$TMP/merged"
+done
 run dense-1e300.json -- "$LUCENT" profile "$FIXTURES/materials/dense-1e300.json" --model mc --out "$TMP/p"
 cp "$FIXTURES/mcml/drtiny.mci" "$TMP/"
 run drtiny.mci -- bash -c "cd '$TMP' && exec '$LUCENT' mcml drtiny.mci"

@@ -21,6 +21,32 @@ soname=$(objdump -p "$so" | awk '/SONAME/ {print $2}')
 case $so in *.so.[0-9]*.[0-9]*.[0-9]*) ;; *) fail "liblucent.so has no version: $so" ;; esac
 "$prefix/bin/lucent" --version | grep -q '^lucent [0-9]' || fail "installed lucent --version"
 
+# Man pages (one per command, made from its --help), bash completion and the examples (issue 35).
+commands=$("$prefix/bin/lucent" --help | awk '/^commands:/ {on = 1; next} on && /^$/ {exit} on {print $1}')
+[ "$(wc -w <<<"$commands")" -ge 10 ] || fail "lucent --help lists no commands: $commands"
+man1=$prefix/share/man/man1
+for page in lucent $(sed 's/^/lucent-/' <<<"$commands"); do
+  [ -s "$man1/$page.1" ] || fail "no man page $page.1"
+  warnings=$(groff -man -Tutf8 -ww -z "$man1/$page.1" 2>&1) || fail "groff cannot read $page.1"
+  [ -z "$warnings" ] || fail "groff warns on $page.1: $warnings"
+done
+grep -q '^lucent mcml FILE.mci' "$man1/lucent-mcml.1" || fail "lucent-mcml.1's synopsis is not mcml's usage"
+"$prefix/bin/lucent" mcml --help | grep -q -- '--out-dir DIR' && grep -q -- '\\-\\-out\\-dir DIR' "$man1/lucent-mcml.1" ||
+  fail "lucent-mcml.1 lacks the --help text"
+completion=$prefix/share/bash-completion/completions/lucent
+got=$(bash -c 'source "$1"; COMP_WORDS=(lucent mc); COMP_CWORD=1; _lucent; echo "${COMPREPLY[*]}";
+  COMP_WORDS=(lucent trace --sp); COMP_CWORD=2; _lucent; echo "${COMPREPLY[*]}"' _ "$completion") ||
+  fail "the bash completion does not load"
+[ "$got" = $'mcml\n--spp' ] || fail "bash completion: 'lucent mc' and 'lucent trace --sp' gave: $got"
+share=$prefix/share/lucent
+for f in README.md scenes/spheres-skin.json scenes/bunny-skin.json examples/materials/jade.json \
+         examples/mcml/vanhulst.mci examples/scenes/trace-small.json; do
+  [ -s "$share/$f" ] || fail "share/lucent/$f not installed"
+done
+"$prefix/bin/lucent" materials "$share/examples/materials/two.json" >/dev/null || fail "the installed example material"
+(cd "$tmp" && "$prefix/bin/lucent" -q trace "$share/examples/scenes/trace-small.json" --spp 1 \
+  --set render.width=8 --set render.height=8 --out "$tmp/ex/ball.png") || fail "the installed example scene"
+
 export PKG_CONFIG_PATH=$prefix/lib/pkgconfig
 inc=$src/tests/install
 # pkg-config, shared.

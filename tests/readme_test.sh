@@ -2,8 +2,10 @@
 # Runs the README's examples as a user would on a fresh clone (issue 16 item 4): every line of a
 # ```sh block that starts with `lucent ` (continuation lines joined), and `for ...; do lucent ...;
 # done` loops (run as written), in the order of the README,
-# from a scratch folder that holds the repository's data/, docs/ and tests/ (so outputs stay out of
-# the tree), with the build's lucent first on PATH. An example may use files an earlier example wrote.
+# and `mpirun ...` lines (run as written: as root they need the flags the README gives), from a
+# scratch copy of the repository's data/, docs/ and tests/, with the build's lucent first on PATH.
+# An example may use files an earlier example wrote. Every example writes under out/ (issue 35):
+# afterwards the scratch copy must hold no file that was not there before, out/ aside.
 #
 # Sizes: unless LUCENT_README_FULL=1, small-size options are appended per subcommand (the table
 # below: later options win; tsd's texture is 256 texels a side: at 2048, one tsd frame takes 18 s on
@@ -17,7 +19,13 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/lucent-readme-XXXXXX")
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$work/bin"
 ln -s "$lucent" "$work/bin/lucent"
-for d in data docs tests; do ln -s "$src/$d" "$work/$d"; done
+mkdir -p "$work/data"
+cp -R "$src/docs" "$src/tests" "$work/"
+for f in "$src"/data/*; do
+  case $f in */meshes) ln -s "$f" "$work/data/meshes" ;; *) cp -R "$f" "$work/data/" ;; esac
+done
+listing() { (cd "$work" && find . -path ./bin -prune -o -path ./cache -prune -o -path ./out -prune -o -print | sort); }
+before=$(listing)
 export PATH=$work/bin:$PATH LUCENT_CACHE_DIR=${3:-$work/cache}
 
 small_options() { # SUBCOMMAND: what makes its example small
@@ -39,7 +47,7 @@ small_options() { # SUBCOMMAND: what makes its example small
 examples=$(awk '/^```sh[[:space:]]*$/ {inblock = 1; next} /^```/ {inblock = 0; next}
   inblock { line = (cont ? cont " " : "") $0; cont = "";
             if (line ~ /\\$/) { sub(/\\$/, "", line); cont = line; next }
-            sub(/^[[:space:]]+/, "", line); if (line ~ /^lucent / || line ~ /^for .*; do lucent .*; done/) print line }' "$src/README.md")
+            sub(/^[[:space:]]+/, "", line); if (line ~ /^lucent / || line ~ /^mpirun .* lucent / || line ~ /^for .*; do lucent .*; done/) print line }' "$src/README.md")
 passed=0 failed=0 skipped=0
 while IFS= read -r line; do
   [ -n "$line" ] || continue
@@ -53,11 +61,16 @@ while IFS= read -r line; do
   fi
   extra=""
   [ "${LUCENT_README_FULL:-0}" = 1 ] || [[ "$cmd" != lucent* ]] || extra=$(small_options "$sub")
-  if out=$(cd "$work" && bash -c "$cmd $extra" 2>&1 </dev/null); then
+  out=$(cd "$work" && bash -c "$cmd $extra" 2>&1 </dev/null); rc=$?
+  if [ "$rc" = 0 ]; then
     passed=$((passed + 1)); echo "ok   $line"
   else
-    failed=$((failed + 1)); echo "FAIL $line"; printf '%s\n' "$out" | tail -5 | sed 's/^/     /'
+    failed=$((failed + 1)); echo "FAIL $line (exit $rc)"; { grep '^lucent' <<<"$out" | tail -5; printf '%s\n' "$out" | tail -5; } | sed 's/^/     /'
   fi
 done <<<"$examples"
 echo "$passed passed, $failed failed, $skipped skipped"
+stray=$(comm -13 <(printf '%s\n' "$before") <(listing))
+if [ -n "$stray" ]; then
+  echo "FAIL: the examples wrote outside out/:"; printf '%s\n' "$stray" | sed 's/^/     /'; failed=$((failed + 1))
+fi
 [ "$passed" -gt 0 ] && [ "$failed" = 0 ]

@@ -240,16 +240,34 @@ TEST(parallel_for_nested_runs_without_deadlock)
     lucent_pool_destroy(g_nested_pool);
 }
 
+static char g_logged[512];
+
+static void capture_log(lucent_log_level level, const char *message, void *user)
+{
+    (void)level, (void)user;
+    snprintf(g_logged, sizeof g_logged, "%s", message);
+}
+
 TEST(pool_size_from_environment)
 {
     setenv("LUCENT_THREADS", "3", 1);
     lucent_pool *pool = lucent_pool_create(0);
     CHECK(lucent_pool_threads(pool) == 3);
     lucent_pool_destroy(pool);
-    setenv("LUCENT_THREADS", "garbage", 1);
-    pool = lucent_pool_create(0);
-    CHECK(lucent_pool_threads(pool) == lucent_cpu_count());
-    lucent_pool_destroy(pool);
+    /* a value that is not a whole number from 1 to 256 is said, not silently replaced (issue 32) */
+    static const char *const bad[] = {"garbage", "-3", "257"};
+    for (int i = 0; i < 3; i++) {
+        setenv("LUCENT_THREADS", bad[i], 1);
+        g_logged[0] = '\0';
+        lucent_log_set_sink(capture_log, NULL, LUCENT_LOG_WARN);
+        pool = lucent_pool_create(0);
+        lucent_log_set_sink(NULL, NULL, LUCENT_LOG_ERROR);
+        CHECK(lucent_pool_threads(pool) == lucent_cpu_count());
+        char want[96];
+        snprintf(want, sizeof want, "LUCENT_THREADS='%s' is not a whole number from 1 to 256: using all", bad[i]);
+        CHECK_MSG(strstr(g_logged, want) != NULL, "logged \"%s\"", g_logged);
+        lucent_pool_destroy(pool);
+    }
     unsetenv("LUCENT_THREADS");
 }
 

@@ -5,6 +5,7 @@
  * Lambert). compare's run itself needs GL: tests/test_gl_eval.c. */
 #include <cjson/cJSON.h>
 
+#include "eval/internal.h"
 #include "lucent/eval.h"
 #include "test.h"
 
@@ -355,7 +356,254 @@ TEST(cdrf_fit_csv_tabulates_the_fitted_function)
     CHECK_OK(lucent_cdrf_fit_write_svg(test_path("fit.svg"), &rep));
 }
 
+/* ---- compare's paired test ---- */
+
+/* A standard normal draw (Box-Muller). */
+static double normal(lucent_rng *g)
+{
+    double u = lucent_rng_uniform(g), v = lucent_rng_uniform(g);
+    return sqrt(-2 * log(u > 0 ? u : 1e-300)) * cos(2 * M_PI * v);
+}
+
+enum { PT_W = 96, PT_H = 96 };
+
+/* The truth of the synthetic scene: smooth, positive, different per channel. */
+static double truth(int x, int y, int c) { return 1 + 0.5 * sin(0.2 * x + c) * cos(0.15 * y - c); }
+
+/* dest = truth * (1 + scale) */
+static void scaled_truth(lucent_image *dest, double scale)
+{
+    for (int y = 0; y < PT_H; y++)
+        for (int x = 0; x < PT_W; x++)
+            for (int c = 0; c < 3; c++) lucent_image_set(dest, x, y, c, (float)(truth(x, y, c) * (1 + scale)));
+}
+
+/* A reference: the truth plus noise of relative standard deviation sd, drawn once per block x block
+ * pixels (block 1: independent pixels; larger: one draw shared by a block, as light paths share a
+ * photon among many pixels), and the per-pixel variance the tracer would report (sd^2 truth^2). */
+static void noisy_reference(lucent_image *ref, lucent_image *var, double sd, int block, uint64_t seed)
+{
+    lucent_rng g;
+    lucent_rng_init(seed, 0, &g);
+    double draw[PT_H][PT_W][3];
+    for (int by = 0; by < PT_H; by += block)
+        for (int bx = 0; bx < PT_W; bx += block)
+            for (int c = 0; c < 3; c++) {
+                double z = normal(&g);
+                for (int y = by; y < by + block && y < PT_H; y++)
+                    for (int x = bx; x < bx + block && x < PT_W; x++) draw[y][x][c] = z;
+            }
+    for (int y = 0; y < PT_H; y++)
+        for (int x = 0; x < PT_W; x++)
+            for (int c = 0; c < 3; c++) {
+                double t = truth(x, y, c);
+                lucent_image_set(ref, x, y, c, (float)(t + sd * t * draw[y][x][c]));
+                lucent_image_set(var, x, y, c, (float)(sd * t * sd * t));
+            }
+}
+
+/* Acceptance (issue 31): two methods 3% apart from the truth, against a reference with 5% noise of
+ * its own, are told apart by the paired test, while the older rule (net errors within the noise of
+ * each other tie) cannot; two identical methods are not told apart. Expected values from the
+ * definitions: d = sum (a - r)^2 - (b - r)^2 over sum r^2 and, for a = 1.03 t, b = t,
+ * E[d] = 0.03^2 sum t^2 / sum r^2, se = 2 sqrt(sum (0.03 t)^2 (0.05 t)^2) / sum r^2. */
+TEST(paired_test_separates_methods_a_known_amount_apart_and_not_identical_ones)
+{
+    lucent_image *a, *b, *ref, *var;
+    CHECK_OK(lucent_image_create(PT_W, PT_H, 3, &a));
+    CHECK_OK(lucent_image_create(PT_W, PT_H, 3, &b));
+    CHECK_OK(lucent_image_create(PT_W, PT_H, 3, &ref));
+    CHECK_OK(lucent_image_create(PT_W, PT_H, 3, &var));
+    scaled_truth(a, 0.03), scaled_truth(b, 0);
+    noisy_reference(ref, var, 0.05, 1, 7);
+    double t2 = 0, t4 = 0, r2 = 0;
+    for (int y = 0; y < PT_H; y++)
+        for (int x = 0; x < PT_W; x++)
+            for (int c = 0; c < 3; c++) {
+                double t = truth(x, y, c), r = lucent_image_get(ref, x, y, c);
+                t2 += t * t, t4 += t * t * t * t, r2 += r * r;
+            }
+    lucent_compare_pair p;
+    CHECK_OK(lucent_compare_paired(a, b, ref, var, NULL, 0, &p));
+    double se = 2 * sqrt(0.03 * 0.03 * 0.05 * 0.05 * t4) / r2, mean = 0.03 * 0.03 * t2 / r2;
+    CHECK_NEAR(p.se, se, 1e-3 * se); /* the standard error: float images */
+    CHECK_MSG(fabs(p.d - mean) < 4 * se, "d %g, expected %g +- %g", p.d, mean, se); /* within its noise */
+    CHECK_MSG(p.z > 20 && lucent_compare_separated(&p), "z %g", p.z); /* E[z] = 0.03 sqrt(t2^2/t4) / 0.1 ~ 34 */
+    /* the same two as report rows: the paired test ranks them 1, 2; the noise rule ties them */
+    lucent_image_error_stats ea, eb;
+    CHECK_OK(lucent_image_compare(a, ref, NULL, &ea));
+    CHECK_OK(lucent_image_compare(b, ref, NULL, &eb));
+    lucent_compare_method m[2] = {{.name = "b", .rel_rms = eb.rel_rms_all}, {.name = "a", .rel_rms = ea.rel_rms_all}};
+    double pair_se[4] = {0, p.se, p.se, 0};
+    lucent_compare_scene sc = {.name = "synthetic",
+                               .reference_spp = 64,
+                               .reference_noise = lucent_compare_reference_noise(ref, var, NULL),
+                               .methods = m,
+                               .method_count = 2};
+    int order[2], rank[2];
+    CHECK(lucent_compare_rank(&sc, order, rank) && rank[0] == 1 && rank[1] == 1); /* the older rule: a tie */
+    sc.pair_se = pair_se;
+    CHECK(lucent_compare_rank(&sc, order, rank) && order[0] == 0 && rank[0] == 1 && rank[1] == 2);
+    CHECK_NEAR(lucent_compare_pair_z(&sc, 1, 0),
+               ea.rel_rms_all * ea.rel_rms_all / p.se - eb.rel_rms_all * eb.rel_rms_all / p.se, 1e-9 * fabs(p.z));
+    /* identical methods: no difference, no noise in it, no separation */
+    CHECK_OK(lucent_compare_paired(b, b, ref, var, NULL, 0, &p));
+    CHECK(p.d == 0 && p.se == 0 && p.z == 0 && !lucent_compare_separated(&p));
+    m[1].rel_rms = m[0].rel_rms, pair_se[1] = pair_se[2] = 0;
+    CHECK(lucent_compare_rank(&sc, order, rank) && rank[0] == 1 && rank[1] == 1);
+    lucent_image_destroy(a), lucent_image_destroy(b), lucent_image_destroy(ref), lucent_image_destroy(var);
+}
+
+/* Over 200 references with independent pixel noise, two methods of equal true error (t (1 + 3%) and
+ * t (1 - 3%)) give z of mean 0 and variance 1 (the standard error is right); with the noise shared by
+ * 4 x 4 blocks of pixels (one draw, as a photon's light lands in many pixels) the per-pixel standard
+ * error understates it by sqrt(16) (E[z^2] = 16 exactly for these weights: a block's 16 equal draws
+ * add their weights' sum squared), and the calibration on two independent runs finds that factor,
+ * after which z^2 averages 1 again. Tolerances: the mean of 200 chi-square(1) draws has a standard
+ * deviation of sqrt(2 / 200) = 0.1 (3 of them: 0.3); each inflation estimate sums 144 blocks of 8 x 8
+ * pixels (relative spread about sqrt(2 / 144) = 12%, so the calibrated z is a t with about 144
+ * degrees of freedom, E[z^2] = 1.01). Measured: 0.89, -0.05, 15.2, 16.0, 0.92. */
+TEST(paired_test_standard_error_is_calibrated_by_two_runs_where_pixels_share_noise)
+{
+    lucent_image *a, *b, *ref, *var, *r2, *v2;
+    CHECK_OK(lucent_image_create(PT_W, PT_H, 3, &a));
+    CHECK_OK(lucent_image_create(PT_W, PT_H, 3, &b));
+    CHECK_OK(lucent_image_create(PT_W, PT_H, 3, &ref));
+    CHECK_OK(lucent_image_create(PT_W, PT_H, 3, &var));
+    CHECK_OK(lucent_image_create(PT_W, PT_H, 3, &r2));
+    CHECK_OK(lucent_image_create(PT_W, PT_H, 3, &v2));
+    scaled_truth(a, 0.03), scaled_truth(b, -0.03);
+    enum { TRIALS = 200 };
+    double z2_free = 0, z_free = 0, z2_shared = 0, z2_calibrated = 0, kappa_sum = 0;
+    for (int k = 0; k < TRIALS; k++) {
+        lucent_compare_pair p;
+        noisy_reference(ref, var, 0.05, 1, 100 + (uint64_t)k);
+        CHECK_OK(lucent_compare_paired(a, b, ref, var, NULL, 0, &p));
+        z2_free += p.z * p.z, z_free += p.z;
+        noisy_reference(ref, var, 0.05, 4, 1000 + (uint64_t)k);
+        CHECK_OK(lucent_compare_paired(a, b, ref, var, NULL, 0, &p));
+        z2_shared += p.z * p.z;
+        /* two independent runs of the shared-noise reference; the test uses their mean */
+        noisy_reference(r2, v2, 0.05, 4, 5000 + (uint64_t)k);
+        const lucent_image *images[2] = {a, b};
+        double kappa;
+        CHECK_OK(lucent_compare_noise_inflation(images, 2, ref, var, r2, v2, NULL, 8, &kappa));
+        kappa_sum += kappa;
+        lucent_image *mean, *mvar;
+        CHECK_OK(lucent_image_clone(ref, &mean));
+        CHECK_OK(lucent_image_clone(var, &mvar));
+        for (size_t i = 0; i < (size_t)PT_W * PT_H * 3; i++)
+            mean->data[i] = 0.5f * (ref->data[i] + r2->data[i]), mvar->data[i] = 0.25f * (var->data[i] + v2->data[i]);
+        CHECK_OK(lucent_compare_paired(a, b, mean, mvar, NULL, kappa, &p));
+        z2_calibrated += p.z * p.z;
+        lucent_image_destroy(mean), lucent_image_destroy(mvar);
+    }
+    z2_free /= TRIALS, z_free /= TRIALS, z2_shared /= TRIALS, z2_calibrated /= TRIALS, kappa_sum /= TRIALS;
+    CHECK_MSG(fabs(z2_free - 1) < 0.3 && fabs(z_free) < 0.25, "independent pixels: E[z^2] %g, E[z] %g", z2_free,
+              z_free);
+    CHECK_MSG(z2_shared > 10 && z2_shared < 22, "shared noise, per-pixel se: E[z^2] %g, expected 16", z2_shared);
+    CHECK_MSG(fabs(kappa_sum - 16) < 2, "inflation %g, expected 16", kappa_sum);
+    CHECK_MSG(fabs(z2_calibrated - 1) < 0.35, "calibrated: E[z^2] %g, expected 1", z2_calibrated);
+    lucent_image_destroy(a), lucent_image_destroy(b), lucent_image_destroy(ref), lucent_image_destroy(var);
+    lucent_image_destroy(r2), lucent_image_destroy(v2);
+}
+
+/* A region's measures from their definitions: two regions (left and right halves), a method 10% too
+ * bright on the left and exact on the right. */
+TEST(region_measures_follow_their_definitions)
+{
+    lucent_image *ref, *img, *var;
+    CHECK_OK(lucent_image_create(4, 2, 3, &ref));
+    CHECK_OK(lucent_image_create(4, 2, 3, &img));
+    CHECK_OK(lucent_image_create(4, 2, 3, &var));
+    uint8_t bits[8];
+    for (int y = 0; y < 2; y++)
+        for (int x = 0; x < 4; x++) {
+            bits[y * 4 + x] = x < 2 ? 1u << LUCENT_COMPARE_REGION_LIT : 1u << LUCENT_COMPARE_REGION_TERMINATOR;
+            for (int c = 0; c < 3; c++) {
+                float r = x < 2 ? 2.0f : 1.0f;
+                lucent_image_set(ref, x, y, c, r);
+                lucent_image_set(img, x, y, c, x < 2 ? 1.1f * r : r);
+                lucent_image_set(var, x, y, c, 0.04f);
+            }
+        }
+    lucent_compare_region_values v;
+    CHECK_OK(lucent_compare_region_measure(bits, LUCENT_COMPARE_REGION_LIT, NULL, ref, var, img, &v));
+    CHECK(v.pixels == 4);
+    CHECK_NEAR(v.rel_rms, 0.1, 1e-6);
+    CHECK_NEAR(v.ratio, 1.1, 1e-6);
+    CHECK_NEAR(v.error_share, 1.0, 1e-12);   /* all of the error is on the left */
+    CHECK_NEAR(v.energy, 16.0 / 20.0, 1e-6); /* 12 values of 4 against 12 of 1 */
+    CHECK_NEAR(v.reference_noise, sqrt(0.04 / 4.0), 1e-6);
+    CHECK_OK(lucent_compare_region_measure(bits, LUCENT_COMPARE_REGION_TERMINATOR, NULL, ref, var, img, &v));
+    CHECK(v.pixels == 4 && v.rel_rms == 0 && v.error_share == 0);
+    CHECK_OK(lucent_compare_region_measure(bits, LUCENT_COMPARE_REGION_CONVEX, NULL, ref, var, img, &v));
+    CHECK(v.pixels == 0 && isnan(v.rel_rms));
+    CHECK(!strcmp(lucent_compare_region_name(LUCENT_COMPARE_REGION_SILHOUETTE), "silhouette band"));
+    CHECK(lucent_compare_region_name(LUCENT_COMPARE_REGION_COUNT) == NULL);
+    lucent_image_destroy(ref), lucent_image_destroy(img), lucent_image_destroy(var);
+}
+
+/* ---- compare's reused reference: reference.json ---- */
+
+/* Replaces the first `from` in text by `to` (into a static buffer). */
+static const char *edited(const char *text, const char *from, const char *to)
+{
+    static char buf[8192];
+    const char *at = strstr(text, from);
+    if (!at) return text;
+    snprintf(buf, sizeof buf, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
+    return buf;
+}
+
+/* The reference.json a run wrote (tests/fixtures/compare: the test sphere, 16 spp) reads back; a
+ * malformed one, or one made of another scene, is refused with the file and the field named. */
+TEST(reference_json_reads_back_and_refuses_what_does_not_match)
+{
+    char scene_path[600], ref_path[600];
+    snprintf(scene_path, sizeof scene_path, "%s/tests/fixtures/scenes/sphere.json", LUCENT_SOURCE_DIR);
+    snprintf(ref_path, sizeof ref_path, "%s/tests/fixtures/compare/reference.json", LUCENT_SOURCE_DIR);
+    lucent_scene *scene = NULL;
+    CHECK_OK(lucent_scene_load(scene_path, &(lucent_scene_load_desc){.skip_meshes = true}, &scene));
+    char *text = NULL;
+    size_t size;
+    CHECK_OK(lucent_read_file(ref_path, &text, &size));
+    if (!scene || !text) return;
+    eval_reference r;
+    CHECK_OK(eval_reference_parse(text, "r.json", scene, &r));
+    CHECK(r.runs == 1 && r.result.spp == 16 && r.result.samples == 30720 && r.result.seed == 1);
+    CHECK_ERR(eval_reference_parse(edited(text, "\"runs\":\t1", "\"runs\":\t3"), "r.json", scene, &r),
+              LUCENT_ERR_INVALID_ARGUMENT, "r.json", "runs", "must be 1 or 2, got 3");
+    CHECK_ERR(eval_reference_parse(edited(text, "\"runs\":\t1", "\"runs\":\t2"), "r.json", scene, &r),
+              LUCENT_ERR_INVALID_ARGUMENT, "run_results", "expected 2 runs, got 0");
+    CHECK_ERR(eval_reference_parse(edited(text, "\"spp\":\t16", "\"spp\":\t-1"), "r.json", scene, &r),
+              LUCENT_ERR_INVALID_ARGUMENT, "result.spp", "got -1");
+    CHECK_ERR(eval_reference_parse(edited(text, "\"spp\":\t16", "\"spp\":\t\"x\""), "r.json", scene, &r),
+              LUCENT_ERR_PARSE, "result.spp");
+    CHECK_ERR(eval_reference_parse(edited(text, "\"skin1\"", "\"skin2\""), "r.json", scene, &r),
+              LUCENT_ERR_INVALID_ARGUMENT, "r.json: objects[0].material: the reference was made with \"skin2\"",
+              "has \"skin1\"");
+    CHECK_ERR(eval_reference_parse(edited(text, "\"48\"", "\"96\""), "r.json", scene, &r), LUCENT_ERR_INVALID_ARGUMENT,
+              "render.width", "\"96\"", "\"48\"");
+    CHECK_ERR(eval_reference_parse(edited(text, "\"intensity\":\t3", "\"power\":\t3"), "r.json", scene, &r),
+              LUCENT_ERR_INVALID_ARGUMENT, "lights[0].power");
+    char truncated[64];
+    snprintf(truncated, sizeof truncated, "%.40s", text);
+    CHECK(eval_reference_parse(truncated, "r.json", scene, &r) != LUCENT_OK && strstr(lucent_last_error(), "r.json"));
+    CHECK_ERR(eval_reference_parse("[]", "r.json", scene, &r), LUCENT_ERR_PARSE, "r.json");
+    /* the images beside it are read too: a folder without them names the first missing */
+    char dir[600];
+    snprintf(dir, sizeof dir, "%s/tests/fixtures/compare", LUCENT_SOURCE_DIR);
+    CHECK_ERR(eval_reference_read(dir, scene, &r), LUCENT_ERR_IO, "compare/reference.exr");
+    free(text);
+    lucent_scene_destroy(scene);
+}
+
 TEST_MAIN(TEST_ENTRY(object_mask_keeps_pixels_whose_3x3_neighbourhood_is_covered),
+          TEST_ENTRY(paired_test_separates_methods_a_known_amount_apart_and_not_identical_ones),
+          TEST_ENTRY(paired_test_standard_error_is_calibrated_by_two_runs_where_pixels_share_noise),
+          TEST_ENTRY(region_measures_follow_their_definitions),
+          TEST_ENTRY(reference_json_reads_back_and_refuses_what_does_not_match),
           TEST_ENTRY(reference_noise_is_sqrt_of_summed_variance_over_summed_squares),
           TEST_ENTRY(error_map_is_signed_full_at_half_relative_error_and_black_outside_the_mask),
           TEST_ENTRY(worst_region_holds_the_largest_error),

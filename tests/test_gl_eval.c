@@ -126,9 +126,9 @@ TEST(compare_run_errors_are_the_relative_rms_over_the_mask)
                                                        .user = &s},
                                 &r));
     CHECK(r.scene_count == 1 && s.done == 1 && s.done_index == 0 && s.methods_when_done == 2 && s.html == 1);
-    /* reference.exr/.png, per method .exr/.png/-error.png/-worst.png, errors.svg, the colour bar, 4 reports:
-     * 2 + 8 + 1 + 1 + 4. */
-    CHECK_MSG(s.wrote == 16, "%d files told", s.wrote);
+    /* reference.exr/.png, its -variance.exr, -coverage.exr and reference.json, per method
+     * .exr/.png/-error.png/-worst.png, errors.svg, the colour bar, 4 reports: 5 + 8 + 1 + 1 + 4. */
+    CHECK_MSG(s.wrote == 19, "%d files told", s.wrote);
     if (r.scene_count != 1) return;
     const lucent_compare_scene_result *sr = &r.scenes[0];
     const lucent_image *cov = sr->reference->coverage, *ref = sr->reference->image;
@@ -204,6 +204,127 @@ TEST(compare_run_fails_on_a_bad_scene_and_keeps_nothing)
     CHECK(r.scenes == NULL && r.scene_count == 0);
 }
 
+/* The regions of the skin sphere (radius 10 mm at the origin, one directional light and an environment)
+ * against the analytic sphere: per masked pixel the camera ray meets the sphere |x| = 10 at a point
+ * whose normal is x / 10; its angle to the light classes it lit (< 75 degrees), terminator (75-105) or
+ * attached shadow (> 105); no cast shadow on one convex body; all of it convex (radius 10 <= 20 mm).
+ * The mesh is an icosphere (subdivisions 3: faces about 6 degrees across), so pixels within a facet of a
+ * class boundary may differ: at least 90% agree. */
+TEST(compare_regions_of_a_sphere_match_the_analytic_sphere)
+{
+    char scene[600];
+    snprintf(scene, sizeof scene, "%s/tests/fixtures/scenes/sphere.json", LUCENT_SOURCE_DIR);
+    const char *scenes[] = {scene}, *methods[] = {"lambert", "ssss:preint"};
+    const char *sets[] = {"render.width=96", "render.height=80"};
+    lucent_compare_result r;
+    CHECK_OK(lucent_compare_run(&(lucent_compare_desc){.scenes = scenes,
+                                                       .scene_count = 1,
+                                                       .methods = methods,
+                                                       .method_count = 2,
+                                                       .overrides = sets,
+                                                       .override_count = 2,
+                                                       .spp = 8,
+                                                       .frames = 1},
+                                &r));
+    if (r.scene_count != 1) return;
+    const lucent_compare_scene_result *sr = &r.scenes[0];
+    const lucent_compare_scene *sc = &sr->report;
+    CHECK(sc->region_count == LUCENT_COMPARE_REGION_COUNT && sc->regions);
+    lucent_scene *sn;
+    CHECK_OK(lucent_scene_load(scene, &(lucent_scene_load_desc){.overrides = sets, .override_count = 2}, &sn));
+    double l[3] = {-0.6, 0.3, 0.7}, ln = sqrt(0.36 + 0.09 + 0.49), cos75 = cos(75 * M_PI / 180);
+    uint64_t want[3] = {0}, masked = 0;
+    for (int y = 0; y < 80; y++)
+        for (int x = 0; x < 96; x++) {
+            if (sr->mask[y * 96 + x] != 1) continue;
+            double o[3], d[3];
+            lucent_camera_ray(&sn->camera, 96, 80, x + 0.5, y + 0.5, o, d);
+            double b = o[0] * d[0] + o[1] * d[1] + o[2] * d[2], c = o[0] * o[0] + o[1] * o[1] + o[2] * o[2] - 100;
+            double disc = b * b - c;
+            if (disc < 0) continue; /* the tessellation covers a little less than the sphere */
+            double t = -b - sqrt(disc), cosl = 0;
+            for (int k = 0; k < 3; k++) cosl += (o[k] + t * d[k]) / 10 * l[k] / ln;
+            want[cosl > cos75 ? 0 : cosl >= -cos75 ? 1 : 2]++;
+            masked++;
+        }
+    CHECK_MSG(masked > 1000, "%llu pixels", (unsigned long long)masked);
+    for (int k = 0; k < 3; k++) {
+        double got = (double)sc->regions[k].pixels, w = (double)want[k];
+        CHECK_MSG(fabs(got - w) <= 0.1 * masked / 3 + 0.1 * w, "%s: %g pixels, the analytic sphere %g",
+                  sc->regions[k].name, got, w);
+    }
+    CHECK(sc->regions[LUCENT_COMPARE_REGION_CAST_SHADOW].pixels == 0);
+    CHECK(sc->regions[LUCENT_COMPARE_REGION_CONVEX].pixels == sr->object_pixels);
+    uint64_t lit_term = sc->regions[0].pixels + sc->regions[1].pixels + sc->regions[2].pixels;
+    CHECK(lit_term == sr->object_pixels); /* one directional light: every pixel in one of the three */
+    /* the shares of the reference's squares add up to 1 over the partition, and so do a method's errors */
+    double energy = 0, share = 0;
+    for (int k = 0; k < 3; k++)
+        energy += sc->regions[k].pixels ? sc->regions[k].energy : 0,
+            share += sc->regions[k].pixels ? sc->regions[k].error_share[1] : 0;
+    CHECK_NEAR(energy, 1, 1e-9);
+    CHECK_NEAR(share, 1, 1e-9);
+    CHECK(sc->methods[0].has_flip && sc->methods[0].flip > 0 && sc->methods[0].flip < 1);
+    CHECK(sc->pair_se && sc->pair_se[1] > 0 && sc->pair_se[1] == sc->pair_se[2]);
+    CHECK(sc->provenance && !strcmp(sc->provenance->version, LUCENT_VERSION_STRING) && sc->provenance->cores > 0);
+    lucent_scene_destroy(sn);
+    lucent_compare_result_free(&r);
+}
+
+/* A reference is written with what made it and reused by a later run (--reference): the same image,
+ * variance and samples, and the same errors; with the reference folder as the output folder too; a
+ * scene that differs in a field the tracer reads is refused, naming the field, while one that differs
+ * only in a method's setting (render.taps) or the budget is not. Each light alone: the reference and
+ * the methods with the other light at intensity 0 (the environment alone is a dim image). */
+TEST(compare_reuses_a_reference_only_for_the_same_scene_and_measures_each_light)
+{
+    char scene[600], dir[600], dir2[600];
+    snprintf(scene, sizeof scene, "%s/tests/fixtures/scenes/sphere.json", LUCENT_SOURCE_DIR);
+    snprintf(dir, sizeof dir, "%s", test_path("cmp-ref"));
+    snprintf(dir2, sizeof dir2, "%s", test_path("cmp-reuse"));
+    const char *scenes[] = {scene}, *methods[] = {"lambert"}, *taps[] = {"render.taps=17"},
+               *other[] = {"objects[0].material=skin2"};
+    lucent_compare_result a, b;
+    lucent_compare_desc d = {.scenes = scenes,
+                             .scene_count = 1,
+                             .methods = methods,
+                             .method_count = 1,
+                             .spp = 8,
+                             .frames = 1,
+                             .reference_runs = 2,
+                             .out = dir};
+    CHECK_OK(lucent_compare_run(&d, &a));
+    d.reference = dir, d.out = dir2, d.overrides = taps, d.override_count = 1, d.spp = 1, d.per_light = true;
+    CHECK_OK(lucent_compare_run(&d, &b));
+    if (a.scene_count == 1 && b.scene_count == 1) {
+        const lucent_trace_result *ra = a.scenes[0].reference, *rb = b.scenes[0].reference;
+        size_t n = (size_t)ra->image->width * ra->image->height * 3;
+        CHECK(rb->spp == ra->spp && rb->spp == 8 && b.scenes[0].report.reference_runs == 2);
+        CHECK(!memcmp(ra->image->data, rb->image->data, n * sizeof(float)));
+        CHECK(!memcmp(ra->variance->data, rb->variance->data, n * sizeof(float)));
+        CHECK(a.scenes[0].report.methods[0].rel_rms == b.scenes[0].report.methods[0].rel_rms);
+        CHECK(b.scenes[0].report.reference_from && strstr(b.scenes[0].report.reference_from, "cmp-ref"));
+        /* each light alone: two lights, the sun's image carries most of the light */
+        const lucent_compare_scene *sc = &b.scenes[0].report;
+        CHECK(sc->light_count == 2 && sc->lights && strstr(sc->lights[0].name, "directional"));
+        CHECK(sc->light_count == 2 && isfinite(sc->lights[0].rel_rms[0]) && isfinite(sc->lights[1].rel_rms[0]));
+        CHECK(sc->light_count == 2 &&
+              sc->lights[0].regions[LUCENT_COMPARE_REGION_LIT].pixels == sc->regions[LUCENT_COMPARE_REGION_LIT].pixels);
+    }
+    lucent_compare_result_free(&b);
+    d.out = dir, d.per_light = false; /* the reference's own folder: read, not rewritten */
+    CHECK_OK(lucent_compare_run(&d, &b));
+    lucent_compare_result_free(&b);
+    d.overrides = other;
+    CHECK_ERR(lucent_compare_run(&d, &b), LUCENT_ERR_INVALID_ARGUMENT, "reference.json", "objects[0].material",
+              "\"skin1\"", "\"skin2\"");
+    d.overrides = NULL, d.override_count = 0, d.reference = test_path("none");
+    CHECK_ERR(lucent_compare_run(&d, &b), LUCENT_ERR_IO, "none/test-sphere/reference.json");
+    lucent_compare_result_free(&a);
+}
+
 TEST_MAIN(TEST_ENTRY(compare_run_errors_are_the_relative_rms_over_the_mask),
           TEST_ENTRY(compare_run_without_out_measures_and_writes_nothing),
-          TEST_ENTRY(compare_run_fails_on_a_bad_scene_and_keeps_nothing))
+          TEST_ENTRY(compare_run_fails_on_a_bad_scene_and_keeps_nothing),
+          TEST_ENTRY(compare_regions_of_a_sphere_match_the_analytic_sphere),
+          TEST_ENTRY(compare_reuses_a_reference_only_for_the_same_scene_and_measures_each_light))

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 
 #include "base/optics.h"
+#include "gl/core/gpu.h"
 #include "gl/reference/reference.h"
 #include "gl/renderer.h"
 #include "lucent/mc.h"
@@ -548,9 +549,27 @@ TEST(shader_errors_name_file_and_line)
     CHECK(p == 0);
 }
 
+/* Issue 32: a framebuffer the driver cannot make is named with the driver's limits (it said "framebuffer
+ * incomplete (status 0x8cd6)"); a target one texel wider than GL_MAX_TEXTURE_SIZE fails cheaply, as a
+ * 16384 x 16384 float target fails for memory on llvmpipe (3 GB; checked by hand). */
+TEST(framebuffer_errors_name_the_drivers_limits)
+{
+    if (!context() || lucent_gl_make_current(g_ctx) != LUCENT_OK) return;
+    GLint max = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max);
+    GLuint t = gl_texture(GL_R8, max + 1, 1, GL_NEAREST), f = 0;
+    char limit[64];
+    snprintf(limit, sizeof limit, "its limits: textures of %d texels a side", max);
+    CHECK_ERR(gl_framebuffer(1, &t, 0, "the test target", &f), LUCENT_ERR_GL,
+              "the test target: the GL driver cannot make the framebuffer", limit, "lower render.width");
+    CHECK(f == 0);
+    glDeleteTextures(1, &t);
+}
+
 int main(int argc, char **argv)
 {
-    static const test_case cases[] = {TEST_ENTRY(cdrf_and_lambert_equal_cpu_reference),
+    static const test_case cases[] = {TEST_ENTRY(framebuffer_errors_name_the_drivers_limits),
+                                      TEST_ENTRY(cdrf_and_lambert_equal_cpu_reference),
                                       TEST_ENTRY(sphere_lit_along_view_axis_is_symmetric),
                                       TEST_ENTRY(translucency_brightens_a_backlit_disc_in_red),
                                       TEST_ENTRY(slab_translucency_matches_monte_carlo_transmittance),

@@ -597,6 +597,100 @@ TEST(exr_chunk_table_checked_before_allocating)
     free(data);
 }
 
+/* Issue 32 items 4, 5: chunks shorter than their lines are refused, scanline or tile, so that no undecoded
+ * (uninitialised) scratch byte becomes a pixel; tiles get the chunk-table checks of scanlines. The fixtures:
+ * tests/fixtures/images/make_tiled_exr.py (written from the file format's specification, not with OpenEXR)
+ * and the reproducers of ../shared/repro-3 (tests/fixtures/bad-images). */
+#define BAD_IMAGE(name) LUCENT_SOURCE_DIR "/tests/fixtures/bad-images/" name
+#define GOOD_IMAGE(name) LUCENT_SOURCE_DIR "/tests/fixtures/images/" name
+
+TEST(exr_short_chunks_refused)
+{
+    lucent_image *out = NULL;
+    CHECK_ERR(lucent_image_load(BAD_IMAGE("uninit-exr-short-scanline-chunk.exr"), &out), LUCENT_ERR_PARSE,
+              "uninit-exr-short-scanline-chunk.exr: truncated or corrupt OpenEXR data",
+              "chunk at line 0 holds 5 bytes, its 4 x 1 pixels need 24");
+    CHECK_ERR(lucent_image_load(BAD_IMAGE("uninit-exr-short-tile.exr"), &out), LUCENT_ERR_PARSE,
+              "uninit-exr-short-tile.exr: truncated or corrupt OpenEXR data", "tile 0, 0 holds 10 bytes");
+    CHECK_ERR(lucent_image_load(BAD_IMAGE("hand-exr-short-zip-tile.exr"), &out), LUCENT_ERR_PARSE,
+              "hand-exr-short-zip-tile.exr: truncated or corrupt OpenEXR data");
+    /* Lucent's own uncompressed file with its first chunk's size field lowered by 4: the bytes are there, the
+     * chunk says it holds fewer than its line needs. */
+    lucent_image *img = make_image(24, 40, 3, 0, 4);
+    CHECK_OK(lucent_image_write(test_path("short.exr"), img,
+                                &(lucent_image_write_desc){.exr_compression = LUCENT_EXR_COMPRESSION_NONE}));
+    lucent_image_destroy(img);
+    char *data;
+    size_t n;
+    CHECK_OK(lucent_read_file(test_path("short.exr"), &data, &n));
+    if (!data) return;
+    /* The offset table follows the header (attributes "name\0type\0" size value, ended by an empty name); its
+     * first entry is the first chunk's offset. */
+    uint64_t first;
+    size_t header_end = 8;
+    while (header_end < n && data[header_end] != 0) {
+        header_end += strlen(data + header_end) + 1;
+        header_end += strlen(data + header_end) + 1;
+        int32_t size;
+        memcpy(&size, data + header_end, 4);
+        header_end += 4 + (size_t)size;
+    }
+    header_end++;
+    memcpy(&first, data + header_end, 8);
+    CHECK(first + 8 < n);
+    if (first + 8 < n) {
+        int32_t y, bytes;
+        memcpy(&y, data + first, 4), memcpy(&bytes, data + first + 4, 4);
+        CHECK(y == 0 && bytes == 24 * 3 * 4); /* one line of 24 float RGB pixels (the writer's default) */
+        bytes -= 4;
+        memcpy(data + first + 4, &bytes, 4);
+        write_bytes(test_path("short.exr"), data, n);
+        CHECK_ERR(lucent_image_load(test_path("short.exr"), &out), LUCENT_ERR_PARSE,
+                  "short.exr: truncated or corrupt OpenEXR data", "holds 284 bytes, its 24 x 1 pixels need 288");
+    }
+    free(data);
+    CHECK(out == NULL);
+}
+
+/* A 379-byte tiled file declaring 8000 x 8000 half RGB in one tile of 10 bytes: refused from its chunk table
+ * before the 1 GB image is allocated (it read 1.5 GB and returned zeros). */
+TEST(exr_tiled_bomb_refused_from_the_chunk_table)
+{
+    lucent_image *out = NULL;
+    CHECK_ERR(lucent_image_load(BAD_IMAGE("bomb-exr-tiled-379-bytes.exr"), &out), LUCENT_ERR_PARSE,
+              "bomb-exr-tiled-379-bytes.exr: corrupt OpenEXR chunk table",
+              "tile 0, 0 claims 10 bytes at offset 369, 384000000 unpacked, in a 379-byte file");
+    CHECK(out == NULL);
+}
+
+/* The specification-built tiled files read with their known values, and every truncation of them is refused. */
+TEST(exr_tiled_fixtures_read_and_truncations_refused)
+{
+    static const char *const names[] = {"tiled-none.exr", "tiled-zip.exr"};
+    for (int f = 0; f < 2; f++) {
+        char path[600];
+        snprintf(path, sizeof path, "%s/tests/fixtures/images/%s", LUCENT_SOURCE_DIR, names[f]);
+        lucent_image *img = NULL;
+        CHECK_OK(lucent_image_load(path, &img));
+        if (!img) continue;
+        CHECK(img->width == 37 && img->height == 21 && img->channels == 3);
+        int bad = 0;
+        for (int y = 0; y < 21; y++)
+            for (int x = 0; x < 37; x++) {
+                const float *p = lucent_image_pixel(img, x, y);
+                bad += p[0] != x / 64.0f || p[1] != y / 32.0f || p[2] != (x + y) / 128.0f;
+            }
+        CHECK_MSG(bad == 0, "%s: %d wrong pixels", names[f], bad);
+        lucent_image_destroy(img);
+        char *data;
+        size_t n;
+        CHECK_OK(lucent_read_file(path, &data, &n));
+        if (data) write_bytes(test_path(names[f]), data, n);
+        free(data);
+        check_truncations(names[f], "OpenEXR", 13);
+    }
+}
+
 /* ---- PFM ---- */
 
 TEST(pfm_roundtrip_exact)
@@ -856,7 +950,111 @@ TEST(draw_text)
     lucent_image_destroy(img);
 }
 
-TEST_MAIN(TEST_ENTRY(draw_text), TEST_ENTRY(png_bomb_refused_from_the_header),
+/* ---- FLIP (Andersson et al. 2020) ---- */
+
+static lucent_image *uniform_image(int w, int h, float r, float g, float b)
+{
+    lucent_image *im = NULL;
+    CHECK_OK(lucent_image_create(w, h, 3, &im));
+    for (int i = 0; im && i < w * h; i++) im->data[3 * i] = r, im->data[3 * i + 1] = g, im->data[3 * i + 2] = b;
+    return im;
+}
+
+/* Uniform fields, where the contrast sensitivity filters (normalised) change nothing and no edge or
+ * point exists, so FLIP is the colour error of the two colours' HyAB distance, worked by hand from
+ * the paper's equations (section 4.1; sRGB primaries, white D65, CIELAB with a and b times L / 100):
+ *   the largest distance, green (L 87.74, a -86.18, b 83.18 -> Hunt -75.61, 72.98) against blue
+ *   (L 32.30, a 79.19, b -107.86 -> Hunt 25.58, -34.84): 55.44 + hypot(101.19, 107.82) = 203.30;
+ *   black against white: |0 - 100| = 100;
+ *   the colour error e = d^0.7 against cmax^0.7 = 41.28: below p_c cmax^0.7 = 16.51 it is
+ *   0.95 e / 16.51, above 0.95 + 0.05 (e - 16.51) / (41.28 - 16.51); 100^0.7 = 25.12 -> 0.96738.
+ * And the paper's two anchors: the largest distance maps to 1, p_c of it (after the power) to p_t. */
+TEST(flip_of_uniform_fields_follows_the_papers_colour_pipeline)
+{
+    const float green[3] = {0, 1, 0}, blue[3] = {0, 0, 1}, black[3] = {0, 0, 0}, white[3] = {1, 1, 1};
+    double cmax = lucent_flip_hyab(green, blue);
+    CHECK_NEAR(cmax, 203.30, 0.01);
+    CHECK_NEAR(lucent_flip_hyab(black, white), 100, 1e-9);
+    CHECK_NEAR(lucent_flip_color_error(cmax), 1, 1e-12);
+    CHECK_NEAR(lucent_flip_color_error(cmax * pow(0.4, 1 / 0.7)), 0.95, 1e-12);
+    CHECK(lucent_flip_color_error(0) == 0);
+    lucent_image *a = uniform_image(24, 20, 0, 0, 0), *b = uniform_image(24, 20, 1, 1, 1);
+    lucent_image *g = uniform_image(24, 20, 0, 1, 0), *u = uniform_image(24, 20, 0, 0, 1), *map = NULL;
+    double mean;
+    CHECK_OK(lucent_image_flip(a, b, LUCENT_FLIP_PPD, NULL, &map, &mean));
+    CHECK_NEAR(mean, 0.96738, 2e-5);
+    CHECK(map && map->channels == 1 && fabsf(map->data[0] - map->data[24 * 20 - 1]) < 1e-6f);
+    lucent_image_destroy(map);
+    CHECK_OK(lucent_image_flip(g, u, LUCENT_FLIP_PPD, NULL, NULL, &mean));
+    CHECK_NEAR(mean, 1, 1e-6);
+    CHECK_OK(lucent_image_flip(g, g, LUCENT_FLIP_PPD, NULL, NULL, &mean));
+    CHECK(mean == 0);
+    float mask[24 * 20] = {0};
+    CHECK_OK(lucent_image_flip(a, b, LUCENT_FLIP_PPD, mask, NULL, &mean));
+    CHECK(isnan(mean)); /* an empty mask: no mean */
+    CHECK_ERR(lucent_image_flip(a, b, 0, NULL, NULL, &mean), LUCENT_ERR_INVALID_ARGUMENT, "pixels per degree");
+    lucent_image *small = uniform_image(4, 4, 0, 0, 0);
+    CHECK_ERR(lucent_image_flip(a, small, 67, NULL, NULL, &mean), LUCENT_ERR_INVALID_ARGUMENT, "flip");
+    lucent_image_destroy(small);
+    lucent_image_destroy(a), lucent_image_destroy(b), lucent_image_destroy(g), lucent_image_destroy(u);
+}
+
+/* The contrast sensitivity functions: a black and white checkerboard of 2-pixel period against its
+ * mean grey (the grey whose luminance is the checkerboard's mean, linear 0.5). Seen from 67 pixels per
+ * degree its frequency is 33.5 cycles per degree along both axes, where the achromatic CSF is
+ * exp(-0.0047 (33.5^2 + 33.5^2)) = 3e-5 of its peak: the two look alike, FLIP near 0; from 2 pixels
+ * per degree (1 cycle per degree, CSF 0.99) they differ as black and white differ from grey. */
+TEST(flip_sees_fine_patterns_only_from_near)
+{
+    lucent_image *c = uniform_image(64, 64, 0, 0, 0), *grey = uniform_image(64, 64, 0.5f, 0.5f, 0.5f);
+    for (int y = 0; c && y < 64; y++)
+        for (int x = 0; x < 64; x++)
+            for (int k = 0; k < 3; k++) c->data[3 * (y * 64 + x) + k] = (float)((x + y) % 2);
+    double far, near;
+    CHECK_OK(lucent_image_flip(grey, c, LUCENT_FLIP_PPD, NULL, NULL, &far));
+    CHECK_OK(lucent_image_flip(grey, c, 2, NULL, NULL, &near));
+    CHECK_MSG(far < 0.05, "FLIP at 67 ppd: %g", far); /* measured 0.004 and 0.998 */
+    CHECK_MSG(near > 0.5, "FLIP at 2 ppd: %g", near);
+    lucent_image_destroy(c), lucent_image_destroy(grey);
+}
+
+/* The heat map's colour bar: the ramp from black (0) to white (the scale) under the map, the map's
+ * pixels as lucent_image_heatmap draws them; with a fixed scale one error has one colour in every map
+ * (with the 99th percentile it depends on the rest of the map). */
+TEST(heatmap_with_a_bar_and_a_fixed_scale)
+{
+    lucent_image *v1, *v2, *h1 = NULL, *h2 = NULL, *plain = NULL;
+    CHECK_OK(lucent_image_create(10, 4, 1, &v1));
+    CHECK_OK(lucent_image_create(10, 4, 1, &v2));
+    for (int i = 0; i < 40; i++) v1->data[i] = i == 0 ? 0.1f : 10.0f, v2->data[i] = i == 0 ? 0.1f : 0.2f;
+    float used;
+    CHECK_OK(lucent_image_heatmap_with_bar(v1, 1.0f, "A-B", &h1, &used));
+    CHECK(used == 1.0f && h1 && h1->width == 200 && h1->height > 4 + 12 && h1->channels == 3);
+    CHECK_OK(lucent_image_heatmap(v1, 1.0f, &plain));
+    for (int c = 0; c < 3 && h1 && plain; c++) CHECK(lucent_image_get(h1, 0, 0, c) == lucent_image_get(plain, 0, 0, c));
+    /* the bar: 6 pixels under the map, from x = 8 (black) to x = 191 (white, the ramp's last stop) */
+    for (int c = 0; c < 3 && h1; c++) {
+        CHECK(lucent_image_get(h1, 8, 4 + 6 + 5, c) == 0.0f);
+        CHECK_NEAR(lucent_image_get(h1, 191, 4 + 6 + 5, c), 1.0f, 1e-6);
+    }
+    CHECK_OK(lucent_image_heatmap_with_bar(v2, 1.0f, NULL, &h2, &used));
+    for (int c = 0; c < 3 && h1 && h2; c++) CHECK(lucent_image_get(h1, 0, 0, c) == lucent_image_get(h2, 0, 0, c));
+    lucent_image_destroy(h2);
+    CHECK_OK(lucent_image_heatmap_with_bar(v2, 0, NULL, &h2, &used)); /* the 99th percentile: 0.2 */
+    CHECK(used == 0.2f);
+    for (int c = 0, differs = 0; c < 3 && h1 && h2; c++) {
+        differs |= lucent_image_get(h1, 0, 0, c) != lucent_image_get(h2, 0, 0, c);
+        if (c == 2) CHECK(differs);
+    }
+    lucent_image_destroy(v1), lucent_image_destroy(v2), lucent_image_destroy(h1), lucent_image_destroy(h2);
+    lucent_image_destroy(plain);
+}
+
+TEST_MAIN(TEST_ENTRY(draw_text), TEST_ENTRY(flip_of_uniform_fields_follows_the_papers_colour_pipeline),
+          TEST_ENTRY(flip_sees_fine_patterns_only_from_near), TEST_ENTRY(heatmap_with_a_bar_and_a_fixed_scale),
+          TEST_ENTRY(png_bomb_refused_from_the_header), TEST_ENTRY(exr_short_chunks_refused),
+          TEST_ENTRY(exr_tiled_bomb_refused_from_the_chunk_table),
+          TEST_ENTRY(exr_tiled_fixtures_read_and_truncations_refused),
           TEST_ENTRY(exr_chunk_table_checked_before_allocating), TEST_ENTRY(create_access_and_limits),
           TEST_ENTRY(convert_channels), TEST_ENTRY(srgb_curve_known_values), TEST_ENTRY(tonemap_operators),
           TEST_ENTRY(png_roundtrips), TEST_ENTRY(png_palette_written_by_libpng),

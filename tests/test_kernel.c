@@ -445,7 +445,32 @@ TEST(guided_meets_constraint_and_k_moves_tail)
     }
 }
 
-TEST_MAIN(TEST_ENTRY(guided_meets_constraint_and_k_moves_tail), TEST_ENTRY(jimenez_reproduces_shipped_table),
+/* Issue 32 item 7: a tap far outside the grid (|u| beyond INT_MAX) reads nothing: the kernel is 0 there, as it
+ * is just past its last sample; a range whose offsets' squares leave double's range is refused. */
+TEST(far_taps_read_nothing_and_huge_ranges_are_refused)
+{
+    lucent_profile *p = NULL;
+    lucent_kernel2d *gt = ground_truth("Skin1", &p);
+    lucent_kernel *k = build(gt, p, "Skin1", lucent_kernel_defaults(LUCENT_KERNEL_PREINT));
+    for (int c = 0; c < 3; c++) {
+        CHECK(lucent_kernel_eval(k, c, 0, 1e9) == 0 && lucent_kernel_eval(k, c, 0, -1e9) == 0);
+        CHECK(lucent_kernel_eval(k, c, 0, 1e300) == 0 && lucent_kernel_eval(k, c, 0, -INFINITY) == 0);
+        CHECK(lucent_kernel_eval(k, c, 0, NAN) == 0);
+        CHECK(lucent_kernel_eval(k, c, 0, 0) > 0);
+    }
+    lucent_taps *t = NULL;
+    CHECK_OK(lucent_kernel_taps(k, &(lucent_taps_desc){.range = LUCENT_TAPS_MAX_RANGE}, &t));
+    if (t) CHECK(t->weight[0][0] > 0.99); /* the centre tap carries it all: the others fall outside */
+    lucent_taps_destroy(t);
+    CHECK_ERR(lucent_kernel_taps(k, &(lucent_taps_desc){.range = 1e300}, &t), LUCENT_ERR_INVALID_ARGUMENT,
+              "taps: range must be > 0 mm and at most 1e+06 mm, got 1e+300");
+    lucent_kernel_destroy(k);
+    lucent_kernel2d_destroy(gt);
+    lucent_profile_destroy(p);
+}
+
+TEST_MAIN(TEST_ENTRY(far_taps_read_nothing_and_huge_ranges_are_refused),
+          TEST_ENTRY(guided_meets_constraint_and_k_moves_tail), TEST_ENTRY(jimenez_reproduces_shipped_table),
           TEST_ENTRY(ground_truth_is_normalised_and_symmetric), TEST_ENTRY(svd_rank1_has_lowest_kernel_rms),
           TEST_ENTRY(svd_error_falls_with_rank), TEST_ENTRY(preint_conserves_energy_and_matches_edges),
           TEST_ENTRY(taps_sum_to_one_for_every_model), TEST_ENTRY(defaults_are_documented),

@@ -333,6 +333,33 @@ TEST(assimp_formats_in_child)
     printf("  truncated OFF: %s\n", lucent_last_error());
     lucent_mesh_destroy(m);
 }
-TEST_MAIN(TEST_ENTRY(ply_property_api_all_encodings), TEST_ENTRY(faceless_ply_points_and_mesh_error),
-          TEST_ENTRY(hostile_ply), TEST_ENTRY(fifo_and_device_refused), TEST_ENTRY(obj_reader),
-          TEST_ENTRY(assimp_formats_in_child))
+/* Issue 32 item 6: decompression bombs. A .ply.gz whose header claims more rows than 100 times its
+ * compressed size can give is refused from the header; one whose lists inflate past that is refused as it
+ * inflates; the read limit (elements) holds for plain files and for OBJ too, and is set by the API. */
+TEST(gzip_bombs_and_the_read_limit)
+{
+    lucent_mesh *m = NULL;
+    CHECK_ERR(lucent_mesh_load(bad("bomb-ply-gz-mesh-30m-faces.ply.gz"), NULL, &m), LUCENT_ERR_PARSE,
+              "bomb-ply-gz-mesh-30m-faces.ply.gz", "declares 30000000 face entries", "decompression bomb");
+    CHECK_ERR(lucent_mesh_load(bad("hand-gz-list-bomb.ply.gz"), NULL, &m), LUCENT_ERR_PARSE,
+              "hand-gz-list-bomb.ply.gz: gzip data inflating more than 100 times its size");
+    static const char tetra[] = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                                "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+                                "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    CHECK(lucent_mesh_read_limit() == LUCENT_MESH_DEFAULT_READ_ELEMENTS || getenv("LUCENT_MESH_MAX_ELEMENTS"));
+    lucent_mesh_set_read_limit(7);
+    CHECK_ERR(lucent_mesh_load_memory(tetra, strlen(tetra), "tetra.ply", &(lucent_mesh_load_desc){.format = "ply"}, &m),
+              LUCENT_ERR_PARSE, "tetra.ply", "declares 4 face entries (8 rows in all so far)", "read limit of 7");
+    static const char obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    CHECK_ERR(lucent_mesh_load_memory(obj, strlen(obj), "tetra.obj", &(lucent_mesh_load_desc){.format = "obj"}, &m),
+              LUCENT_ERR_PARSE, "tetra.obj: line 8: more than 7");
+    lucent_mesh_set_read_limit(8);
+    CHECK_OK(lucent_mesh_load_memory(tetra, strlen(tetra), "tetra.ply", &(lucent_mesh_load_desc){.format = "ply"}, &m));
+    lucent_mesh_destroy(m), m = NULL;
+    lucent_mesh_set_read_limit(0);
+    CHECK(m == NULL);
+}
+
+TEST_MAIN(TEST_ENTRY(gzip_bombs_and_the_read_limit), TEST_ENTRY(ply_property_api_all_encodings),
+          TEST_ENTRY(faceless_ply_points_and_mesh_error), TEST_ENTRY(hostile_ply), TEST_ENTRY(fifo_and_device_refused),
+          TEST_ENTRY(obj_reader), TEST_ENTRY(assimp_formats_in_child))

@@ -66,7 +66,15 @@ for c in range(3):
     rd = ap / 2 * (1 + math.exp(-4 / 3 * A * s)) * math.exp(-s)
     check("dipole rd_total[%d] = Jensen's Rd %.6f" % (c, rd), abs(d.rd_total[c] - rd) < 1e-4 * rd, d.rd_total[c])
 check("material().derived() rd = the closed form", abs(m.derived()["rd"][0] - d.rd_total[0]) < 1e-4)
-check("eleven presets", len(lucent.materials()) == 11 and lucent.materials()[0].name == "Apple")
+check("eleven RGB presets, then the spectral skins", len(lucent.materials()) == 19 and lucent.materials()[0].name == "Apple"
+      and lucent.materials()[11].name == "Skin-VeryLight")
+skin = lucent.material("skin-light")
+check("a spectral skin resolves to its equivalent medium", skin.sigma_a[0] > 0 and skin._c.skin.layer_count == 2)
+col = lucent.skin_color("skin-light", bands=20)
+sp = lucent.skin_profile("skin-light", bands=10, dr=0.05, bins=200)
+check("a spectral skin's colour: ITA of its category, linear sRGB red above blue",
+      col["category"] == lucent.skin_color("skin-light")["category"] and col["rgb"][0] > col["rgb"][2] > 0, col)
+check("a spectral skin's profile (multipole, 10 bands)", sp.model == "skin-multipole" and sp.rd[0][0] > sp.rd[0][100] > 0)
 for model in ("better-dipole", "burley"):
     b = lucent.profile("marble", model=model)
     check("%s profile of Marble: positive, decreasing" % model,

@@ -75,7 +75,19 @@ TEST(svg_rejects_empty_figures)
 /* Two scenes with two methods each; one name needs escaping. The first scene's errors, net of its
  * 1% noise: lambert sqrt(25^2 - 1) = 24.98%, ssss 4.90%; the second's: cdrf 12.46%, x<y 49.99%. */
 static const lucent_compare_method k_methods[2][2] = {
-    {{"lambert", "a/lambert.png", "a/lambert-err.png", 0.25, {0.3, 0.2, 0.1}, 1.5, 10, "Blinn-Phong", NULL, {0}},
+    {{"lambert",
+      "a/lambert.png",
+      "a/lambert-err.png",
+      0.25,
+      {0.3, 0.2, 0.1},
+      1.5,
+      10,
+      "Blinn-Phong",
+      NULL,
+      {0},
+      false,
+      0,
+      NULL},
      {"ssss:preint",
       "a/ssss.png",
       "a/ssss-err.png",
@@ -85,9 +97,12 @@ static const lucent_compare_method k_methods[2][2] = {
       300,
       "17 taps",
       "a/ssss-worst.png",
-      {8, 4, 16}}},
-    {{"cdrf", "b/cdrf.png", "b/cdrf-err.png", 0.125, {0.1, 0.1, 0.2}, 1.75, 900, "LUT", NULL, {0}},
-     {"x<y&\"z\"", "b/x.png", "b/x-err.png", 0.5, {0.5, 0.5, 0.5}, 3, 1, "a, b", NULL, {0}}}};
+      {8, 4, 16},
+      false,
+      0,
+      NULL}},
+    {{"cdrf", "b/cdrf.png", "b/cdrf-err.png", 0.125, {0.1, 0.1, 0.2}, 1.75, 900, "LUT", NULL, {0}, false, 0, NULL},
+     {"x<y&\"z\"", "b/x.png", "b/x-err.png", 0.5, {0.5, 0.5, 0.5}, 3, 1, "a, b", NULL, {0}, false, 0, NULL}}};
 
 static void make_scenes(lucent_compare_scene sc[2])
 {
@@ -119,8 +134,9 @@ TEST(compare_html_has_every_scene_method_and_image)
     if (!html) return;
     CHECK(strstr(html, "<title>Lucent &lt;test&gt;</title>") != NULL);
     CHECK(count_of(html, "<section id=") == 2);
-    /* the summary (a header, the noise row, a row per method name) and per scene a header and two rows */
-    CHECK(count_of(html, "<tr") == (2 + 4) + 2 * 3);
+    /* the summary (a header, the noise and spread rows, a row per method name) and per scene a header and
+     * two rows */
+    CHECK(count_of(html, "<tr") == (3 + 4) + 2 * 3);
     CHECK(strstr(html, "Summary across scenes") < strstr(html, "<section id="));
     CHECK(count_of(html, "class=\"best\"") == 2);
     /* the ranked table: ssss:preint (5% < 25%) first, bold, rank 1 */
@@ -250,8 +266,152 @@ TEST(compare_chart_has_a_marker_per_method)
     free(svg);
 }
 
+/* ---- the error-against-time chart ---- */
+
+typedef struct pt {
+    double x, y;
+} pt;
+
+/* The centres of the data markers: the shapes drawn inside the clipped group (squares, triangles,
+ * diamonds, stars as polygons or rects, crosses as paths); the centre of a polygon is the mean of its
+ * vertices (a triangle's is 0.1 of its size off the point, well inside its 9 px). */
+static int marker_centres(const char *svg, pt *dest, int max)
+{
+    const char *g = strstr(svg, "<g clip-path"), *end = g ? strstr(g, "</g>") : NULL;
+    int n = 0;
+    for (const char *p = g; p && p < end && n < max; p++) {
+        double x, y, w;
+        if (sscanf(p, "<rect x=\"%lf\" y=\"%lf\" width=\"%lf\"", &x, &y, &w) == 3 && w < 10) {
+            dest[n++] = (pt){x + w / 2, y + w / 2};
+        } else if (!strncmp(p, "<polygon points=\"", 17) || !strncmp(p, "<path d=\"M", 10)) {
+            const char *q = p + (p[1] == 'p' && p[2] == 'o' ? 17 : 10);
+            double sx = 0, sy = 0;
+            int k = 0;
+            while (k < 12 && sscanf(q, "%lf%*[, ]%lf", &x, &y) == 2) {
+                sx += x, sy += y, k++;
+                while (*q && *q != ' ' && *q != 'L' && *q != 'M' && *q != '"') q++;
+                if (*q == ' ' || *q == 'L' || *q == 'M') q++;
+                if (*q == '"') break;
+                while (*q && *q != ' ' && *q != 'L' && *q != 'M' && *q != '"') q++;
+                if (*q == '"') break;
+                q++;
+            }
+            if (k) dest[n++] = (pt){sx / k, sy / k};
+        }
+    }
+    return n;
+}
+
+/* Eleven methods as compare runs them on llvmpipe, six of them within a few percent and 0.2 ms of each
+ * other, two a thousand times slower: the time axis is logarithmic (whole decades from 0.1 to 100000
+ * ms), every label (at the points and in the legend) lies clear of every other and of every data
+ * marker, and the legend covers no marker. Text boxes as the plots measure them (7 px a character,
+ * 14 px high). */
+TEST(compare_chart_has_a_log_time_axis_and_labels_apart)
+{
+    static const char *names[11] = {"lambert",   "cdrf",        "cdrf+translucency", "ssss:preint",  "ssss:svd1",
+                                    "ssss:svd3", "ssss:guided", "ssss:manual",       "ssss:jimenez", "tsd",
+                                    "points"};
+    static const double ms[11] = {0.4, 0.45, 0.46, 0.9, 0.85, 0.95, 0.92, 0.88, 0.9, 33000, 13000};
+    static const double err[11] = {0.36, 0.20, 0.205, 0.203, 0.208, 0.201, 0.204, 0.22, 0.21, 0.19, 0.25};
+    lucent_compare_method m[11];
+    for (int i = 0; i < 11; i++) m[i] = (lucent_compare_method){.name = names[i], .rel_rms = err[i], .frame_ms = ms[i]};
+    lucent_compare_scene sc = {
+        .name = "bunny", .reference_spp = 256, .reference_noise = 0.05, .methods = m, .method_count = 11};
+    const char *path = test_path("chart-log.svg");
+    CHECK_OK(lucent_compare_write_chart(path, &sc));
+    char *svg;
+    size_t size;
+    CHECK_OK(lucent_read_file(path, &svg, &size));
+    if (!svg) return;
+    for (int e = -1; e <= 5; e++) { /* a labelled tick per decade */
+        char want[64];
+        snprintf(want, sizeof want, "text-anchor=\"middle\">%g</text>", pow(10, e));
+        CHECK_MSG(strstr(svg, want) != NULL, "no tick %s", want);
+    }
+    CHECK(strstr(svg, "logarithmic") != NULL);
+    pt markers[64];
+    int nm = marker_centres(svg, markers, 64);
+    CHECK_MSG(nm == 11, "%d markers", nm);
+    const char *legend = strstr(svg, "fill-opacity=\"0.85\"");
+    double lx = 0, ly = 0, lw = 0, lh = 0;
+    while (legend && legend > svg && strncmp(legend, "<rect", 5)) legend--;
+    CHECK(legend && sscanf(legend, "<rect x=\"%lf\" y=\"%lf\" width=\"%lf\" height=\"%lf\"", &lx, &ly, &lw, &lh) == 4);
+    for (int i = 0; i < nm; i++)
+        CHECK_MSG(!(markers[i].x > lx && markers[i].x < lx + lw && markers[i].y > ly && markers[i].y < ly + lh),
+                  "the legend covers a marker at (%g, %g)", markers[i].x, markers[i].y);
+    /* every start-anchored text after the data: the legend's and the points' labels */
+    double box[64][4];
+    int nb = 0;
+    for (const char *p = strstr(svg, "</g>"); p && (p = strstr(p, "<text x=\"")) && nb < 64; p++) {
+        double x, y;
+        char anchor[16], text[64];
+        if (sscanf(p, "<text x=\"%lf\" y=\"%lf\" text-anchor=\"%15[a-z]\">%63[^<]", &x, &y, anchor, text) != 4 ||
+            strcmp(anchor, "start"))
+            continue;
+        box[nb][0] = x, box[nb][1] = y - 11, box[nb][2] = x + 7.0 * strlen(text), box[nb][3] = y + 3, nb++;
+    }
+    CHECK_MSG(nb == 2 * 11 + 1, "%d labels", nb); /* each name twice, and the noise band's */
+    int overlaps = 0, covered = 0;
+    for (int i = 0; i < nb; i++) {
+        for (int j = i + 1; j < nb; j++)
+            overlaps +=
+                box[i][0] < box[j][2] && box[j][0] < box[i][2] && box[i][1] < box[j][3] && box[j][1] < box[i][3];
+        for (int k = 0; k < nm; k++)
+            covered += markers[k].x > box[i][0] && markers[k].x < box[i][2] && markers[k].y > box[i][1] &&
+                       markers[k].y < box[i][3];
+    }
+    CHECK_MSG(overlaps == 0, "%d pairs of labels overlap", overlaps);
+    CHECK_MSG(covered == 0, "%d markers under a label", covered);
+    free(svg);
+}
+
+/* The summary (issue 35): what a tie means said once, the spread per scene, the methods ranked best
+ * first, bold only for a best rank that is apart from some other method; no "(=1)" cells. Scene 1:
+ * three methods the paired test separates (z 10 and 20); scene 2: two it cannot (z 1). */
+TEST(compare_summary_says_once_what_a_tie_is_and_puts_the_distinguishable_first)
+{
+    lucent_compare_method m1[3] = {
+        {.name = "lambert", .rel_rms = 0.30}, {.name = "svd3", .rel_rms = 0.12}, {.name = "cdrf", .rel_rms = 0.20}};
+    lucent_compare_method m2[2] = {{.name = "lambert", .rel_rms = 0.105}, {.name = "svd3", .rel_rms = 0.10}};
+    /* se of e_i^2 - e_j^2 chosen for z: svd3-cdrf (0.0144 - 0.04) / se = -10, cdrf-lambert -20 */
+    double se1[9] = {0, 0.0756 / 20, 0.05 / 20, 0.0756 / 20, 0, 0.0256 / 10, 0.05 / 20, 0.0256 / 10, 0};
+    double se2[4] = {0, 0.001025, 0.001025, 0};
+    lucent_compare_scene sc[2] = {
+        {.name = "one", .reference_spp = 64, .reference_noise = 0.01, .methods = m1, .method_count = 3, .pair_se = se1},
+        {.name = "two",
+         .reference_spp = 64,
+         .reference_noise = 0.01,
+         .methods = m2,
+         .method_count = 2,
+         .pair_se = se2}};
+    const char *path = test_path("summary.html");
+    CHECK_OK(lucent_compare_write_html(path, "summary", sc, 2));
+    char *html;
+    size_t size;
+    CHECK_OK(lucent_read_file(path, &html, &size));
+    if (!html) return;
+    const char *sum = strstr(html, "Summary across scenes"), *end = sum ? strstr(sum, "</table>") : NULL;
+    CHECK(sum && end);
+    if (!sum || !end) return;
+    CHECK(count_of(sum, "cannot be told apart") >= 1 && strstr(sum, "(=") == NULL);
+    const char *svd3 = strstr(sum, "<tr><td>svd3"), *cdrf = strstr(sum, "<tr><td>cdrf"),
+               *lambert = strstr(sum, "<tr><td>lambert");
+    /* mean ranks: svd3 1, lambert (3 + 1) / 2 = 2, cdrf 2; then the mean net error: cdrf 19.97%, lambert
+     * (29.98 + 10.45) / 2 = 20.22% */
+    CHECK(svd3 && cdrf && lambert && svd3 < cdrf && cdrf < lambert);
+    /* scene one's spread: net sqrt(0.12^2 - 0.01^2) = 11.96% to sqrt(0.3^2 - 0.01^2) = 29.98%, 3 ranks */
+    CHECK(strstr(sum, "<td>11.96% to 29.98% (3)</td>") != NULL);
+    CHECK(strstr(sum, "<td><b>11.96% (1)</b></td>") != NULL); /* svd3 in one: apart from the rest */
+    CHECK(strstr(sum, "<td>9.95% (1)</td>") != NULL);         /* svd3 in two: tied, not bold */
+    CHECK(strstr(sum, "<td>10.45% (1)</td>") != NULL);        /* lambert in two: the same rank */
+    free(html);
+}
+
 TEST_MAIN(TEST_ENTRY(nice_ticks_are_1_2_5_steps), TEST_ENTRY(svg_has_a_curve_per_series_and_log_decades),
           TEST_ENTRY(svg_rejects_empty_figures), TEST_ENTRY(compare_html_has_every_scene_method_and_image),
           TEST_ENTRY(compare_markdown_and_csv_tables), TEST_ENTRY(compare_rank_ties_methods_within_the_noise),
           TEST_ENTRY(compare_reports_of_a_one_spp_reference_warn_and_rank_nothing),
-          TEST_ENTRY(net_error_takes_the_noise_out_in_quadrature), TEST_ENTRY(compare_chart_has_a_marker_per_method))
+          TEST_ENTRY(net_error_takes_the_noise_out_in_quadrature), TEST_ENTRY(compare_chart_has_a_marker_per_method),
+          TEST_ENTRY(compare_chart_has_a_log_time_axis_and_labels_apart),
+          TEST_ENTRY(compare_summary_says_once_what_a_tie_is_and_puts_the_distinguishable_first))

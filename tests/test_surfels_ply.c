@@ -227,6 +227,32 @@ TEST(points_objects_in_scenes)
     CHECK(sc == NULL);
 }
 
-TEST_MAIN(TEST_ENTRY(plain_cloud_with_colour_and_radius), TEST_ENTRY(plain_cloud_radii_from_neighbours),
-          TEST_ENTRY(gaussian_splatting_file), TEST_ENTRY(bad_clouds_name_the_file_and_the_field),
+/* Issue 32 items 6 and 10: each point is checked as it is read, so a bad point is named before the rest of the
+ * body is read (here lines that are not rows after it: the old whole-body check reported those); rows past
+ * the header's count, a property declared twice and radii that no Gaussian can draw are refused. */
+TEST(clouds_checked_point_by_point)
+{
+    lucent_surfels *sf = NULL;
+    char rows[16384] = "0 0 0 0 0 1\n1 0 0 0 0 0\n"; /* then 7000 lines that are not rows */
+    for (size_t at = strlen(rows); at + 3 < sizeof rows; at += 2) memcpy(rows + at, "x\n", 3);
+    const char *p = write_ascii("early.ply", 1000, XYZN, rows);
+    CHECK_ERR(lucent_surfels_load(p, NULL, &sf), LUCENT_ERR_PARSE, p, "vertex 1: the normal (nx, ny, nz) is zero");
+    p = write_ascii("extra.ply", 2, XYZN, "0 0 0 0 0 1\n1 0 0 0 0 1\n2 0 0 0 0 1\n");
+    CHECK_ERR(lucent_surfels_load(p, NULL, &sf), LUCENT_ERR_PARSE, p, "more rows than the header declares");
+    p = write_ascii("blank-tail.ply", 2, XYZN, "0 0 0 0 0 1\n1 0 0 0 0 1\n \n\n");
+    CHECK_OK(lucent_surfels_load(p, NULL, &sf)); /* blank lines after the rows are no rows */
+    lucent_surfels_destroy(sf), sf = NULL;
+    p = write_ascii("twice.ply", 2, XYZN "\nfloat nz", "0 0 0 0 0 1 1\n1 0 0 0 0 1 1\n");
+    CHECK_ERR(lucent_surfels_load(p, NULL, &sf), LUCENT_ERR_PARSE, p, "declares the property nz twice");
+    p = write_ascii("tiny-radius.ply", 2, XYZN "\nfloat radius", "0 0 0 0 0 1 1\n1 0 0 0 0 1 1e-30\n");
+    CHECK_ERR(lucent_surfels_load(p, NULL, &sf), LUCENT_ERR_PARSE, p, "vertex 1: radius must be > 0, from 1e-18");
+    p = write_ascii("big.ply", 2, "double x\nfloat y\nfloat z\nfloat nx\nfloat ny\nfloat nz",
+                    "0 0 0 0 0 1\n1e39 0 0 0 0 1\n");
+    CHECK_ERR(lucent_surfels_load(p, NULL, &sf), LUCENT_ERR_PARSE, p, "vertex 1: x = 1e+39 does not fit a float");
+    CHECK(sf == NULL);
+}
+
+TEST_MAIN(TEST_ENTRY(clouds_checked_point_by_point), TEST_ENTRY(plain_cloud_with_colour_and_radius),
+          TEST_ENTRY(plain_cloud_radii_from_neighbours), TEST_ENTRY(gaussian_splatting_file),
+          TEST_ENTRY(bad_clouds_name_the_file_and_the_field),
           TEST_ENTRY(transform_moves_normals_by_the_inverse_transpose), TEST_ENTRY(points_objects_in_scenes))

@@ -27,6 +27,8 @@ typedef struct cli_common {
     bool quiet;         /* --quiet / -q: no progress bars, no info lines */
     int threads;        /* --threads N (0: LUCENT_THREADS or all cores) */
     int part_k, part_n; /* --part K/N (0/0: none): this job's share of the Monte Carlo (lucent/dist.h) */
+    bool merging;       /* the command runs on merged part files (lucent merge): nothing is simulated here,
+                           so it has no rate to print */
 } cli_common;
 
 extern cli_common g_cli;
@@ -43,10 +45,15 @@ int cli_fail(void);
  * "lucent: ..."); returns CLI_USAGE. */
 int cli_usage_error(const char *command, const char *fmt, ...) LUCENT_PRINTF(2, 3);
 
-/* Refuses (a usage error, exit 2) outputs that name an input or the same file twice: flags[i] names
- * outputs[i] in the message ("--json"); NULL entries are skipped. */
+/* Refuses (a usage error, exit 2) outputs that name an input or the same file twice (several may name one
+ * device or FIFO): flags[i] names outputs[i] in the message ("--json"); NULL entries are skipped. Then checks
+ * that each can be written (lucent_output_check: its folder, what it names; exit 1 naming it), so that no
+ * work is lost to an unwritable output. Call it before the work starts. */
 int cli_check_outputs(const char *command, const char *const *inputs, int input_count, const char *const *outputs,
                       const char *const *flags, int output_count);
+
+/* The same check for the folder a command writes into (compare, pack, kernel-eval): CLI_OK or CLI_FAIL. */
+int cli_check_folder(const char *dir);
 
 /* The file a material spec reads (FILE.json, a path, or FILE#NAME without #NAME) into dest, for
  * cli_check_outputs; NULL for a preset name. */
@@ -81,6 +88,7 @@ typedef struct cli_view {
     double object_height_mm; /* > 0 */
     double distance_mm;      /* 0: from object_height_mm */
     bool given;              /* one of the options was given */
+    int depth_option;        /* which of --object-height (2) or --distance (3) was given; 0: neither */
 } cli_view;
 
 cli_view cli_view_defaults(void);
@@ -97,7 +105,10 @@ double cli_view_depth_mm(const cli_view *v);
  * radius_mm: W = 2 R lucent_screen_pixels_per_mm(H, F, Z), the renderer's scale (ssss.c). */
 void cli_print_kernel_width(FILE *out, double radius_mm, const cli_view *v);
 
-/* "1.8m", "180cm", "1800mm", "1.8" (m): a length > 0 in mm. */
+/* "1.8m", "180cm", "1800mm", "1.8" (m): a length in mm, from CLI_LENGTH_MIN_MM (1 um) to CLI_LENGTH_MAX_MM
+ * (beyond them the kernel's width in pixels has hundreds of digits, or none). */
+#define CLI_LENGTH_MIN_MM 1e-3
+#define CLI_LENGTH_MAX_MM 1e12
 bool cli_parse_length_mm(const char *text, double *mm);
 
 /* The prefix of a command that writes PREFIX.json, .csv, .svg (profile, cdrf-fit): --out as given;

@@ -1,4 +1,5 @@
-/* cli_check_outputs (cli.h): a command's outputs must be distinct files, none of them an input. */
+/* cli_check_outputs (cli.h): a command's outputs must be distinct files, none of them an input, each one
+ * writable (lucent_output_check) before the work starts. */
 #include <libgen.h>
 #include <limits.h>
 #include <stdlib.h>
@@ -28,6 +29,13 @@ static int same_file(const char *a, const char *b)
     return strcmp(ca, cb) == 0;
 }
 
+/* A device, FIFO or socket (what outputs write through): several outputs may name one (/dev/null). */
+static bool written_through(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode) || S_ISSOCK(st.st_mode));
+}
+
 int cli_check_outputs(const char *command, const char *const *inputs, int input_count, const char *const *outputs,
                       const char *const *flags, int output_count)
 {
@@ -38,12 +46,16 @@ int cli_check_outputs(const char *command, const char *const *inputs, int input_
                 return cli_usage_error(command, "%s '%s' names the input '%s': it would be overwritten", flags[i],
                                        outputs[i], inputs[j]);
         for (int j = 0; j < i; j++)
-            if (outputs[j] && same_file(outputs[i], outputs[j]))
+            if (outputs[j] && same_file(outputs[i], outputs[j]) && !written_through(outputs[i]))
                 return cli_usage_error(command, "%s '%s' and %s '%s' name the same file", flags[j], outputs[j],
                                        flags[i], outputs[i]);
     }
+    for (int i = 0; i < output_count; i++)
+        if (outputs[i] && lucent_output_check(outputs[i]) != LUCENT_OK) return cli_fail();
     return CLI_OK;
 }
+
+int cli_check_folder(const char *dir) { return lucent_output_check_folder(dir) == LUCENT_OK ? CLI_OK : cli_fail(); }
 
 const char *cli_spec_file(const char *spec, char *dest, size_t size)
 {

@@ -196,8 +196,9 @@ static int parse_radii(const char *list, fit_options *o)
     o->radius_count = 0;
     for (char *save, *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
         double r;
-        if (!cli_parse_double(t, &r) || !(r > 0) || r > 1e6)
-            return cli_usage_error("cdrf-fit", "--radii: '%s' is not a radius > 0 (mm)", t);
+        if (!cli_parse_double(t, &r) || !(r >= LUCENT_CDRF_SPHERE_MIN_RADIUS && r <= LUCENT_CDRF_SPHERE_MAX_RADIUS))
+            return cli_usage_error("cdrf-fit", "--radii: '%s' is not a radius from %g to %g (mm)", t,
+                                   LUCENT_CDRF_SPHERE_MIN_RADIUS, LUCENT_CDRF_SPHERE_MAX_RADIUS);
         if (o->radius_count == MAX_RADII) return cli_usage_error("cdrf-fit", "--radii: at most %d radii", MAX_RADII);
         o->radii[o->radius_count++] = r;
     }
@@ -330,6 +331,7 @@ int cmd_cdrf_fit(int argc, char **argv)
     int rc = parse_fit_args(argc, argv, &o);
     if (rc != CLI_OK) return rc;
     if (lucent_material_resolve(o.spec, &o.material) != LUCENT_OK) return cli_fail();
+    if (lucent_skin_resolve(&o.material) != LUCENT_OK) return cli_fail(); /* a skin: its equivalent medium */
     char prefix[512], name[128];
     snprintf(name, sizeof name, "%s-cdrf", o.material.name);
     cli_out_prefix(o.out, name, prefix, sizeof prefix);

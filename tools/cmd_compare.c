@@ -1,5 +1,6 @@
 /* `lucent compare`: every real-time method of a scene against the path-traced reference, in error
  * and in time, as an HTML report with images (and Markdown, CSV, JSON). */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,13 +30,27 @@ static const char k_usage[] =
     "  --scale F        multiply every scene's render.width and height by F (keeps each aspect)\n"
     "  --set KEY=VALUE  override a scene value, for every scene (repeatable; see docs/scenes.md)\n"
     "  --out DIR        output folder (default out/compare)\n"
+    "  --reference DIR  reuse the references of an earlier run's --out DIR (DIR/SCENE/reference.json\n"
+    "                   and its EXRs) instead of tracing: the scene and the settings the tracer reads\n"
+    "                   must match (the budget and the seed may differ), else an error names the field\n"
+    "  --reference-runs N  trace each reference as N independent runs sharing the budget, 1 or 2\n"
+    "                   (default: 2 where light paths land one photon in many pixels, which\n"
+    "                   calibrates the paired test's standard error, else 1)\n"
+    "  --per-light      also each light alone, reference and methods (one more reference per light)\n"
     "  --title TEXT     the report's title\n"
     "  -h, --help       show this help\n"
     "\n"
     "examples:\n"
     "  lucent compare data/scenes/spheres-skin.json --spp 256 --out out/spheres\n"
     "  lucent compare data/scenes/dragon-marble.json --methods lambert,ssss:svd3 --set render.width=256 \\\n"
-    "      --set render.height=256 --out out/dragon\n";
+    "      --set render.height=256 --out out/dragon\n"
+    "  lucent compare data/scenes/dragon-marble.json --methods ssss:svd3 --set render.width=256 \\\n"
+    "      --set render.height=256 --set render.taps=25 --reference out/dragon --out out/dragon-taps25\n"
+    "\n"
+    "The methods are ranked by a paired test of their squared errors against the same reference; each\n"
+    "method's phase shows a bar (method, frame k of n, elapsed, ETA) when stderr is a terminal. tsd and\n"
+    "points take tens of seconds a frame on a software GL renderer (llvmpipe): asked for, they are\n"
+    "announced first with an estimate.\n";
 
 typedef struct options {
     const char *scenes[MAX_SCENES];
@@ -47,7 +62,9 @@ typedef struct options {
     double time_limit, scale;
     const char *sets[MAX_SETS];
     int set_count;
-    const char *out, *title;
+    const char *out, *title, *reference;
+    int reference_runs;
+    bool per_light;
 } options;
 
 /* ---- options ---- */
@@ -104,6 +121,15 @@ static int parse_args(int argc, char **argv, options *o)
             if (!v || strlen(v) > 512)
                 return cli_usage_error("compare", "--out needs a folder (at most 512 characters)");
             o->out = v;
+        } else if (cli_option(argc, argv, &i, "--reference", &v)) {
+            if (!v || strlen(v) > 512)
+                return cli_usage_error("compare", "--reference needs a folder (at most 512 characters)");
+            o->reference = v;
+        } else if (cli_option(argc, argv, &i, "--reference-runs", &v)) {
+            if (!v || !cli_parse_int(v, &o->reference_runs) || o->reference_runs < 1 || o->reference_runs > 2)
+                return cli_usage_error("compare", "--reference-runs needs 1 or 2");
+        } else if (!strcmp(argv[i], "--per-light")) {
+            o->per_light = true;
         } else if (cli_option(argc, argv, &i, "--title", &v)) {
             if (!v) return cli_usage_error("compare", "--title needs a text");
             o->title = v;
@@ -133,24 +159,35 @@ static void print_scene(const lucent_compare_scene *r)
                 "lucent: warning: %s: the reference has %d spp, fewer than the %d from which its noise can be "
                 "estimated: its noise is unknown, and no method is ranked or marked best\n",
                 r->name, r->reference_spp, LUCENT_COMPARE_MIN_SPP);
-    cli_info("  %-4s %-22s %14s %13s %12s %10s %12s", "rank", "method", "rel. RMS error", "net of noise", "frame ms",
-             "x Lambert", "setup ms");
+    cli_info("  %-4s %-22s %14s %13s %12s %10s %12s %8s %7s", "rank", "method", "rel. RMS error", "net of noise",
+             "frame ms", "x Lambert", "setup ms", "z next", "FLIP");
     for (int k = 0; k < r->method_count; k++) {
         int i = order[k];
         const lucent_compare_method *m = &r->methods[i];
-        char rk[16] = "-", net[24] = "unknown", ratio[24] = "-";
+        char rk[16] = "-", net[24] = "unknown", ratio[24] = "-", z[24] = "-", flip[24] = "-";
         if (ranked) {
             bool tie = false;
             for (int j = 0; j < r->method_count; j++) tie |= j != i && rank[j] == rank[i];
             snprintf(rk, sizeof rk, "%s%d", tie ? "=" : "", rank[i]);
             snprintf(net, sizeof net, "%.2f%%", 100 * lucent_compare_net_error(m->rel_rms, r->reference_noise));
+            double zn = k + 1 < r->method_count ? fabs(lucent_compare_pair_z(r, i, order[k + 1])) : NAN;
+            if (isinf(zn))
+                snprintf(z, sizeof z, "exact");
+            else if (isfinite(zn))
+                snprintf(z, sizeof z, "%.1f", zn);
         }
         if (l >= 0 && r->methods[l].frame_ms > 0)
             snprintf(ratio, sizeof ratio, "%.2f", m->frame_ms / r->methods[l].frame_ms);
-        cli_info("  %-4s %-22s %13.2f%% %13s %12.3f %10s %12.0f", rk, m->name, 100 * m->rel_rms, net, m->frame_ms,
-                 ratio, m->setup_ms);
+        if (m->has_flip) snprintf(flip, sizeof flip, "%.4f", m->flip);
+        cli_info("  %-4s %-22s %13.2f%% %13s %12.3f %10s %12.0f %8s %7s", rk, m->name, 100 * m->rel_rms, net,
+                 m->frame_ms, ratio, m->setup_ms, z, flip);
     }
-    if (ranked) cli_info("  (= : tied, net errors within the reference's noise of each other)");
+    if (ranked && r->pair_se)
+        cli_info("  (=: the paired test of the squared errors cannot tell them apart, |z| < %.0f; z next: the "
+                 "separation from the next row%s)",
+                 LUCENT_COMPARE_Z, r->se_inflation > 1 ? ", its standard error calibrated on two reference runs" : "");
+    else if (ranked)
+        cli_info("  (= : tied, net errors within the reference's noise of each other)");
 }
 
 /* Prints each scene's table once it is measured. */
@@ -160,6 +197,27 @@ static void on_event(const lucent_eval_event *e, void *user)
     if (e->kind == LUCENT_EVAL_SCENE_DONE) print_scene(&result->scenes[e->index].report);
     if (e->kind == LUCENT_EVAL_SKIPPED)
         fprintf(stderr, "lucent compare: warning: %s skipped (%s)\n", e->name, e->reason);
+    if (e->kind == LUCENT_EVAL_SLOW) fprintf(stderr, "lucent compare: warning: %s\n", e->reason);
+}
+
+extern const char lucent_cli_revision[]; /* generated/revision.c (cmake/revision.cmake) */
+
+/* The command line as a shell would read it back ("lucent compare ..."), for the report's provenance
+ * (the common options main.c took, --quiet, --threads, --part, are not in argv any more). */
+static void command_line(int argc, char **argv, char *dest, size_t size)
+{
+    size_t n = (size_t)snprintf(dest, size, "lucent");
+    for (int i = 0; i < argc && n < size; i++) {
+        const char *a = argv[i];
+        bool plain = *a != '\0';
+        for (const char *p = a; *p; p++)
+            plain &= (*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
+                     strchr("-_./=:,+@%", *p) != NULL;
+        n += (size_t)snprintf(dest + n, size - n, plain ? " %s" : " '", a);
+        for (const char *p = a; !plain && *p && n < size; p++)
+            n += (size_t)snprintf(dest + n, size - n, *p == '\'' ? "'\\''" : "%c", *p);
+        if (!plain && n < size) n += (size_t)snprintf(dest + n, size - n, "'");
+    }
 }
 
 int cmd_compare(int argc, char **argv)
@@ -168,8 +226,11 @@ int cmd_compare(int argc, char **argv)
     options o = {.frames = lucent_compare_defaults().frames, .out = "out/compare"};
     snprintf(o.methods_text, sizeof o.methods_text, "%s", DEFAULT_METHODS);
     int rc = parse_args(argc, argv, &o);
+    if (rc == CLI_OK) rc = cli_check_folder(o.out);
     if (rc != CLI_OK) return rc;
     lucent_compare_result result;
+    static char command[8192];
+    command_line(argc, argv, command, sizeof command);
     lucent_compare_desc d = {.scenes = o.scenes,
                              .scene_count = o.scene_count,
                              .methods = o.methods,
@@ -184,7 +245,12 @@ int cmd_compare(int argc, char **argv)
                              .title = o.title,
                              .pool = cli_pool(),
                              .on_event = on_event,
-                             .user = &result};
+                             .user = &result,
+                             .reference_runs = o.reference_runs,
+                             .reference = o.reference,
+                             .per_light = o.per_light,
+                             .revision = lucent_cli_revision,
+                             .command = command};
     lucent_status s = lucent_compare_run(&d, &result);
     if (s == LUCENT_OK) cli_wrote("wrote %s/report.html (and report.md, report.csv, results.json)", o.out);
     lucent_compare_result_free(&result);

@@ -229,6 +229,7 @@ static lucent_status write_colours(const char *path, const options *o, const luc
                                     .colors = rgb,
                                     .background = {0.05f, 0.05f, 0.05f}};
         s = lucent_mesh_paint(m, &d, &img);
+        if (s != LUCENT_OK) s = lucent_error_context(s, "%s: --size %dx%d", path, o->size[0], o->size[1]);
         if (s == LUCENT_OK) s = add_colour_bar(&img, range, o->scale_given);
         if (s == LUCENT_OK) s = lucent_image_write(path, img, NULL);
         lucent_image_destroy(img);
@@ -248,9 +249,10 @@ static void report(const options *o, const lucent_mesh *m, const lucent_curvatur
     if (lucent_mesh_stats_compute(m, &st) == LUCENT_OK)
         cli_info("%s: %zu vertices, %zu faces; %zu boundary edges, %zu non-manifold edges, %zu zero-area faces",
                  o->mesh, m->vertex_count, m->face_count, st.boundary_edges, st.nonmanifold_edges, st.degenerate_faces);
-    cli_info("%s: %.3f s; %zu vertices without a usable neighbourhood (set to 0); |H| 50%% %.4g, 95%% %.4g "
-             "(colour range %.4g)",
-             lucent_curvature_method_name(o->method), t, c->invalid_count, q[0], q[1], range);
+    const char *unit = o->scale_given ? "mm^-1" : "1/mesh unit; --mm-per-unit gives mm^-1";
+    cli_info("%s: %.3f s; %zu vertices without a usable neighbourhood (set to 0); mean curvature |H| 50%% %.4g, "
+             "95%% %.4g, colour range %.4g (%s)",
+             lucent_curvature_method_name(o->method), t, c->invalid_count, q[0], q[1], range, unit);
 }
 
 int cmd_curvature(int argc, char **argv)

@@ -8,7 +8,7 @@
 static const char k_usage[] =
     "usage: lucent image info FILE [--json]\n"
     "       lucent image convert IN OUT [--exposure E] [--tonemap OP] [--bits 8|16] [--half]\n"
-    "       lucent image diff A B [--mask M] [--out FILE] [--relative] [--json]\n"
+    "       lucent image diff A B [--mask M] [--out FILE] [--relative] [--scale S] [--json]\n"
     "       lucent image <subcommand> --help\n\n"
     "Images are read as linear float RGB(A): PNG (sRGB-decoded), OpenEXR, PFM; the format\n"
     "follows the extension (.png, .exr, .pfm).\n";
@@ -37,9 +37,11 @@ static const char k_diff_usage[] =
     "An alpha channel in only one image is dropped; a grey image is compared as grey RGB.\n"
     "  --mask M      count only the pixels where M (its luminance, linear) is > 0.5\n"
     "  --out FILE    .png: a false-colour heat map of the per-pixel error (mean over colour\n"
-    "                channels; scaled so the 99th percentile is white); .exr/.pfm: the signed\n"
+    "                channels) with its colour bar and scale below it; .exr/.pfm: the signed\n"
     "                difference A - B\n"
     "  --relative    heat map of |A - B| / (|B| + 0.01) instead of |A - B|\n"
+    "  --scale S     the error drawn white (a fixed scale, so that maps compare); default: the\n"
+    "                99th percentile of this map's errors\n"
     "  --json        print the results as a JSON object\n";
 
 static const char *const k_channel_names[4][4] = {{"Y"}, {0}, {"R", "G", "B"}, {"R", "G", "B", "A"}};
@@ -250,6 +252,7 @@ static int run_convert(int argc, char **argv)
 typedef struct diff_args {
     const char *a, *b, *mask, *out;
     bool relative, json;
+    double scale; /* the error drawn white (0: the 99th percentile) */
 } diff_args;
 
 static int parse_diff(int argc, char **argv, diff_args *d)
@@ -264,6 +267,9 @@ static int parse_diff(int argc, char **argv, diff_args *d)
         } else if (take_option(argc, argv, &i, "--out", &v)) {
             if (!v || !*v) return cli_usage_error(cmd, "--out needs a file name");
             d->out = v;
+        } else if (take_option(argc, argv, &i, "--scale", &v)) {
+            if (!v || !cli_parse_double(v, &d->scale) || !(d->scale > 0) || d->scale > 1e30)
+                return cli_usage_error(cmd, "--scale needs the error drawn white, a number > 0");
         } else if (strcmp(argv[i], "--relative") == 0) {
             d->relative = true;
         } else if (strcmp(argv[i], "--json") == 0) {
@@ -305,14 +311,18 @@ static lucent_status load_diff_inputs(const diff_args *d, lucent_image *im[3])
     return s;
 }
 
-static lucent_status write_diff_output(const diff_args *d, const lucent_image *a, const lucent_image *b)
+/* Writes the heat map or the difference; *scale receives the heat map's scale (0: none written). */
+static lucent_status write_diff_output(const diff_args *d, const lucent_image *a, const lucent_image *b, float *scale)
 {
     lucent_image_format f;
     lucent_status s = lucent_image_format_from_path(d->out, &f);
     lucent_image *out = NULL, *map = NULL;
+    *scale = 0;
     if (s == LUCENT_OK && f == LUCENT_IMAGE_FORMAT_PNG) {
         s = lucent_image_error_map(a, b, d->relative, 0.0f, &map);
-        if (s == LUCENT_OK) s = lucent_image_heatmap(map, 0.0f, &out);
+        if (s == LUCENT_OK)
+            s = lucent_image_heatmap_with_bar(map, (float)d->scale, d->relative ? "(A-B)/(B+0.01)" : "A-B", &out,
+                                              scale);
     } else if (s == LUCENT_OK) {
         s = lucent_image_difference(a, b, LUCENT_DIFF_SIGNED, &out);
         if (s == LUCENT_OK) s = fit_channels(&out, f);
@@ -334,7 +344,7 @@ static void print_diff_text(const diff_args *d, const lucent_image *a, const luc
     printf("  %-7s %14.6g %14.6g\n", "all", e->rms_all, e->rel_rms_all);
 }
 
-static void print_diff_json(const diff_args *d, const lucent_image *a, const lucent_image_error_stats *e)
+static void print_diff_json(const diff_args *d, const lucent_image *a, const lucent_image_error_stats *e, float scale)
 {
     printf("{\"a\": ");
     print_json_string(d->a);
@@ -360,6 +370,10 @@ static void print_diff_json(const diff_args *d, const lucent_image *a, const luc
     print_json_number(e->rms_all);
     printf(", \"rel_rms\": ");
     print_json_number(e->rel_rms_all);
+    if (scale > 0) {
+        printf(", \"heat_scale\": ");
+        print_json_number(scale);
+    }
     printf("}\n");
 }
 
@@ -379,13 +393,19 @@ static int run_diff(int argc, char **argv)
     lucent_status s = load_diff_inputs(&d, im);
     if (s == LUCENT_OK && (s = lucent_image_compare_masked(im[0], im[1], im[2], &e)) != LUCENT_OK)
         lucent_error_context(s, "%s vs %s%s%s", d.a, d.b, d.mask ? " under " : "", d.mask ? d.mask : "");
-    if (s == LUCENT_OK && d.out) s = write_diff_output(&d, im[0], im[1]);
+    float scale = 0;
+    if (s == LUCENT_OK && d.out) s = write_diff_output(&d, im[0], im[1], &scale);
     if (s == LUCENT_OK) {
         if (d.json)
-            print_diff_json(&d, im[0], &e);
+            print_diff_json(&d, im[0], &e, scale);
         else
             print_diff_text(&d, im[0], &e);
-        if (d.out && !d.json) cli_wrote("wrote %s", d.out);
+        if (d.out && !d.json && scale > 0)
+            cli_wrote("wrote %s (heat map: white at %s %.4g, %s; the colour bar below it)", d.out,
+                      d.relative ? "relative error" : "|A - B|", scale,
+                      d.scale > 0 ? "--scale" : "the 99th percentile");
+        else if (d.out && !d.json)
+            cli_wrote("wrote %s", d.out);
     }
     for (int i = 0; i < 3; i++) lucent_image_destroy(im[i]);
     return s == LUCENT_OK ? CLI_OK : cli_fail();

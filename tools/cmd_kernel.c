@@ -78,7 +78,8 @@ static int parse_value(options *o, const char *name, const char *v)
     if (!strcmp(name, "--taps"))
         return need(cli_parse_int(v, &o->taps.count) && o->taps.count >= 1, "--taps needs a whole number >= 1");
     if (!strcmp(name, "--range"))
-        return need(cli_parse_double(v, &o->taps.range) && o->taps.range > 0, "--range needs a number > 0 (mm)");
+        return need(cli_parse_double(v, &o->taps.range) && o->taps.range > 0 && o->taps.range <= LUCENT_TAPS_MAX_RANGE,
+                    "--range needs a number > 0 and at most 1e6 (mm)");
     if (!strcmp(name, "--k")) return need(o->have_k = cli_parse_double(v, &d->k), "--k needs a number");
     if (!strcmp(name, "--b")) return need(cli_parse_double(v, &d->b), "--b needs a number");
     if (!strcmp(name, "--w")) return need(d->use_manual = cli_parse_double(v, &d->manual.w), "--w needs a number");
@@ -156,7 +157,7 @@ static void report(const options *o, const lucent_kernel *k, const lucent_kernel
     if (!o->out || !gt) return;
     double rms[3];
     lucent_kernel_rms(k, gt, rms);
-    cli_info("%s %s rank %d: grid %d x %d of %.4g mm, kernel-space RMS %.3g %.3g %.3g, taps to %.4g mm", name,
+    cli_info("%s %s rank %d: grid %d x %d of %.4g mm, kernel-space RMS %.3g %.3g %.3g mm^-2, taps to %.4g mm", name,
              lucent_kernel_model_name(k->model), k->rank, 2 * gt->half + 1, 2 * gt->half + 1, gt->h, rms[0], rms[1],
              rms[2], o->taps.range > 0 ? o->taps.range : k->range);
     if (k->model == LUCENT_KERNEL_GUIDED) cli_info("guided: 1-norm constraint error %.3g", k->constraint_error);
@@ -171,11 +172,14 @@ static lucent_status run(options *o)
     lucent_taps *t = NULL;
     char *text = NULL, label[160];
     lucent_status s = o->spec ? lucent_material_resolve(o->spec, &m) : LUCENT_OK;
+    if (s == LUCENT_OK && o->spec) s = lucent_skin_resolve(&m); /* a skin: its equivalent medium */
     if (s == LUCENT_OK && o->spec)
         s = lucent_profile_from_source(
             &(lucent_profile_source_desc){
                 .source = o->profile, .photons = (uint64_t)o->photons, .seed = (uint64_t)o->seed, .pool = cli_pool()},
             &m, &p);
+    if (s != LUCENT_OK && o->spec && strncmp(lucent_last_error(), o->spec, strlen(o->spec)) != 0)
+        s = lucent_error_context(s, "%s", o->spec); /* the material's fields are the file's: name it */
     if (s == LUCENT_OK && p) s = lucent_kernel2d_from_profile(p, NULL, &gt);
     if (s == LUCENT_OK) s = lucent_kernel_build(gt, p, o->spec ? m.name : NULL, &o->desc, &k);
     if (s == LUCENT_OK) s = lucent_kernel_taps(k, &o->taps, &t);

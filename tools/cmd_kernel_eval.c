@@ -141,12 +141,14 @@ static lucent_status run(const options *o)
 {
     lucent_material m;
     lucent_status s = lucent_material_resolve(o->spec, &m);
+    if (s == LUCENT_OK) s = lucent_skin_resolve(&m); /* a skin: its equivalent medium */
     if (s != LUCENT_OK) return s;
     char dir[512];
     if (o->out)
         snprintf(dir, sizeof dir, "%s", o->out);
     else
         snprintf(dir, sizeof dir, "%s-eval", m.name);
+    if ((s = lucent_output_check_folder(dir)) != LUCENT_OK) return s;
     lucent_kernel_eval_desc d = {
         .material = &m,
         .models = o->model_names,
@@ -186,5 +188,8 @@ int cmd_kernel_eval(int argc, char **argv)
     int rc = parse_args(argc, argv, &o);
     if (rc == CLI_OK) rc = choose_models(&o);
     if (rc != CLI_OK) return rc;
-    return run(&o) == LUCENT_OK ? CLI_OK : cli_fail();
+    lucent_status s = run(&o);
+    if (s != LUCENT_OK && strncmp(lucent_last_error(), "layers[", 7) == 0)
+        lucent_error_context(s, "%s", o.spec); /* the Monte Carlo's check of the material's fields: name its file */
+    return s == LUCENT_OK ? CLI_OK : cli_fail();
 }

@@ -14,12 +14,16 @@ static const char k_usage[] =
     "Prints materials with their derived quantities: reduced coefficients, albedos, the\n"
     "transport coefficient sigma_tr, the diffusion constant D, mean free paths and the\n"
     "classical-dipole total diffuse reflectance Rd (Jensen et al. 2001).\n"
-    "Without arguments: the 11 measured presets of Jensen et al. 2001.\n"
+    "Without arguments: the 11 measured presets of Jensen et al. 2001 and the spectral skins.\n"
     "Arguments name presets (case-insensitive) or material files (docs/materials.md).\n"
+    "A spectral skin (docs/skin.md) shows its equivalent medium in the tables and, in tables\n"
+    "of its own, its layers and the CIELAB colour, ITA and linear sRGB of its total diffuse\n"
+    "reflectance under D65 (Monte Carlo per band, kept in the disk cache: $LUCENT_CACHE_DIR).\n"
     "\n"
     "options:\n"
     "  --json        print JSON (coefficients in mm^-1, lengths in mm) instead of tables\n"
     "  --out FILE    write that JSON to FILE (atomically) instead of printing it\n"
+    "  --photons N   Monte Carlo photons per band of a spectral skin's colour (default 5000)\n"
     "  --swatches IMAGE\n"
     "                write a row of colour swatches, one per material, showing its total\n"
     "                diffuse reflectance Rd under white light (PNG, EXR or PFM by extension)\n"
@@ -29,9 +33,12 @@ static const char k_usage[] =
     "  lucent materials\n"
     "  lucent materials skin1 marble --json\n"
     "  lucent materials my_jade.json --out out/jade.json\n"
-    "  lucent materials --swatches out/materials.png\n";
+    "  lucent materials --swatches out/materials.png\n"
+    "  lucent materials skin-light skin-dark\n";
 
 typedef struct options {
+    lucent_cache *cache; /* the skins' Monte Carlo colours */
+    int photons;         /* per band for them (0: LUCENT_SKIN_COLOR_PHOTONS) */
     bool json;
     const char *out;
     const char *swatches;
@@ -49,6 +56,10 @@ static lucent_status append(options *o, const lucent_material *m, int n)
         o->capacity = cap;
     }
     memcpy(o->list + o->count, m, (size_t)n * sizeof *m);
+    for (int i = 0; i < n; i++) { /* a spectral skin: its equivalent medium (lucent/skin.h) */
+        lucent_status s = lucent_skin_resolve(&o->list[o->count + i]);
+        if (s != LUCENT_OK) return s;
+    }
     o->count += n;
     return LUCENT_OK;
 }
@@ -172,6 +183,71 @@ static void print_anisotropic(const row *rows, int count)
     }
 }
 
+/* A skin's colour by the Monte Carlo per band (the truth; kept in the disk cache). */
+static lucent_status skin_color(const options *o, const lucent_material *m, lucent_skin_color *c)
+{
+    lucent_skin_desc d = {
+        .transport = "mc", .photons = (uint64_t)o->photons, .seed = 1, .pool = cli_pool(), .cache = o->cache};
+    return lucent_skin_color_of(m, &d, c);
+}
+
+/* Prints a length in mm, or "inf" for a semi-infinite layer, in 8 columns. */
+static void print_thickness(double v)
+{
+    if (isfinite(v))
+        print_value(v);
+    else
+        printf(" %7s", "inf");
+}
+
+/* The spectral skins: their layers, then the colour of their total diffuse reflectance. */
+static lucent_status print_skins(const options *o, int name_width)
+{
+    int skins = 0;
+    for (int i = 0; i < o->count; i++) skins += o->list[i].skin.layer_count > 0;
+    if (!skins) return LUCENT_OK;
+    printf("Spectral skin layers (docs/skin.md; thickness in mm, inf: semi-infinite)\n"
+           "%-*s %7s %7s %7s %7s %7s %7s %7s %7s\n",
+           name_width, "name", "epi mm", "melanin", "eumel.", "derm mm", "blood", "oxy", "hypo mm", "blood");
+    for (int i = 0; i < o->count; i++) {
+        const lucent_skin *sk = &o->list[i].skin;
+        if (!sk->layer_count) continue;
+        printf("%-*s", name_width, o->list[i].name);
+        for (int kind = 0; kind < 3; kind++) {
+            const lucent_skin_layer *l = NULL;
+            for (int k = 0; k < sk->layer_count; k++)
+                if (sk->layer[k].kind == kind) l = &sk->layer[k];
+            int columns = kind == 2 ? 2 : 3;
+            if (!l) {
+                for (int c = 0; c < columns; c++) printf(" %7s", "-");
+                continue;
+            }
+            print_thickness(l->thickness);
+            print_value(kind == LUCENT_SKIN_EPIDERMIS ? l->melanin : l->blood);
+            if (columns == 3) print_value(kind == LUCENT_SKIN_EPIDERMIS ? l->eumelanin : l->oxygenation);
+        }
+        putchar('\n');
+    }
+    printf("\nSpectral skin colour: total diffuse reflectance (Monte Carlo, %d photons per band), %d bands over\n"
+           "380-780 nm, CIE 1931 2 deg under D65\n"
+           "%-*s %7s %7s %7s %7s  %-13s %7s %7s %7s\n",
+           o->photons ? o->photons : LUCENT_SKIN_COLOR_PHOTONS, LUCENT_BANDS_DEFAULT, name_width, "name", "L*", "a*",
+           "b*", "ITA", "ITA category", "R", "G", "B");
+    for (int i = 0; i < o->count; i++) {
+        const lucent_material *m = &o->list[i];
+        if (!m->skin.layer_count) continue;
+        lucent_skin_color c;
+        lucent_status s = skin_color(o, m, &c);
+        if (s != LUCENT_OK) return s;
+        printf("%-*s %7.2f %7.2f %7.2f %7.2f  %-13s", name_width, m->name, c.lab[0], c.lab[1], c.lab[2], c.ita,
+               c.category);
+        for (int k = 0; k < 3; k++) print_value(c.rgb[k]);
+        putchar('\n');
+    }
+    printf("(R G B: linear sRGB, white balanced: a flat reflector R gives R R R)\n\n");
+    return LUCENT_OK;
+}
+
 static lucent_status print_tables(const options *o)
 {
     row *rows = calloc((size_t)o->count, sizeof *rows);
@@ -187,7 +263,7 @@ static lucent_status print_tables(const options *o)
         print_table(&k_tables[t], rows, o->count, name_width);
     print_anisotropic(rows, o->count);
     free(rows);
-    return LUCENT_OK;
+    return print_skins(o, name_width);
 }
 
 /* ---- JSON ---- */
@@ -211,11 +287,18 @@ static lucent_status emit_json(const options *o)
 
 enum { SWATCH_SIZE = 96, SWATCH_GAP = 8, SWATCH_LABEL = 14 };
 
-/* Draws one swatch: the material's dipole Rd as a linear RGB colour, its name below. */
-static void draw_swatch(lucent_image *img, int index, const lucent_material *m)
+/* Draws one swatch: the material's dipole Rd (a spectral skin: its bands' total reflectance through the
+ * colour weights) as a linear RGB colour, its name below. */
+static lucent_status draw_swatch(const options *o, lucent_image *img, int index, const lucent_material *m)
 {
     lucent_material_derived d;
     lucent_material_derive(m, &d);
+    lucent_skin_color sc;
+    if (m->skin.layer_count > 0) {
+        lucent_status s = skin_color(o, m, &sc);
+        if (s != LUCENT_OK) return s;
+        memcpy(d.rd, sc.rgb, sizeof d.rd);
+    }
     int x0 = SWATCH_GAP + index * (SWATCH_SIZE + SWATCH_GAP);
     for (int y = SWATCH_GAP; y < SWATCH_GAP + SWATCH_SIZE; y++)
         for (int x = x0; x < x0 + SWATCH_SIZE; x++)
@@ -223,6 +306,7 @@ static void draw_swatch(lucent_image *img, int index, const lucent_material *m)
     static const float ink[3] = {0.85f, 0.85f, 0.85f};
     int tw = lucent_image_text_width(m->name, 1);
     lucent_image_draw_text(img, x0 + (SWATCH_SIZE - tw) / 2, SWATCH_GAP + SWATCH_SIZE + 4, 1, ink, m->name);
+    return LUCENT_OK;
 }
 
 static lucent_status write_swatches(const options *o)
@@ -232,14 +316,14 @@ static lucent_status write_swatches(const options *o)
     lucent_status s = lucent_image_create(width, SWATCH_SIZE + 2 * SWATCH_GAP + SWATCH_LABEL, 3, &img);
     if (s != LUCENT_OK) return s;
     for (int c = 0; c < 3; c++) lucent_image_fill(img, c, 0.18f); /* middle grey backdrop */
-    for (int i = 0; i < o->count; i++) draw_swatch(img, i, &o->list[i]);
-    s = lucent_image_write(o->swatches, img, NULL);
+    for (int i = 0; i < o->count && s == LUCENT_OK; i++) s = draw_swatch(o, img, i, &o->list[i]);
+    if (s == LUCENT_OK) s = lucent_image_write(o->swatches, img, NULL);
     lucent_image_destroy(img);
     if (s != LUCENT_OK) return s;
     char names[2048] = "";
     for (int i = 0; i < o->count; i++)
         snprintf(names + strlen(names), sizeof names - strlen(names), " %s", o->list[i].name);
-    cli_wrote("wrote %s (dipole Rd swatches, left to right:%s)", o->swatches, names);
+    cli_wrote("wrote %s (Rd swatches: dipole, or a skin's spectral colour; left to right:%s)", o->swatches, names);
     return LUCENT_OK;
 }
 
@@ -270,6 +354,10 @@ static int parse_args(int argc, char **argv, options *o, int *specs)
             o->swatches = a[10] == '=' ? a + 11 : (i + 1 < argc ? argv[++i] : NULL);
             if (!o->swatches || !o->swatches[0])
                 return cli_usage_error("materials", "--swatches needs an image file name");
+        } else if (strcmp(a, "--photons") == 0 || strncmp(a, "--photons=", 10) == 0) {
+            const char *v = a[9] == '=' ? a + 10 : (i + 1 < argc ? argv[++i] : NULL);
+            if (!v || !cli_parse_int(v, &o->photons) || o->photons < 1)
+                return cli_usage_error("materials", "--photons needs a whole number > 0");
         } else if (a[0] == '-' && a[1]) {
             return cli_usage_error("materials", "unknown option '%s'", a);
         } else {
@@ -315,10 +403,14 @@ int cmd_materials(int argc, char **argv)
     int rc = parse_args(argc, argv, &o, &specs);
     if (rc == CLI_OK) rc = check_outputs(&o, argv + 1, specs);
     if (rc == CLI_OK) {
-        lucent_status s = gather(&o, argv + 1, specs);
+        char buf[4096];
+        const char *cdir = cli_cache_dir(NULL, false, buf, sizeof buf);
+        lucent_status s = cdir ? lucent_cache_create(cdir, &o.cache) : LUCENT_OK;
+        if (s == LUCENT_OK) s = gather(&o, argv + 1, specs);
         if (s == LUCENT_OK) s = emit(&o);
         if (s != LUCENT_OK) rc = cli_fail();
     }
+    lucent_cache_destroy(o.cache);
     free(o.list);
     return rc;
 }

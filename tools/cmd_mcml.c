@@ -172,10 +172,11 @@ static lucent_status run_one(const options *o, lucent_mcml_run *run, int k, int 
     if (s != LUCENT_OK) s = lucent_error_context(s, "%s: run %d", o->input, k + 1);
     if (s == LUCENT_OK) {
         s = lucent_mcml_write(path, run, &r);
+        char rate[64] = "";
+        if (!g_cli.merging && t > 0) snprintf(rate, sizeof rate, "; %.0f photons/s", (double)r.photons / t);
         if (s == LUCENT_OK)
-            cli_wrote("wrote %s (Rsp %.5f, Rd %.5f +- %.5f, A %.5f +- %.5f, Tt %.5f +- %.5f; "
-                      "%.0f photons/s)",
-                      path, r.rsp, r.rd, r.rd_se, r.a, r.a_se, r.tt, r.tt_se, t > 0 ? (double)r.photons / t : 0.0);
+            cli_wrote("wrote %s (Rsp %.5f, Rd %.5f +- %.5f, A %.5f +- %.5f, Tt %.5f +- %.5f; %llu photons%s)", path,
+                      r.rsp, r.rd, r.rd_se, r.a, r.a_se, r.tt, r.tt_se, (unsigned long long)r.photons, rate);
         lucent_mc_result_free(&r);
     }
     free(path);

@@ -9,7 +9,7 @@
 #include "lucent/mesh.h"
 
 static const char k_usage[] =
-    "usage: lucent mesh-uv IN OUT.obj|OUT.gltf [--png FILE] [--size N] [--angle DEG] [--gutter T] [--atlas]\n"
+    "usage: lucent mesh-uv IN --out OUT.obj|OUT.gltf [--png FILE] [--size N] [--angle DEG] [--gutter T] [--atlas]\n"
     "\n"
     "Writes the mesh IN (PLY, .ply.gz, OBJ, glTF) with texture coordinates to OUT (.obj: one vt per\n"
     "corner; .gltf: one file, the buffer embedded). A mesh with its own coordinates keeps them; one\n"
@@ -19,6 +19,8 @@ static const char k_usage[] =
     "of a raster of the atlas (0: no two faces share a texel).\n"
     "\n"
     "options:\n"
+    "  --out FILE     the mesh with its coordinates, .obj or .gltf (required; the form\n"
+    "                 `lucent mesh-uv IN OUT` of Lucent 0.1 still works, with a note)\n"
     "  --png FILE     the picture of the charts (default: OUT with .png)\n"
     "  --size N       texels along a side: the picture, the overlap raster and the gutter (default 1024)\n"
     "  --angle DEG    a chart's normal cone, degrees (default 40)\n"
@@ -27,8 +29,8 @@ static const char k_usage[] =
     "  -h, --help     show this help\n"
     "\n"
     "examples:\n"
-    "  lucent mesh-uv data/meshes/bunny.ply out/bunny-uv.obj\n"
-    "  lucent mesh-uv data/meshes/dragon_vrip_res2.ply.gz out/dragon-uv.gltf --size 2048\n";
+    "  lucent mesh-uv data/meshes/bunny.ply --out out/bunny-uv.obj\n"
+    "  lucent mesh-uv data/meshes/dragon_vrip_res2.ply.gz --out out/dragon-uv.gltf --size 2048\n";
 
 typedef struct options {
     const char *in, *out, *png;
@@ -41,7 +43,11 @@ static int parse_args(int argc, char **argv, options *o)
 {
     for (int i = 1; i < argc; i++) {
         const char *v;
-        if (cli_option(argc, argv, &i, "--png", &v)) {
+        if (cli_option(argc, argv, &i, "--out", &v)) {
+            if (!v) return cli_usage_error("mesh-uv", "--out needs a file name");
+            if (o->out) return cli_usage_error("mesh-uv", "two outputs: '%s' and '%s'", o->out, v);
+            o->out = v;
+        } else if (cli_option(argc, argv, &i, "--png", &v)) {
             if (!(o->png = v)) return cli_usage_error("mesh-uv", "--png needs a file name");
         } else if (cli_option(argc, argv, &i, "--size", &v)) {
             if (!cli_parse_int(v, &o->size) || o->size < 16 || o->size > 16384)
@@ -60,11 +66,16 @@ static int parse_args(int argc, char **argv, options *o)
             o->in = argv[i];
         } else if (!o->out) {
             o->out = argv[i];
+            fprintf(stderr,
+                    "lucent mesh-uv: note: the output as a second argument is Lucent 0.1's form; "
+                    "write --out %s\n",
+                    argv[i]);
         } else {
-            return cli_usage_error("mesh-uv", "expected IN and OUT only (got '%s' too)", argv[i]);
+            return cli_usage_error("mesh-uv", "expected one mesh (got '%s' too)", argv[i]);
         }
     }
-    if (!o->in || !o->out) return cli_usage_error("mesh-uv", "expected a mesh and an output file");
+    if (!o->in) return cli_usage_error("mesh-uv", "expected a mesh");
+    if (!o->out) return cli_usage_error("mesh-uv", "expected --out OUT.obj or OUT.gltf");
     size_t n = strlen(o->out);
     bool obj = n > 4 && !strcasecmp(o->out + n - 4, ".obj"), gltf = n > 5 && !strcasecmp(o->out + n - 5, ".gltf");
     if (!obj && !gltf) return cli_usage_error("mesh-uv", "OUT must end in .obj or .gltf");

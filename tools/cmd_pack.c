@@ -511,6 +511,16 @@ static lucent_status run(const options *o)
     lucent_material m;
     lucent_render_settings rs = lucent_render_settings_defaults();
     lucent_status s = lucent_material_resolve(o->spec, &m);
+    if (s == LUCENT_OK) s = lucent_skin_resolve(&m); /* a skin: its equivalent medium (docs/skin.md) */
+    char dir[4096];
+    if (o->out || s != LUCENT_OK)
+        snprintf(dir, sizeof dir, "%s", o->out ? o->out : "");
+    else
+        snprintf(dir, sizeof dir, "%s-%s", m.name,
+                 o->engine == ENGINE_GLSL   ? "glsl"
+                 : o->engine == ENGINE_HLSL ? "hlsl"
+                                            : "json");
+    if (s == LUCENT_OK) s = lucent_output_check_folder(dir); /* before the bake */
     if (s == LUCENT_OK) s = apply_sets(o, &rs);
     lucent_cache *cache = NULL;
     char buf[4096];
@@ -530,14 +540,6 @@ static lucent_status run(const options *o)
         sc.depth_mm = cli_view_depth_mm(w);
         sc.px_per_mm = lucent_screen_pixels_per_mm(w->height, w->fov, sc.depth_mm);
         sc.width_px = 2 * sc.radius_mm * sc.px_per_mm;
-        char dir[4096];
-        if (o->out)
-            snprintf(dir, sizeof dir, "%s", o->out);
-        else
-            snprintf(dir, sizeof dir, "%s-%s", m.name,
-                     o->engine == ENGINE_GLSL   ? "glsl"
-                     : o->engine == ENGINE_HLSL ? "hlsl"
-                                                : "json");
         int written = 0;
         s = write_pack(o, dir, &m, &b, &rs, &sc, &written);
         if (s == LUCENT_OK) {

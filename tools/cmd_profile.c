@@ -25,6 +25,7 @@ static const char k_usage[] =
     "  better-dipole  d'Eon 2012\n"
     "  multipole      a slab of --thickness mm (Donner & Jensen 2005)\n"
     "  burley         normalized diffusion (Christensen & Burley 2015), --burley-fit\n"
+    "  shortcut       a spectral skin's three-coefficient shortcut (docs/skin.md), to compare\n"
     "\n"
     "options:\n"
     "  --model M          one model (default: mc)\n"
@@ -40,6 +41,9 @@ static const char k_usage[] =
     "  --dr D             radial bin width in mm  } default: Freude 2014, Table 6.1:\n"
     "  --bins N           number of radial bins   } dr = min l'/20, N = 32 max l'/dr\n"
     "  --sog N            also fit N Gaussians per channel (d'Eon & Luebke 2007), to JSON\n"
+    "  --bands N          a spectral skin (docs/skin.md): wavelength bands over 380-780 nm\n"
+    "                     (default 20); its profile is mc or multipole band by band, weighted\n"
+    "                     into linear sRGB per radius (mc: 3 x --photons / N per band)\n"
     "  --out PREFIX|DIR/  output prefix (default: NAME-MODEL, or NAME-compare); ending in '/': a\n"
     "                     folder, with the default names inside it\n"
     "  -h, --help         show this help\n"
@@ -47,15 +51,18 @@ static const char k_usage[] =
     "examples:\n"
     "  lucent profile skin1 --model dipole\n"
     "  lucent profile marble --compare mc,dipole,better-dipole,burley --photons 200000\n"
-    "  lucent profile skin1 --layers skin1:0.25,skin2:inf --model mc --out out/skin-layers\n";
+    "  lucent profile skin1 --layers skin1:0.25,skin2:inf --model mc --out out/skin-layers\n"
+    "  lucent profile skin-light --model multipole --out out/skin-light\n";
 
-static const char *const k_models[] = {"mc", "dipole", "better-dipole", "multipole", "burley"};
-enum { MODEL_MC, MODEL_DIPOLE, MODEL_BETTER, MODEL_MULTIPOLE, MODEL_BURLEY, MODEL_COUNT };
+static const char *const k_models[] = {"mc", "dipole", "better-dipole", "multipole", "burley", "shortcut"};
+enum { MODEL_MC, MODEL_DIPOLE, MODEL_BETTER, MODEL_MULTIPOLE, MODEL_BURLEY, MODEL_SHORTCUT, MODEL_COUNT };
 enum { MAX_LAYERS = 16 };
 
 typedef struct options {
     const char *spec;
     lucent_material material;
+    lucent_material title; /* the material as outputs name it: a layered slab by its layers */
+    bool layered;          /* --layers given: the outputs record the layers and are named after them */
     int models[MODEL_COUNT], model_count;
     bool compare;
     uint64_t photons, seed;
@@ -65,6 +72,7 @@ typedef struct options {
     lucent_burley_fit burley_fit;
     lucent_profile_grid grid;
     int sog;
+    int bands; /* a spectral skin's wavelength bands (0: the default) */
     const char *out;
 } options;
 
@@ -87,7 +95,7 @@ static int parse_models(const char *list, options *o)
         if (m < 0)
             return cli_usage_error("profile",
                                    "unknown model '%s' (mc, dipole, better-dipole, "
-                                   "multipole, burley)",
+                                   "multipole, burley, shortcut)",
                                    t);
         if (o->model_count == MODEL_COUNT) return cli_usage_error("profile", "too many models");
         o->models[o->model_count++] = m;
@@ -174,6 +182,10 @@ static int parse_number_option(int argc, char **argv, int *i, options *o)
     if (cli_option(argc, argv, i, "--bins", &v))
         return cli_parse_int(v, &n) && n > 0 ? (o->grid.count = n, CLI_OK)
                                              : cli_usage_error("profile", "--bins needs a whole number > 0");
+    if (cli_option(argc, argv, i, "--bands", &v))
+        return cli_parse_int(v, &o->bands) && o->bands >= 1 && o->bands <= LUCENT_BANDS_MAX
+                   ? CLI_OK
+                   : cli_usage_error("profile", "--bands needs a count from 1 to %d", LUCENT_BANDS_MAX);
     if (cli_option(argc, argv, i, "--sog", &v))
         return cli_parse_int(v, &o->sog) && o->sog >= 1 && o->sog <= LUCENT_SOG_MAX
                    ? CLI_OK
@@ -273,8 +285,37 @@ static lucent_status profile_multipole(const options *o, const lucent_profile_gr
     return LUCENT_OK;
 }
 
+/* A spectral skin, band by band (lucent/skin.h): mc with 3 photons / bands per band for each photon per
+ * channel asked (the work of an RGB material), or the layered multipole; the other models do not
+ * carry layers. */
+static lucent_status profile_skin(const options *o, int model, const lucent_profile_grid *g, lucent_profile **dest)
+{
+    if (model != MODEL_MC && model != MODEL_MULTIPOLE && model != MODEL_SHORTCUT)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                            "%s: %s is a spectral skin, carried in its layers band by band: --model mc, multipole "
+                            "or shortcut",
+                            k_models[model], o->material.name);
+    int bands = o->bands ? o->bands : LUCENT_BANDS_DEFAULT;
+    uint64_t per_band = 3 * o->photons / (uint64_t)bands;
+    lucent_skin_desc d = {.bands = bands,
+                          .transport = model == MODEL_MC         ? "mc"
+                                       : model == MODEL_SHORTCUT ? "shortcut"
+                                                                 : "multipole",
+                          .photons = per_band ? per_band : 1,
+                          .seed = o->seed,
+                          .pool = cli_pool(),
+                          .grid = *g};
+    return lucent_profile_skin(&o->material, &d, dest);
+}
+
 static lucent_status make_profile(const options *o, int model, const lucent_profile_grid *g, lucent_profile **dest)
 {
+    if (o->material.skin.layer_count > 0) return profile_skin(o, model, g, dest);
+    if (model == MODEL_SHORTCUT)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                            "shortcut: the three-coefficient shortcut of a spectral skin "
+                            "(docs/skin.md); %s is not one",
+                            o->material.name);
     if (o->layer_count > 1 && model != MODEL_MC && model != MODEL_MULTIPOLE)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: a layered slab needs --model mc or multipole",
                             k_models[model]);
@@ -293,6 +334,32 @@ static lucent_status make_profile(const options *o, int model, const lucent_prof
 
 /* ---- the command ---- */
 
+/* "Skin1 1mm + Skin2 2mm": a layered slab named by its layers and thicknesses (the chart, the CSV). */
+static void layers_name(const options *o, char *dest, size_t size)
+{
+    dest[0] = '\0';
+    for (int i = 0; i < o->layer_count; i++) {
+        const lucent_layer *l = &o->layers[i];
+        size_t n = strlen(dest);
+        if (isinf(l->slab.thickness))
+            snprintf(dest + n, size - n, "%s%s", i ? " + " : "", l->material.name);
+        else
+            snprintf(dest + n, size - n, "%s%s %gmm", i ? " + " : "", l->material.name, l->slab.thickness);
+    }
+}
+
+/* "Skin1-1mm_Skin2-2mm": the same as a file name. */
+static void layers_stem(const options *o, char *dest, size_t size)
+{
+    dest[0] = '\0';
+    for (int i = 0; i < o->layer_count; i++) {
+        const lucent_layer *l = &o->layers[i];
+        size_t n = strlen(dest);
+        snprintf(dest + n, size - n, isinf(l->slab.thickness) ? "%s%s" : "%s%s-%gmm", i ? "_" : "", l->material.name,
+                 l->slab.thickness);
+    }
+}
+
 /* Sets up the material and its layers once the arguments are read. */
 static lucent_status prepare(options *o, const char *layers)
 {
@@ -302,11 +369,21 @@ static lucent_status prepare(options *o, const char *layers)
         if (!o->spec) o->material = o->layers[0].material;
     }
     if (o->spec && (s = lucent_material_resolve(o->spec, &o->material)) != LUCENT_OK) return s;
+    if ((s = lucent_skin_resolve(&o->material)) != LUCENT_OK) return s; /* its grid: the equivalent medium's */
+    if (o->material.skin.layer_count > 0) {
+        if (layers)
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                                "%s is a spectral skin, already layered: --layers takes RGB materials", o->spec);
+        return lucent_profile_grid_resolve(&o->grid, &o->material, &o->grid);
+    }
     if (!layers) {
         double d = o->thickness > 0 ? o->thickness : INFINITY;
         o->layers[0] = (lucent_layer){.material = o->material, .slab = {.thickness = d}};
         o->layer_count = 1;
     }
+    o->title = o->material;
+    o->layered = layers != NULL;
+    if (o->layered) layers_name(o, o->title.name, sizeof o->title.name);
     bool multipole = false;
     for (int m = 0; m < o->model_count; m++) multipole |= o->models[m] == MODEL_MULTIPOLE;
     if (multipole && !layers && !(o->thickness > 0))
@@ -317,7 +394,12 @@ static lucent_status prepare(options *o, const char *layers)
 static void default_prefix(const options *o, char *dest, size_t size)
 {
     const char *model = o->compare ? "compare" : k_models[o->models[0]];
-    if (snprintf(dest, size, "%s-%s", o->material.name, model) >= (int)size) dest[size - 1] = '\0';
+    char stem[256];
+    if (o->layered)
+        layers_stem(o, stem, sizeof stem);
+    else
+        snprintf(stem, sizeof stem, "%s", o->material.name);
+    if (snprintf(dest, size, "%s-%s", stem, model) >= (int)size) dest[size - 1] = '\0';
     for (char *p = dest; *p; p++)
         if (*p == '/' || *p == ' ') *p = '_';
 }
@@ -344,14 +426,19 @@ static lucent_status write_profile(const options *o, const char *prefix, const l
     lucent_sog sog;
     char path[600];
     lucent_status s = with_sog ? lucent_sog_fit(p, &(lucent_sog_desc){.count = o->sog}, &sog) : LUCENT_OK;
-    lucent_profile_report report = {
-        .material = &o->material, .profile = p, .photons = o->photons, .seed = o->seed, .sog = with_sog ? &sog : NULL};
+    lucent_profile_report report = {.material = &o->material,
+                                    .profile = p,
+                                    .photons = o->photons,
+                                    .seed = o->seed,
+                                    .sog = with_sog ? &sog : NULL,
+                                    .layers = o->layered ? o->layers : NULL,
+                                    .layer_count = o->layered ? o->layer_count : 0};
     path_for(o, prefix, p, "json", path, sizeof path);
     if (s == LUCENT_OK) s = wrote(lucent_profile_write_json(path, &report), path);
     path_for(o, prefix, p, "csv", path, sizeof path);
-    if (s == LUCENT_OK) s = wrote(lucent_profile_write_csv(path, &o->material, p), path);
+    if (s == LUCENT_OK) s = wrote(lucent_profile_write_csv(path, &o->title, p), path);
     snprintf(path, sizeof path, "%s.svg", prefix);
-    if (s == LUCENT_OK && !o->compare) s = wrote(lucent_profile_write_svg(path, &o->material, p, report.sog), path);
+    if (s == LUCENT_OK && !o->compare) s = wrote(lucent_profile_write_svg(path, &o->title, p, report.sog), path);
     return s;
 }
 
@@ -363,9 +450,9 @@ static lucent_status write_outputs(const options *o, const char *prefix, lucent_
     char path[600];
     snprintf(path, sizeof path, "%s.svg", prefix);
     if (s == LUCENT_OK && o->compare)
-        s = wrote(lucent_profile_write_compare_svg(path, &o->material, (const lucent_profile *const *)profiles,
-                                                   o->model_count),
-                  path);
+        s = wrote(
+            lucent_profile_write_compare_svg(path, &o->title, (const lucent_profile *const *)profiles, o->model_count),
+            path);
     return s;
 }
 

@@ -188,15 +188,24 @@ static lucent_status write_outputs(const trace_options *o, const lucent_scene *s
     return s;
 }
 
-static void summary(const lucent_trace_result *r)
+/* The estimate's size as the run made it: passes of adaptive sampling are not samples per pixel, and a
+ * pass cut by the time limit keeps its finished tiles' samples without counting as a pass. */
+static void summary(const lucent_trace_result *r, bool adaptive)
 {
-    cli_info("trace: %llu spp in %.2f s (%.0f samples/s); relative standard error over the object: median %.3g, "
-             "p90 %.3g, rms %.3g (%llu pixels)",
-             (unsigned long long)r->spp, r->seconds, r->samples_per_second, r->error.median, r->error.p90, r->error.rms,
-             (unsigned long long)r->error.pixels);
-    if (r->samples != r->spp * (uint64_t)r->image->width * (uint64_t)r->image->height)
-        cli_info("trace: adaptive: %.1f samples per pixel on average",
-                 (double)r->samples / r->image->width / r->image->height);
+    double per_pixel = (double)r->samples / r->image->width / r->image->height;
+    char size[96];
+    if (adaptive)
+        snprintf(size, sizeof size, "%llu adaptive passes (%.1f samples per pixel on average)",
+                 (unsigned long long)r->spp, per_pixel);
+    else
+        snprintf(size, sizeof size, "%llu spp", (unsigned long long)r->spp);
+    char rate[64] = "";
+    if (!g_cli.merging) snprintf(rate, sizeof rate, " (%.0f samples/s)", r->samples_per_second);
+    cli_info("trace: %s in %.2f s%s; relative standard error over the object: median %.3g, p90 %.3g, rms %.3g "
+             "(%llu pixels)",
+             size, r->seconds, rate, r->error.median, r->error.p90, r->error.rms, (unsigned long long)r->error.pixels);
+    if (!adaptive && r->samples != r->spp * (uint64_t)r->image->width * (uint64_t)r->image->height)
+        cli_info("trace: the time limit cut the last pass: %.1f samples per pixel on average", per_pixel);
     const lucent_trace_cost *c = &r->cost;
     double paths = c->paths ? (double)c->paths : 1.0, vertices = (double)(c->scatters + c->bounces);
     cli_info("trace: per path %.1f scatterings, %.1f surface events, %.1f ray and %.2f distance queries; %.2f ray "
@@ -223,7 +232,7 @@ static lucent_status run(const trace_options *o)
     lucent_trace_desc d = o->desc;
     d.pool = cli_pool();
     if (s == LUCENT_OK) s = lucent_tracer_render(tr, &d, &r);
-    if (s == LUCENT_OK) summary(&r);
+    if (s == LUCENT_OK) summary(&r, o->adaptive);
     if (s == LUCENT_OK) s = write_outputs(o, sc, &r);
     lucent_trace_result_free(&r);
     lucent_tracer_destroy(tr);

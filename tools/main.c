@@ -157,15 +157,29 @@ bool cli_parse_length_mm(const char *text, double *mm)
     errno = 0;
     double v = strtod(text, &end);
     double unit = !strcmp(end, "") || !strcmp(end, "m") ? 1000 : !strcmp(end, "cm") ? 10 : !strcmp(end, "mm") ? 1 : 0;
-    if (errno || !(unit > 0) || !(v > 0) || !isfinite(v) || v > 1e12) return false;
+    if (errno || !(unit > 0) || !(v * unit >= CLI_LENGTH_MIN_MM && v * unit <= CLI_LENGTH_MAX_MM)) return false;
     *mm = v * unit;
+    return true;
+}
+
+/* One side of WxH: 1..65536, digits only (no sign, no wrap: 4294967297 was read as 1). */
+static bool parse_side(const char *p, const char *end, int *dest)
+{
+    long v = 0;
+    if (p == end || end - p > 6) return false;
+    for (; p < end; p++) {
+        if (*p < '0' || *p > '9') return false;
+        v = 10 * v + (*p - '0');
+    }
+    if (v < 1 || v > 65536) return false;
+    *dest = (int)v;
     return true;
 }
 
 bool cli_parse_size(const char *text, int *w, int *h)
 {
-    char tail;
-    return text && sscanf(text, "%dx%d%c", w, h, &tail) == 2 && *w > 0 && *h > 0 && *w <= 65536 && *h <= 65536;
+    const char *x = text ? strchr(text, 'x') : NULL;
+    return x && parse_side(text, x, w) && parse_side(x + 1, x + strlen(x), h);
 }
 
 void cli_out_prefix(const char *out, const char *default_name, char *dest, size_t size)
@@ -187,8 +201,9 @@ cli_view cli_view_defaults(void)
 int cli_view_option(const char *command, int argc, char **argv, int *i, cli_view *v)
 {
     static const char *const names[] = {"--screen", "--fov", "--object-height", "--distance"};
-    static const char *const wants[] = {"WxH in pixels", "degrees in (0, 180)", "a length > 0 (m, cm or mm)",
-                                        "a length > 0 (m, cm or mm)"};
+    static const char *const wants[] = {"WxH in pixels (1..65536 each)", "degrees in (0, 180)",
+                                        "a length from 0.001 mm to 1e12 mm (m, cm or mm)",
+                                        "a length from 0.001 mm to 1e12 mm (m, cm or mm)"};
     const char *t = NULL;
     int n = 0;
     while (n < 4 && !cli_option(argc, argv, i, names[n], &t)) n++;
@@ -198,6 +213,11 @@ int cli_view_option(const char *command, int argc, char **argv, int *i, cli_view
               : n == 2 ? cli_parse_length_mm(t, &v->object_height_mm)
                        : cli_parse_length_mm(t, &v->distance_mm);
     v->given = true;
+    if (ok && (n == 2 || n == 3)) {
+        if (v->depth_option && v->depth_option != n)
+            return cli_usage_error(command, "--object-height and --distance: give one (each sets the depth)");
+        v->depth_option = n;
+    }
     return ok ? CLI_OK : cli_usage_error(command, "%s needs %s, got '%s'", names[n], wants[n], t ? t : "");
 }
 
@@ -250,8 +270,9 @@ int cli_common_options(int *argc, char **argv)
             remove_args(argc, argv, i, 1);
         } else if (strcmp(a, "--threads") == 0 || strncmp(a, "--threads=", 10) == 0) {
             const char *v = a[9] == '=' ? a + 10 : (i + 1 < *argc ? argv[i + 1] : NULL);
-            if (!cli_parse_int(v, &g_cli.threads) || g_cli.threads < 1)
-                return cli_usage_error(NULL, "--threads needs a positive whole number");
+            if (!cli_parse_int(v, &g_cli.threads) || g_cli.threads < 1 || g_cli.threads > LUCENT_POOL_MAX_THREADS)
+                return cli_usage_error(NULL, "--threads needs a positive whole number, at most %d",
+                                       LUCENT_POOL_MAX_THREADS);
             remove_args(argc, argv, i, a[9] == '=' ? 1 : 2);
         } else if (strcmp(a, "--part") == 0 || strncmp(a, "--part=", 7) == 0) {
             const char *v = a[6] == '=' ? a + 7 : (i + 1 < *argc ? argv[i + 1] : NULL);
@@ -268,6 +289,12 @@ int cli_common_options(int *argc, char **argv)
             i++;
         }
     }
+    const char *env = getenv("LUCENT_THREADS");
+    int env_threads;
+    if (!g_cli.threads && env && *env &&
+        (!cli_parse_int(env, &env_threads) || env_threads < 1 || env_threads > LUCENT_POOL_MAX_THREADS))
+        return cli_usage_error(NULL, "LUCENT_THREADS='%.32s': needs a whole number from 1 to %d (or unset: all cores)",
+                               env, LUCENT_POOL_MAX_THREADS);
     if (lucent_dist_rank() != 0) g_cli.quiet = true; /* rank 0 speaks for the job */
     if (!g_cli.quiet && isatty(STDERR_FILENO)) lucent_progress_set_output(stderr);
     lucent_files_create_parents(true); /* every command creates the folder of its outputs */
@@ -406,6 +433,7 @@ static int cmd_merge(int argc, char **argv)
     if (!all) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory"), cli_fail();
     memcpy(all, cargv, (size_t)cargc * sizeof *all);
     memcpy(all + cargc, argv + extra, (size_t)(argc - extra) * sizeof *all);
+    g_cli.merging = true;
     int rc = cmd->run(n, all);
     free(all);
     if (rc == CLI_OK && lucent_dist_merge_check_used() != LUCENT_OK) rc = cli_fail();

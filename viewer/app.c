@@ -1,6 +1,11 @@
 /* The viewer's window and frame: the panel on the left, the view on the right rendered at its own
  * size (so a resize re-renders, never stretches), one method or two (split-screen or side by side),
- * the timings over it; the mouse moves the camera and the lights; the scene file is watched. */
+ * the timings over it; the mouse moves the camera and the lights; the scene file is watched.
+ *
+ * The frames are rendered on a thread of their own (render.c): the window keeps its rate whatever a
+ * frame costs, shows the last finished frame, and asks for the next one as soon as the render
+ * thread is free. Key presses are queued by the GLFW callback, so a tap shorter than a frame is
+ * not lost (issue 32 item 13). */
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <math.h>
@@ -49,6 +54,34 @@ lucent_status viewer_resize(viewer *v, int width, int height)
 
 /* ---- input ---- */
 
+void viewer_key_event(viewer *v, int key)
+{
+    if (v->key_count < (int)(sizeof v->keys / sizeof v->keys[0])) v->keys[v->key_count++] = key;
+}
+
+static void on_key(void *user, int key) { viewer_key_event(user, key); }
+
+static void keys(viewer *v, bool typing)
+{
+    for (int i = 0; i < v->key_count && !typing; i++) {
+        int k = v->keys[i];
+        if (k == GLFW_KEY_ESCAPE) v->quit = true;
+        if (k == GLFW_KEY_R) viewer_reset_camera(v);
+        if (k == GLFW_KEY_TAB) {
+            lucent_render_method a = v->wanted.view.method;
+            v->wanted.view.method = v->method_b, v->method_b = a;
+        }
+        if (k >= GLFW_KEY_1 && k < GLFW_KEY_1 + LUCENT_METHOD_COUNT && k <= GLFW_KEY_9)
+            v->wanted.view.method = (lucent_render_method)(k - GLFW_KEY_1);
+    }
+    v->key_count = 0;
+}
+
+static void moved(viewer *v, lucent_status st)
+{
+    if (st != LUCENT_OK) viewer_status(v, true, "%s", lucent_last_error());
+}
+
 static void input(viewer *v)
 {
     ui_input in;
@@ -68,21 +101,14 @@ static void input(viewer *v)
         if (dragging_split)
             v->split = fmin(fmax((in.x - rect[0]) / rect[2], 0.0), 1.0);
         else if (in.down[0] && in.ctrl)
-            viewer_light_rotate(v, v->light, 0.4 * in.dx, 0.4 * in.dy);
+            moved(v, viewer_light_rotate(v, v->light, 0.4 * in.dx, 0.4 * in.dy));
         else if (in.down[0] && !in.shift)
-            viewer_orbit(v, 0.4 * in.dx, 0.4 * in.dy);
+            moved(v, viewer_orbit(v, 0.4 * in.dx, 0.4 * in.dy));
         else
-            viewer_pan(v, in.dx, in.dy);
+            moved(v, viewer_pan(v, in.dx, in.dy));
     }
-    if (inside && !in.over_ui && in.wheel != 0) viewer_zoom(v, pow(0.9, in.wheel));
-    if (ui_key_pressed(GLFW_KEY_ESCAPE)) v->quit = true;
-    if (ui_key_pressed(GLFW_KEY_R)) viewer_reset_camera(v);
-    if (ui_key_pressed(GLFW_KEY_TAB)) {
-        lucent_render_method a = v->wanted.view.method;
-        v->wanted.view.method = v->method_b, v->method_b = a;
-    }
-    for (int m = 0; m < LUCENT_METHOD_COUNT && m < 9; m++)
-        if (ui_key_pressed(GLFW_KEY_1 + m)) v->wanted.view.method = (lucent_render_method)m;
+    if (inside && !in.over_ui && in.wheel != 0) moved(v, viewer_zoom(v, pow(0.9, in.wheel)));
+    keys(v, in.typing);
 }
 
 /* ---- the frame ---- */
@@ -105,7 +131,8 @@ static void overlay(viewer *v, const int rect[4])
                    sizeof b - 1);
         b[0] = '\n';
     }
-    snprintf(text, sizeof text, "%.1f fps, redraw %.1f ms\n%s%s", v->fps, v->redraw_ms, a, b);
+    snprintf(text, sizeof text, "%.1f fps, frame %.1f ms%s\n%s%s", v->fps, v->frame_ms,
+             viewer_worker_busy(v) ? ", rendering the next" : "", a, b);
     if (v->reference)
         snprintf(text + strlen(text), sizeof text - strlen(text), "\nrelative RMS error of %s: %.4f",
                  lucent_render_method_name(v->applied.view.method), v->rel_rms);
@@ -130,40 +157,108 @@ static void fit(const int rect[4], int w, int h, int dest[4])
     dest[0] = rect[0] + (rect[2] - dest[2]) / 2, dest[1] = rect[1] + (rect[3] - dest[3]) / 2;
 }
 
-static lucent_status present(viewer *v, const int r[4], const int clip[4])
+/* The size of the frames the view wants now. */
+static void frame_size(const viewer *v, int *w, int *h)
 {
-    lucent_present_desc d = {.x = r[0], .y = r[1], .width = r[2], .height = r[3]};
-    memcpy(d.clip, clip, sizeof d.clip);
-    return v->window ? lucent_render_present_region(v->r, &d) : LUCENT_OK;
+    int rect[4];
+    viewer_view_rect(v, rect);
+    *w = v->layout == VIEWER_SIDE ? rect[2] / 2 : rect[2], *h = rect[3];
+    if (v->reference && v->match_reference) *w = v->reference->width, *h = v->reference->height;
+    if (*w < 1) *w = 1;
+    if (*h < 1) *h = 1;
 }
 
-static lucent_status draw_views(viewer *v, const int rect[4])
+/* The request for what the viewer wants drawn now. */
+static lucent_status make_request(viewer *v, viewer_request *q)
 {
-    bool side = v->layout == VIEWER_SIDE, ref = v->reference && v->match_reference;
-    int w = side ? rect[2] / 2 : rect[2], h = rect[3];
-    if (ref) w = v->reference->width, h = v->reference->height;
-    v->frame_w = w, v->frame_h = h;
-    int ra[4] = {rect[0], rect[1], w, h}, rb[4] = {rect[0] + w, rect[1], w, h};
+    frame_size(v, &v->frame_w, &v->frame_h);
+    memset(q, 0, sizeof *q);
+    q->gen = v->gen;
+    q->count = v->layout == VIEWER_SINGLE ? 1 : 2;
+    viewer_shown_camera(v, &q->camera[0]);
+    q->camera[1] = q->camera[0];
+    q->settings[0] = viewer_frame_settings(v, false, v->frame_w, v->frame_h);
+    q->settings[1] = viewer_frame_settings(v, true, v->frame_w, v->frame_h);
+    const lucent_scene *sc = v->scene;
+    q->changed = v->changed, q->light_count = sc->light_count, q->object_count = sc->object_count;
+    if (v->changed & LUCENT_RENDERER_LIGHTS) {
+        q->lights = malloc(((size_t)sc->light_count + 1) * sizeof *q->lights);
+        if (!q->lights) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+        memcpy(q->lights, sc->lights, (size_t)sc->light_count * sizeof *q->lights);
+    }
+    if (v->changed & LUCENT_RENDERER_MATERIALS) {
+        q->objects = malloc(((size_t)sc->object_count + 1) * sizeof *q->objects);
+        if (!q->objects) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+        memcpy(q->objects, sc->objects, (size_t)sc->object_count * sizeof *q->objects);
+    }
+    q->adopt_count = v->adopt_count; /* moved */
+    for (int a = 0; a < v->adopt_count; a++) {
+        q->adopt_material[a] = v->adopt_material[a];
+        q->adopt[a] = v->adopt[a];
+        memset(&v->adopt[a], 0, sizeof v->adopt[a]);
+    }
+    return LUCENT_OK;
+}
+
+/* Hands the render thread the next frame when it is free and something changed; takes the frame
+ * it finished. */
+static lucent_status exchange(viewer *v)
+{
+    viewer_frame f;
+    if (viewer_worker_take(v, &f, 0)) {
+        if (f.status != LUCENT_OK) {
+            lucent_status st = lucent_error(f.status, "%s", f.error);
+            viewer_frame_free(&f);
+            return st;
+        }
+        viewer_frame_free(&v->shown);
+        v->shown = f; /* moved */
+        v->times_a = f.times[0], v->times_b = f.times[1], v->frame_ms = f.ms;
+        if (v->ui)
+            for (int i = 0; i < f.count; i++) ui_texture_set(&v->frame_tex[i], f.rgba[i], f.width, f.height);
+    }
+    if (v->reference && v->shown.count && (v->error_gen != v->shown.gen || v->error_ref_gen != v->ref_gen)) {
+        lucent_status st = viewer_update_error(v);
+        if (st != LUCENT_OK) return st;
+    }
+    int w, h;
+    frame_size(v, &w, &h); /* the window resized, the layout changed: a frame of the new shape */
+    int count = v->layout == VIEWER_SINGLE ? 1 : 2;
+    if (w != v->frame_w || h != v->frame_h || count != v->asked_count) v->gen++;
+    bool want = v->ready && (v->gen != v->asked || v->changed || v->adopt_count);
+    if (!want || viewer_worker_busy(v)) return LUCENT_OK;
+    viewer_request q;
+    lucent_status st = make_request(v, &q);
+    if (st != LUCENT_OK) return viewer_request_free(&q), st;
+    unsigned long gen = q.gen;
+    if (!viewer_worker_submit(v, &q)) return viewer_request_free(&q), LUCENT_OK; /* cannot happen: we alone submit */
+    v->asked = gen, v->changed = 0, v->adopt_count = 0, v->asked_at = lucent_clock_ms(), v->asked_count = count;
+    return LUCENT_OK;
+}
+
+/* The last finished frames into the view: A alone, A left of the split line and B right of it, or
+ * side by side; each at its size (a frame made for another size fits until the next comes). */
+static void draw_frames(viewer *v, const int rect[4])
+{
+    const viewer_frame *f = &v->shown;
+    if (!f->count || !v->ui) return;
+    bool side = v->layout == VIEWER_SIDE && f->count == 2;
     int left[4] = {rect[0], rect[1], side ? rect[2] / 2 : rect[2], rect[3]};
     int right[4] = {rect[0] + rect[2] / 2, rect[1], rect[2] / 2, rect[3]};
-    if (ref) fit(left, w, h, ra), fit(right, w, h, rb);
-    int clip_a[4] = {0, 0, 0, 0}, clip_b[4] = {0, 0, 0, 0};
-    if (v->layout == VIEWER_SPLIT) { /* both at the same place, each drawn on its side of the line */
-        int sx = ra[0] + (int)lround(v->split * ra[2]);
-        int a[4] = {ra[0], ra[1], sx - ra[0], ra[3]}, b[4] = {sx, ra[1], ra[0] + ra[2] - sx, ra[3]};
-        memcpy(clip_a, a, sizeof a), memcpy(clip_b, b, sizeof b), memcpy(rb, ra, sizeof rb);
-        if (a[2] == 0) clip_a[2] = -1; /* nothing of A shows */
-        if (b[2] == 0) clip_b[2] = -1;
+    int ra[4], rb[4];
+    fit(left, f->width, f->height, ra);
+    fit(right, f->width, f->height, rb);
+    if (v->layout == VIEWER_SPLIT && f->count == 2) { /* both at the same place, each on its side of the line */
+        float s = (float)v->split, x0 = (float)ra[0], x1 = (float)(ra[0] + ra[2]), xs = x0 + s * (x1 - x0);
+        float y0 = (float)ra[1], y1 = (float)(ra[1] + ra[3]);
+        ui_background_image_uv(v->frame_tex[0], x0, y0, xs, y1, 0, 0, s, 1);
+        ui_background_image_uv(v->frame_tex[1], xs, y0, x1, y1, s, 0, 1, 1);
+        return;
     }
-    lucent_render_settings sa = viewer_frame_settings(v, false, w, h);
-    lucent_status st = v->reference && v->error_gen != v->gen ? viewer_update_error(v) /* renders A, reads it back */
-                                                              : lucent_render_frame(v->r, &sa, &v->times_a);
-    if (st == LUCENT_OK && clip_a[2] >= 0) st = present(v, ra, clip_a);
-    if (st != LUCENT_OK || v->layout == VIEWER_SINGLE) return st;
-    lucent_render_settings sb = viewer_frame_settings(v, true, w, h);
-    st = lucent_render_frame(v->r, &sb, &v->times_b);
-    if (st == LUCENT_OK && clip_b[2] >= 0) st = present(v, rb, clip_b);
-    return st;
+    ui_background_image(v->frame_tex[0], (float)ra[0], (float)ra[1], (float)(ra[0] + ra[2]), (float)(ra[1] + ra[3]));
+    if (side)
+        ui_background_image(v->frame_tex[1], (float)rb[0], (float)rb[1], (float)(rb[0] + rb[2]),
+                            (float)(rb[1] + rb[3]));
 }
 
 /* The error map or the reference instead of the frame (drawn by the UI as an image). */
@@ -171,26 +266,14 @@ static void shown_image(viewer *v, const int rect[4])
 {
     const lucent_image *img = v->show == VIEWER_SHOW_ERROR ? v->error_map : v->reference;
     if (v->show == VIEWER_SHOW_IMAGE || !img) return;
-    if (v->show_gen != v->gen || !v->show_tex) {
-        size_t n = (size_t)img->width * img->height;
-        uint8_t *rgba = malloc(4 * n);
-        if (!rgba) return;
-        lucent_image *tm = NULL;
-        if (lucent_image_clone(img, &tm) != LUCENT_OK) return free(rgba);
-        if (v->show == VIEWER_SHOW_REFERENCE)
-            lucent_image_tonemap(
-                tm, &(lucent_tonemap_desc){.op = v->applied.view.tonemap, .exposure = (float)v->applied.view.exposure});
-        for (size_t i = 0; i < n; i++)
-            for (int c = 0; c < 4; c++) {
-                float x = c < 3 ? tm->data[i * tm->channels + (c < tm->channels ? c : 0)] : 1.0f;
-                if (v->show == VIEWER_SHOW_ERROR && c < 3) /* the heat map is linear: sRGB-encode */
-                    x = x <= 0.0031308f ? 12.92f * x : 1.055f * powf(x, 1 / 2.4f) - 0.055f;
-                rgba[4 * i + c] = (uint8_t)lroundf(255 * fminf(fmaxf(x, 0), 1));
-            }
+    if (!v->show_gen || !v->show_tex) {
+        uint8_t *rgba = NULL;
+        lucent_tonemap_desc tm = {.op = v->applied.view.tonemap, .exposure = (float)v->applied.view.exposure};
+        /* the reference as a frame is shown; the heat map is linear */
+        if (viewer_to_rgba(img, v->show == VIEWER_SHOW_REFERENCE ? &tm : NULL, true, &rgba) != LUCENT_OK) return;
         ui_texture_set(&v->show_tex, rgba, img->width, img->height);
-        lucent_image_destroy(tm);
         free(rgba);
-        v->show_gen = v->gen;
+        v->show_gen = 1;
     }
     int r[4];
     fit(rect, img->width, img->height, r);
@@ -226,15 +309,17 @@ lucent_status viewer_redraw(viewer *v)
         ui_frame_begin();
         input(v);
         viewer_panel(v);
+    } else {
+        keys(v, false);
     }
     viewer_step(v);
     viewer_trace_poll(v);
     int rect[4];
     viewer_view_rect(v, rect);
-    lucent_status st = LUCENT_OK;
-    if (v->ui) ui_clear();
-    if (v->ready) st = draw_views(v, rect);
+    lucent_status st = exchange(v);
     if (v->ui) {
+        ui_clear();
+        draw_frames(v, rect);
         if (v->ready) overlay(v, rect);
         shown_image(v, rect);
         ui_frame_end();
@@ -243,10 +328,61 @@ lucent_status viewer_redraw(viewer *v)
     hot_reload(v);
     double t1 = lucent_clock_ms();
     v->redraw_ms = t1 - t0;
+    v->ui_frames++;
     double dt = v->last_frame > 0 ? t1 - v->last_frame : 0;
     v->last_frame = t1;
     if (dt > 0) v->fps = v->fps > 0 ? 0.9 * v->fps + 0.1 * (1000 / dt) : 1000 / dt;
     return st;
+}
+
+lucent_status viewer_redraw_sync(viewer *v)
+{
+    double t0 = lucent_clock_ms();
+    lucent_status st = viewer_redraw(v);
+    unsigned long want = v->gen;
+    while (st == LUCENT_OK &&
+           (!v->shown.count || v->shown.gen < want || v->changed || v->adopt_count || viewer_worker_busy(v))) {
+        if (!v->ready) {
+            viewer_settle(v);
+            if (!v->ready) /* the first bake failed: there is nothing to draw */
+                return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s",
+                                    v->bake_failed ? v->bake_error : "nothing to draw: the first bake did not finish");
+        }
+        if (!v->ui) { /* no window to keep: sleep until the render thread is done */
+            viewer_frame f;
+            if (viewer_worker_take(v, &f, 50)) { /* put it back for exchange to take */
+                pthread_mutex_lock(&v->worker.lock);
+                v->worker.frame = f, v->worker.has_frame = true;
+                pthread_mutex_unlock(&v->worker.lock);
+            }
+        } else {
+            glfwWaitEventsTimeout(0.016); /* the render thread posts an event when a frame is done */
+        }
+        st = viewer_redraw(v);
+    }
+    v->redraw_ms = lucent_clock_ms() - t0;
+    return st;
+}
+
+/* Without --size the window is as tall as the panel needs with its sections as they open (issue 35:
+ * 512 rows needed the panel scrolled), within the screen's work area. */
+static lucent_status fit_panel(viewer *v)
+{
+    ui_layout l;
+    for (int i = 0; i < 2; i++) { /* the panel's size is known once it was laid out */
+        ui_frame_begin();
+        viewer_panel(v);
+        ui_frame_end();
+    }
+    ui_panel_layout(&l);
+    int need = (int)ceilf(l.content_h + 8), h = v->win_h, screen_w = 0, screen_h = 0;
+    GLFWmonitor *m = glfwGetPrimaryMonitor();
+    if (m) {
+        int x, y;
+        glfwGetMonitorWorkarea(m, &x, &y, &screen_w, &screen_h);
+    }
+    if (need > h) h = screen_h > 0 && need > screen_h ? screen_h : need;
+    return h != v->win_h ? viewer_resize(v, v->win_w, h) : LUCENT_OK;
 }
 
 lucent_status viewer_run(const viewer_options *opt)
@@ -265,20 +401,24 @@ lucent_status viewer_run(const viewer_options *opt)
     int w = opt->width ? opt->width : probe->render.view.width + (opt->headless ? 0 : PANEL_WIDTH);
     int h = opt->height ? opt->height : probe->render.view.height;
     lucent_scene_destroy(probe);
-    lucent_gl_desc gd = {.platform = opt->headless ? LUCENT_GL_AUTO : LUCENT_GL_WINDOW,
-                         .width = w,
-                         .height = h,
-                         .title = "Lucent view",
-                         .ignore_env = !opt->headless};
-    st = lucent_gl_create(&gd, &v->gl);
+    /* The window (its context draws the panel and the frames as textures); the frames are rendered
+     * on the render thread's own headless context. */
+    if (!opt->headless)
+        st = lucent_gl_create(
+            &(lucent_gl_desc){
+                .platform = LUCENT_GL_WINDOW, .width = w, .height = h, .title = "Lucent view", .ignore_env = true},
+            &v->gl);
     if (st == LUCENT_OK && opt->cache_dir) st = lucent_cache_create(opt->cache_dir, &v->cache);
     v->job_pool = lucent_pool_create(opt->pool ? lucent_pool_threads(opt->pool) : 1);
     v->window = v->gl ? lucent_gl_window_handle(v->gl) : NULL;
     v->win_w = w, v->win_h = h;
+    if (st == LUCENT_OK) st = viewer_worker_start(v);
     if (st == LUCENT_OK) st = viewer_scene_open(v);
     if (st == LUCENT_OK && v->window) {
         v->ui = ui_init(v->window);
         if (!v->ui) st = lucent_error(LUCENT_ERR_GL, "cannot start Dear ImGui on the window");
+        if (v->ui) ui_on_key(on_key, v);
+        if (v->ui && !opt->width && !opt->height) st = fit_panel(v);
     }
     if (st == LUCENT_OK && opt->script) {
         st = viewer_script_run(v, opt->script);
@@ -286,7 +426,12 @@ lucent_status viewer_run(const viewer_options *opt)
         viewer_status(v, false,
                       "viewing %s: drag to orbit, shift-drag to pan, wheel to zoom, ctrl-drag the light, R resets",
                       opt->scene);
-        while (st == LUCENT_OK && !v->quit && lucent_gl_window_poll(v->gl)) st = viewer_redraw(v);
+        while (st == LUCENT_OK && !v->quit && lucent_gl_window_poll(v->gl)) {
+            double t0 = lucent_clock_seconds();
+            st = viewer_redraw(v);
+            double left = 1.0 / 60 - (lucent_clock_seconds() - t0); /* no faster than 60 frames a second */
+            if (left > 0) glfwWaitEventsTimeout(left);
+        }
     }
     lucent_status keep = st;
     char message[2048];
@@ -294,9 +439,11 @@ lucent_status viewer_run(const viewer_options *opt)
     viewer_drop_reference(v);
     if (v->ui) {
         ui_texture_free(&v->show_tex);
+        for (int i = 0; i < 2; i++) ui_texture_free(&v->frame_tex[i]);
         ui_shutdown();
     }
     viewer_scene_close(v);
+    viewer_worker_stop(v);
     lucent_cache_destroy(v->cache);
     lucent_pool_destroy(v->job_pool);
     lucent_gl_destroy(v->gl);

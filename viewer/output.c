@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "ui.h"
 #include "viewer.h"
@@ -34,8 +35,17 @@ static void put(cJSON *o, const char *key, cJSON *value)
 static cJSON *material_json(const lucent_material *m)
 {
     lucent_material p;
-    if (lucent_material_preset_find(m->name, &p) == LUCENT_OK && !memcmp(&p, m, sizeof p))
+    if (lucent_material_preset_find(m->name, &p) == LUCENT_OK && lucent_skin_resolve(&p) == LUCENT_OK &&
+        !memcmp(&p, m, sizeof p))
         return cJSON_CreateString(m->name);
+    if (m->skin.layer_count > 0) { /* a spectral skin: its chromophores, as a material file has them */
+        char *text = NULL;
+        cJSON *doc = lucent_material_to_json(m, 1, false, &text) == LUCENT_OK ? cJSON_Parse(text) : NULL;
+        free(text);
+        cJSON *one = doc ? cJSON_DetachItemFromArray(cJSON_GetObjectItemCaseSensitive(doc, "materials"), 0) : NULL;
+        cJSON_Delete(doc);
+        return one;
+    }
     cJSON *o = cJSON_CreateObject();
     if (!o) return NULL;
     cJSON_AddStringToObject(o, "name", m->name);
@@ -83,6 +93,19 @@ static void append(char *dest, size_t size, const char *fmt, const char *key, co
     snprintf(dest + n, size - n, fmt, key, value);
 }
 
+/* Every number of a JSON tree is finite (cJSON writes NaN and infinities as null). */
+static const char *non_finite(const cJSON *item, char *where, size_t size)
+{
+    for (const cJSON *c = item ? item->child : NULL; c; c = c->next) {
+        if (cJSON_IsNumber(c) && !isfinite(c->valuedouble)) {
+            snprintf(where, size, "%s", c->string ? c->string : "a value");
+            return where;
+        }
+        if (non_finite(c, where, size)) return where;
+    }
+    return NULL;
+}
+
 /* The scene as the viewer shows it, as JSON text (free with free()), and what differs from the file
  * as --set options into set. */
 static lucent_status scene_text(viewer *v, char **dest, char *set, size_t set_size)
@@ -92,7 +115,9 @@ static lucent_status scene_text(viewer *v, char **dest, char *set, size_t set_si
     if (!root) return lucent_error(LUCENT_ERR_INTERNAL, "the scene's JSON is not at hand");
     char value[4096];
     set[0] = '\0';
-    const lucent_camera *c = &sc->camera;
+    lucent_camera shown;
+    viewer_shown_camera(v, &shown); /* A's, as drawn */
+    const lucent_camera *c = &shown;
     cJSON *cam = cJSON_CreateObject();
     put(cam, "position", numbers(c->position, 3));
     put(cam, "target", numbers(c->target, 3));
@@ -165,6 +190,11 @@ static lucent_status scene_text(viewer *v, char **dest, char *set, size_t set_si
             }
         }
     }
+    char where[128];
+    if (non_finite(root, where, sizeof where)) { /* never written as null (issue 32 item 14) */
+        cJSON_Delete(root);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s is not finite: nothing written", where);
+    }
     *dest = cJSON_Print(root);
     cJSON_Delete(root);
     return *dest ? LUCENT_OK : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
@@ -176,21 +206,74 @@ lucent_status viewer_scene_text(viewer *v, char **dest)
     return scene_text(v, dest, set, sizeof set);
 }
 
+/* The file a path names: the same inode when both exist, else the same folder (resolved) and name. */
+static bool same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    if (stat(a, &sa) == 0 && stat(b, &sb) == 0) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    char full[2][PATH_MAX + 256];
+    const char *paths[2] = {a, b};
+    for (int i = 0; i < 2; i++) {
+        char d[PATH_MAX], n[PATH_MAX], real[PATH_MAX];
+        snprintf(d, sizeof d, "%s", paths[i]);
+        snprintf(n, sizeof n, "%s", paths[i]);
+        const char *dir = dirname(d), *base = basename(n);
+        if (!realpath(dir, real)) snprintf(real, sizeof real, "%s", dir);
+        snprintf(full[i], sizeof full[i], "%s/%s", real, base);
+    }
+    return strcmp(full[0], full[1]) == 0;
+}
+
+/* The files the viewer reads: the scene file, the script, the reference, the objects' meshes and the
+ * files the scene names (materials, textures) relative to its folder. NULL when path is none of
+ * them, else the role of the one it is. */
+static const char *names_input(const viewer *v, const char *path)
+{
+    const lucent_scene *sc = v->scene;
+    if (same_file(path, v->opt.scene) || (sc->path[0] && same_file(path, sc->path))) return "the open scene file";
+    if (v->opt.script && same_file(path, v->opt.script)) return "the script";
+    if (v->reference && v->reference_path[0] && !v->trace.running && same_file(path, v->reference_path))
+        return "the reference";
+    for (int i = 0; i < sc->object_count; i++)
+        if (strncmp(sc->objects[i].mesh_source, "primitive:", 10) && same_file(path, sc->objects[i].mesh_source))
+            return "a mesh of the scene";
+    cJSON *root = sc->json ? cJSON_Parse(sc->json) : NULL, *objects = cJSON_GetObjectItemCaseSensitive(root, "objects");
+    char dir_copy[VIEWER_PATH], file[2 * VIEWER_PATH];
+    snprintf(dir_copy, sizeof dir_copy, "%s", sc->path[0] ? sc->path : ".");
+    const char *scene_dir = dirname(dir_copy), *role = NULL;
+    static const char *const keys[] = {"material", "albedo_texture", "mesh"};
+    for (int i = 0; !role && i < cJSON_GetArraySize(objects); i++)
+        for (int k = 0; !role && k < 3; k++) {
+            const cJSON *item = cJSON_GetObjectItemCaseSensitive(cJSON_GetArrayItem(objects, i), keys[k]);
+            if (!cJSON_IsString(item)) continue;
+            snprintf(file, sizeof file, "%s%s%.*s", item->valuestring[0] == '/' ? "" : scene_dir,
+                     item->valuestring[0] == '/' ? "" : "/", (int)strcspn(item->valuestring, "#"), item->valuestring);
+            if (same_file(path, file)) role = k == 0 ? "a material file of the scene" : "a file of the scene";
+        }
+    cJSON_Delete(root);
+    return role;
+}
+
 lucent_status viewer_save_scene(viewer *v, const char *path)
 {
     const lucent_scene *sc = v->scene;
     char set[sizeof v->set_form - LUCENT_SCENE_PATH_SIZE - 16], *text = NULL;
-    lucent_status st = scene_text(v, &text, set, sizeof set);
-    if (st != LUCENT_OK) return lucent_error_context(st, "%s", path);
-    st = lucent_write_file(path, text, strlen(text));
-    free(text);
-    if (st != LUCENT_OK) return st;
-    snprintf(v->set_form, sizeof v->set_form, "lucent render %s%s", sc->path, set);
     char args[VIEWER_PATH + 16];
     snprintf(args, sizeof args, "%s", path);
     char *dot = strrchr(args, '.'), *slash = strrchr(args, '/');
     if (dot && (!slash || dot > slash)) *dot = '\0';
     snprintf(args + strlen(args), sizeof args - strlen(args), ".sets.txt");
+    const char *outs[2] = {path, args}, *role;
+    for (int i = 0; i < 2; i++) /* issue 32 item 14: save-scene could replace the open scene file */
+        if ((role = names_input(v, outs[i])))
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "save-scene: %s is %s: it would be overwritten", outs[i],
+                                role);
+    lucent_status st = scene_text(v, &text, set, sizeof set);
+    if (st != LUCENT_OK) return lucent_error_context(st, "save-scene %s", path);
+    st = lucent_write_file(path, text, strlen(text));
+    free(text);
+    if (st != LUCENT_OK) return st;
+    snprintf(v->set_form, sizeof v->set_form, "lucent render %s%s", sc->path, set);
     char line[sizeof v->set_form + 2];
     snprintf(line, sizeof line, "%s\n", v->set_form);
     st = lucent_write_file(args, line, strlen(line));
@@ -207,27 +290,34 @@ static void stem_of(const char *path, char *dest, size_t size)
     if (dot && (!slash || dot > slash) && (!strcmp(dot, ".png") || !strcmp(dot, ".exr"))) *dot = '\0';
 }
 
+/* What the view shows (issue 32 item 15): method A's last frame (PNG tonemapped with the settings,
+ * EXR linear), or the error map (its heat map's colours, PNG and EXR alike), or the reference. */
 lucent_status viewer_screenshot(viewer *v, const char *path)
 {
     char stem[VIEWER_PATH], png[VIEWER_PATH + 8], exr[VIEWER_PATH + 8];
     stem_of(path, stem, sizeof stem);
     snprintf(png, sizeof png, "%s.png", stem);
     snprintf(exr, sizeof exr, "%s.exr", stem);
-    lucent_render_settings s = viewer_frame_settings(v, false, v->frame_w, v->frame_h);
-    lucent_render_result res = {0};
+    const lucent_image *img = v->shown.count ? v->shown.image[0] : NULL;
+    const char *what = lucent_render_method_name(v->applied.view.method);
+    bool tonemap = true;
+    if (v->show == VIEWER_SHOW_ERROR && v->error_map)
+        img = v->error_map, what = "the error map", tonemap = false;
+    else if (v->show == VIEWER_SHOW_REFERENCE && v->reference)
+        img = v->reference, what = "the reference";
+    if (!img) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "screenshot %s: no frame drawn yet", path);
+    const lucent_view_settings *vs = &v->applied.view;
     lucent_image *tm = NULL;
-    lucent_status st = lucent_render(v->r, &s, &res);
-    if (st == LUCENT_OK) st = lucent_image_write(exr, res.image, NULL);
-    if (st == LUCENT_OK) st = lucent_image_clone(res.image, &tm);
+    lucent_status st = lucent_image_write(exr, img, NULL);
+    if (st == LUCENT_OK) st = lucent_image_clone(img, &tm);
     if (st == LUCENT_OK) {
-        lucent_image_tonemap(tm, &(lucent_tonemap_desc){.op = s.view.tonemap, .exposure = (float)s.view.exposure});
+        if (tonemap)
+            lucent_image_tonemap(tm, &(lucent_tonemap_desc){.op = vs->tonemap, .exposure = (float)vs->exposure});
         st = lucent_image_write(png, tm, NULL);
     }
     lucent_image_destroy(tm);
-    lucent_render_result_free(&res);
     if (st == LUCENT_OK)
-        viewer_status(v, false, "wrote %s and %s (%s, %dx%d)", png, exr, lucent_render_method_name(s.view.method),
-                      s.view.width, s.view.height);
+        viewer_status(v, false, "wrote %s and %s (%s, %dx%d)", png, exr, what, img->width, img->height);
     return st;
 }
 
@@ -283,7 +373,8 @@ void viewer_drop_reference(viewer *v)
     lucent_image_destroy(v->error_map);
     v->reference = v->error_map = NULL;
     v->reference_path[0] = '\0';
-    v->show = VIEWER_SHOW_IMAGE;
+    v->show = VIEWER_SHOW_IMAGE, v->show_gen = 0;
+    v->ref_gen++;
     v->gen++;
 }
 
@@ -297,28 +388,25 @@ lucent_status viewer_load_reference(viewer *v, const char *path)
     viewer_drop_reference(v);
     v->reference = img;
     snprintf(v->reference_path, sizeof v->reference_path, "%s", path);
+    v->ref_gen++, v->show_gen = 0;
     v->gen++;
     viewer_status(v, false, "reference %s: %dx%d", path, img->width, img->height);
     return LUCENT_OK;
 }
 
+/* The error of A's last frame against the reference (the frame is read back by the render thread). */
 lucent_status viewer_update_error(viewer *v)
 {
-    lucent_render_settings s = viewer_frame_settings(v, false, v->frame_w, v->frame_h);
-    lucent_render_result res = {0};
-    lucent_status st = lucent_render(v->r, &s, &res);
-    v->error_gen = v->gen;
-    if (st != LUCENT_OK) return st;
-    v->times_a = res.times;
+    const viewer_frame *f = &v->shown;
+    v->error_gen = f->gen, v->error_ref_gen = v->ref_gen, v->show_gen = 0;
     lucent_image_destroy(v->error_map);
     v->error_map = NULL;
     v->rel_rms = NAN;
     lucent_image_error_stats e;
-    if (res.image->width == v->reference->width && res.image->height == v->reference->height &&
-        lucent_image_compare_masked(res.image, v->reference, res.mask, &e) == LUCENT_OK) {
+    if (f->image[0] && f->image[0]->width == v->reference->width && f->image[0]->height == v->reference->height &&
+        lucent_image_compare_masked(f->image[0], v->reference, f->mask, &e) == LUCENT_OK) {
         v->rel_rms = e.rel_rms_all;
-        lucent_compare_error_map(res.image, v->reference, res.mask->data, &v->error_map);
+        lucent_compare_error_map(f->image[0], v->reference, f->mask->data, &v->error_map);
     }
-    lucent_render_result_free(&res);
     return LUCENT_OK;
 }

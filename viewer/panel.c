@@ -241,6 +241,38 @@ static void plots(viewer *v)
     ui_plot(label, s, 3, 70, false);
 }
 
+/* A spectral skin's chromophores (docs/skin.md): each change resolves its equivalent medium again and
+ * starts a bake of its spectral profile. */
+static void skin_sliders(viewer *v, lucent_material *m)
+{
+    lucent_skin old = m->skin;
+    for (int i = 0; i < m->skin.layer_count; i++) {
+        lucent_skin_layer *l = &m->skin.layer[i];
+        char label[48];
+        if (l->kind == LUCENT_SKIN_EPIDERMIS) {
+            ui_drag_double("melanin", &l->melanin, 0.0, 0.5, false, "%.4f");
+            ui_tooltip("melanosome volume fraction of the epidermis");
+            ui_drag_double("eumelanin", &l->eumelanin, 0.0, 1.0, false, "%.2f");
+            ui_tooltip("eumelanin share of the melanin (the rest pheomelanin)");
+        } else {
+            snprintf(label, sizeof label, "blood (%s)", lucent_skin_layer_name(l->kind));
+            ui_drag_double(label, &l->blood, 0.0, 0.5, false, "%.4f");
+            ui_tooltip("blood volume fraction of the layer");
+            snprintf(label, sizeof label, "oxygenation (%s)", lucent_skin_layer_name(l->kind));
+            ui_drag_double(label, &l->oxygenation, 0.0, 1.0, false, "%.2f");
+            ui_tooltip("oxygen saturation of the blood");
+        }
+    }
+    if (!memcmp(&old, &m->skin, sizeof old)) return;
+    m->skin.resolved = 0;
+    if (lucent_skin_resolve(m) != LUCENT_OK) {
+        viewer_status(v, true, "%s", lucent_last_error());
+        m->skin = old;
+        return;
+    }
+    viewer_material_edited(v, v->object);
+}
+
 static void material(viewer *v)
 {
     if (!ui_header("Material", true)) return;
@@ -255,9 +287,16 @@ static void material(viewer *v)
     lucent_material p;
     for (int i = 0; i < lucent_material_preset_count(); i++)
         if (lucent_material_preset(i, &p) == LUCENT_OK && !strcmp(p.name, m->name)) preset = i;
-    if (ui_combo("preset", &preset, preset_name, NULL) && lucent_material_preset(preset, &p) == LUCENT_OK) *m = p;
-    ui_tooltip("Jensen et al. 2001's measured materials (lucent materials)");
+    if (ui_combo("preset", &preset, preset_name, NULL) && lucent_material_preset(preset, &p) == LUCENT_OK &&
+        lucent_skin_resolve(&p) == LUCENT_OK)
+        *m = p;
+    ui_tooltip("Jensen et al. 2001's measured materials and the spectral skins (lucent materials)");
     ui_text("%s", m->name);
+    if (m->skin.layer_count > 0) {
+        skin_sliders(v, m);
+        plots(v);
+        return;
+    }
     bool edited = false;
     double sp[3];
     for (int c = 0; c < 3; c++) sp[c] = m->sigma_s[c] * (1 - m->g[c]);
@@ -273,7 +312,7 @@ static void material(viewer *v)
     edited |= ui_drag_double("eta", &m->eta, LUCENT_MATERIAL_ETA_MIN, LUCENT_MATERIAL_ETA_MAX, false, "%.3f");
     ui_tooltip("relative index of refraction");
     if (edited) viewer_material_edited(v, v->object);
-    plots(v);
+    if (ui_header("Profile, kernel and taps", false)) plots(v); /* closed: the panel fits a 768-row screen */
 }
 
 static void lights(viewer *v)

@@ -61,7 +61,7 @@ static void camera_axes(const lucent_camera *c, double right[3], double up[3])
 }
 
 /* Near and far planes around the scene's bounding sphere from where the camera stands. */
-static void fit_planes(viewer *v)
+static void fit_planes(const viewer *v, lucent_camera *cam)
 {
     double lo[3], hi[3], c[3], rr = 0, d = 0;
     lucent_scene_bounds(v->scene, lo, hi);
@@ -69,18 +69,58 @@ static void fit_planes(viewer *v)
     for (int i = 0; i < 3; i++) {
         c[i] = 0.5 * (lo[i] + hi[i]);
         rr += 0.25 * (hi[i] - lo[i]) * (hi[i] - lo[i]);
-        d += (v->scene->camera.position[i] - c[i]) * (v->scene->camera.position[i] - c[i]);
+        d += (cam->position[i] - c[i]) * (cam->position[i] - c[i]);
     }
     double R = sqrt(rr), dist = sqrt(d);
-    v->scene->camera.near_plane = fmax(0.9 * (dist - R), 1e-3 * fmax(R, dist));
-    v->scene->camera.far_plane = 1.1 * (dist + R);
+    cam->near_plane = fmax(0.9 * (dist - R), 1e-3 * fmax(R, dist));
+    cam->far_plane = 1.1 * (dist + R);
+}
+
+/* Takes a moved camera when every number of it is finite and it stands off its target (issue 32
+ * item 14: a NaN camera was drawn, and saved as null); else keeps the camera and says why. */
+static lucent_status camera_take(viewer *v, const char *what, lucent_camera *c)
+{
+    fit_planes(v, c);
+    double d = 0;
+    bool finite = isfinite(c->fov_y) && isfinite(c->near_plane) && isfinite(c->far_plane);
+    for (int i = 0; i < 3; i++) {
+        finite = finite && isfinite(c->position[i]) && isfinite(c->target[i]) && isfinite(c->up[i]);
+        d += (c->position[i] - c->target[i]) * (c->position[i] - c->target[i]);
+    }
+    if (!finite || !isfinite(d))
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: the camera would not be finite (it stays where it is)",
+                            what);
+    if (!(d > 0) || !(c->near_plane > 0) || !(c->far_plane > c->near_plane))
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                            "%s: the camera would stand on its target (it stays where it is)", what);
+    v->scene->camera = *c;
+    v->gen++;
+    return LUCENT_OK;
+}
+
+void viewer_shown_camera(const viewer *v, lucent_camera *dest)
+{
+    *dest = v->scene->camera;
+    /* A frame narrower than the scene's image (its aspect) widens the vertical field of view so that
+     * the scene's horizontal field still fits: side by side halves, a tall window (issue 35:
+     * keeping the vertical field of view cropped the object in both halves). */
+    int rect[4];
+    viewer_view_rect(v, rect);
+    int w = v->layout == VIEWER_SIDE ? rect[2] / 2 : rect[2], h = rect[3];
+    if (v->reference && v->match_reference) w = v->reference->width, h = v->reference->height;
+    double view = (double)(w > 0 ? w : 1) / (h > 0 ? h : 1);
+    double scene = (double)v->scene->render.view.width / v->scene->render.view.height;
+    if (view < scene) {
+        double t = tan(0.5 * dest->fov_y * M_PI / 180) * scene / view;
+        dest->fov_y = fmin(2 * atan(t) * 180 / M_PI, 170.0);
+    }
 }
 
 /* ---- camera and lights ---- */
 
-void viewer_orbit(viewer *v, double yaw_deg, double pitch_deg)
+lucent_status viewer_orbit(viewer *v, double yaw_deg, double pitch_deg)
 {
-    lucent_camera *c = &v->scene->camera;
+    lucent_camera cam = v->scene->camera, *c = &cam;
     double off[3], up[3], right[3], cam_up[3];
     memcpy(up, c->up, sizeof up);
     if (!normalize3(up)) up[0] = 0, up[1] = 1, up[2] = 0;
@@ -93,33 +133,31 @@ void viewer_orbit(viewer *v, double yaw_deg, double pitch_deg)
     double p = fmax(fmin(pitch_deg, elev - 2), elev - 178); /* never over the pole */
     rotate3(off, right, p * M_PI / 180);
     for (int i = 0; i < 3; i++) c->position[i] = c->target[i] + off[i];
-    fit_planes(v);
-    v->gen++;
+    return camera_take(v, "orbit", c);
 }
 
-void viewer_pan(viewer *v, double dx, double dy)
+lucent_status viewer_pan(viewer *v, double dx, double dy)
 {
-    lucent_camera *c = &v->scene->camera;
+    lucent_camera cam = v->scene->camera, *c = &cam, shown;
+    viewer_shown_camera(v, &shown);
     int rect[4];
     viewer_view_rect(v, rect);
     double right[3], up[3], dist = 0;
     camera_axes(c, right, up);
     for (int i = 0; i < 3; i++) dist += (c->position[i] - c->target[i]) * (c->position[i] - c->target[i]);
-    double mm = 2 * sqrt(dist) * tan(0.5 * c->fov_y * M_PI / 180) / (rect[3] > 0 ? rect[3] : 1);
+    double mm = 2 * sqrt(dist) * tan(0.5 * shown.fov_y * M_PI / 180) / (rect[3] > 0 ? rect[3] : 1);
     for (int i = 0; i < 3; i++) {
         double m = (-dx * right[i] + dy * up[i]) * mm;
         c->position[i] += m, c->target[i] += m;
     }
-    fit_planes(v);
-    v->gen++;
+    return camera_take(v, "pan", c);
 }
 
-void viewer_zoom(viewer *v, double factor)
+lucent_status viewer_zoom(viewer *v, double factor)
 {
-    lucent_camera *c = &v->scene->camera;
+    lucent_camera cam = v->scene->camera, *c = &cam;
     for (int i = 0; i < 3; i++) c->position[i] = c->target[i] + (c->position[i] - c->target[i]) * factor;
-    fit_planes(v);
-    v->gen++;
+    return camera_take(v, "zoom", c);
 }
 
 void viewer_reset_camera(viewer *v)
@@ -128,27 +166,34 @@ void viewer_reset_camera(viewer *v)
     v->gen++;
 }
 
-void viewer_light_rotate(viewer *v, int light, double yaw_deg, double pitch_deg)
+lucent_status viewer_light_rotate(viewer *v, int light, double yaw_deg, double pitch_deg)
 {
-    if (light < 0 || light >= v->scene->light_count) return;
+    if (light < 0 || light >= v->scene->light_count)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "light: no light %d (the scene has %d)", light,
+                            v->scene->light_count);
     lucent_light *l = &v->scene->lights[light];
     double right[3], up[3];
     camera_axes(&v->scene->camera, right, up);
-    if (l->type == LUCENT_LIGHT_ENVIRONMENT) return;
+    if (l->type == LUCENT_LIGHT_ENVIRONMENT) return LUCENT_OK;
     bool dir = l->type == LUCENT_LIGHT_DIRECTIONAL;
     double d[3]; /* a point light turns about the camera's target */
     for (int i = 0; i < 3; i++) d[i] = dir ? l->direction[i] : l->position[i] - v->scene->camera.target[i];
     rotate3(d, up, yaw_deg * M_PI / 180);
     rotate3(d, right, pitch_deg * M_PI / 180);
-    if (dir) normalize3(d);
+    if (dir && !normalize3(d)) d[0] = NAN;
+    for (int i = 0; i < 3; i++)
+        if (!isfinite(d[i]) || !isfinite(d[i] + v->scene->camera.target[i]))
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                                "light: the light would not be finite (it stays where it is)");
     for (int i = 0; i < 3; i++) {
         if (dir)
             l->direction[i] = d[i];
         else
             l->position[i] = d[i] + v->scene->camera.target[i];
     }
-    lucent_renderer_scene_changed(v->r, LUCENT_RENDERER_LIGHTS);
+    v->changed |= LUCENT_RENDERER_LIGHTS; /* the render thread reads them again with the next frame */
     v->gen++;
+    return LUCENT_OK;
 }
 
 /* ---- settings and materials: what is wanted ---- */
@@ -183,6 +228,7 @@ lucent_status viewer_material_preset(viewer *v, int object, const char *name)
 {
     lucent_material m;
     lucent_status st = lucent_material_resolve(name, &m);
+    if (st == LUCENT_OK) st = lucent_skin_resolve(&m); /* a spectral skin: its equivalent medium */
     if (st != LUCENT_OK) return st;
     v->wanted_material[object] = m;
     return LUCENT_OK;
@@ -333,12 +379,18 @@ static lucent_status job_apply(viewer *v)
             memcpy(o->albedo, d.rd, sizeof o->albedo);
         }
     }
-    if (mats) st = lucent_renderer_scene_changed(v->r, LUCENT_RENDERER_MATERIALS);
+    if (mats) v->changed |= LUCENT_RENDERER_MATERIALS; /* told to the renderer with the next frame */
     for (int k = 0; k < j->count && st == LUCENT_OK; k++) {
         bool known = false;
         for (int b = 0; b < v->baked_count; b++)
             known |= same_material(&v->baked_material[b], &j->material[k]) && same_baked(&v->baked[b], &j->baked[k]);
-        if (!known || mats) st = lucent_renderer_adopt_baked(v->r, &j->material[k], &j->baked[k]);
+        if (known && !mats) continue;
+        int a = 0; /* the latest parts of a material replace those not yet handed over */
+        while (a < v->adopt_count && !same_material(&v->adopt_material[a], &j->material[k])) a++;
+        if (a == VIEWER_MAX_MATERIALS) break;
+        v->adopt_material[a] = j->material[k];
+        st = lucent_baked_copy(&j->baked[k], &v->adopt[a]);
+        if (a == v->adopt_count) v->adopt_count++;
     }
     for (int b = 0; b < v->baked_count; b++) lucent_baked_free(&v->baked[b]);
     for (int k = 0; k < j->count; k++) {
@@ -369,6 +421,8 @@ void viewer_step(viewer *v)
         job_join(v);
         if (j->status != LUCENT_OK) {
             viewer_status(v, true, "bake failed: %s", j->error);
+            v->bake_failed = true, v->first_failed = !v->ready;
+            snprintf(v->bake_error, sizeof v->bake_error, "bake failed: %s", j->error);
             v->wanted = v->applied, v->method_b = v->applied_b; /* back to what works */
             for (int i = 0; i < v->scene->object_count; i++) v->wanted_material[i] = v->scene->objects[i].material;
             for (int k = 0; k < j->count; k++) lucent_baked_free(&j->baked[k]);
@@ -378,8 +432,9 @@ void viewer_step(viewer *v)
         }
     }
     if (j->running) return;
-    bool differ =
-        !v->ready || settings_differ(&v->wanted, &v->applied) || v->method_b != v->applied_b || materials_differ(v);
+    /* (the first bake failing is not tried again until something changes: it would fail again) */
+    bool differ = (!v->ready && !v->first_failed) || settings_differ(&v->wanted, &v->applied) ||
+                  v->method_b != v->applied_b || materials_differ(v);
     if (!differ) return;
     if (job_start(v) != LUCENT_OK) {
         viewer_status(v, true, "%s", lucent_last_error());
@@ -441,7 +496,10 @@ void viewer_scene_close(viewer *v)
     v->job.count = 0;
     for (int b = 0; b < v->baked_count; b++) lucent_baked_free(&v->baked[b]);
     v->baked_count = 0;
-    lucent_renderer_destroy(v->r);
+    for (int a = 0; a < v->adopt_count; a++) lucent_baked_free(&v->adopt[a]);
+    v->adopt_count = 0, v->changed = 0;
+    viewer_worker_drop_renderer(v); /* the render thread's copy shares the meshes of this scene */
+    viewer_frame_free(&v->shown);
     lucent_scene_destroy(v->scene);
     free(v->wanted_material);
     free(v->job.objects);
@@ -462,14 +520,11 @@ lucent_status viewer_scene_open(viewer *v)
     v->home_lights = calloc((size_t)scene->light_count + 1, sizeof *v->home_lights);
     if (v->home_lights) memcpy(v->home_lights, scene->lights, (size_t)scene->light_count * sizeof *scene->lights);
     file_time(v->opt.scene, &v->mtime);
-    lucent_renderer_desc rd = lucent_renderer_defaults();
-    rd.pool = v->opt.pool;
-    rd.cache_dir = v->opt.cache_dir;
     v->wanted_material = calloc((size_t)scene->object_count + 1, sizeof *v->wanted_material);
     v->job.objects = calloc((size_t)scene->object_count + 1, sizeof *v->job.objects);
     if (!v->wanted_material || !v->job.objects) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
     for (int i = 0; i < scene->object_count; i++) v->wanted_material[i] = scene->objects[i].material;
-    st = lucent_renderer_create(v->gl, scene, &rd, &v->r);
+    st = viewer_worker_create_renderer(v); /* on the render thread, of a copy of the scene */
     if (st != LUCENT_OK) return st;
     v->wanted = scene->render;
     if (v->method_b == v->wanted.view.method || !v->ready)

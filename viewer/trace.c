@@ -93,7 +93,7 @@ void viewer_trace_poll(viewer *v)
         v->trace_spp = spp;
         snprintf(v->reference_path, sizeof v->reference_path, "progressive trace, %llu spp in %.1f s",
                  (unsigned long long)spp, seconds);
-        v->gen++;
+        v->ref_gen++, v->show_gen = 0; /* a new error; a new frame only for another size (app.c) */
     }
     if (atomic_load(&t->done) && t->status != LUCENT_OK) {
         viewer_status(v, true, "progressive trace: %s", t->error);

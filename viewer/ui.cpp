@@ -6,11 +6,49 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "backends/imgui_impl_glfw.h"
 #include "backends/imgui_impl_opengl3.h"
 #include "imgui.h"
 #include "ui.h"
+
+static GLFWwindow *g_window;
+static void (*g_key_fn)(void *, int);
+static void *g_key_user;
+static bool g_open_all;
+static float g_widest; // the right edge of the widest item of the panel being drawn
+static ui_layout g_layout;
+
+// Every widget of the panel: its right edge (label included) for ui_panel_layout.
+static void measured(void) { g_widest = fmaxf(g_widest, ImGui::GetItemRectMax().x); }
+
+// Dear ImGui 1.86 keeps a key's state, not its presses: one pressed and released between two frames
+// is lost. GLFW's callback sees each press: queue it for the viewer, then let ImGui have it.
+static void key_callback(GLFWwindow *w, int key, int scancode, int action, int mods)
+{
+    ImGui_ImplGlfw_KeyCallback(w, key, scancode, action, mods);
+    if (action == GLFW_PRESS && g_key_fn) g_key_fn(g_key_user, key);
+}
+
+// The label of a widget when it fits beside one of the item width (or of at least 40% of the panel,
+// narrowed); else the label as text on its own line and the widget, hidden-labelled, across.
+static const char *fit_label(const char *label, char *id, size_t size)
+{
+    const char *hash = strstr(label, "##");
+    float avail = ImGui::GetContentRegionAvail().x, spacing = ImGui::GetStyle().ItemInnerSpacing.x;
+    float text = ImGui::CalcTextSize(label, hash).x, widget = ImGui::CalcItemWidth();
+    if (hash == label || widget + spacing + text <= avail) return label;
+    if (avail - spacing - text >= 0.4f * avail) {
+        ImGui::SetNextItemWidth(avail - spacing - text);
+        return label;
+    }
+    ImGui::TextUnformatted(label, hash);
+    measured();
+    ImGui::SetNextItemWidth(avail);
+    snprintf(id, size, "##%s", label);
+    return id;
+}
 
 extern "C" {
 
@@ -23,8 +61,24 @@ bool ui_init(void *glfw_window)
     ImGui::GetIO().IniFilename = nullptr; // no imgui.ini beside the user's files
     ImGui::StyleColorsDark();
     ImGui::GetStyle().WindowRounding = 0;
-    return ImGui_ImplGlfw_InitForOpenGL(w, true) && ImGui_ImplOpenGL3_Init("#version 330 core");
+    bool ok = ImGui_ImplGlfw_InitForOpenGL(w, true) && ImGui_ImplOpenGL3_Init("#version 330 core");
+    glfwSetKeyCallback(w, key_callback); // after ImGui's, which it calls
+    g_window = w;
+    return ok;
 }
+
+void ui_on_key(void (*fn)(void *, int), void *user) { g_key_fn = fn, g_key_user = user; }
+
+void ui_inject_key(int key)
+{
+    int scancode = glfwGetKeyScancode(key);
+    key_callback(g_window, key, scancode, GLFW_PRESS, 0);
+    key_callback(g_window, key, scancode, GLFW_RELEASE, 0);
+}
+
+void ui_open_all(bool open) { g_open_all = open; }
+
+void ui_panel_layout(ui_layout *dest) { *dest = g_layout; }
 
 void ui_shutdown(void)
 {
@@ -67,19 +121,28 @@ void ui_get_input(ui_input *d)
     d->typing = io.WantCaptureKeyboard;
 }
 
-bool ui_key_pressed(int key) { return !ImGui::GetIO().WantCaptureKeyboard && ImGui::IsKeyPressed(key, false); }
-
 void ui_panel_begin(const char *title, float x, float y, float w, float h)
 {
     ImGui::SetNextWindowPos(ImVec2(x, y));
     ImGui::SetNextWindowSize(ImVec2(w, h));
     ImGui::Begin(title, nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    g_widest = 0;
 }
 
-void ui_panel_end(void) { ImGui::End(); }
+void ui_panel_end(void)
+{
+    const ImGuiStyle &st = ImGui::GetStyle();
+    g_layout.content_h = ImGui::GetCursorPosY() - st.ItemSpacing.y + st.WindowPadding.y; // from the panel's top
+    g_layout.widest = g_widest - ImGui::GetWindowPos().x;
+    g_layout.visible_w = ImGui::GetWindowContentRegionMax().x;
+    g_layout.visible_h = ImGui::GetWindowHeight();
+    ImGui::End();
+}
 
 bool ui_header(const char *label, bool open_default)
 {
+    if (g_open_all) ImGui::SetNextItemOpen(true);
+    // not measured: a header spans into the panel's padding by design
     return ImGui::CollapsingHeader(label, open_default ? ImGuiTreeNodeFlags_DefaultOpen : 0);
 }
 
@@ -87,19 +150,29 @@ void ui_text(const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
+    ImGui::PushTextWrapPos(0);
     ImGui::TextV(fmt, ap);
+    ImGui::PopTextWrapPos();
     va_end(ap);
+    measured();
 }
 
 void ui_text_colored(float r, float g, float b, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
+    ImGui::PushTextWrapPos(0);
     ImGui::TextColoredV(ImVec4(r, g, b, 1), fmt, ap);
+    ImGui::PopTextWrapPos();
     va_end(ap);
+    measured();
 }
 
-void ui_text_wrapped(const char *text) { ImGui::TextWrapped("%s", text); }
+void ui_text_wrapped(const char *text)
+{
+    ImGui::TextWrapped("%s", text);
+    measured();
+}
 void ui_separator(void) { ImGui::Separator(); }
 void ui_same_line(void) { ImGui::SameLine(); }
 void ui_push_id(int id) { ImGui::PushID(id); }
@@ -113,28 +186,67 @@ void ui_item_width(float w)
     if (pushed) ImGui::PushItemWidth(w);
 }
 
-bool ui_button(const char *label) { return ImGui::Button(label); }
-bool ui_checkbox(const char *label, bool *v) { return ImGui::Checkbox(label, v); }
-bool ui_radio(const char *label, int *v, int value) { return ImGui::RadioButton(label, v, value); }
+bool ui_button(const char *label)
+{
+    bool pressed = ImGui::Button(label);
+    return measured(), pressed;
+}
+
+bool ui_checkbox(const char *label, bool *v)
+{
+    const char *hash = strstr(label, "##");
+    float avail = ImGui::GetContentRegionAvail().x,
+          box = ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x;
+    if (ImGui::CalcTextSize(label, hash).x + box <= avail) {
+        bool changed = ImGui::Checkbox(label, v);
+        return measured(), changed;
+    }
+    ImGui::PushID(label); // the box, then its label wrapped beside it
+    bool changed = ImGui::Checkbox("##box", v);
+    ImGui::PopID();
+    measured();
+    ImGui::SameLine();
+    ImGui::PushTextWrapPos(0);
+    ImGui::TextUnformatted(label, hash);
+    ImGui::PopTextWrapPos();
+    return measured(), changed;
+}
+
+bool ui_radio(const char *label, int *v, int value)
+{
+    bool changed = ImGui::RadioButton(label, v, value);
+    return measured(), changed;
+}
 
 bool ui_drag_double(const char *label, double *v, double lo, double hi, bool logarithmic, const char *format)
 {
+    char id[256];
+    label = fit_label(label, id, sizeof id);
     double speed = logarithmic ? 0.01 : (hi - lo) / 500.0;
     if (!(speed > 0) || !isfinite(speed) || speed > 1e3) speed = 0.01 * (fabs(*v) > 0 ? fabs(*v) : 1.0);
     ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp | (logarithmic ? ImGuiSliderFlags_Logarithmic : 0);
-    return ImGui::DragScalar(label, ImGuiDataType_Double, v, (float)speed, &lo, &hi, format ? format : "%.4g", flags);
+    bool changed =
+        ImGui::DragScalar(label, ImGuiDataType_Double, v, (float)speed, &lo, &hi, format ? format : "%.4g", flags);
+    return measured(), changed;
 }
 
 bool ui_drag_double3(const char *label, double v[3], double lo, double hi, bool logarithmic, const char *format)
 {
+    char id[256];
+    label = fit_label(label, id, sizeof id);
     ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp | (logarithmic ? ImGuiSliderFlags_Logarithmic : 0);
     float speed = logarithmic ? 0.01f : (float)((hi - lo) / 500.0);
-    return ImGui::DragScalarN(label, ImGuiDataType_Double, v, 3, speed, &lo, &hi, format ? format : "%.4g", flags);
+    bool changed =
+        ImGui::DragScalarN(label, ImGuiDataType_Double, v, 3, speed, &lo, &hi, format ? format : "%.4g", flags);
+    return measured(), changed;
 }
 
 bool ui_drag_int(const char *label, int *v, int lo, int hi)
 {
-    return ImGui::DragInt(label, v, hi - lo > 200 ? 1.0f : 0.2f, lo, hi, "%d", ImGuiSliderFlags_AlwaysClamp);
+    char id[256];
+    label = fit_label(label, id, sizeof id);
+    bool changed = ImGui::DragInt(label, v, hi - lo > 200 ? 1.0f : 0.2f, lo, hi, "%d", ImGuiSliderFlags_AlwaysClamp);
+    return measured(), changed;
 }
 
 struct combo_names {
@@ -154,20 +266,30 @@ bool ui_combo(const char *label, int *current, const char *(*names)(void *user, 
     int count = 0;
     while (names(user, count)) count++;
     combo_names c = {names, user};
-    return ImGui::Combo(label, current, combo_item, &c, count);
+    char id[256];
+    label = fit_label(label, id, sizeof id);
+    bool changed = ImGui::Combo(label, current, combo_item, &c, count);
+    return measured(), changed;
 }
 
 bool ui_color3(const char *label, double rgb[3])
 {
     float f[3] = {(float)rgb[0], (float)rgb[1], (float)rgb[2]};
-    if (!ImGui::ColorEdit3(label, f, ImGuiColorEditFlags_Float)) return false;
+    char id[256];
+    label = fit_label(label, id, sizeof id);
+    bool changed = ImGui::ColorEdit3(label, f, ImGuiColorEditFlags_Float);
+    measured();
+    if (!changed) return false;
     for (int i = 0; i < 3; i++) rgb[i] = f[i];
     return true;
 }
 
 bool ui_input_text(const char *label, char *buf, size_t size)
 {
-    return ImGui::InputText(label, buf, size, ImGuiInputTextFlags_EnterReturnsTrue);
+    char id[256];
+    label = fit_label(label, id, sizeof id);
+    bool enter = ImGui::InputText(label, buf, size, ImGuiInputTextFlags_EnterReturnsTrue);
+    return measured(), enter;
 }
 
 void ui_tooltip(const char *text)
@@ -184,13 +306,18 @@ void ui_progress(float fraction, const char *overlay)
 {
     if (fraction < 0) fraction = 0.5f + 0.5f * sinf((float)ImGui::GetTime() * 4); // busy
     ImGui::ProgressBar(fraction, ImVec2(-1, 0), overlay);
+    measured();
 }
 
 void ui_plot(const char *label, const ui_series *series, int count, float height, bool log_y)
 {
+    ImGui::PushTextWrapPos(0);
     ImGui::TextUnformatted(label);
+    ImGui::PopTextWrapPos();
+    measured();
     ImVec2 p0 = ImGui::GetCursorScreenPos(), size(ImGui::GetContentRegionAvail().x, height);
     ImGui::Dummy(size);
+    measured();
     ImDrawList *dl = ImGui::GetWindowDrawList();
     ImVec2 p1(p0.x + size.x, p0.y + size.y);
     dl->AddRectFilled(p0, p1, IM_COL32(20, 20, 24, 255));
@@ -282,6 +409,13 @@ void ui_texture_free(unsigned *tex)
 void ui_background_image(unsigned tex, float x0, float y0, float x1, float y1)
 {
     ImGui::GetBackgroundDrawList()->AddImage((ImTextureID)(uintptr_t)tex, ImVec2(x0, y0), ImVec2(x1, y1));
+}
+
+void ui_background_image_uv(unsigned tex, float x0, float y0, float x1, float y1, float u0, float v0, float u1,
+                            float v1)
+{
+    ImGui::GetBackgroundDrawList()->AddImage((ImTextureID)(uintptr_t)tex, ImVec2(x0, y0), ImVec2(x1, y1),
+                                             ImVec2(u0, v0), ImVec2(u1, v1));
 }
 
 bool ui_read_window(int width, int height, uint8_t *rgba)

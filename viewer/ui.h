@@ -28,12 +28,26 @@ typedef struct ui_input {
     bool typing;  /* the UI wants the keyboard */
 } ui_input;
 void ui_get_input(ui_input *dest);
-bool ui_key_pressed(int glfw_key); /* false while the UI wants the keyboard */
 
-/* A fixed panel (no move, no resize by the user); ui_panel_end always. */
+/* Key presses as GLFW reports them, queued by its key callback (after Dear ImGui's): fn(user, key)
+ * for each press, so that a tap shorter than a frame still counts. ui_inject_key plays a tap (press
+ * and release) through the same callback, as glfwPollEvents would (scripts, tests). */
+void ui_on_key(void (*fn)(void *user, int glfw_key), void *user);
+void ui_inject_key(int glfw_key);
+
+/* A fixed panel (no move, no resize by the user); ui_panel_end always. Labels that do not fit
+ * beside their widget go on a line of their own above it; text wraps at the panel's edge. */
 void ui_panel_begin(const char *title, float x, float y, float w, float h);
 void ui_panel_end(void);
 bool ui_header(const char *label, bool open_default); /* a collapsing section */
+void ui_open_all(bool open);                          /* every section opens (panel checks) */
+
+/* The last panel's layout: the height its content needs, the right edge of its widest item, and
+ * the panel's visible content width and height (pixels). */
+typedef struct ui_layout {
+    float content_h, widest, visible_w, visible_h;
+} ui_layout;
+void ui_panel_layout(ui_layout *dest);
 void ui_text(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void ui_text_colored(float r, float g, float b, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
 void ui_text_wrapped(const char *text);
@@ -73,6 +87,8 @@ void ui_overlay_line(float x0, float y0, float x1, float y1, uint32_t rgba, floa
 void ui_texture_set(unsigned *tex, const uint8_t *rgba, int width, int height);
 void ui_texture_free(unsigned *tex);
 void ui_background_image(unsigned tex, float x0, float y0, float x1, float y1);
+void ui_background_image_uv(unsigned tex, float x0, float y0, float x1, float y1, float u0, float v0, float u1,
+                            float v1);
 
 /* The window's framebuffer as RGBA8, top row first (after drawing, before the swap). */
 bool ui_read_window(int width, int height, uint8_t *rgba);

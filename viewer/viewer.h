@@ -3,16 +3,18 @@
  * only. Or headless: a script of UI actions (script.c) drives the same state, for tests and
  * benchmarks.
  *
- * Files: app.c (the window, the frame, input, layout, hot reload), state.c (camera, lights,
- * materials, the background bakes), panel.c (the panel built from the settings table), script.c,
- * output.c (saved scenes, screenshots, taps, the reference and its error), trace.c (a progressive
- * trace as the reference). */
+ * Files: app.c (the window, the frame, input, layout, hot reload), render.c (the renderer on a
+ * thread of its own), state.c (camera, lights, materials, the background bakes), panel.c (the panel
+ * built from the settings table), script.c (playing a script) and script_parse.c (checking one
+ * whole, script.h), output.c (saved scenes, screenshots, taps, the reference and its error),
+ * trace.c (a progressive trace as the reference). */
 #ifndef LUCENT_VIEWER_VIEWER_H
 #define LUCENT_VIEWER_VIEWER_H
 
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdbool.h>
+#include <stdint.h>
 #include <time.h>
 
 #include "lucent/lucent.h"
@@ -83,13 +85,65 @@ typedef struct viewer_trace {
     char error[1024];
 } viewer_trace;
 
-typedef struct viewer {
+typedef struct viewer viewer;
+
+/* What the render thread draws next (render.c): copies of the viewer's state. */
+typedef struct viewer_request {
+    unsigned long gen;                  /* v->gen when it was made */
+    int count;                          /* frames: 1 (A) or 2 (A and B) */
+    lucent_camera camera[2];            /* A's and B's (side by side: each half's field of view) */
+    lucent_render_settings settings[2]; /* sizes included */
+    unsigned changed;                   /* LUCENT_RENDERER_LIGHTS | _MATERIALS: read these again */
+    int light_count, object_count;
+    lucent_light *lights;         /* with LUCENT_RENDERER_LIGHTS */
+    lucent_scene_object *objects; /* with LUCENT_RENDERER_MATERIALS: material and albedo */
+    int adopt_count;              /* parts baked on the bake thread, to adopt */
+    lucent_material adopt_material[VIEWER_MAX_MATERIALS];
+    lucent_baked adopt[VIEWER_MAX_MATERIALS];
+} viewer_request;
+
+/* A frame the render thread finished. */
+typedef struct viewer_frame {
+    unsigned long gen;
+    int count, width, height;
+    lucent_image *image[2]; /* linear RGB radiance of A and B */
+    lucent_image *mask;     /* A's coverage */
+    uint8_t *rgba[2];       /* as the screen shows them: tonemapped, sRGB-encoded, top row first */
+    lucent_frame_times times[2];
+    double ms; /* the render thread's time for it */
+    lucent_status status;
+    char error[1024];
+} viewer_frame;
+
+typedef struct viewer_worker {
+    pthread_t thread;
+    bool running, window;
+    pthread_mutex_t lock;
+    pthread_cond_t wake, done;
+    bool started, quit, busy, has_request, has_frame;
+    lucent_status start_status;
+    char start_error[1024];
+    viewer_request request;
+    viewer_frame frame;
+    unsigned long frames; /* finished */
+    lucent_status (*call)(viewer *v, void *arg);
+    void *call_arg;
+    lucent_status call_status;
+    char call_error[1024];
+    /* the thread's own */
+    lucent_gl_context *gl;
+    lucent_scene scene; /* the renderer's: the viewer's, its lights and objects copied */
+    lucent_renderer *r;
+} viewer_worker;
+
+struct viewer {
     viewer_options opt;
     lucent_scene *scene;
     lucent_camera home;        /* the scene file's camera (reset) */
     lucent_light *home_lights; /* the scene file's lights */
-    lucent_gl_context *gl;
-    lucent_renderer *r;
+    lucent_gl_context *gl;     /* the window's (the panel and the frames as textures); NULL headless */
+    lucent_renderer *r;        /* the render thread's; read here only by lucent_renderer_bakes */
+    viewer_worker worker;
     void *window; /* GLFWwindow *, NULL when headless */
     bool ui;      /* the panel is drawn */
     int win_w, win_h;
@@ -117,6 +171,22 @@ typedef struct viewer {
     double redraw_ms, fps, last_frame;
     int frame_w, frame_h; /* the size of A's frame */
     unsigned long gen;    /* counts the changes of what a frame shows */
+    unsigned long asked;  /* the gen of the last request handed to the render thread */
+    int asked_count;      /* its frames (1: A, 2: A and B) */
+    unsigned changed;     /* what the next request must tell the renderer (LUCENT_RENDERER_*) */
+    int adopt_count;      /* parts baked, for the next request */
+    lucent_material adopt_material[VIEWER_MAX_MATERIALS];
+    lucent_baked adopt[VIEWER_MAX_MATERIALS];
+    viewer_frame shown;      /* the last finished frame, drawn until the next */
+    unsigned frame_tex[2];   /* its textures */
+    double frame_ms;         /* how long the render thread took for it */
+    double asked_at;         /* when the request in flight was made (lucent_clock_ms) */
+    unsigned long ui_frames; /* window frames drawn */
+    double slowest_ui_ms;    /* the longest window frame (ui-frames) */
+    int keys[64], key_count; /* key presses queued by the GLFW callback, not yet handled */
+    bool bake_failed;        /* the last bake failed (scripts exit 1) */
+    bool first_failed;       /* the first bake failed: nothing to draw until a change */
+    char bake_error[1100];
 
     /* The reference (lucent trace's EXR) and the error of method A against it. */
     lucent_image *reference;
@@ -124,7 +194,7 @@ typedef struct viewer {
     bool match_reference; /* render A at the reference's size */
     lucent_image *error_map;
     double rel_rms;
-    unsigned long error_gen;
+    unsigned long error_gen, ref_gen, error_ref_gen; /* the frame and the reference the error is of */
     viewer_trace trace;
     uint64_t trace_spp; /* of the reference, when it is the progressive trace */
     viewer_show show;
@@ -143,16 +213,19 @@ typedef struct viewer {
     int taps_format;
     char set_form[8192]; /* the last saved scene as --set options */
     bool quit;
-} viewer;
+};
 
 /* state.c */
 lucent_status viewer_scene_open(viewer *v); /* loads opt.scene, (re)creates the renderer */
 void viewer_scene_close(viewer *v);
-void viewer_orbit(viewer *v, double yaw_deg, double pitch_deg);
-void viewer_pan(viewer *v, double dx_px, double dy_px); /* pixels of the view */
-void viewer_zoom(viewer *v, double factor);
+/* Camera moves refuse (LUCENT_ERR_INVALID_ARGUMENT, the camera unchanged) a result that is not
+ * finite or puts the camera on its target. */
+lucent_status viewer_orbit(viewer *v, double yaw_deg, double pitch_deg);
+lucent_status viewer_pan(viewer *v, double dx_px, double dy_px); /* pixels of the view */
+lucent_status viewer_zoom(viewer *v, double factor);
 void viewer_reset_camera(viewer *v);
-void viewer_light_rotate(viewer *v, int light, double yaw_deg, double pitch_deg);
+lucent_status viewer_light_rotate(viewer *v, int light, double yaw_deg, double pitch_deg);
+void viewer_shown_camera(const viewer *v, lucent_camera *dest);          /* A's, as drawn (side by side: wider) */
 lucent_status viewer_set(viewer *v, const char *key, const char *value); /* a setting of the table */
 lucent_status viewer_method(viewer *v, const char *name, bool b);
 lucent_status viewer_material_preset(viewer *v, int object, const char *name);
@@ -164,7 +237,9 @@ lucent_render_settings viewer_frame_settings(const viewer *v, bool b, int width,
 void viewer_status(viewer *v, bool error, const char *fmt, ...) LUCENT_PRINTF(3, 4);
 
 /* app.c */
-lucent_status viewer_redraw(viewer *v); /* one frame: render, present, the UI, swap */
+lucent_status viewer_redraw(viewer *v);      /* one window frame: the UI, the last finished frame, swap */
+lucent_status viewer_redraw_sync(viewer *v); /* window frames until the render thread drew what is wanted */
+void viewer_key_event(viewer *v, int key);   /* a key press, queued (the GLFW callback) */
 lucent_status viewer_resize(viewer *v, int width, int height);
 void viewer_view_rect(const viewer *v, int rect[4]);
 
@@ -180,6 +255,18 @@ lucent_status viewer_export_taps(viewer *v, const char *path, const char *format
 lucent_status viewer_load_reference(viewer *v, const char *path);
 void viewer_drop_reference(viewer *v);
 lucent_status viewer_update_error(viewer *v); /* the error map of A against the reference */
+
+/* render.c */
+lucent_status viewer_worker_start(viewer *v); /* the render thread and its GL context */
+void viewer_worker_stop(viewer *v);
+lucent_status viewer_worker_create_renderer(viewer *v); /* for v->scene, waiting for the frame under way */
+void viewer_worker_drop_renderer(viewer *v);
+bool viewer_worker_submit(viewer *v, viewer_request *q);                /* false while it is busy; q moved when taken */
+bool viewer_worker_take(viewer *v, viewer_frame *dest, double wait_ms); /* a finished frame */
+bool viewer_worker_busy(viewer *v);
+void viewer_request_free(viewer_request *q);
+void viewer_frame_free(viewer_frame *f);
+lucent_status viewer_to_rgba(const lucent_image *img, const lucent_tonemap_desc *tm, bool encode, uint8_t **dest);
 
 /* trace.c */
 lucent_status viewer_trace_start(viewer *v); /* of the scene as it is now, at the frame's size */

@@ -13,7 +13,9 @@
  *                                                              the channels (d'Eon & Luebke 2007)
  *   rd             the material only                           lucent_profile_mc_total (cached): the
  *                                                              Monte Carlo total diffuse reflectance
- *                                                              under a smooth boundary (MCML's)
+ *                                                              under a smooth boundary (MCML's; a
+ *                                                              spectral skin: lucent_skin_color_of,
+ *                                                              "mc", cached)
  *   boundary       the material, desc.roughness                lucent_boundary_run (cached): the path
  *                                                              tracer's rough boundary on a half-space,
  *                                                              the real-time methods' albedo and their
@@ -59,6 +61,7 @@ enum {
     LUCENT_BAKE_SIGMA0_BINS = 18,         /* sigma0 fit: theta bins of each sphere */
     LUCENT_BAKE_RD_PHOTONS = 400000,      /* total diffuse reflectance: per channel (Skin1's blue
                                              0.113 +- 0.0005) */
+    LUCENT_BAKE_SKIN_RD_PHOTONS = 10000,  /* a spectral skin's: per band (lucent/skin.h) */
     LUCENT_BAKE_BOUNDARY_PHOTONS = 2000,  /* boundary: per channel and incidence bin (about 1% per table
                                              entry for Skin1, 2% for marble; 0.8 s and 6 s of CPU) */
     LUCENT_BAKE_SPHERE_PHOTONS = 20000    /* spheres: per channel and radius */

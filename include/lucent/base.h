@@ -99,6 +99,10 @@ void lucent_progress_set_output(FILE *out);
  * every progress function accepts NULL and then does nothing. */
 lucent_progress *lucent_progress_begin(const char *label, uint64_t total);
 
+/* Names the task's unit ("frame"): the bar then also says which unit is under way, "frame k of n"
+ * (NULL or "": none, the default). */
+void lucent_progress_set_unit(lucent_progress *p, const char *unit);
+
 /* Makes the bar also follow a time limit of `seconds` from the task's start (<= 0: none): it shows
  * the larger of the units' fraction and the elapsed time's, and the ETA of whichever ends first. */
 void lucent_progress_set_deadline(lucent_progress *p, double seconds);
@@ -117,8 +121,13 @@ void lucent_progress_end(lucent_progress *p);
  * depend on the chunk index are identical whatever the number of threads. */
 typedef struct lucent_pool lucent_pool;
 
+/* The most threads a pool has. */
+#define LUCENT_POOL_MAX_THREADS 256
+
 /* Creates a pool of `threads` workers (0: LUCENT_THREADS from the environment, else all cores).
- * The calling thread works too, so a pool of 1 runs everything on the caller. */
+ * The calling thread works too, so a pool of 1 runs everything on the caller. More than
+ * LUCENT_POOL_MAX_THREADS, or a LUCENT_THREADS that is not a whole number from 1 to it, is said in a
+ * warning (lucent_log) and replaced: by the maximum, or by all cores. */
 lucent_pool *lucent_pool_create(int threads);
 void lucent_pool_destroy(lucent_pool *pool);
 
@@ -187,7 +196,11 @@ void lucent_rng_jump(lucent_rng *r);
 typedef struct lucent_atomic_file lucent_atomic_file;
 
 /* Opens a temporary file beside `path` for writing; *out receives its FILE*.
- * Fails (with a message naming path) when the directory is missing or not writable. */
+ * Fails (with a message naming path) when the directory is missing or not writable. A path that
+ * names a character device, a FIFO or a socket is written through instead (the bytes wait in an
+ * unlinked file of $TMPDIR and are copied into it on commit, or when the output set lands; it is
+ * never replaced by a file); a symbolic link to a regular file is followed (the file is replaced,
+ * the link kept); a folder, a block device or a link to nothing is refused (lucent/output.h). */
 lucent_status lucent_atomic_open(const char *path, lucent_atomic_file **dest, FILE **out);
 
 /* Flushes, syncs and renames the temporary file onto its target, then frees af.

@@ -90,9 +90,14 @@ lucent_status lucent_cdrf_lut_write(const char *path, const lucent_image *lut, d
  * scored: the result is the subsurface radiance only. */
 enum { LUCENT_CDRF_MAX_BINS = 720 };
 
+/* The sphere radii the Monte Carlo simulates, mm: below 1 nm no photon of double precision enters (a radius
+ * of 1e-300 gave an empty tally, fitted as sigma0 = k_d = 0), above 1 km the steps lose the sphere. */
+#define LUCENT_CDRF_SPHERE_MIN_RADIUS 1e-6
+#define LUCENT_CDRF_SPHERE_MAX_RADIUS 1e6
+
 typedef struct lucent_cdrf_sphere_desc {
     const lucent_material *material;
-    double radius;    /* mm, > 0 */
+    double radius;    /* mm, in [LUCENT_CDRF_SPHERE_MIN_RADIUS, LUCENT_CDRF_SPHERE_MAX_RADIUS] */
     double roughness; /* GGX alpha of the boundary; 0: smooth (Fresnel) */
     uint64_t photons; /* per channel (0: 200000); rounded up to a multiple of the batch count */
     int bins;         /* theta bins over [0, pi] (0: 36) */

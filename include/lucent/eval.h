@@ -33,6 +33,7 @@
 #include "lucent/profile.h"
 #include "lucent/render.h"
 #include "lucent/report.h"
+#include "lucent/scene.h"
 #include "lucent/trace.h"
 
 #ifdef __cplusplus
@@ -42,10 +43,12 @@ extern "C" {
 /* ---- Events ------------------------------------------------------------------------------------ */
 
 typedef enum lucent_eval_event_kind {
-    LUCENT_EVAL_WROTE = 1, /* path: a file was written (complete, renamed into place) */
-    LUCENT_EVAL_SKIPPED,   /* name: a kernel model (kernel-eval) or a method (compare) was left out;
+    LUCENT_EVAL_WROTE = 1,  /* path: a file was written (complete, renamed into place) */
+    LUCENT_EVAL_SKIPPED,    /* name: a kernel model (kernel-eval) or a method (compare) was left out;
                               reason: why (compare: it names the scene) */
-    LUCENT_EVAL_SCENE_DONE /* index: compare's scene index is measured and its files written */
+    LUCENT_EVAL_SCENE_DONE, /* index: compare's scene index is measured and its files written */
+    LUCENT_EVAL_SLOW        /* name: a method asked for that is slow on this GL renderer; reason: an estimate
+                               of its time (told before any work, so the user can stop the run) */
 } lucent_eval_event_kind;
 
 typedef struct lucent_eval_event {
@@ -66,9 +69,11 @@ typedef void (*lucent_eval_event_fn)(const lucent_eval_event *event, void *user)
 
 enum { LUCENT_COMPARE_MAX_SCENES = 16, LUCENT_COMPARE_MAX_METHODS = 32, LUCENT_COMPARE_MAX_FRAMES = 64 };
 
-/* The methods compared when a desc names none. */
+/* The methods compared when a desc names none: those that render in interactive time on a software GL
+ * renderer (llvmpipe); tsd and points take tens of seconds a frame there and run only when asked for
+ * (LUCENT_EVAL_SLOW tells their estimate first). */
 #define LUCENT_COMPARE_DEFAULT_METHODS                                                                                 \
-    "lambert,cdrf,cdrf+translucency,ssss:preint,ssss:svd1,ssss:svd3,ssss:guided,ssss:manual,ssss:jimenez,tsd,points"
+    "lambert,cdrf,cdrf+translucency,ssss:preint,ssss:svd1,ssss:svd3,ssss:guided,ssss:manual,ssss:jimenez"
 /* The report's title when a desc gives none. */
 #define LUCENT_COMPARE_DEFAULT_TITLE "Lucent: real-time subsurface scattering against a path-traced reference"
 /* The relative error drawn in full colour in the error maps (50%). */
@@ -96,6 +101,15 @@ typedef struct lucent_compare_desc {
     lucent_pool *pool;             /* NULL: serial */
     lucent_eval_event_fn on_event; /* NULL: none */
     void *user;                    /* passed to on_event */
+    int reference_runs;            /* independent runs (seeds) of the reference, sharing its budget: 0: two
+                                      where light paths make one photon land in many pixels (the paired
+                                      test's standard error is calibrated on them), else one; 1 or 2 */
+    const char *reference;         /* NULL: trace the references; else a folder an earlier run wrote
+                                      (out), whose SCENE/reference.json and EXRs are reused: its scene and
+                                      settings must match, else LUCENT_ERR_INVALID_ARGUMENT naming the field */
+    bool per_light;                /* also each light alone, reference and methods (a reference per light) */
+    const char *revision;          /* provenance: the program's git revision (NULL: "unknown") */
+    const char *command;           /* provenance: the command line (NULL: none recorded) */
 } lucent_compare_desc;
 
 /* Returns what a zero lucent_compare_desc stands for (no scenes; the default methods are left to
@@ -128,6 +142,41 @@ lucent_status lucent_compare_run(const lucent_compare_desc *desc, lucent_compare
 
 /* Frees what a result holds and zeroes it (a zero result is fine). */
 void lucent_compare_result_free(lucent_compare_result *result);
+
+/* ---- compare's paired test ------------------------------------------------------------------------
+ * Every method is measured against the same reference r = truth + noise n, so the difference of two
+ * methods' squared errors d = (sum (a - r)^2 - sum (b - r)^2) / sum r^2 = e_a^2 - e_b^2 has the true
+ * difference as its mean and -2 sum (a - b) n / sum r^2 as its noise: the noise enters once, linearly,
+ * and far less than in either error alone. */
+
+/* The block side (pixels) over which lucent_compare_noise_inflation sums. */
+enum { LUCENT_COMPARE_INFLATION_BLOCK = 32 };
+
+typedef struct lucent_compare_pair {
+    double d;  /* e_a^2 - e_b^2 */
+    double se; /* its standard error: 2 sqrt(inflation sum (a - b)^2 var) / sum r^2 */
+    double z;  /* d / se (0 when both are 0; +-inf for a difference without noise) */
+} lucent_compare_pair;
+
+/* The paired test of images a and b against reference (variance: of its mean, per pixel and channel)
+ * over R, G, B and the mask (NULL: every pixel); inflation (values below 1 count as 1) multiplies the
+ * variance, which per-pixel variances understate where one path lands in many pixels. */
+lucent_status lucent_compare_paired(const lucent_image *a, const lucent_image *b, const lucent_image *reference,
+                                    const lucent_image *variance, const float *mask, double inflation,
+                                    lucent_compare_pair *dest);
+
+/* Whether the test separates the two (|z| >= LUCENT_COMPARE_Z). */
+bool lucent_compare_separated(const lucent_compare_pair *pair);
+
+/* How much per-pixel variances understate the variance of the paired test's sums, from two
+ * independent runs r1, r2 (variances v1, v2) of the same reference, whose difference is pure noise:
+ * over blocks of block x block pixels (0: LUCENT_COMPARE_INFLATION_BLOCK) and the weights w = a - b of
+ * every pair of the count images, sum_blocks (sum w (r1 - r2))^2 / sum w^2 (v1 + v2) (1 when the
+ * denominator is 0). Blocks must be wider than the pixels one path reaches; the value is an
+ * estimate (about 2 / (blocks on the object) relative variance). */
+lucent_status lucent_compare_noise_inflation(const lucent_image *const *images, int count, const lucent_image *r1,
+                                             const lucent_image *v1, const lucent_image *r2, const lucent_image *v2,
+                                             const float *mask, int block, double *dest);
 
 /* The pixels the errors count: those fully covered in the reference (coverage >= 0.999) whose 8
  * neighbours are too (silhouette pixels mix object and background differently in the two
@@ -171,6 +220,54 @@ lucent_status lucent_compare_write_results_json(const char *path, const lucent_c
  * and results.json, telling each file to on_event (may be NULL). */
 lucent_status lucent_compare_write_reports(const char *dir, const char *title, const lucent_compare_result *result,
                                            lucent_eval_event_fn on_event, void *user);
+
+/* ---- compare's regions ---------------------------------------------------------------------------
+ * Each object pixel classed by the surface seen through its centre (lucent_tracer_probe): by the
+ * lights (lit: some light within 75 degrees of the normal and unoccluded; else terminator: some light
+ * 75 to 105 degrees from it; else cast shadow: some light within 75 degrees but occluded; else
+ * attached shadow: every light beyond 105 degrees; environment lights do not count), by the view
+ * (grazing: the normal beyond 75 degrees from the camera), by the mesh's mean curvature (convex:
+ * radius LUCENT_COMPARE_CONVEX_RADIUS_MM or less) and by the outline (silhouette band: within 3
+ * pixels of a pixel the object covers less than half). The last three overlap the first four. */
+
+enum {
+    LUCENT_COMPARE_REGION_LIT = 0,
+    LUCENT_COMPARE_REGION_TERMINATOR,
+    LUCENT_COMPARE_REGION_ATTACHED_SHADOW,
+    LUCENT_COMPARE_REGION_CAST_SHADOW,
+    LUCENT_COMPARE_REGION_GRAZING,
+    LUCENT_COMPARE_REGION_CONVEX,
+    LUCENT_COMPARE_REGION_SILHOUETTE,
+    LUCENT_COMPARE_REGION_COUNT
+};
+
+/* Curvature radius (mm) up to which a surface counts as convex. */
+#define LUCENT_COMPARE_CONVEX_RADIUS_MM 20.0
+
+/* "lit", "terminator", "attached shadow", "cast shadow", "grazing view", "convex", "silhouette band"
+ * (NULL out of range). */
+const char *lucent_compare_region_name(int region);
+
+/* Per pixel (width x height of the probe) a bit per region (bit k: region k), 0 outside the mask
+ * (NULL: every pixel) and where no object is seen; lights_on (NULL: all) picks the scene's lights
+ * that count; coverage: the reference's. */
+lucent_status lucent_compare_regions(const lucent_scene *scene, const lucent_trace_probe *probe,
+                                     const lucent_image *coverage, const float *mask, const bool *lights_on,
+                                     lucent_pool *pool, uint8_t *dest);
+
+/* One image's measures over one region (NaN where the region is empty or the reference dark). */
+typedef struct lucent_compare_region_values {
+    uint64_t pixels;        /* masked pixels in the region */
+    double rel_rms;         /* sqrt(sum (m - r)^2 / sum r^2) over the region, R, G and B */
+    double ratio;           /* sum m / sum r */
+    double error_share;     /* the region's sum (m - r)^2 over the mask's */
+    double energy;          /* the region's sum r^2 over the mask's */
+    double reference_noise; /* sqrt(sum var / sum r^2) over the region (NaN without variance) */
+} lucent_compare_region_values;
+
+lucent_status lucent_compare_region_measure(const uint8_t *bits, int region, const float *mask,
+                                            const lucent_image *reference, const lucent_image *variance,
+                                            const lucent_image *image, lucent_compare_region_values *dest);
 
 /* ---- kernel-eval: separable kernel models against the ground truth ------------------------------
  * Builds the ground-truth 2-D kernel of a material's profile and each model of it, then compares
@@ -266,8 +363,11 @@ lucent_status lucent_kernel_eval_write_json(const char *path, const lucent_kerne
 typedef struct lucent_profile_report {
     const lucent_material *material;
     const lucent_profile *profile;
-    uint64_t photons, seed; /* recorded when the profile's model is "mc" */
-    const lucent_sog *sog;  /* a sum-of-Gaussians fit to record (NULL: none) */
+    uint64_t photons, seed;     /* recorded when the profile's model is "mc" */
+    const lucent_sog *sog;      /* a sum-of-Gaussians fit to record (NULL: none) */
+    const lucent_layer *layers; /* the layered slab the profile is of, top first, recorded as "layers"
+                                   (each material and thickness_mm; NULL: none) */
+    int layer_count;
 } lucent_profile_report;
 
 /* The profile as JSON: model, material, units, grid, totals, radii, values and errors per channel. */

@@ -224,6 +224,28 @@ lucent_status lucent_image_compare(const lucent_image *a, const lucent_image *b,
 lucent_status lucent_image_compare_masked(const lucent_image *a, const lucent_image *b, const lucent_image *mask,
                                           lucent_image_error_stats *dest);
 
+/* ---- FLIP: the difference seen when flipping between two images --------------------------------
+ * LDR-FLIP (Andersson et al. 2020, written from the paper): reference and test are displayed images,
+ * linear RGB in [0, 1] (tonemapped; values outside are clamped), seen from ppd pixels per degree (the
+ * paper's observer: 67, at 0.7 m from a 0.7 m wide 3840-pixel screen). */
+
+/* The observer the paper assumes: 0.7 m from a 0.7 m wide screen of 3840 pixels. */
+#define LUCENT_FLIP_PPD 67.0
+
+/* The per-pixel FLIP map (1 channel, 0 where the two look the same, 1 for the largest difference;
+ * NULL map: none) and its mean over the mask (NULL: every pixel; NaN when the mask is empty). */
+lucent_status lucent_image_flip(const lucent_image *reference, const lucent_image *test, double ppd, const float *mask,
+                                lucent_image **map, double *mean);
+
+/* FLIP's colour error of a HyAB distance: d^0.7 compressed so that 0.4 of the largest distance's
+ * (green against blue, Hunt-adjusted) maps to 0.95 and the largest to 1 (Andersson et al. 2020,
+ * section 4.1). */
+double lucent_flip_color_error(double hyab_distance);
+
+/* The HyAB distance |dL| + ||d(a, b)|| between two linear RGB colours (clamped to [0, 1]) in CIELAB with
+ * the Hunt adjustment (a, b times L / 100), white D65. */
+double lucent_flip_hyab(const float rgb_a[3], const float rgb_b[3]);
+
 typedef enum lucent_diff_mode {
     LUCENT_DIFF_SIGNED = 0, /* a - b per channel */
     LUCENT_DIFF_ABSOLUTE    /* |a - b| per channel */
@@ -247,6 +269,17 @@ lucent_status lucent_image_percentile(const lucent_image *img, int c, double p, 
  * through a black - purple - red - orange - yellow - white ramp (linear RGB, so the PNG shows
  * the ramp's sRGB colours). scale <= 0: the 99th percentile of the values (1 when that is 0). */
 lucent_status lucent_image_heatmap(const lucent_image *values, float scale, lucent_image **dest);
+
+/* The scale lucent_image_heatmap uses: scale when > 0, else the 99th percentile of the values (1 when
+ * that is 0). */
+lucent_status lucent_image_heatmap_scale(const lucent_image *values, float scale, float *dest);
+
+/* The heat map of values (as lucent_image_heatmap) with its colour bar below: the ramp from 0 to the
+ * scale, labelled with 0, the middle and the scale, and `label` (what the values are, e.g. "A-B";
+ * NULL: none). The image is at least 200 pixels wide (the map at the top left, on black). *used (may
+ * be NULL) receives the scale. */
+lucent_status lucent_image_heatmap_with_bar(const lucent_image *values, float scale, const char *label,
+                                            lucent_image **dest, float *used);
 
 #ifdef __cplusplus
 }

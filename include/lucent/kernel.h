@@ -154,8 +154,12 @@ enum { LUCENT_KERNEL_DEFAULT_TAPS = 17 };
 
 typedef struct lucent_taps_desc {
     int count;    /* taps; 0: LUCENT_KERNEL_DEFAULT_TAPS; odd, 3..255 */
-    double range; /* half-width, mm; 0: the model's (Jimenez: 2, or 3 above 20 taps) */
+    double range; /* half-width, mm; 0: the model's (Jimenez: 2, or 3 above 20 taps); at most
+                     LUCENT_TAPS_MAX_RANGE */
 } lucent_taps_desc;
+
+/* The largest taps' half-width, mm (1 km: beyond it the offsets' squares leave double's range). */
+#define LUCENT_TAPS_MAX_RANGE 1e6
 
 /* Returns the defaults a zero lucent_taps_desc stands for (17 taps; range 0: the model's). */
 lucent_taps_desc lucent_taps_defaults(void);

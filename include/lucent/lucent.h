@@ -17,6 +17,8 @@
 #include "lucent/render.h"
 #include "lucent/report.h"
 #include "lucent/scene.h"
+#include "lucent/skin.h"
+#include "lucent/spectral.h"
 #include "lucent/surfels.h"
 #include "lucent/trace.h"
 

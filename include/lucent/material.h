@@ -22,6 +22,39 @@ enum { LUCENT_MATERIAL_NAME_SIZE = 64 };
 #define LUCENT_MATERIAL_ETA_MIN 1.0
 #define LUCENT_MATERIAL_ETA_MAX 3.0
 
+/* ---- A skin described by its chromophores (docs/skin.md) ----
+ * Up to three layers, top first: an epidermis, a dermis and optionally a hypodermis. Each layer's
+ * absorption follows from its chromophores and the published spectra of lucent/spectral.h; its reduced
+ * scattering is a power law in wavelength (Jacques 2013, eq. 2). All layers share the material's eta. */
+enum { LUCENT_SKIN_MAX_LAYERS = 3 };
+
+typedef enum lucent_skin_layer_kind {
+    LUCENT_SKIN_EPIDERMIS,
+    LUCENT_SKIN_DERMIS,
+    LUCENT_SKIN_HYPODERMIS
+} lucent_skin_layer_kind;
+
+typedef struct lucent_skin_layer {
+    int kind;           /* lucent_skin_layer_kind: names the layer and sets its default scattering */
+    int reserved;       /* 0 (keeps the struct free of padding) */
+    double thickness;   /* mm, > 0; INFINITY: semi-infinite (the last layer only) */
+    double melanin;     /* melanosome volume fraction, [0, 1] */
+    double eumelanin;   /* eumelanin share of the melanin, [0, 1] (the rest is pheomelanin) */
+    double blood;       /* blood volume fraction, [0, 1]; melanin + blood <= 1 */
+    double oxygenation; /* oxygen saturation of the blood, [0, 1] */
+    double scatter;     /* reduced scattering mu_s' at 500 nm, mm^-1, > 0 */
+    double f_rayleigh;  /* Rayleigh share of mu_s' at 500 nm, [0, 1] */
+    double b_mie;       /* Mie power, mu_s' ~ lambda^-b_mie, [0, 4] */
+    double g;           /* Henyey-Greenstein mean cosine, (-1, 1) */
+} lucent_skin_layer;
+
+typedef struct lucent_skin {
+    int layer_count; /* 0: not a skin (an RGB material); 1..LUCENT_SKIN_MAX_LAYERS */
+    int resolved;    /* 1 once the material's sigma_a, sigma_s, g hold the skin's equivalent medium
+                        (lucent_skin_resolve, lucent/skin.h) */
+    lucent_skin_layer layer[LUCENT_SKIN_MAX_LAYERS];
+} lucent_skin;
+
 /* A homogeneous scattering medium. Per channel (R, G, B):
  *   sigma_a >= 0, sigma_s >= 0, sigma_a + sigma_s > 0 (mm^-1), -1 < g < 1;
  * eta is the relative index of refraction (medium / outside), in [1, 3]. All finite. */
@@ -31,6 +64,9 @@ typedef struct lucent_material {
     double sigma_s[3]; /* scattering coefficient, mm^-1 */
     double g[3];       /* Henyey-Greenstein mean cosine of the phase function */
     double eta;        /* relative index of refraction */
+    /* A spectral skin (skin.layer_count > 0): sigma_a, sigma_s and g then hold its equivalent
+     * homogeneous medium per channel once resolved (lucent/skin.h); zero in an RGB material. */
+    lucent_skin skin;
 } lucent_material;
 
 /* What follows from a material (Jensen et al. 2001). Per channel unless said. */

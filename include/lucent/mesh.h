@@ -82,6 +82,18 @@ lucent_status lucent_mesh_load_memory(const void *data, size_t size, const char 
  * lucent_ply_property_index tells which properties a file has before reading. */
 typedef struct lucent_ply lucent_ply;
 
+/* The read limit of the mesh and point-cloud readers (PLY and OBJ, plain or gzip), against files that
+ * declare or hold more than memory allows (a decompression bomb: 117 KB of .ply.gz declaring 30 million
+ * faces): the most elements (every element's rows: vertices, faces, ...) a file may declare, or hold as it
+ * is read. lucent_mesh_set_read_limit(0) returns to the environment variable LUCENT_MESH_MAX_ELEMENTS, else
+ * LUCENT_MESH_DEFAULT_READ_ELEMENTS (64 Mi: the largest Stanford scans, Lucy's 42 M, fit). gzip input is
+ * also refused once it has inflated more than LUCENT_MESH_MAX_INFLATE_RATIO times the compressed bytes read
+ * (plus 1 MiB): real meshes inflate 2 to 10 times; gunzip such a file to read it whole. */
+#define LUCENT_MESH_DEFAULT_READ_ELEMENTS ((uint64_t)1 << 26)
+#define LUCENT_MESH_MAX_INFLATE_RATIO 100
+void lucent_mesh_set_read_limit(uint64_t elements);
+uint64_t lucent_mesh_read_limit(void);
+
 /* Opens a PLY file (plain or gzip, found by its first bytes) and reads its header. Close with
  * lucent_ply_close. */
 lucent_status lucent_ply_open(const char *path, lucent_ply **dest);
@@ -101,6 +113,9 @@ size_t lucent_ply_face_count(const lucent_ply *ply);
 int lucent_ply_property_count(const lucent_ply *ply);
 const char *lucent_ply_property_name(const lucent_ply *ply, int i);
 int lucent_ply_property_index(const lucent_ply *ply, const char *name);
+
+/* Whether the vertex element has a list property of that name (not readable as a value). */
+bool lucent_ply_property_is_list(const lucent_ply *ply, const char *name);
 /* The largest value of the i-th property's type when it is an integer type (uchar: 255, ushort: 65535,
  * char: 127, ...), 0 for float and double: the scale of colours stored as integers. */
 double lucent_ply_property_integer_max(const lucent_ply *ply, int i);
@@ -121,6 +136,10 @@ typedef struct lucent_ply_read_desc {
     int allow_missing;
     int single;
     lucent_ply_faces faces; /* faces are fan-triangulated: a polygon of n vertices gives n - 2 */
+    /* Optional: called for each vertex as it is read, before it is stored, with its count values in double
+     * (as read, before any rounding to float); a status other than LUCENT_OK stops the read with it. */
+    lucent_status (*check)(void *user, uint64_t vertex, const double *values);
+    void *user;
 } lucent_ply_read_desc;
 
 typedef struct lucent_ply_data {
@@ -244,7 +263,8 @@ typedef struct lucent_mesh_paint_desc {
                                   about +y toward +x, elevation raises it toward +y */
     const uint8_t *colors;     /* sRGB, 3 bytes per vertex (required) */
     float background[3];       /* linear RGB (default black) */
-    int supersample;           /* samples per pixel and axis, 1..8 (default 3) */
+    int supersample;           /* samples per pixel and axis, 1..8 (default 3); fewer where the supersampled picture
+                                  would pass 64 Mpixels */
 } lucent_mesh_paint_desc;
 
 /* Paints mesh with its vertex colours, seen orthographically with its bounding sphere filling 92% of

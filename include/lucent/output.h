@@ -17,6 +17,20 @@ extern "C" {
  * folder of its outputs. Set it before writing starts (it is not synchronised). */
 void lucent_files_create_parents(bool on);
 
+/* Checks, before any work, that path can be written as an output (what lucent_atomic_open would refuse, said
+ * up front): a regular file or nothing is replaced by a temporary renamed over it, so the nearest existing
+ * folder above it must be a folder this process may write in (the missing ones below are created when
+ * lucent_files_create_parents is on); a symbolic link to a regular file is followed (the file is replaced, the
+ * link kept); a character device, a FIFO or a socket is written through (no temporary, no rename: the bytes
+ * wait until the output lands) and must be writable; a folder, a block device or a link to nothing is
+ * refused. While an output set is open, an existing file so checked is also refused as an input afterwards
+ * (a scene's material named as the command's --json). Other MPI ranks than 0 check nothing. */
+lucent_status lucent_output_check(const char *path);
+
+/* The same for a folder a command writes its outputs into: it is a folder this process may write in, or
+ * can be created. */
+lucent_status lucent_output_check_folder(const char *dir);
+
 /* The output set: from lucent_outputs_begin until lucent_outputs_end, lucent_atomic_commit completes each
  * output's temporary (written, flushed, synced, closed) and leaves its target as it was; lucent_outputs_end
  * (true) then renames every one of them onto its target, lucent_outputs_end(false) removes them all. A

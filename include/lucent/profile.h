@@ -233,7 +233,10 @@ typedef struct lucent_profile_source_desc {
 bool lucent_profile_source_known(const char *name);
 
 /* Builds the profile of m named by desc (NULL: the dipole). Unknown names fail with
- * LUCENT_ERR_INVALID_ARGUMENT listing the known ones. Free with lucent_profile_destroy. */
+ * LUCENT_ERR_INVALID_ARGUMENT listing the known ones. Free with lucent_profile_destroy.
+ * A spectral skin (m->skin.layer_count > 0, lucent/skin.h) is carried band by band in its layers:
+ * "mc" by the Monte Carlo (3 photons / LUCENT_BANDS_DEFAULT per band for each photon per channel asked),
+ * every other name by the layered multipole (model "skin-mc" or "skin-multipole"). */
 lucent_status lucent_profile_from_source(const lucent_profile_source_desc *desc, const lucent_material *m,
                                          lucent_profile **dest);
 

@@ -154,6 +154,28 @@ lucent_status lucent_tracer_render(lucent_tracer *tracer, const lucent_trace_des
 /* Frees the images of a result (and zeroes it). */
 void lucent_trace_result_free(lucent_trace_result *result);
 
+/* What the camera sees through each pixel's centre (the GL renderer's sample), for measuring an image
+ * by region (lucent compare). Arrays are width x height, top row first. */
+typedef struct lucent_trace_probe {
+    int width, height;
+    int light_count;           /* the scene's lights */
+    int *object;               /* per pixel: the scene object seen (objects[i]), -1 none */
+    int *triangle;             /* its triangle in the object's mesh, -1 none */
+    float *bary;               /* 2 per pixel: (u, v), the point is (1 - u - v) v0 + u v1 + v v2 */
+    float *position;           /* 3 per pixel: the point seen, world mm */
+    float *normal;             /* 3 per pixel: the triangle's outward unit normal */
+    unsigned char *unoccluded; /* light_count per pixel: 1 when no surface lies between the point and the
+                                  light (directional: along its direction; point and sphere: up to the
+                                  centre; environment: always 1), 0 else or where no object is seen */
+} lucent_trace_probe;
+
+/* Casts one ray through each pixel's centre and one shadow ray per light from what it meets. Free
+ * with lucent_trace_probe_free. */
+lucent_status lucent_tracer_probe(const lucent_tracer *tracer, lucent_trace_probe *dest);
+
+/* Frees the arrays of a probe (and zeroes it). */
+void lucent_trace_probe_free(lucent_trace_probe *probe);
+
 /* The version of the Embree library linked, e.g. "3.13.5" (asked of a new Embree device: RTC_DEVICE_PROPERTY_VERSION);
  * "unknown" when no device can be made. */
 const char *lucent_trace_embree_version(void);

@@ -8,7 +8,7 @@ lucent.LucentError with Lucent's message (naming the file and the field). docs/p
 import ctypes
 import math
 
-from . import _lib
+from . import _args, _lib
 
 __version__ = "0.1.0"
 
@@ -31,6 +31,10 @@ class LucentError(Exception):
     def __init__(self, status, message):
         super().__init__(message)
         self.status, self.message = status, message
+
+
+ArgumentError, ArgumentTypeError = _args.bind(LucentError)  # ValueError / TypeError and LucentError
+_args.load(_L)  # the table of argument ranges (_args.RULES)
 
 
 def _check(status):
@@ -64,7 +68,7 @@ _pools = {}
 
 def _pool(threads):
     """A worker pool of `threads` (0: LUCENT_THREADS or all cores), kept for the process."""
-    t = int(threads or 0)
+    t = _args.integer("threads", threads)
     if t not in _pools:
         _pools[t] = _L.lucent_pool_create(t)
     return _pools[t]
@@ -102,23 +106,30 @@ def material(spec, sigma_a=None, sigma_s=None, g=0.0, eta=1.3):
     (mm^-1, three each), a material of your own named spec."""
     if isinstance(spec, Material):
         return spec
+    name = _args.spec("spec", spec)
     c = _lib.Material()
     if sigma_a is None:
-        _check(_L.lucent_material_resolve(_b(spec), ctypes.byref(c)))
+        if sigma_s is not None:
+            raise ArgumentTypeError("sigma_a: expected a number or three (R, G, B) with sigma_s, got None")
+        _check(_L.lucent_material_resolve(name, ctypes.byref(c)))
+        _check(_L.lucent_skin_resolve(ctypes.byref(c)))  # a spectral skin's equivalent medium (docs/skin.md)
     else:
-        three = lambda v: [float(x) for x in (v if hasattr(v, "__len__") else (v, v, v))]
-        c.name = _b(spec)[:63]
-        c.sigma_a[:], c.sigma_s[:], c.g[:], c.eta = three(sigma_a), three(sigma_s), three(g), float(eta)
+        if sigma_s is None:
+            raise ArgumentTypeError("sigma_s: expected a number or three (R, G, B) with sigma_a, got None")
+        c.name = name[:63]
+        c.sigma_a[:], c.sigma_s[:] = _args.three("sigma_a", sigma_a), _args.three("sigma_s", sigma_s)
+        c.g[:], c.eta = _args.three("g", g), _args.real("eta", eta)
         _check(_L.lucent_material_validate(ctypes.byref(c)))
     return Material(c)
 
 
 def materials():
-    """The presets (Jensen et al. 2001's eleven measured materials)."""
+    """The presets: Jensen et al. 2001's eleven measured materials, then the spectral skins."""
     out = []
     for i in range(_L.lucent_material_preset_count()):
         c = _lib.Material()
         _check(_L.lucent_material_preset(i, ctypes.byref(c)))
+        _check(_L.lucent_skin_resolve(ctypes.byref(c)))
         out.append(Material(c))
     return out
 
@@ -163,9 +174,16 @@ def profile(spec, model="mc", photons=1000000, seed=1, dr=None, bins=None, threa
     physics: channel c uses seed 4 seed + c, as `lucent profile`; the same result for any thread
     count), "dipole", "better-dipole" or "burley". Grid: Freude Table 6.1 unless dr/bins."""
     m = material(spec)
+    model = _args.text("model", model).decode()
+    dr, bins = _args.optional(_args.real, "dr", dr), _args.optional(_args.integer, "bins", bins)
+    photons, seed = _args.integer("photons", photons), _args.integer("seed", seed)
+    _pool(threads)
     g = _grid(m, dr, bins)
+    if m._c.skin.layer_count > 0:  # a spectral skin, band by band (docs/skin.md)
+        return skin_profile(m, transport="mc" if model == "mc" else model, photons=3 * int(photons) // 20,
+                            seed=seed, dr=dr, bins=bins, threads=threads)
     if model == "mc":
-        return _profile_mc(m, g, int(photons), int(seed), threads)
+        return _profile_mc(m, g, photons, seed, threads)
     if model == "dipole":
         return _take_profile(lambda dest: _L.lucent_profile_dipole(ctypes.byref(m._c), ctypes.byref(g), dest))
     if model == "better-dipole":
@@ -176,6 +194,46 @@ def profile(spec, model="mc", photons=1000000, seed=1, dr=None, bins=None, threa
         d = _lib.SourceDesc(b"burley", 0, 0, None)
         return _take_profile(lambda dest: _L.lucent_profile_from_source(ctypes.byref(d), ctypes.byref(m._c), dest))
     raise LucentError(1, "unknown profile model \"%s\" (mc, dipole, better-dipole, burley)" % model)
+
+
+def _skin_args(transport, bands, photons, seed):
+    """The checked arguments of skin_profile and skin_color: transport as bytes, the counts as ints."""
+    transport = _args.text("transport", transport)
+    if transport not in (b"multipole", b"mc", b"shortcut"):
+        raise LucentError(1, "transport: unknown transport \"%s\" (multipole, mc, shortcut)" % transport.decode())
+    return (transport, _args.integer("bands", bands), _args.integer("photons", photons, "band_photons"),
+            _args.integer("seed", seed))
+
+
+def skin_profile(spec, transport="multipole", bands=0, photons=0, seed=1, dr=None, bins=None, threads=0):
+    """The linear sRGB profile of a spectral skin (docs/skin.md): every band carried by the layered
+    "multipole" or the "mc" (photons per band), weighted per radius through CIE 1931 under D65."""
+    m = material(spec)
+    transport, bands, photons, seed = _skin_args(transport, bands, photons, seed)
+    dr, bins = _args.optional(_args.real, "dr", dr), _args.optional(_args.integer, "bins", bins)
+    g = _lib.Grid(float(dr or 0), int(bins or 0))
+    d = _lib.SkinDesc(bands=bands, transport=transport, photons=photons, seed=seed, pool=_pool(threads), grid=g)
+    return _take_profile(lambda dest: _L.lucent_profile_skin(ctypes.byref(m._c), ctypes.byref(d), dest))
+
+
+def skin_color(spec, transport="multipole", bands=0, photons=0, seed=1, threads=0):
+    """A spectral skin's total diffuse reflectance per band and its colour under D65 (transport
+    "multipole", "mc", or "shortcut": the three-coefficient shortcut): a dict with center (nm),
+    reflectance, xyz, lab, rgb (linear sRGB), ita (degrees) and category."""
+    m = material(spec)
+    transport, bands, photons, seed = _skin_args(transport, bands, photons, seed)
+    d = _lib.SkinDesc(bands=bands, transport=transport, photons=photons, seed=seed, pool=_pool(threads))
+    c = _lib.SkinColor()
+    _check(_L.lucent_skin_color_of(ctypes.byref(m._c), ctypes.byref(d), ctypes.byref(c)))
+    n = c.bands
+    return {"center": tuple(c.center[:n]), "reflectance": tuple(c.reflectance[:n]), "xyz": tuple(c.xyz),
+            "lab": tuple(c.lab), "rgb": tuple(c.rgb), "ita": c.ita, "category": c.category.decode()}
+
+
+def ciede2000(lab1, lab2):
+    """The CIEDE2000 colour difference of two CIELAB colours (Sharma, Wu & Dalal 2005)."""
+    a, b = (ctypes.c_double * 3)(*_args.three("lab1", lab1)), (ctypes.c_double * 3)(*_args.three("lab2", lab2))
+    return _L.lucent_ciede2000(a, b)
 
 
 def _profile_mc(m, g, photons, seed, threads):
@@ -206,15 +264,18 @@ def mcml(mci, seed=1, out_dir=None, threads=0, write=True):
     writes the .mco files it names (inside out_dir when given). Returns per run a dict with the
     totals (rsp, rd, a, tt and their standard errors), rd_r (per mm^2) and the .mco path."""
     import os
+    mci, seed = _args.path("mci", mci), _args.integer("seed", seed)
+    out_dir, write = _args.optional(_args.path, "out_dir", out_dir), _args.flag("write", write)
+    _pool(threads)
     f = _lib.McmlFile()
-    _check(_L.lucent_mcml_load(_b(mci), ctypes.byref(f)))
+    _check(_L.lucent_mcml_load(mci, ctypes.byref(f)))
     out = []
     try:
         for k in range(f.run_count):
             run = f.runs[k]
             run.desc.seed = int(seed) + k
             run.desc.pool = _pool(threads)
-            name = run.output.decode()
+            name = run.output
             path = os.path.join(out_dir, os.path.basename(name)) if out_dir else name
             r = _lib.McResult()
             s = _L.lucent_mc_run(ctypes.byref(run.desc), ctypes.byref(r))
@@ -223,10 +284,14 @@ def mcml(mci, seed=1, out_dir=None, threads=0, write=True):
             try:
                 if write:
                     if out_dir:
-                        os.makedirs(out_dir, exist_ok=True)
-                    _check(_L.lucent_mcml_write(_b(path), ctypes.byref(run), ctypes.byref(r)))
+                        try:
+                            os.makedirs(out_dir, exist_ok=True)
+                        except OSError as e:  # a LucentError naming the folder, as the library would
+                            raise LucentError(3, "%s: cannot create the folder: %s" % (os.fsdecode(out_dir),
+                                                                                       e.strerror or e))
+                    _check(_L.lucent_mcml_write(path, ctypes.byref(run), ctypes.byref(r)))
                 res = {n: getattr(r, n) for n in _lib.MC_TOTALS}
-                res["photons"], res["mco"] = r.photons, path if write else None
+                res["photons"], res["mco"] = r.photons, os.fsdecode(path) if write else None
                 res["rd_r"] = _doubles(r.rd_r, r.grid.nr)
                 res["dr"] = r.grid.dr
                 out.append(res)
@@ -255,29 +320,37 @@ class Kernel:
     def width_px(self, height=1080, fov_y=45.0, depth_mm=None, object_height_mm=1800.0):
         """The kernel's full width in pixels at depth_mm (default: where an object of
         object_height_mm fills the screen's height), as `lucent pack` prints it."""
+        height, fov_y = _args.integer("height", height), _args.real("fov_y", fov_y)
         if depth_mm is None:
-            depth_mm = object_height_mm / (2 * math.tan(math.radians(fov_y) / 2))
-        return 2 * self.radius * _L.lucent_screen_pixels_per_mm(int(height), float(fov_y), float(depth_mm))
+            depth_mm = _args.real("object_height_mm", object_height_mm) / (2 * math.tan(math.radians(fov_y) / 2))
+        depth_mm = _args.real("depth_mm", depth_mm)
+        return 2 * self.radius * _L.lucent_screen_pixels_per_mm(height, fov_y, depth_mm)
 
 
 def kernel(spec, model="preint", rank=1, taps=17, profile="dipole", photons=1000000, seed=1, k=1.0, range_mm=0.0,
            threads=0):
     """A separable kernel of the material as `lucent kernel` builds it (Freude 2014, ch. 5):
     model svd, preint, guided, manual, sog or jimenez; taps per pass (odd)."""
+    model = _args.text("model", model).decode()
     m = material(spec) if model != "jimenez" or spec else None
+    profile = _args.text("profile", profile)
+    photons, seed, rank, taps = (_args.integer(n, v) for n, v in
+                                 (("photons", photons), ("seed", seed), ("rank", rank), ("taps", taps)))
+    k, range_mm = _args.real("k", k), _args.real("range_mm", range_mm)
+    _pool(threads)
     mi = ctypes.c_int()
-    _check(_L.lucent_kernel_model_parse(_b(model), ctypes.byref(mi)))
+    _check(_L.lucent_kernel_model_parse(model.encode(), ctypes.byref(mi)))
     p = ctypes.POINTER(_lib.ProfileC)()
     gt, kern, t = ctypes.c_void_p(), ctypes.c_void_p(), ctypes.POINTER(_lib.Taps)()
     try:
         if m is not None:
-            d = _lib.SourceDesc(_b(profile), int(photons), int(seed), _pool(threads))
+            d = _lib.SourceDesc(profile, photons, seed, _pool(threads))
             _check(_L.lucent_profile_from_source(ctypes.byref(d), ctypes.byref(m._c), ctypes.byref(p)))
             _check(_L.lucent_kernel2d_from_profile(p, None, ctypes.byref(gt)))
-        desc = _lib.KernelDesc(model=mi.value, rank=int(rank), k=float(k))
+        desc = _lib.KernelDesc(model=mi.value, rank=rank, k=k)
         _check(_L.lucent_kernel_build(gt, p if p else None, _b(m.name) if m else None, ctypes.byref(desc),
                                       ctypes.byref(kern)))
-        td = _lib.TapsDesc(int(taps), float(range_mm))
+        td = _lib.TapsDesc(taps, range_mm)
         _check(_L.lucent_kernel_taps(kern, ctypes.byref(td), ctypes.byref(t)))
         return Kernel(t, model)
     finally:
@@ -291,7 +364,7 @@ def kernel(spec, model="preint", rank=1, taps=17, profile="dipole", photons=1000
 
 def _variant(name):
     v = ctypes.c_int()
-    _check(_L.lucent_cdrf_variant_parse(_b(name), ctypes.byref(v)))
+    _check(_L.lucent_cdrf_variant_parse(_args.text("variant", name), ctypes.byref(v)))
     return v.value
 
 
@@ -306,13 +379,14 @@ def _image(ptr):
 
 def cdrf(theta, sigma, variant="kubo"):
     """Kubo's CDRF at theta (radians) and sigma = sigma0 kappa (radians)."""
-    return _L.lucent_cdrf_eval(_variant(variant), float(theta), float(sigma))
+    return _L.lucent_cdrf_eval(_variant(variant), _args.real("theta", theta), _args.real("sigma", sigma))
 
 
 def cdrf_lut(variant="kubo", width=256, height=256, sigma_max=3.0, threads=0):
     """The CDRF look-up table (height x width x 1): column i is cos theta = -1 + 2 i / (width - 1),
     row j (from the top) sigma = sigma_max j / (height - 1)."""
-    d = _lib.LutDesc(_variant(variant), int(width), int(height), float(sigma_max), _pool(threads))
+    width, height = _args.integer("width", width), _args.integer("height", height, "lut_height")
+    d = _lib.LutDesc(_variant(variant), width, height, _args.real("sigma_max", sigma_max), _pool(threads))
     img = ctypes.POINTER(_lib.Image)()
     _check(_L.lucent_cdrf_lut_build(ctypes.byref(d), ctypes.byref(img)))
     try:
@@ -325,9 +399,11 @@ def cdrf_fit(spec, radii=(2.0, 5.0, 10.0, 20.0), photons=0, bins=0, seed=1, vari
     """Fits sigma0 (mm) and k_d per channel to Monte Carlo spheres of the material (Kubo Fig. 6),
     as `lucent cdrf-fit`. Returns a dict: sigma0, kd, rms, chi2 and Lambert's lambert_kd, ..."""
     m = material(spec)
+    radii = _args.reals("radii", radii, "radius", _args.COPIED["LUCENT_CDRF_FIT_MAX_RADII"][0])
+    photons, bins = _args.integer("photons", photons, "fit_photons"), _args.integer("bins", bins, "fit_bins")
     rs = (ctypes.c_double * len(radii))(*radii)
     d = _lib.FitDesc(material=ctypes.pointer(m._c), variant=_variant(variant), radii=rs, radius_count=len(radii),
-                     photons=int(photons), bins=int(bins), seed=int(seed), pool=_pool(threads))
+                     photons=photons, bins=bins, seed=_args.integer("seed", seed), pool=_pool(threads))
     f = _lib.Fit()
     _check(_L.lucent_cdrf_fit_material(ctypes.byref(d), ctypes.byref(f), None))
     return {n: tuple(getattr(f, n)) for n in _lib.FIT_FIELDS}
@@ -338,13 +414,16 @@ def cdrf_fit(spec, radii=(2.0, 5.0, 10.0, 20.0), photons=0, bins=0, seed=1, vari
 def curvature(mesh_path, method="rusinkiewicz", smooth=0, mm_per_unit=1.0, threads=0):
     """Per-vertex curvature of a mesh file (PLY, gzipped PLY, OBJ, glTF), in mm^-1: a dict of
     k1, k2, mean, gauss (arrays over the vertices), flags, invalid_count."""
+    mesh_path, method = _args.path("mesh_path", mesh_path), _args.text("method", method)
+    smooth, mm_per_unit = _args.integer("smooth", smooth), _args.real("mm_per_unit", mm_per_unit)
+    _pool(threads)
     mi = ctypes.c_int()
-    _check(_L.lucent_curvature_method_parse(_b(method), ctypes.byref(mi)))
+    _check(_L.lucent_curvature_method_parse(method, ctypes.byref(mi)))
     mesh = ctypes.c_void_p()
-    _check(_L.lucent_mesh_load(_b(mesh_path), None, ctypes.byref(mesh)))
+    _check(_L.lucent_mesh_load(mesh_path, None, ctypes.byref(mesh)))
     c = _lib.Curvature()
     try:
-        d = _lib.CurvatureDesc(mi.value, int(smooth), float(mm_per_unit), _pool(threads), 0)
+        d = _lib.CurvatureDesc(mi.value, smooth, mm_per_unit, _pool(threads), 0)
         _check(_L.lucent_mesh_curvature(mesh, ctypes.byref(d), ctypes.byref(c)))
         n = c.count
         out = {k: _doubles(getattr(c, k), n) for k in ("k1", "k2", "mean", "gauss")}
@@ -359,11 +438,11 @@ def curvature(mesh_path, method="rusinkiewicz", smooth=0, mm_per_unit=1.0, threa
 # ---- scenes --------------------------------------------------------------------------------------
 
 def _scene(path, settings):
-    items = [_b("%s=%s" % (k, v if not isinstance(v, bool) else str(v).lower())) for k, v in (settings or {}).items()]
+    path, items = _args.path("scene_path", path), _args.overrides("settings", settings)
     arr = (ctypes.c_char_p * max(len(items), 1))(*items)
     d = _lib.SceneLoadDesc(arr, len(items), False)
     sc = ctypes.c_void_p()
-    _check(_L.lucent_scene_load(_b(path), ctypes.byref(d), ctypes.byref(sc)))
+    _check(_L.lucent_scene_load(path, ctypes.byref(d), ctypes.byref(sc)))
     return sc
 
 
@@ -371,15 +450,19 @@ def render(scene_path, method=None, settings=None, threads=0, cache_dir=None):
     """Renders a scene file with OpenGL (as `lucent render`); settings are scene overrides
     {"render.width": 256, "objects[0].material": "marble"}. Returns (image, mask): linear RGB
     radiance height x width x 3 and the object mask height x width x 1."""
+    if settings is not None and not isinstance(settings, dict):
+        _args.overrides("settings", settings)  # raises, naming the argument
     settings = dict(settings or {})
-    if method:
-        settings["render.method"] = method
+    if method is not None:
+        settings["render.method"] = _args.text("method", method).decode()
+    cache_dir = _args.optional(_args.path, "cache_dir", cache_dir)
+    _pool(threads)
     sc = _scene(scene_path, settings)
     ctx, r = ctypes.c_void_p(), ctypes.c_void_p()
     res = _lib.RenderResult()
     try:
         _check(_L.lucent_gl_create(None, ctypes.byref(ctx)))
-        rd = _lib.RendererDesc(_pool(threads), _b(cache_dir) if cache_dir else None, 0, 0, 0)
+        rd = _lib.RendererDesc(_pool(threads), cache_dir, 0, 0, 0)
         _check(_L.lucent_renderer_create(ctx, sc, ctypes.byref(rd), ctypes.byref(r)))
         _check(_L.lucent_render(r, None, ctypes.byref(res)))
         return _image(res.image), _image(res.mask)
@@ -390,15 +473,18 @@ def render(scene_path, method=None, settings=None, threads=0, cache_dir=None):
         _L.lucent_scene_destroy(sc)
 
 
-def trace(scene_path, spp=16, seed=1, settings=None, threads=0, time_limit=-1.0):
+def trace(scene_path, spp=16, seed=1, settings=None, threads=0, time_limit=0):
     """Path-traces a scene file (as `lucent trace`). Returns (image, variance): the mean linear RGB
-    radiance and its variance, height x width x 3 each."""
+    radiance and its variance, height x width x 3 each. time_limit: seconds (0: none)."""
+    spp, seed = _args.integer("spp", spp), _args.integer("seed", seed)
+    time_limit = _args.real("time_limit", time_limit)
+    _pool(threads)
     sc = _scene(scene_path, settings)
     tr = ctypes.c_void_p()
     res = _lib.TraceResult()
     try:
         _check(_L.lucent_tracer_create(sc, ctypes.byref(_lib.TracerDesc()), ctypes.byref(tr)))
-        d = _lib.TraceDesc(int(spp), int(seed), _pool(threads), float(time_limit), 0.0, b"trace")
+        d = _lib.TraceDesc(spp, seed, _pool(threads), time_limit if time_limit > 0 else -1.0, 0.0, b"trace")
         _check(_L.lucent_tracer_render(tr, ctypes.byref(d), ctypes.byref(res)))
         return _image(res.image), _image(res.variance)
     finally:
@@ -413,5 +499,5 @@ def versions():
             "openexr": _L.lucent_image_openexr_version().decode(), "library": library_path}
 
 
-__all__ = ["LucentError", "Material", "material", "materials", "Profile", "profile", "mcml", "Kernel", "kernel",
+__all__ = ["LucentError", "ArgumentError", "ArgumentTypeError", "Material", "material", "materials", "Profile", "profile", "mcml", "Kernel", "kernel",
            "cdrf", "cdrf_lut", "cdrf_fit", "curvature", "render", "trace", "versions"]

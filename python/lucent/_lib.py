@@ -44,9 +44,19 @@ def load():
                       + ("; tried " + ", ".join(tried) if tried else ""))
 
 
+class SkinLayer(ctypes.Structure):  # lucent_skin_layer (material.h)
+    _fields_ = [("kind", ctypes.c_int), ("reserved", ctypes.c_int)] + [
+        (n, ctypes.c_double) for n in ("thickness", "melanin", "eumelanin", "blood", "oxygenation", "scatter",
+                                       "f_rayleigh", "b_mie", "g")]
+
+
+class Skin(ctypes.Structure):  # lucent_skin (material.h)
+    _fields_ = [("layer_count", ctypes.c_int), ("resolved", ctypes.c_int), ("layer", SkinLayer * 3)]
+
+
 class Material(ctypes.Structure):  # lucent_material (material.h)
     _fields_ = [("name", ctypes.c_char * 64), ("sigma_a", ctypes.c_double * 3), ("sigma_s", ctypes.c_double * 3),
-                ("g", ctypes.c_double * 3), ("eta", ctypes.c_double)]
+                ("g", ctypes.c_double * 3), ("eta", ctypes.c_double), ("skin", Skin)]
 
 
 DERIVED_FIELDS = ["sigma_s_prime", "sigma_t", "sigma_t_prime", "albedo", "albedo_prime", "sigma_tr", "diffusion",
@@ -64,6 +74,17 @@ class ProfileC(ctypes.Structure):  # lucent_profile (profile.h)
 
 class Grid(ctypes.Structure):  # lucent_profile_grid
     _fields_ = [("dr", ctypes.c_double), ("count", ctypes.c_int)]
+
+
+class SkinDesc(ctypes.Structure):  # lucent_skin_desc (skin.h)
+    _fields_ = [("bands", ctypes.c_int), ("transport", c_char_p), ("photons", ctypes.c_uint64),
+                ("seed", ctypes.c_uint64), ("pool", c_void_p), ("grid", Grid), ("cache", c_void_p)]
+
+
+class SkinColor(ctypes.Structure):  # lucent_skin_color (skin.h)
+    _fields_ = [("bands", ctypes.c_int), ("center", ctypes.c_double * 80), ("reflectance", ctypes.c_double * 80),
+                ("reflectance_se", ctypes.c_double * 80), ("xyz", ctypes.c_double * 3), ("lab", ctypes.c_double * 3),
+                ("rgb", ctypes.c_double * 3), ("ita", ctypes.c_double), ("category", c_char_p)]
 
 
 class SourceDesc(ctypes.Structure):  # lucent_profile_source_desc
@@ -202,6 +223,10 @@ def declare(lib):
         "lucent_material_preset_count": (ctypes.c_int, []),
         "lucent_material_preset": (st, [ctypes.c_int, P(Material)]),
         "lucent_material_resolve": (st, [c_char_p, P(Material)]),
+        "lucent_skin_resolve": (st, [P(Material)]),
+        "lucent_skin_color_of": (st, [P(Material), P(SkinDesc), P(SkinColor)]),
+        "lucent_ciede2000": (ctypes.c_double, [c_double_p, c_double_p]),
+        "lucent_profile_skin": (st, [P(Material), P(SkinDesc), P(P(ProfileC))]),
         "lucent_material_validate": (st, [P(Material)]),
         "lucent_material_derive": (None, [P(Material), P(Derived)]),
         "lucent_profile_grid_resolve": (st, [P(Grid), P(Material), P(Grid)]),

@@ -6,6 +6,13 @@
 
 #include "lucent/bake.h"
 #include "lucent/cdrf.h"
+#include "lucent/skin.h"
+
+const char *lucent_transmittance_name(lucent_transmittance_model model)
+{
+    static const char *const names[] = {"slab", "profile"};
+    return model >= 0 && model < (int)(sizeof names / sizeof names[0]) ? names[model] : "unknown";
+}
 
 /* The desc with its zeros resolved. */
 static lucent_bake_desc resolve(const lucent_bake_desc *d, lucent_render_settings *defaults)
@@ -25,12 +32,24 @@ static lucent_bake_desc resolve(const lucent_bake_desc *d, lucent_render_setting
     return r;
 }
 
-/* The material's optical parameters as text: part of every cache key. */
+/* FNV-1a of a skin's layers (doubles and ints, no padding): a spectral skin's part of a cache key. */
+static unsigned long long skin_hash(const lucent_skin *s)
+{
+    const unsigned char *p = (const unsigned char *)s->layer;
+    unsigned long long h = 1469598103934665603ull;
+    for (size_t i = 0; i < (size_t)s->layer_count * sizeof s->layer[0]; i++) h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+
+/* The material's optical parameters as text: part of every cache key. A spectral skin adds its layers'
+ * hash (its sigma_a, sigma_s and g are its equivalent medium). */
 static void material_key(const lucent_material *m, char *dest, size_t size)
 {
-    snprintf(dest, size, "%s sa %.17g %.17g %.17g ss %.17g %.17g %.17g g %.17g %.17g %.17g eta %.17g", m->name,
-             m->sigma_a[0], m->sigma_a[1], m->sigma_a[2], m->sigma_s[0], m->sigma_s[1], m->sigma_s[2], m->g[0], m->g[1],
-             m->g[2], m->eta);
+    int n = snprintf(dest, size, "%s sa %.17g %.17g %.17g ss %.17g %.17g %.17g g %.17g %.17g %.17g eta %.17g", m->name,
+                     m->sigma_a[0], m->sigma_a[1], m->sigma_a[2], m->sigma_s[0], m->sigma_s[1], m->sigma_s[2], m->g[0],
+                     m->g[1], m->g[2], m->eta);
+    if (m->skin.layer_count > 0 && n > 0 && (size_t)n < size)
+        snprintf(dest + n, size - (size_t)n, " skin %d %016llx", m->skin.layer_count, skin_hash(&m->skin));
 }
 
 /* ---- profile ---- */
@@ -203,6 +222,23 @@ static lucent_status bake_sigma0(const lucent_material *m, const lucent_bake_des
 static lucent_status bake_rd(const lucent_material *m, const lucent_bake_desc *d, lucent_cache *cache, lucent_baked *b)
 {
     if (b->have & LUCENT_BAKE_RD) return LUCENT_OK;
+    if (m->skin.layer_count > 0) { /* a spectral skin: its bands' Monte Carlo totals through the colour weights */
+        lucent_skin_color c;
+        lucent_bands bands;
+        lucent_skin_desc sd = {
+            .transport = "mc", .photons = LUCENT_BAKE_SKIN_RD_PHOTONS, .seed = 1, .pool = d->pool, .cache = cache};
+        lucent_status s = lucent_skin_color_of(m, &sd, &c);
+        if (s == LUCENT_OK) s = lucent_bands_make(c.bands, &bands);
+        if (s != LUCENT_OK) return lucent_error_context(s, "material %s: total diffuse reflectance", m->name);
+        for (int i = 0; i < 3; i++) {
+            double var = 0.0;
+            for (int k = 0; k < c.bands; k++) var += pow(bands.rgb[i][k] * c.reflectance_se[k], 2);
+            b->rd[i] = c.rgb[i], b->rd_se[i] = sqrt(var);
+        }
+        b->rd_cached = false;
+        b->have |= LUCENT_BAKE_RD;
+        return LUCENT_OK;
+    }
     char mat[512], key[640];
     material_key(m, mat, sizeof mat);
     snprintf(key, sizeof key, "%s photons %d seed 1", mat, (int)LUCENT_BAKE_RD_PHOTONS);
@@ -424,6 +460,14 @@ lucent_status lucent_material_bake(const lucent_material *material, const lucent
     lucent_render_settings defaults;
     lucent_bake_desc d = resolve(desc, &defaults);
     lucent_status s = LUCENT_OK;
+    lucent_material resolved;
+    if (material->skin.layer_count > 0 && !material->skin.resolved) { /* its equivalent medium, for the parts
+                                                                          that read coefficients */
+        resolved = *material;
+        if ((s = lucent_skin_resolve(&resolved)) != LUCENT_OK)
+            return lucent_error_context(s, "material %s", material->name);
+        material = &resolved;
+    }
     if (d.what & LUCENT_BAKE_PROFILE) s = bake_profile(material, &d, baked);
     if (s == LUCENT_OK && (d.what & LUCENT_BAKE_TAPS)) s = bake_taps(material, &d, baked);
     if (s == LUCENT_OK && (d.what & LUCENT_BAKE_TRANSMITTANCE)) s = bake_transmittance(material, &d, cache, baked);

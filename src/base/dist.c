@@ -7,12 +7,17 @@
  * are exact anyway: integer counters, or doubles that one chunk alone writes, 0 elsewhere.)
  *
  * Part file (native byte order, checked by the order mark):
- *   "LUCENT-PART v1\n\0" (16 bytes), u32 0x01020304, u32 k, u32 n, u32 argc,
+ *   "LUCENT-PART v2\n\0" (16 bytes), u32 0x01020304, u32 k, u32 n, u32 argc,
  *   argc times: u32 length, the bytes; u32 tally count,
- *   per tally: u32 type (lucent_dist_type), u64 count, count values (8, 8 or 4 bytes each). */
+ *   per tally: u32 type (lucent_dist_type), u64 count, count values (8, 8 or 4 bytes each);
+ *   u32 the CRC-32 (zlib's) of every byte before it, so that a damaged part is refused.
+ * (v1, before issue 32, had no checksum: its parts are refused, naming the version.)
+ * I64 tallies are counters (>= 0), F64 tallies finite; the merge refuses others, and sums that overflow. */
 #include <limits.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <zlib.h>
 
 #include "base/dist_internal.h"
 #include "lucent/dist.h"
@@ -22,7 +27,8 @@
 #include <time.h>
 #endif
 
-#define PART_MAGIC "LUCENT-PART v1\n"
+#define PART_MAGIC "LUCENT-PART v2\n"
+#define PART_MAGIC_V1 "LUCENT-PART v1\n"
 #define PART_ORDER 0x01020304u
 enum { MAX_PARTS = 65536, MAX_ARGS = 4096, MAX_ARG_BYTES = 65536, MAX_TALLIES = 1 << 20, MESSAGE = 2048 };
 
@@ -352,9 +358,20 @@ bool lucent_dist_part(int *k, int *n)
     return g.part_n != 0;
 }
 
-static bool put(FILE *fp, const void *p, size_t n) { return n == 0 || fwrite(p, 1, n, fp) == n; }
+/* The part writer: its file and the CRC-32 of what it has written. */
+typedef struct part_out {
+    FILE *fp;
+    uLong crc;
+} part_out;
 
-static bool put_u32(FILE *fp, uint32_t v) { return put(fp, &v, 4); }
+static bool put(part_out *o, const void *p, size_t n)
+{
+    if (n == 0) return true;
+    o->crc = crc32_z(o->crc, p, n);
+    return fwrite(p, 1, n, o->fp) == n;
+}
+
+static bool put_u32(part_out *o, uint32_t v) { return put(o, &v, 4); }
 
 lucent_status lucent_dist_part_write(const char *path)
 {
@@ -367,18 +384,20 @@ lucent_status lucent_dist_part_write(const char *path)
     g.writing_part = false;
     if (s != LUCENT_OK) return s;
     char magic[16] = PART_MAGIC;
-    bool ok = put(fp, magic, 16) && put_u32(fp, PART_ORDER) && put_u32(fp, (uint32_t)g.part_k) &&
-              put_u32(fp, (uint32_t)g.part_n) && put_u32(fp, (uint32_t)g.argc);
+    part_out o = {fp, crc32_z(0, NULL, 0)};
+    bool ok = put(&o, magic, 16) && put_u32(&o, PART_ORDER) && put_u32(&o, (uint32_t)g.part_k) &&
+              put_u32(&o, (uint32_t)g.part_n) && put_u32(&o, (uint32_t)g.argc);
     for (int i = 0; ok && i < g.argc; i++) {
         size_t len = strlen(g.argv[i]);
-        ok = len <= MAX_ARG_BYTES && put_u32(fp, (uint32_t)len) && put(fp, g.argv[i], len);
+        ok = len <= MAX_ARG_BYTES && put_u32(&o, (uint32_t)len) && put(&o, g.argv[i], len);
     }
-    ok = ok && put_u32(fp, (uint32_t)g.tally_count);
+    ok = ok && put_u32(&o, (uint32_t)g.tally_count);
     for (size_t i = 0; ok && i < g.tally_count; i++) {
         const tally *t = &g.tallies[i];
-        ok = put_u32(fp, (uint32_t)t->type) && put(fp, &t->count, 8) &&
-             put(fp, t->data, (size_t)t->count * type_size(t->type));
+        ok = put_u32(&o, (uint32_t)t->type) && put(&o, &t->count, 8) &&
+             put(&o, t->data, (size_t)t->count * type_size(t->type));
     }
+    ok = ok && put_u32(&o, (uint32_t)o.crc);
     if (!ok) {
         lucent_atomic_abort(af);
         return lucent_error(LUCENT_ERR_IO, "%s: write failed", path);
@@ -449,11 +468,37 @@ static lucent_status read_tallies(part_file *p)
             return lucent_error(LUCENT_ERR_PARSE, "%s: %s: %llu values, more than the file holds", p->path, where,
                                 (unsigned long long)count);
         p->tallies[i] = (tally){(lucent_dist_type)type, count, p->data + p->at};
+        for (uint64_t j = 0; j < count && type != LUCENT_DIST_U32; j++) {
+            int64_t v;
+            double d;
+            memcpy(&v, p->data + p->at + j * 8, 8), memcpy(&d, p->data + p->at + j * 8, 8);
+            if (type == LUCENT_DIST_I64 && v < 0)
+                return lucent_error(LUCENT_ERR_PARSE, "%s: %s: value %llu is negative (%lld): a damaged part file",
+                                    p->path, where, (unsigned long long)j, (long long)v);
+            if (type == LUCENT_DIST_F64 && !isfinite(d))
+                return lucent_error(LUCENT_ERR_PARSE, "%s: %s: value %llu is not finite: a damaged part file", p->path,
+                                    where, (unsigned long long)j);
+        }
         p->at += (size_t)count * es;
     }
     if (s == LUCENT_OK && p->at != p->size)
         s = lucent_error(LUCENT_ERR_PARSE, "%s: %zu bytes after the last tally", p->path, p->size - p->at);
     return s;
+}
+
+/* The part's last 4 bytes: the CRC-32 of the others (then left out of p->size). */
+static lucent_status check_sum(part_file *p)
+{
+    uint32_t stored;
+    if (p->size < 20 + 4) return lucent_error(LUCENT_ERR_PARSE, "%s: header: the file ends early", p->path);
+    memcpy(&stored, p->data + p->size - 4, 4);
+    p->size -= 4;
+    if ((uint32_t)crc32_z(crc32_z(0, NULL, 0), (const Bytef *)p->data, p->size) != stored)
+        return lucent_error(LUCENT_ERR_PARSE,
+                            "%s: the part's checksum does not match its contents: a damaged part file (write it "
+                            "again with lucent ... --part K/N)",
+                            p->path);
+    return LUCENT_OK;
 }
 
 static lucent_status read_part(part_file *p)
@@ -462,12 +507,18 @@ static lucent_status read_part(part_file *p)
     if (s != LUCENT_OK) return s;
     char magic[16];
     uint32_t order = 0;
+    if (p->size >= 16 && memcmp(p->data, PART_MAGIC_V1, 16) == 0)
+        return lucent_error(LUCENT_ERR_PARSE,
+                            "%s: header: a part file of format v1 (before checksums, Lucent 0.1 of 2026-12-06): "
+                            "run its part again with this lucent",
+                            p->path);
     if (p->size < 16 || memcmp(p->data, PART_MAGIC, 16) != 0)
         return lucent_error(LUCENT_ERR_PARSE, "%s: header: not a Lucent part file (lucent ... --part K/N)", p->path);
     s = take(p, magic, 16, "header");
     if (s == LUCENT_OK) s = take(p, &order, 4, "header");
-    if (s == LUCENT_OK && order != PART_ORDER)
+    if (s == LUCENT_OK && order != PART_ORDER) /* before the checksum, itself in the writer's byte order */
         s = lucent_error(LUCENT_ERR_PARSE, "%s: header: written on a machine of another byte order", p->path);
+    if (s == LUCENT_OK) s = check_sum(p);
     if (s == LUCENT_OK) s = take(p, &p->k, 4, "header");
     if (s == LUCENT_OK) s = take(p, &p->n, 4, "header");
     if (s == LUCENT_OK && (p->n < 1 || p->n > MAX_PARTS || p->k < 1 || p->k > p->n))
@@ -507,7 +558,14 @@ static lucent_status check_same(const part_file *a, const part_file *b)
     return LUCENT_OK;
 }
 
-/* Sums the parts' tallies in part order (byparts[0] is part 1). */
+static lucent_status overflow(uint32_t tally, uint64_t j, const part_file *p)
+{
+    return lucent_error(LUCENT_ERR_PARSE,
+                        "merge: tally %u value %llu overflows when %s is added: damaged parts (no run counts so many)",
+                        tally + 1, (unsigned long long)j, p->path);
+}
+
+/* Sums the parts' tallies in part order (byparts[0] is part 1), refusing sums that overflow. */
 static lucent_status sum_parts(part_file **byparts, uint32_t n)
 {
     const part_file *first = byparts[0];
@@ -516,21 +574,27 @@ static lucent_status sum_parts(part_file **byparts, uint32_t n)
         size_t es = type_size(t0->type);
         void *sum = calloc(t0->count ? (size_t)t0->count : 1, es);
         if (!sum) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "merge: out of memory");
-        for (uint32_t k = 0; k < n; k++) {
+        bool over = false;
+        for (uint32_t k = 0; k < n && !over; k++) {
             const char *src = byparts[k]->tallies[i].data; /* unaligned in the file: copy values */
-            for (uint64_t j = 0; j < t0->count; j++) {
+            for (uint64_t j = 0; j < t0->count && !over; j++) {
                 if (t0->type == LUCENT_DIST_I64) {
                     int64_t x;
                     memcpy(&x, src + j * 8, 8);
-                    ((int64_t *)sum)[j] += x;
+                    over = __builtin_add_overflow(((int64_t *)sum)[j], x, &((int64_t *)sum)[j]);
                 } else if (t0->type == LUCENT_DIST_F64) {
                     double x;
                     memcpy(&x, src + j * 8, 8);
                     ((double *)sum)[j] += x;
+                    over = !isfinite(((double *)sum)[j]);
                 } else {
                     uint32_t x;
                     memcpy(&x, src + j * 4, 4);
-                    ((uint32_t *)sum)[j] += x;
+                    over = __builtin_add_overflow(((uint32_t *)sum)[j], x, &((uint32_t *)sum)[j]);
+                }
+                if (over) {
+                    free(sum);
+                    return overflow(i, j, byparts[k]);
                 }
             }
         }

@@ -83,15 +83,34 @@ lucent_json_node lucent_json_root(const cJSON *json, const char *file, const cha
     return n;
 }
 
+static bool valid_utf8(const unsigned char *s);
+
+/* A key as messages show it: as it is when it is UTF-8 without control characters, else with every byte of
+ * 0x80 and above (when it is not UTF-8) and every control character written as \xNN, so that a message never
+ * carries invalid text or terminal escapes ("rend\xC0\x80er: unknown field"). */
+void lucent_json_printable(const char *key, char *dest, size_t size)
+{
+    bool utf8 = valid_utf8((const unsigned char *)key);
+    size_t at = 0;
+    for (const unsigned char *k = (const unsigned char *)key; *k && at + 5 < size; k++)
+        if (*k < 0x20 || *k == 0x7f || (*k >= 0x80 && !utf8))
+            at += (size_t)snprintf(dest + at, size - at, "\\x%02X", *k);
+        else
+            dest[at++] = (char)*k;
+    dest[at] = '\0';
+}
+
 static void child_path(const lucent_json_node *n, const char *key, char *dest, size_t size)
 {
     int len;
+    char shown[256];
+    if (key) lucent_json_printable(key, shown, sizeof shown);
     if (!key)
         len = snprintf(dest, size, "%s", n->path);
     else if (n->path[0])
-        len = snprintf(dest, size, "%s.%s", n->path, key);
+        len = snprintf(dest, size, "%s.%s", n->path, shown);
     else
-        len = snprintf(dest, size, "%s", key);
+        len = snprintf(dest, size, "%s", shown);
     if (len >= (int)size) memcpy(dest + size - 4, "...", 4); /* absurdly deep: shortened */
 }
 

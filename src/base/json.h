@@ -24,6 +24,10 @@ lucent_status lucent_json_parse_text(const char *text, const char *name, cJSON *
 /* Returns a node for a document's root; `path` names it in messages ("" for none). */
 lucent_json_node lucent_json_root(const cJSON *json, const char *file, const char *path);
 
+/* text for a message: as it is when it is UTF-8 without control characters, else with every control character
+ * and (text that is not UTF-8) every byte from 0x80 written as \xNN; cut to fit size. */
+void lucent_json_printable(const char *text, char *dest, size_t size);
+
 /* Sets an error at n's path (or at n's path + "." + key when key is non-NULL):
  * "<file>: <path>: <message>". Returns status. */
 lucent_status lucent_json_fail(const lucent_json_node *n, const char *key, lucent_status status, const char *fmt, ...)

@@ -7,6 +7,7 @@
 #include <pthread.h>
 #include <signal.h>
 #include <stdatomic.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -100,6 +101,8 @@ static struct {
     size_t claim_count, claim_cap;
     file_id inputs[MAX_INPUTS]; /* beyond MAX_INPUTS, inputs are not remembered */
     int input_count;
+    file_id planned[MAX_INPUTS]; /* existing files checked as outputs (lucent_output_check) */
+    int planned_count;
 } g_set;
 
 /* Guards g_set: outputs may be opened, and inputs read, on any thread. */
@@ -109,15 +112,32 @@ void lucent_outputs_begin(void)
 {
     pthread_mutex_lock(&g_lock);
     g_set.open = true;
-    g_set.input_count = 0;
+    g_set.input_count = g_set.planned_count = 0;
     pthread_mutex_unlock(&g_lock);
 }
 
-void outputs_note_input(const struct stat *st)
+lucent_status outputs_note_input(const char *path, const struct stat *st)
 {
     pthread_mutex_lock(&g_lock);
-    if (g_set.open && g_set.input_count < MAX_INPUTS)
+    bool planned = false;
+    for (int i = 0; g_set.open && i < g_set.planned_count; i++)
+        planned |= g_set.planned[i].dev == st->st_dev && g_set.planned[i].ino == st->st_ino;
+    if (g_set.open && !planned && g_set.input_count < MAX_INPUTS)
         g_set.inputs[g_set.input_count++] = (file_id){st->st_dev, st->st_ino};
+    pthread_mutex_unlock(&g_lock);
+    if (planned)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                            "%s: this file is read by the command and named as one of its outputs: refusing to "
+                            "overwrite an input",
+                            path);
+    return LUCENT_OK;
+}
+
+void outputs_plan(const struct stat *st)
+{
+    pthread_mutex_lock(&g_lock);
+    if (g_set.open && g_set.planned_count < MAX_INPUTS)
+        g_set.planned[g_set.planned_count++] = (file_id){st->st_dev, st->st_ino};
     pthread_mutex_unlock(&g_lock);
 }
 
@@ -214,6 +234,7 @@ bool outputs_defer(lucent_atomic_file *af)
 
 static void free_file(lucent_atomic_file *af)
 {
+    if (af->fp) fclose(af->fp); /* a through output's bytes */
     outputs_untrack(af->slot);
     free(af->path);
     free(af->tmp);
@@ -231,7 +252,7 @@ static lucent_status rename_all(lucent_atomic_file *list)
     }
     lucent_status s = LUCENT_OK;
     for (lucent_atomic_file *af = list; af; af = af->next)
-        if (rename(af->tmp, af->path) != 0) {
+        if (af->tmp && rename(af->tmp, af->path) != 0) {
             int e = errno;
             unlink(af->tmp);
             if (s == LUCENT_OK)
@@ -254,10 +275,15 @@ lucent_status lucent_outputs_end(bool commit)
         list = af;
     }
     lucent_status s = LUCENT_OK;
-    if (commit)
+    /* Devices and FIFOs first (a reader that left fails the command before any file is replaced), then the
+     * renames. */
+    for (lucent_atomic_file *af = list; commit && s == LUCENT_OK && af; af = af->next)
+        if (af->through) s = base_write_through(af);
+    if (commit && s == LUCENT_OK)
         s = rename_all(list);
     else
-        for (lucent_atomic_file *af = list; af; af = af->next) unlink(af->tmp);
+        for (lucent_atomic_file *af = list; af; af = af->next)
+            if (af->tmp) unlink(af->tmp);
     while (list) {
         lucent_atomic_file *next = list->next;
         free_file(list);
@@ -267,7 +293,7 @@ lucent_status lucent_outputs_end(bool commit)
     free(g_set.claims);
     g_set.claims = NULL, g_set.claim_count = g_set.claim_cap = 0;
     g_set.open = false;
-    g_set.input_count = 0;
+    g_set.input_count = g_set.planned_count = 0;
     pthread_mutex_unlock(&g_lock);
     return s;
 }

@@ -1,6 +1,7 @@
 /* A pthread pool with a parallel-for over fixed chunks. The caller works as thread 0;
  * chunks are claimed in increasing order from an atomic counter, so which chunks exist
  * never depends on the number of threads, only who runs them does. */
+#include <errno.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
@@ -10,7 +11,7 @@
 #include "base/dist_internal.h"
 #include "lucent/dist.h"
 
-enum { POOL_MAX_THREADS = 256 };
+enum { POOL_MAX_THREADS = LUCENT_POOL_MAX_THREADS };
 
 typedef struct pool_job {
     uint64_t count, chunk_size, chunks;
@@ -49,8 +50,11 @@ static int threads_from_environment(void)
     const char *env = getenv("LUCENT_THREADS");
     if (env && *env) {
         char *end;
+        errno = 0;
         long n = strtol(env, &end, 10);
-        if (*end == '\0' && n >= 1) return n > POOL_MAX_THREADS ? POOL_MAX_THREADS : (int)n;
+        if (*end == '\0' && !errno && n >= 1 && n <= POOL_MAX_THREADS) return (int)n;
+        lucent_log(LUCENT_LOG_WARN, "LUCENT_THREADS='%.32s' is not a whole number from 1 to %d: using all %d cores",
+                   env, POOL_MAX_THREADS, lucent_cpu_count());
     }
     return lucent_cpu_count();
 }
@@ -114,7 +118,11 @@ static void *worker_main(void *arg)
 lucent_pool *lucent_pool_create(int threads)
 {
     if (threads <= 0) threads = threads_from_environment();
-    if (threads > POOL_MAX_THREADS) threads = POOL_MAX_THREADS;
+    if (threads > POOL_MAX_THREADS) {
+        lucent_log(LUCENT_LOG_WARN, "a pool of %d threads asked: at most %d, using %d", threads, POOL_MAX_THREADS,
+                   POOL_MAX_THREADS);
+        threads = POOL_MAX_THREADS;
+    }
     lucent_pool *pool = calloc(1, sizeof *pool);
     if (!pool) return NULL;
     pool->threads = 1;

@@ -10,6 +10,7 @@
 
 struct lucent_progress {
     char label[48];
+    char unit[16]; /* "frame": the bar also says "frame k of n" */
     uint64_t total;
     _Atomic uint64_t done;
     double start, limit; /* limit: seconds from start (0: none) */
@@ -54,6 +55,11 @@ static void format_duration(double s, char *dest, size_t n)
     (void)len; /* t is at most 100 hours: always fits */
 }
 
+void lucent_progress_set_unit(lucent_progress *p, const char *unit)
+{
+    if (p) snprintf(p->unit, sizeof p->unit, "%s", unit ? unit : "");
+}
+
 void lucent_progress_set_deadline(lucent_progress *p, double seconds)
 {
     if (p) p->limit = seconds > 0 ? seconds : 0;
@@ -71,14 +77,21 @@ static void draw(lucent_progress *p, FILE *out, bool final)
         eta = eta < 0 ? fmax(p->limit - elapsed, 0) : fmin(eta, fmax(p->limit - elapsed, 0));
     }
     if (frac > 1) frac = 1;
-    char bar[31], rate_s[32], time_s[32];
+    char bar[31], rate_s[32], time_s[32], elapsed_s[32], count[64] = "";
     int fill = (int)(frac * 30);
     for (int i = 0; i < 30; i++) bar[i] = i < fill ? '#' : '.';
     bar[30] = '\0';
     format_rate(rate, rate_s, sizeof rate_s);
     format_duration(final ? elapsed : eta, time_s, sizeof time_s);
-    fprintf(out, "\r%-20s [%s] %5.1f%% %8s/s %s %s%s", p->label, bar, 100 * frac, rate_s, final ? "took" : "ETA",
-            time_s, final ? "\n" : "   ");
+    format_duration(elapsed, elapsed_s, sizeof elapsed_s);
+    if (p->unit[0]) /* the unit in progress: the next one unless all are done */
+        snprintf(count, sizeof count, " %s %llu of %llu", p->unit,
+                 (unsigned long long)(done < p->total ? done + 1 : p->total), (unsigned long long)p->total);
+    if (final)
+        fprintf(out, "\r%-20s [%s] %5.1f%%%s %8s/s took %s\n", p->label, bar, 100 * frac, count, rate_s, time_s);
+    else
+        fprintf(out, "\r%-20s [%s] %5.1f%%%s %8s/s %s elapsed, ETA %s   ", p->label, bar, 100 * frac, count, rate_s,
+                elapsed_s, time_s);
     fflush(out);
 }
 

@@ -1,6 +1,7 @@
 /* The settings table at work (lucent/settings.h): defaults, the scene reader with its range checks,
  * text in and out, the JSON sidecar, checks of a struct filled by hand, descriptions and listings.
- * Every function here walks the groups of lucent_settings_group_get; none names a setting. */
+ * Every function here walks the groups of the table it is given (the registry of src/scene/settings.c
+ * passes its own); none names a setting, and nothing here knows which groups exist. */
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -47,22 +48,22 @@ static void set_default(lucent_render_settings *s, const lucent_setting *k)
     }
 }
 
-lucent_render_settings lucent_render_settings_defaults(void)
+lucent_render_settings settings_table_defaults(const settings_table *t)
 {
     lucent_render_settings s;
     memset(&s, 0, sizeof s);
-    for (int g = 0; g < lucent_settings_group_count(); g++) {
-        const lucent_settings_group *grp = lucent_settings_group_get(g);
+    for (int g = 0; g < t->count; g++) {
+        const lucent_settings_group *grp = t->groups[g];
         for (int i = 0; i < grp->count; i++) set_default(&s, &grp->settings[i]);
     }
     return s;
 }
 
-const lucent_setting *lucent_setting_find(const char *key, const lucent_settings_group **group)
+const lucent_setting *settings_table_find(const settings_table *t, const char *key, const lucent_settings_group **group)
 {
     if (!strncmp(key, "render.", 7)) key += 7;
-    for (int g = 0; g < lucent_settings_group_count(); g++) {
-        const lucent_settings_group *grp = lucent_settings_group_get(g);
+    for (int g = 0; g < t->count; g++) {
+        const lucent_settings_group *grp = t->groups[g];
         for (int i = 0; i < grp->count; i++)
             if (!strcmp(grp->settings[i].key, key)) {
                 if (group) *group = grp;
@@ -231,11 +232,11 @@ static void check_member(const lucent_render_settings *s, const lucent_setting *
         check_name(k, memchr(m, '\0', k->size) ? (const char *)m : "(not terminated)", why, size);
 }
 
-lucent_status lucent_render_settings_check(const lucent_render_settings *s)
+lucent_status settings_table_check(const settings_table *t, const lucent_render_settings *s)
 {
     char why[512];
-    for (int g = 0; g < lucent_settings_group_count(); g++) {
-        const lucent_settings_group *grp = lucent_settings_group_get(g);
+    for (int g = 0; g < t->count; g++) {
+        const lucent_settings_group *grp = t->groups[g];
         for (int i = 0; i < grp->count; i++) {
             check_member(s, &grp->settings[i], why, sizeof why);
             if (why[0])
@@ -270,25 +271,26 @@ static lucent_status read_member(const lucent_json_node *n, const lucent_setting
     return st;
 }
 
-static lucent_status check_keys(const lucent_json_node *n)
+static lucent_status check_keys(const settings_table *t, const lucent_json_node *n)
 {
     const char *known[256];
     int count = 0;
-    for (int g = 0; g < lucent_settings_group_count(); g++) {
-        const lucent_settings_group *grp = lucent_settings_group_get(g);
+    for (int g = 0; g < t->count; g++) {
+        const lucent_settings_group *grp = t->groups[g];
         for (int i = 0; i < grp->count && count < 255; i++) known[count++] = grp->settings[i].key;
     }
     known[count] = NULL;
     return lucent_json_check_keys(n, known);
 }
 
-lucent_status lucent_settings_read_json(const lucent_json_node *render, lucent_render_settings *dest)
+lucent_status settings_table_read_json(const settings_table *t, const lucent_json_node *render,
+                                       lucent_render_settings *dest)
 {
-    *dest = lucent_render_settings_defaults();
+    *dest = settings_table_defaults(t);
     if (!render->json) return LUCENT_OK;
-    lucent_status st = check_keys(render);
-    for (int g = 0; g < lucent_settings_group_count() && st == LUCENT_OK; g++) {
-        const lucent_settings_group *grp = lucent_settings_group_get(g);
+    lucent_status st = check_keys(t, render);
+    for (int g = 0; g < t->count && st == LUCENT_OK; g++) {
+        const lucent_settings_group *grp = t->groups[g];
         for (int i = 0; i < grp->count && st == LUCENT_OK; i++)
             if (lucent_json_has(render, grp->settings[i].key)) st = read_member(render, &grp->settings[i], dest);
     }
@@ -313,10 +315,10 @@ static bool write_member(const lucent_render_settings *s, const lucent_setting *
     return false;
 }
 
-bool lucent_settings_write_json(const lucent_render_settings *s, cJSON *object)
+bool settings_table_write_json(const settings_table *t, const lucent_render_settings *s, cJSON *object)
 {
-    for (int g = 0; g < lucent_settings_group_count(); g++) {
-        const lucent_settings_group *grp = lucent_settings_group_get(g);
+    for (int g = 0; g < t->count; g++) {
+        const lucent_settings_group *grp = t->groups[g];
         for (int i = 0; i < grp->count; i++)
             if (!write_member(s, &grp->settings[i], object)) return false;
     }
@@ -332,12 +334,12 @@ static bool listed(const char *key, const char *const *skip)
     return false;
 }
 
-void lucent_settings_describe(const lucent_render_settings *s, const char *group, const char *const *skip, char *dest,
-                              size_t size)
+void settings_table_describe(const settings_table *t, const lucent_render_settings *s, const char *group,
+                             const char *const *skip, char *dest, size_t size)
 {
     dest[0] = '\0';
-    for (int g = 0; g < lucent_settings_group_count(); g++) {
-        const lucent_settings_group *grp = lucent_settings_group_get(g);
+    for (int g = 0; g < t->count; g++) {
+        const lucent_settings_group *grp = t->groups[g];
         if (strcmp(grp->name, group)) continue;
         for (int i = 0; i < grp->count; i++) {
             const lucent_setting *k = &grp->settings[i];
@@ -350,9 +352,9 @@ void lucent_settings_describe(const lucent_render_settings *s, const char *group
 }
 
 /* "17 (odd, 1..255)", "follow (follow, gaussian, none)". */
-static void default_and_range(const lucent_setting *k, char *dest, size_t size)
+static void default_and_range(const settings_table *t, const lucent_setting *k, char *dest, size_t size)
 {
-    lucent_render_settings d = lucent_render_settings_defaults();
+    lucent_render_settings d = settings_table_defaults(t);
     char value[128], names[256];
     lucent_setting_format(&d, k, value, sizeof value);
     if (k->type == LUCENT_SETTING_REAL || k->type == LUCENT_SETTING_COLOR)
@@ -371,11 +373,11 @@ static void default_and_range(const lucent_setting *k, char *dest, size_t size)
     }
 }
 
-lucent_status lucent_settings_help(bool markdown, char **dest)
+lucent_status settings_table_help(const settings_table *t, bool markdown, char **dest)
 {
     lucent_strbuf b = {0};
-    for (int g = 0; g < lucent_settings_group_count(); g++) {
-        const lucent_settings_group *grp = lucent_settings_group_get(g);
+    for (int g = 0; g < t->count; g++) {
+        const lucent_settings_group *grp = t->groups[g];
         if (markdown)
             lucent_strbuf_printf(&b, "%s**%s**: %s\n\n| key | default | values | meaning |\n|---|---|---|---|\n",
                                  g ? "\n" : "", grp->name, grp->doc);
@@ -384,7 +386,7 @@ lucent_status lucent_settings_help(bool markdown, char **dest)
         for (int i = 0; i < grp->count; i++) {
             const lucent_setting *k = &grp->settings[i];
             char dr[400];
-            default_and_range(k, dr, sizeof dr);
+            default_and_range(t, k, dr, sizeof dr);
             char *bar = strstr(dr, " | ");
             *bar = '\0';
             if (markdown)

@@ -82,13 +82,34 @@
         return i >= 0 && i < (int)(sizeof names / sizeof names[0]) ? names[i] : NULL;                                  \
     }
 
+/* A table of groups in reading order. The registry (src/scene/settings.c) owns the one the library
+ * uses and passes it to the functions below; base knows no group by name. */
+typedef struct settings_table {
+    const lucent_settings_group *const *groups;
+    int count;
+} settings_table;
+
+/* The engine behind the public functions of lucent/settings.h, over table t. */
+lucent_render_settings settings_table_defaults(const settings_table *t);
+const lucent_setting *settings_table_find(const settings_table *t, const char *key,
+                                          const lucent_settings_group **group);
+lucent_status settings_table_check(const settings_table *t, const lucent_render_settings *s);
+void settings_table_describe(const settings_table *t, const lucent_render_settings *s, const char *group,
+                             const char *const *skip, char *dest, size_t size);
+lucent_status settings_table_help(const settings_table *t, bool markdown, char **dest);
+
 /* Reads the members of `render` (a scene's "render" object; absent: the defaults) into dest, checking
  * every key against the table and every value against its range. Errors name the file and path:
  * "scene.json: render.taps: must be odd (a centre tap and pairs), got 16". */
-lucent_status lucent_settings_read_json(const lucent_json_node *render, lucent_render_settings *dest);
+lucent_status settings_table_read_json(const settings_table *t, const lucent_json_node *render,
+                                       lucent_render_settings *dest);
 
 /* Adds every setting of every group to object (the sidecar's "settings"); returns false when out of
  * memory. */
+bool settings_table_write_json(const settings_table *t, const lucent_render_settings *s, cJSON *object);
+
+/* The same over the library's registry (src/scene/settings.c). */
+lucent_status lucent_settings_read_json(const lucent_json_node *render, lucent_render_settings *dest);
 bool lucent_settings_write_json(const lucent_render_settings *s, cJSON *object);
 
 /* The index of name among choice's names (case-insensitive); -1 when absent. */

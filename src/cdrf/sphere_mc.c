@@ -213,8 +213,9 @@ static lucent_status validate(const lucent_cdrf_sphere_desc *d)
     if (!d->material) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "CDRF sphere: no material");
     lucent_status s = lucent_material_validate(d->material);
     if (s != LUCENT_OK) return s;
-    if (!(d->radius > 0) || !isfinite(d->radius))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "CDRF sphere: radius must be > 0 mm (got %g)", d->radius);
+    if (!(d->radius >= LUCENT_CDRF_SPHERE_MIN_RADIUS && d->radius <= LUCENT_CDRF_SPHERE_MAX_RADIUS))
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "CDRF sphere: radius must be in [%g, %g] mm (got %g)",
+                            LUCENT_CDRF_SPHERE_MIN_RADIUS, LUCENT_CDRF_SPHERE_MAX_RADIUS, d->radius);
     if (!(d->roughness >= 0) || d->roughness > 1)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "CDRF sphere: roughness must be in [0, 1] (got %g)",
                             d->roughness);

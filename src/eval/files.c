@@ -1,9 +1,6 @@
 /* Paths, folders and events for the evaluations' outputs. */
-#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
-#include <string.h>
-#include <sys/stat.h>
 
 #include "eval/internal.h"
 
@@ -18,14 +15,6 @@ lucent_status eval_path_printf(char *dest, size_t size, const char *fmt, ...)
 }
 
 lucent_status eval_make_dirs(const char *path) { return lucent_mkdir_p(path); }
-
-lucent_status eval_make_dir(const char *dir)
-{
-    if (mkdir(dir, 0777) == 0) return LUCENT_OK;
-    struct stat st;
-    if (errno == EEXIST && stat(dir, &st) == 0 && S_ISDIR(st.st_mode)) return LUCENT_OK;
-    return lucent_error(LUCENT_ERR_IO, "%s: cannot create the output directory: %s", dir, strerror(errno));
-}
 
 void eval_file_stem(const char *name, char *dest, size_t size)
 {

@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "lucent/eval.h"
+#include "lucent/scene.h"
 
 enum { EVAL_PATH_SIZE = 1200, EVAL_NAME_SIZE = 64, EVAL_SETTINGS_SIZE = 256 };
 
@@ -15,9 +16,6 @@ lucent_status eval_path_printf(char *dest, size_t size, const char *fmt, ...) LU
 
 /* mkdir -p. */
 lucent_status eval_make_dirs(const char *path);
-
-/* mkdir of one folder (its parent must exist); an existing folder is fine. */
-lucent_status eval_make_dir(const char *dir);
 
 /* "ssss:svd3" -> "ssss-svd3", "cdrf+translucency" -> "cdrf-translucency": a file stem. */
 void eval_file_stem(const char *name, char *dest, size_t size);
@@ -43,5 +41,58 @@ lucent_tonemap_desc eval_tonemap(const lucent_render_settings *settings);
 
 /* "render.width=W" and "render.height=H" overrides that scale a scene's size by scale. */
 void eval_scale_overrides(const lucent_scene *scene, double scale, char width[48], char height[48]);
+
+/* ---- compare_reference.c: the reference, traced or reused ---- */
+
+typedef struct eval_reference_desc {
+    int spp;           /* 0: the scene's */
+    double time_limit; /* 0: the scene's */
+    int runs;          /* 0: two runs where light paths are used, else one; 1; 2 */
+    lucent_pool *pool;
+    const char *label; /* progress */
+} eval_reference_desc;
+
+typedef struct eval_reference {
+    lucent_trace_result result; /* the reference: one run, or the two combined */
+    lucent_trace_result run[2]; /* the two independent runs (runs == 2) */
+    int runs;
+} eval_reference;
+
+/* Traces the reference of scene as d says (two runs share the budget, half each). */
+lucent_status eval_reference_trace(const lucent_scene *scene, const eval_reference_desc *d, eval_reference *dest);
+
+/* The estimate of two independent runs: their passes' mean (weighted by spp) and its variance. */
+lucent_status eval_reference_combine(const lucent_trace_result *a, const lucent_trace_result *b,
+                                     lucent_trace_result *dest);
+
+void eval_reference_free(eval_reference *r);
+
+/* What a reference depends on: the scene after overrides without its name, description and render
+ * settings, plus the render settings the tracer reads (size, background, the trace group but its
+ * budget and seed). */
+struct cJSON;
+lucent_status eval_reference_identity(const lucent_scene *scene, struct cJSON **dest);
+
+/* Writes dir/reference-variance.exr, -coverage.exr, the runs' images and reference.json (what made
+ * it); reference.exr is the reference's image, written with its PNG. */
+lucent_status eval_reference_write(const char *dir, const lucent_scene *scene, const eval_reference *ref,
+                                   lucent_eval_event_fn on_event, void *user);
+
+/* Reads the numbers of a reference.json's text (file names it in errors) into dest (no images), after
+ * checking that it was made of the same scene and settings (else an error naming the file and the
+ * first field that differs). */
+lucent_status eval_reference_parse(const char *text, const char *file, const lucent_scene *scene, eval_reference *dest);
+
+/* Reads what eval_reference_write wrote into dir, after checking that it was made of the same scene
+ * and settings (else an error naming reference.json and the first field that differs). */
+lucent_status eval_reference_read(const char *dir, const lucent_scene *scene, eval_reference *dest);
+
+/* ---- compare_provenance.c ---- */
+
+/* "Linux 6.1.0 x86_64, <the processor's model name>" and the online processors. */
+void eval_machine(char *dest, size_t size, int *cores);
+
+/* The current time as ISO 8601 UTC. */
+void eval_date(char *dest, size_t size);
 
 #endif

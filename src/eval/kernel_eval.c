@@ -231,7 +231,7 @@ static lucent_status run(ke_run *ev)
 {
     lucent_kernel_eval_result *res = ev->res;
     lucent_status s = choose_models(ev);
-    if (s == LUCENT_OK && ev->d.out) s = eval_make_dir(ev->d.out);
+    if (s == LUCENT_OK && ev->d.out) s = eval_make_dirs(ev->d.out);
     if (s == LUCENT_OK) s = lucent_profile_from_source(&ev->d.profile, &res->material, &ev->profile);
     if (s == LUCENT_OK) s = lucent_kernel2d_from_profile(ev->profile, NULL, &res->ground_truth);
     if (s == LUCENT_OK) s = ke_make_resampler(ev);

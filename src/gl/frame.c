@@ -65,6 +65,7 @@ void lucent_render_method_describe(const lucent_render_settings *s, char *dest, 
 
 lucent_status lucent_render_method_parse(const char *text, lucent_render_method *method, lucent_render_settings *s)
 {
+    if (!text) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "render.method: no method given (NULL)");
     const char *colon = strchr(text, ':');
     size_t len = colon ? (size_t)(colon - text) : strlen(text);
     for (int m = 0; m < LUCENT_METHOD_COUNT; m++) {

@@ -101,6 +101,7 @@ static lucent_status point_channels(exr_reader *r, const exr_chunk_info_t *ci)
         r->scratch = malloc(r->scratch_size * sizeof(float));
         if (!r->scratch) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", r->path);
     }
+    memset(r->scratch, 0, plane * 4 * sizeof(float)); /* what a codec leaves undecoded is 0, never old bytes */
     const exr_attr_chlist_t *cl;
     exr_get_channels(r->ctx, 0, &cl);
     for (int i = 0; i < r->dec.channel_count; i++) {
@@ -183,38 +184,76 @@ static lucent_status read_tiles(exr_reader *r)
     return LUCENT_OK;
 }
 
+/* One chunk's entry (line y, or tile tx, ty): inside the file, and its unpacked size one that its packed
+ * bytes can give: equal to it without compression, else no more than 2048 times it (no EXR codec expands more
+ * than deflate's 1032:1; 2048 leaves room). A chunk shorter than its lines would leave pixels undecoded. */
+static lucent_status check_chunk(exr_reader *r, const exr_chunk_info_t *ci, exr_compression_t comp, const char *what,
+                                 long long a, long long b)
+{
+    char where[64];
+    snprintf(where, sizeof where, b < 0 ? "%s %lld" : "%s %lld, %lld", what, a, b);
+    if (ci->data_offset > r->file_size || ci->packed_size > r->file_size - ci->data_offset ||
+        ci->unpacked_size > 2048 * ci->packed_size + 4096)
+        return lucent_error(LUCENT_ERR_PARSE,
+                            "%s: corrupt OpenEXR chunk table (the chunk at %s claims %llu bytes at offset %llu, "
+                            "%llu unpacked, in a %llu-byte file)",
+                            r->path, where, (unsigned long long)ci->packed_size, (unsigned long long)ci->data_offset,
+                            (unsigned long long)ci->unpacked_size, (unsigned long long)r->file_size);
+    if (comp == EXR_COMPRESSION_NONE && ci->packed_size != ci->unpacked_size)
+        return lucent_error(LUCENT_ERR_PARSE,
+                            "%s: truncated or corrupt OpenEXR data (the uncompressed chunk at %s holds %llu bytes, its "
+                            "%d x %d pixels need %llu)",
+                            r->path, where, (unsigned long long)ci->packed_size, ci->width, ci->height,
+                            (unsigned long long)ci->unpacked_size);
+    return LUCENT_OK;
+}
+
 /* Before anything is allocated for the pixels: the chunk table must fit the file (8 bytes an entry), and
- * for scanline images every chunk must lie inside the file and its unpacked size be one that its packed
- * bytes can give (no EXR codec expands more than deflate's 1032:1; 2048 leaves room), so that a 648-byte
- * file cannot make the reader allocate gigabytes. */
+ * every chunk that the reader decodes (each scanline block; each tile of level 0) must pass check_chunk, so
+ * that a 379-byte file cannot make the reader allocate gigabytes nor a short chunk leave pixels undecoded. */
 static lucent_status check_chunk_table(exr_reader *r, exr_storage_t storage)
 {
     int32_t count = 0;
+    exr_compression_t comp = EXR_COMPRESSION_NONE;
     exr_result_t rv = exr_get_chunk_count(r->ctx, 0, &count);
+    if (rv == EXR_ERR_SUCCESS) rv = exr_get_compression(r->ctx, 0, &comp);
     if (rv != EXR_ERR_SUCCESS) return corrupt(r, rv);
     if (count < 1 || (uint64_t)count * 8 > r->file_size)
         return lucent_error(LUCENT_ERR_PARSE,
                             "%s: corrupt OpenEXR data (a chunk table of %d entries in a %llu-byte file)", r->path,
                             count, (unsigned long long)r->file_size);
-    if (storage != EXR_STORAGE_SCANLINE) return LUCENT_OK;
+    exr_chunk_info_t ci;
+    lucent_status s = LUCENT_OK;
+    if (storage == EXR_STORAGE_TILED) {
+        uint32_t tw, th;
+        exr_tile_level_mode_t lm;
+        exr_tile_round_mode_t rm;
+        rv = exr_get_tile_descriptor(r->ctx, 0, &tw, &th, &lm, &rm);
+        if (rv != EXR_ERR_SUCCESS || tw < 1 || th < 1) return corrupt(r, rv);
+        int64_t w = (int64_t)r->dw.max.x - r->dw.min.x + 1, h = (int64_t)r->dw.max.y - r->dw.min.y + 1;
+        int64_t nx = (w + tw - 1) / tw, ny = (h + th - 1) / th;
+        if (nx * ny > count)
+            return lucent_error(LUCENT_ERR_PARSE, "%s: corrupt OpenEXR data (%lld tiles, a chunk table of %d)", r->path,
+                                (long long)(nx * ny), count);
+        for (int64_t ty = 0; s == LUCENT_OK && ty < ny; ty++)
+            for (int64_t tx = 0; s == LUCENT_OK && tx < nx; tx++) {
+                rv = exr_read_tile_chunk_info(r->ctx, 0, (int)tx, (int)ty, 0, 0, &ci);
+                s = rv != EXR_ERR_SUCCESS ? lucent_error(LUCENT_ERR_PARSE, "%s: corrupt OpenEXR chunk table (%s)",
+                                                         r->path, exr_message(rv))
+                                          : check_chunk(r, &ci, comp, "tile", tx, ty);
+            }
+        return s;
+    }
     int32_t lines;
     rv = exr_get_scanlines_per_chunk(r->ctx, 0, &lines);
     if (rv != EXR_ERR_SUCCESS || lines < 1) return corrupt(r, rv);
-    for (int64_t y = r->dw.min.y; y <= r->dw.max.y; y += lines) {
-        exr_chunk_info_t ci;
+    for (int64_t y = r->dw.min.y; s == LUCENT_OK && y <= r->dw.max.y; y += lines) {
         rv = exr_read_scanline_chunk_info(r->ctx, 0, (int)y, &ci);
-        if (rv != EXR_ERR_SUCCESS)
-            return lucent_error(LUCENT_ERR_PARSE, "%s: corrupt OpenEXR chunk table (%s)", r->path, exr_message(rv));
-        if (ci.data_offset > r->file_size || ci.packed_size > r->file_size - ci.data_offset ||
-            ci.unpacked_size > 2048 * ci.packed_size + 4096)
-            return lucent_error(
-                LUCENT_ERR_PARSE,
-                "%s: corrupt OpenEXR chunk table (the chunk at line %lld claims %llu bytes at offset %llu, "
-                "%llu unpacked, in a %llu-byte file)",
-                r->path, (long long)y, (unsigned long long)ci.packed_size, (unsigned long long)ci.data_offset,
-                (unsigned long long)ci.unpacked_size, (unsigned long long)r->file_size);
+        s = rv != EXR_ERR_SUCCESS
+                ? lucent_error(LUCENT_ERR_PARSE, "%s: corrupt OpenEXR chunk table (%s)", r->path, exr_message(rv))
+                : check_chunk(r, &ci, comp, "line", y, -1);
     }
-    return LUCENT_OK;
+    return s;
 }
 
 /* Reads the header facts of part 0 and allocates the image. */

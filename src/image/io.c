@@ -44,6 +44,7 @@ lucent_status lucent_image_format_from_path(const char *path, lucent_image_forma
 lucent_status lucent_image_load(const char *path, lucent_image **dest)
 {
     *dest = NULL;
+    if (!path) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "image: no file given (NULL path)");
     lucent_image_format f;
     lucent_status s = lucent_image_format_from_path(path, &f);
     if (s != LUCENT_OK) return s;

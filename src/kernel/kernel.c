@@ -168,8 +168,9 @@ double lucent_kernel_eval(const lucent_kernel *k, int c, int pass, double x)
         return sum;
     }
     double u = x / k->h + k->half;
-    int n = kernel_n(k->half), j = (int)floor(u);
-    if (u < 0 || j >= n - 1) return u == n - 1 ? k->a[c][pass * n + n - 1] : 0;
+    int n = kernel_n(k->half);
+    if (!(u >= 0) || u >= n - 1) return u == n - 1 ? k->a[c][pass * n + n - 1] : 0; /* before the cast to int */
+    int j = (int)floor(u);
     double f = u - j;
     return (1 - f) * k->a[c][pass * n + j] + f * k->a[c][pass * n + j + 1];
 }

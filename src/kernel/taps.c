@@ -103,8 +103,9 @@ lucent_status lucent_kernel_taps(const lucent_kernel *k, const lucent_taps_desc 
     double range = desc && desc->range != 0 ? desc->range : default_range(k, count);
     if (count < 3 || count > LUCENT_KERNEL_MAX_TAPS || count % 2 == 0)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "taps: count must be odd, 3..255 (got %d)", count);
-    if (!(range > 0) || !isfinite(range))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "taps: range must be > 0 mm");
+    if (!(range > 0) || !(range <= LUCENT_TAPS_MAX_RANGE))
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "taps: range must be > 0 mm and at most %g mm, got %g",
+                            LUCENT_TAPS_MAX_RANGE, range);
     lucent_taps *t = taps_alloc(count, k->rank);
     double o[LUCENT_KERNEL_MAX_TAPS];
     if (!t) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "taps: out of memory");

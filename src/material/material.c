@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "lucent/material.h"
+#include "lucent/spectral.h"
 
 /* Jensen 2001: Fdr = -1.440/eta^2 + 0.710/eta + 0.668 + 0.0636 eta (fit of the diffuse
  * Fresnel reflectance, for eta > 1). */
@@ -84,6 +85,15 @@ lucent_status lucent_material_validate(const lucent_material *m)
 {
     if (!memchr(m->name, '\0', sizeof m->name))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "material name is not terminated");
+    if (m->skin.layer_count != 0) {
+        lucent_status s = lucent_skin_validate(&m->skin, name_or(m));
+        if (s != LUCENT_OK) return s;
+        if (!m->skin.resolved)
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                                "%s: a spectral skin whose equivalent medium is not resolved yet "
+                                "(lucent_skin_resolve, lucent/skin.h)",
+                                name_or(m));
+    }
     for (int c = 0; c < 3; c++) {
         lucent_status s = validate_channel(m, c);
         if (s != LUCENT_OK) return s;

@@ -5,6 +5,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "lucent/spectral.h"
 #include "material/internal.h"
 
 /* A closed or open numeric interval, with the rule as users read it. */
@@ -153,13 +154,120 @@ static lucent_status read_medium(const lucent_json_node *n, form f, lucent_mater
     return s == LUCENT_OK ? s : lucent_json_fail(n, k_form_keys[f][0], s, "%s", lucent_last_error());
 }
 
+/* ---- a skin from its chromophores (docs/skin.md) ---- */
+
+static const char *const k_skin_layers[] = {"epidermis", "dermis", "hypodermis", NULL};
+static const char *const k_chromophores[] = {"melanin", "eumelanin", "blood", "oxygenation", NULL};
+static const char *const k_layer_fields[] = {"thickness", "g", "scattering", NULL};
+static const char *const k_scattering_keys[] = {"mus_prime_500", "f_rayleigh", "b_mie", NULL};
+
+static bool in_list(const char *key, const char *const *list)
+{
+    for (; *list; list++)
+        if (!strcmp(key, *list)) return true;
+    return false;
+}
+
+/* Every member of a layer is a chromophore or one of the layer's fields. */
+static lucent_status check_layer_keys(const lucent_json_node *n)
+{
+    if (!cJSON_IsObject(n->json)) return lucent_json_fail(n, NULL, LUCENT_ERR_PARSE, "expected an object");
+    for (const cJSON *c = n->json->child; c; c = c->next) {
+        if (in_list(c->string, k_chromophores) || in_list(c->string, k_layer_fields)) continue;
+        return lucent_json_fail(n, c->string, LUCENT_ERR_PARSE,
+                                "unknown chromophore or field (chromophores: melanin, eumelanin, blood, oxygenation; "
+                                "fields: thickness, g, scattering)");
+    }
+    return lucent_json_check_keys(
+        n, (const char *const[]){"melanin", "eumelanin", "blood", "oxygenation", "thickness", "g", "scattering", NULL});
+}
+
+/* An optional number within r (default: *dest as it is). */
+static lucent_status read_ranged(const lucent_json_node *n, const char *key, const range *r, double *dest)
+{
+    if (!lucent_json_has(n, key)) return LUCENT_OK;
+    lucent_status s = lucent_json_number(n, key, dest);
+    if (s == LUCENT_OK && !in_range(*dest, r))
+        s = lucent_json_fail(n, key, LUCENT_ERR_PARSE, "must be %s, got %g", r->rule, *dest);
+    return s;
+}
+
+/* scale: mm per unit of the file, so a coefficient in unit^-1 is scale times the one in mm^-1. */
+static lucent_status read_skin_scattering(const lucent_json_node *layer, double scale, lucent_skin_layer *l)
+{
+    static const range b_mie = {0.0, 4.0, false, false, "in [0, 4]"};
+    lucent_json_node n;
+    lucent_status s = lucent_json_object(layer, "scattering", false, &n);
+    if (s != LUCENT_OK || !n.json) return s;
+    s = lucent_json_check_keys(&n, k_scattering_keys);
+    double mus = l->scatter * scale; /* in the file's units^-1 */
+    if (s == LUCENT_OK) s = read_ranged(&n, "mus_prime_500", &k_positive, &mus);
+    if (s == LUCENT_OK) s = read_ranged(&n, "f_rayleigh", &k_unit, &l->f_rayleigh);
+    if (s == LUCENT_OK) s = read_ranged(&n, "b_mie", &b_mie, &l->b_mie);
+    l->scatter = mus / scale;
+    return s;
+}
+
+/* scale: mm per unit of the file. */
+static lucent_status read_skin_layer(const lucent_json_node *n, int kind, bool last, double scale, lucent_skin_layer *l)
+{
+    lucent_skin_layer_defaults((lucent_skin_layer_kind)kind, l);
+    if (!last && !isfinite(l->thickness)) l->thickness = 1.0; /* a dermis above a hypodermis: about 1 mm */
+    lucent_status s = check_layer_keys(n);
+    double thickness = l->thickness / scale;
+    if (s == LUCENT_OK) s = read_ranged(n, "thickness", &k_positive, &thickness);
+    if (s == LUCENT_OK && !isfinite(thickness * scale) && lucent_json_has(n, "thickness"))
+        s = lucent_json_fail(n, "thickness", LUCENT_ERR_PARSE, "must be finite, got %g mm", thickness * scale);
+    l->thickness = thickness * scale;
+    for (int i = 0; s == LUCENT_OK && k_chromophores[i]; i++) {
+        double *v[] = {&l->melanin, &l->eumelanin, &l->blood, &l->oxygenation};
+        s = read_ranged(n, k_chromophores[i], &k_unit, v[i]);
+    }
+    if (s == LUCENT_OK && !(l->melanin + l->blood <= 1.0))
+        s = lucent_json_fail(n, "blood", LUCENT_ERR_PARSE, "melanin + blood must be <= 1, got %g",
+                             l->melanin + l->blood);
+    if (s == LUCENT_OK) s = read_ranged(n, "g", &k_g, &l->g);
+    if (s == LUCENT_OK) s = read_skin_scattering(n, scale, l);
+    return s;
+}
+
+static lucent_status read_skin(const lucent_json_node *n, lucent_material *m)
+{
+    double scale = 1.0;
+    lucent_json_node skin = {0}, layer;
+    lucent_status s = read_units(n, true, "skin", &scale);
+    if (s == LUCENT_OK) s = lucent_json_object(n, "skin", true, &skin);
+    if (s == LUCENT_OK && lucent_json_has(n, "g"))
+        s = lucent_json_fail(n, "g", LUCENT_ERR_PARSE, "a skin gives g per layer (skin.<layer>.g)");
+    if (s == LUCENT_OK && cJSON_IsObject(skin.json))
+        for (const cJSON *c = skin.json->child; c && s == LUCENT_OK; c = c->next)
+            if (!in_list(c->string, k_skin_layers))
+                s = lucent_json_fail(&skin, c->string, LUCENT_ERR_PARSE,
+                                     "unknown layer (known, top down: epidermis, dermis, hypodermis)");
+    if (s == LUCENT_OK) s = lucent_json_check_keys(&skin, k_skin_layers);
+    if (s != LUCENT_OK) return s;
+    int last = -1;
+    for (int k = 0; k < 3; k++)
+        if (lucent_json_has(&skin, k_skin_layers[k])) last = k;
+    if (s == LUCENT_OK && last < 0)
+        s = lucent_json_fail(n, "skin", LUCENT_ERR_PARSE, "needs at least one layer (epidermis, dermis, hypodermis)");
+    for (int k = 0; k <= last && s == LUCENT_OK; k++) {
+        if (!lucent_json_has(&skin, k_skin_layers[k])) continue;
+        s = lucent_json_object(&skin, k_skin_layers[k], true, &layer);
+        if (s == LUCENT_OK) s = read_skin_layer(&layer, k, k == last, scale, &m->skin.layer[m->skin.layer_count++]);
+    }
+    if (s == LUCENT_OK && (s = lucent_skin_validate(&m->skin, m->name)) != LUCENT_OK)
+        s = lucent_json_fail(n, "skin", LUCENT_ERR_PARSE, "%s", lucent_last_error());
+    return s;
+}
+
 /* ---- one material ---- */
 
 /* clang-format off */
 static const char *const k_material_keys[] = {
     "name", "units", "g", "eta", "sigma_a", "sigma_s", "sigma_s_prime", "albedo", "mean_free_path",
     "reduced_albedo", "reduced_mean_free_path", "diffuse_reflectance", "diffuse_mean_free_path",
-    "rd_published", "source", "derived", NULL};
+    "rd_published", "source", "derived", "skin", NULL};
 /* clang-format on */
 
 static lucent_status read_name(const lucent_json_node *n, const char *def, lucent_material *m)
@@ -195,6 +303,15 @@ lucent_status material_read_json(const lucent_json_node *n, const char *def_name
     if (s == LUCENT_OK) s = lucent_json_number(n, "eta", &m->eta);
     if (s == LUCENT_OK && !in_range(m->eta, &k_eta))
         s = lucent_json_fail(n, "eta", LUCENT_ERR_PARSE, "must be %s, got %g", k_eta.rule, m->eta);
+    if (s == LUCENT_OK && lucent_json_has(n, "skin")) {
+        for (int o = 0; o < FORM_COUNT && s == LUCENT_OK; o++)
+            for (int k = 0; k < 3 && s == LUCENT_OK; k++)
+                if (k_form_keys[o][k] && lucent_json_has(n, k_form_keys[o][k]))
+                    s = lucent_json_fail(n, k_form_keys[o][k], LUCENT_ERR_PARSE, "cannot be combined with \"skin\"");
+        if (s == LUCENT_OK) s = read_skin(n, m);
+        if (s == LUCENT_OK) s = read_informational(n);
+        return s;
+    }
     if (s == LUCENT_OK && lucent_json_has(n, "g")) s = read_channels(n, "g", &k_g, m->g);
     if (s == LUCENT_OK) s = pick_form(n, &f);
     if (s == LUCENT_OK) s = read_medium(n, f, m);
@@ -334,6 +451,7 @@ static bool looks_like_file(const char *spec)
 
 lucent_status lucent_material_resolve(const char *spec, lucent_material *dest)
 {
+    if (!spec) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "material: no name or file given (NULL)");
     const char *hash = strrchr(spec, '#');
     if (hash) {
         char *file = strndup(spec, (size_t)(hash - spec));
@@ -368,12 +486,37 @@ static bool add_derived(cJSON *obj, const lucent_material *m)
     return ok && cJSON_AddNumberToObject(o, "fdr", d.fdr) && cJSON_AddNumberToObject(o, "a", d.a);
 }
 
+/* A skin's layers in mm (a semi-infinite layer has no thickness). */
+static bool add_skin(cJSON *o, const lucent_skin *skin)
+{
+    cJSON *sk = cJSON_AddObjectToObject(o, "skin");
+    bool ok = sk != NULL;
+    for (int i = 0; ok && i < skin->layer_count; i++) {
+        const lucent_skin_layer *l = &skin->layer[i];
+        cJSON *j = cJSON_AddObjectToObject(sk, lucent_skin_layer_name(l->kind));
+        cJSON *sc = j ? cJSON_CreateObject() : NULL;
+        ok = j && sc && (!isfinite(l->thickness) || lucent_json_add_number(j, "thickness", l->thickness)) &&
+             lucent_json_add_number(j, "melanin", l->melanin) && lucent_json_add_number(j, "eumelanin", l->eumelanin) &&
+             lucent_json_add_number(j, "blood", l->blood) && lucent_json_add_number(j, "oxygenation", l->oxygenation) &&
+             lucent_json_add_number(j, "g", l->g) && cJSON_AddItemToObject(j, "scattering", sc);
+        if (j && sc && !ok) cJSON_Delete(sc);
+        ok = ok && lucent_json_add_number(sc, "mus_prime_500", l->scatter) &&
+             lucent_json_add_number(sc, "f_rayleigh", l->f_rayleigh) && lucent_json_add_number(sc, "b_mie", l->b_mie);
+    }
+    return ok;
+}
+
 static bool add_material(cJSON *list, const lucent_material *m, bool with_derived)
 {
     cJSON *o = cJSON_CreateObject();
     if (!o || !cJSON_AddItemToArray(list, o)) {
         cJSON_Delete(o);
         return false;
+    }
+    if (m->skin.layer_count > 0) {
+        bool ok = cJSON_AddStringToObject(o, "name", m->name) && cJSON_AddStringToObject(o, "units", "mm") &&
+                  cJSON_AddNumberToObject(o, "eta", m->eta) && add_skin(o, &m->skin);
+        return ok && (!with_derived || !m->skin.resolved || add_derived(o, m));
     }
     bool ok = cJSON_AddStringToObject(o, "name", m->name) && cJSON_AddStringToObject(o, "units", "mm^-1") &&
               lucent_json_add_numbers(o, "sigma_a", m->sigma_a, 3) &&

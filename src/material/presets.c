@@ -49,6 +49,7 @@ lucent_status lucent_material_preset(int index, lucent_material *dest)
 
 lucent_status lucent_material_preset_find(const char *name, lucent_material *dest)
 {
+    if (!name) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "material: no preset name given (NULL)");
     lucent_status s = presets_ready();
     if (s != LUCENT_OK) return s;
     char list[512] = "";

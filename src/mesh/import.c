@@ -525,6 +525,7 @@ lucent_status lucent_mesh_load_memory(const void *data, size_t size, const char 
 lucent_status lucent_mesh_load(const char *path, const lucent_mesh_load_desc *desc, lucent_mesh **dest)
 {
     *dest = NULL;
+    if (!path) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "mesh: no file given (NULL path)");
     char format[16];
     const char *fmt = desc && desc->format ? desc->format : NULL;
     lucent_status s = LUCENT_OK;

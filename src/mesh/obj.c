@@ -42,6 +42,7 @@ static lucent_status read_obj(lucent_reader *r, lucent_mesh **dest)
     uint32_t *poly = NULL, *poly_t = NULL;
     size_t poly_cap = 0;
     lucent_status s = LUCENT_OK;
+    uint64_t limit = lucent_mesh_read_limit();
     for (;;) {
         char *line;
         size_t len;
@@ -141,6 +142,13 @@ static lucent_status read_obj(lucent_reader *r, lucent_mesh **dest)
             }
         }
         /* Anything else: a comment, vt, vn, l, p, o, g, s, usemtl, mtllib (never opened), ... */
+        if ((uint64_t)pos.count + tex.count + tri.count > limit) {
+            s = lucent_error(LUCENT_ERR_PARSE,
+                             "%s: line %llu: more than %llu vertices, texture coordinates and triangles: above the "
+                             "read limit (the environment variable LUCENT_MESH_MAX_ELEMENTS raises it)",
+                             r->name, (unsigned long long)r->line, (unsigned long long)limit);
+            goto done;
+        }
     }
 done:
     if (s == LUCENT_OK && tri.count == 0)

@@ -115,6 +115,9 @@ lucent_status lucent_mesh_paint(const lucent_mesh *m, const lucent_mesh_paint_de
         !isfinite(d.elevation))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "mesh paint: a mesh, colours, 1..16384 pixels a side, "
                                                          "supersampling 1..8 and finite angles");
+    /* Supersampling only as far as 64 Mpixels (about 1 GB of buffers): a 16384 x 16384 picture is drawn once
+     * per pixel, not 3 x 3 (38.7 GB). */
+    while (s > 1 && (double)w * h * s * s > (double)(1 << 26)) s--;
     lucent_status st = lucent_image_create(w, h, 3, dest);
     if (st != LUCENT_OK) return st;
     paint_job j = {.w = w * s, .h = h * s};
@@ -122,7 +125,9 @@ lucent_status lucent_mesh_paint(const lucent_mesh *m, const lucent_mesh_paint_de
     j.depth = malloc(n * sizeof *j.depth), j.rgb = malloc(3 * n * sizeof *j.rgb);
     j.p = malloc((m->vertex_count + 1) * sizeof *j.p), j.c = malloc((m->vertex_count + 1) * sizeof *j.c);
     if (!j.depth || !j.rgb || !j.p || !j.c) {
-        st = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "mesh paint: out of memory for %d x %d", j.w, j.h);
+        st = lucent_error(LUCENT_ERR_OUT_OF_MEMORY,
+                          "mesh paint: out of memory for a %d x %d picture (drawn %dx supersampled, %d x %d: %.1f GB)",
+                          w, h, s, j.w, j.h, (double)n * (sizeof *j.depth + 3 * sizeof *j.rgb) / 1e9);
     } else {
         for (size_t i = 0; i < n; i++) j.depth[i] = -INFINITY;
         project(m, &d, &j);

@@ -2,6 +2,7 @@
  * plain or gzip, streaming through mesh/reader.h, for hostile input. The format is Greg Turk's (PLY,
  * Stanford 1994): a text header of elements and their properties, then the elements' rows in order. */
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -155,6 +156,12 @@ static lucent_status read_header(lucent_ply *ply)
                 return header_error(ply, "expected \"property <type> <name>\" or \"property list <t> <t> <name>\"");
             }
             if (strlen(name) >= MAX_NAME) return header_error(ply, "property name too long");
+            for (int j = 0; j < e->prop_count; j++)
+                if (strcmp(e->props[j].name, name) == 0) {
+                    char what[MAX_NAME + 96];
+                    snprintf(what, sizeof what, "element %s declares the property %s twice", e->name, name);
+                    return header_error(ply, what);
+                }
             snprintf(pr.name, sizeof pr.name, "%s", name);
             if (e->prop_count % 16 == 0) {
                 prop *grown = realloc(e->props, (size_t)(e->prop_count + 16) * sizeof *grown);
@@ -167,6 +174,17 @@ static lucent_status read_header(lucent_ply *ply)
         }
     }
     if (!have_format) return lucent_error(LUCENT_ERR_PARSE, "%s: the header has no format line", r->name);
+    uint64_t rows = 0, limit = lucent_mesh_read_limit();
+    for (int i = 0; i < ply->element_count; i++) {
+        const element *e = &ply->elements[i];
+        rows = rows > UINT64_MAX - e->count ? UINT64_MAX : rows + e->count;
+        if (rows > limit)
+            return lucent_error(LUCENT_ERR_PARSE,
+                                "%s: the header declares %llu %s entries (%llu rows in all so far): above the read "
+                                "limit of %llu elements (the environment variable LUCENT_MESH_MAX_ELEMENTS raises it)",
+                                r->name, (unsigned long long)e->count, e->name, (unsigned long long)rows,
+                                (unsigned long long)limit);
+    }
     for (int i = 0; i < ply->element_count; i++) {
         element *e = &ply->elements[i];
         e->fixed_size = 0;
@@ -256,6 +274,14 @@ int lucent_ply_property_index(const lucent_ply *ply, const char *name)
     return -1;
 }
 
+bool lucent_ply_property_is_list(const lucent_ply *ply, const char *name)
+{
+    const element *e = ply->vertex_el >= 0 ? &ply->elements[ply->vertex_el] : NULL;
+    for (int j = 0; e && j < e->prop_count; j++)
+        if (e->props[j].count_type != T_NONE && strcmp(e->props[j].name, name) == 0) return true;
+    return false;
+}
+
 double lucent_ply_property_integer_max(const lucent_ply *ply, int i)
 {
     if (i < 0 || i >= ply->scalar_count) return 0;
@@ -305,8 +331,9 @@ static double decode(const unsigned char *p, ptype t, int big)
 typedef struct body {
     lucent_ply *ply;
     const lucent_ply_read_desc *desc;
-    int *columns; /* per output column: the vertex property index, -1 when missing */
-    double *row;  /* one vertex row of scalar values, per property index */
+    int *columns;    /* per output column: the vertex property index, -1 when missing */
+    double *row;     /* one vertex row of scalar values, per property index */
+    double *checked; /* the row's requested values, for desc->check */
     lucent_ply_data *d;
     size_t vertex_cap, tri_cap;
     int growable;   /* gzip: the counts are only bounds, grow with the data */
@@ -335,6 +362,11 @@ static lucent_status store_vertex(body *b, uint64_t i)
 {
     lucent_ply_data *d = b->d;
     int k = b->desc->count;
+    if (b->desc->check) {
+        for (int c = 0; c < k; c++) b->checked[c] = b->columns[c] >= 0 ? b->row[b->columns[c]] : NAN;
+        lucent_status s = b->desc->check(b->desc->user, i, b->checked);
+        if (s != LUCENT_OK) return s;
+    }
     if (i >= b->vertex_cap) {
         size_t cap = b->vertex_cap ? 2 * b->vertex_cap : 1024;
         size_t total = (size_t)b->ply->elements[b->ply->vertex_el].count;
@@ -386,6 +418,13 @@ static lucent_status store_face(body *b, uint64_t f, uint32_t n)
                                 "%s: %s: face %llu: vertex index %u out of range (the file has %llu vertices)",
                                 b->ply->r.name, at, (unsigned long long)f, b->poly[j], (unsigned long long)vcount);
         }
+    if (d->triangle_count + n - 2 > lucent_mesh_read_limit()) {
+        where(b, at, sizeof at);
+        return lucent_error(LUCENT_ERR_PARSE,
+                            "%s: %s: face %llu: more than %llu triangles: above the read limit (the environment "
+                            "variable LUCENT_MESH_MAX_ELEMENTS raises it)",
+                            b->ply->r.name, at, (unsigned long long)f, (unsigned long long)lucent_mesh_read_limit());
+    }
     if (d->triangle_count + n - 2 > b->tri_cap) {
         size_t cap = b->tri_cap ? 2 * b->tri_cap : 1024;
         while (cap < d->triangle_count + n - 2) cap *= 2;
@@ -556,6 +595,33 @@ static lucent_status binary_element(body *b, int ei)
     return LUCENT_OK;
 }
 
+/* After the last element's rows: nothing but blank lines (ASCII) or nothing at all (binary), so that rows
+ * beyond the header's counts are an error rather than silently left out. */
+static lucent_status check_end(lucent_ply *ply)
+{
+    lucent_reader *r = &ply->r;
+    const element *last = &ply->elements[ply->element_count - 1];
+    if (ply->format != FMT_ASCII) {
+        lucent_status s = lucent_reader_fill(r, 1);
+        if (s != LUCENT_OK || r->len == r->pos) return s;
+        return lucent_error(LUCENT_ERR_PARSE,
+                            "%s: byte %llu: data after the last element's rows (the header declares %llu %s): more "
+                            "rows than it says, or a false count",
+                            r->name, (unsigned long long)lucent_reader_offset(r), (unsigned long long)last->count,
+                            last->name);
+    }
+    for (;;) {
+        char *line;
+        size_t len;
+        lucent_status s = lucent_reader_line(r, &line, &len);
+        if (s != LUCENT_OK || !line) return s;
+        if (strspn(line, " \t") < len)
+            return lucent_error(LUCENT_ERR_PARSE,
+                                "%s: line %llu: more rows than the header declares (%llu %s, the last element)",
+                                r->name, (unsigned long long)r->line, (unsigned long long)last->count, last->name);
+    }
+}
+
 /* The fewest bytes a row of e can take (ASCII: a digit and a separator per value). */
 static uint64_t min_row_bytes(const element *e, int ascii)
 {
@@ -596,16 +662,20 @@ lucent_status lucent_ply_read(lucent_ply *ply, const lucent_ply_read_desc *desc,
         if (e->count > bound / row || need + e->count * row > bound)
             return lucent_error(LUCENT_ERR_PARSE,
                                 "%s: the header declares %llu %s entries (at least %llu bytes each) but at most %llu "
-                                "bytes follow the header: truncated or a false count",
+                                "bytes follow the header%s",
                                 r->name, (unsigned long long)e->count, e->name, (unsigned long long)row,
-                                (unsigned long long)bound);
+                                (unsigned long long)bound,
+                                r->gz ? " (gzip data may inflate to at most 100 times its size: a larger claim is "
+                                        "refused as a decompression bomb; gunzip the file to read it whole)"
+                                      : ": truncated or a false count");
         need += e->count * row;
     }
     body b = {.ply = ply, .desc = desc, .d = dest};
     b.columns = malloc(((size_t)desc->count + 1) * sizeof *b.columns);
     b.row = calloc((size_t)ve->prop_count + 1, sizeof *b.row);
+    b.checked = calloc((size_t)desc->count + 1, sizeof *b.checked);
     lucent_status s = LUCENT_OK;
-    if (!b.columns || !b.row || !poly_room(&b, 16)) s = oom(&b);
+    if (!b.columns || !b.row || !b.checked || !poly_room(&b, 16)) s = oom(&b);
     for (int c = 0; s == LUCENT_OK && c < desc->count; c++) {
         int k = lucent_ply_property_index(ply, desc->names[c]);
         b.columns[c] = k >= 0 ? ply->scalars[k] : -1;
@@ -629,9 +699,11 @@ lucent_status lucent_ply_read(lucent_ply *ply, const lucent_ply_read_desc *desc,
     for (int i = 0; s == LUCENT_OK && i < ply->element_count; i++)
         s = ply->format == FMT_ASCII ? ascii_element(&b, i) : binary_element(&b, i);
     if (s == LUCENT_OK && dest->vertex_count == 0 && ve->count > 0) s = LUCENT_ERR_INTERNAL;
+    if (s == LUCENT_OK) s = check_end(ply);
     if (s == LUCENT_OK) s = lucent_reader_finish(r); /* .ply.gz: the stream whole, its CRC checked */
     free(b.columns);
     free(b.row);
+    free(b.checked);
     free(b.poly);
     if (s != LUCENT_OK) lucent_ply_data_free(dest);
     return s;

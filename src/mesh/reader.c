@@ -4,14 +4,38 @@
 #include <errno.h>
 #include <float.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+
+#include "lucent/mesh.h"
 
 #define BUF_CAP (2 * LUCENT_READER_MAX_LINE)
 #define IN_CAP ((size_t)1 << 18)
 /* Deflate's largest expansion: a 258-byte match per 2 bits at best, about 1032:1 (zlib's FAQ). */
 #define DEFLATE_MAX_RATIO 1032u
+/* What gzip input may inflate to: LUCENT_MESH_MAX_INFLATE_RATIO times the compressed bytes, plus this (so
+ * that a small file's header and first rows, whatever their ratio, are never refused). */
+#define INFLATE_SLACK ((uint64_t)1 << 20)
+
+static _Atomic uint64_t g_read_limit;
+
+void lucent_mesh_set_read_limit(uint64_t elements) { g_read_limit = elements; }
+
+uint64_t lucent_mesh_read_limit(void)
+{
+    uint64_t l = g_read_limit;
+    if (l) return l;
+    const char *env = getenv("LUCENT_MESH_MAX_ELEMENTS");
+    char *end;
+    unsigned long long v = env ? strtoull(env, &end, 10) : 0;
+    if (env && *env && !*end && v > 0) return v;
+    return LUCENT_MESH_DEFAULT_READ_ELEMENTS;
+}
+
+/* The most inflated bytes gzip input of `compressed` bytes may give. */
+static uint64_t inflate_cap(uint64_t compressed) { return compressed * LUCENT_MESH_MAX_INFLATE_RATIO + INFLATE_SLACK; }
 
 static lucent_status start(lucent_reader *r)
 {
@@ -100,8 +124,9 @@ uint64_t lucent_reader_bound(const lucent_reader *r)
     uint64_t buffered = r->len - r->pos;
     if (!r->gz) return buffered + (r->fd >= 0 ? r->raw_size - (r->base + r->len) : r->mem_size - r->mem_pos);
     if (r->stream_end) return buffered;
-    uint64_t raw_left = r->raw_size - r->zs.total_in;
-    return buffered + raw_left * DEFLATE_MAX_RATIO + 65536;
+    uint64_t raw_left = r->raw_size - r->zs.total_in, cap = inflate_cap(r->raw_size), out = r->zs.total_out;
+    uint64_t left = raw_left * DEFLATE_MAX_RATIO + 65536, allowed = cap > out ? cap - out : 0;
+    return buffered + (left < allowed ? left : allowed);
 }
 
 /* Reads raw bytes into r->in for inflate. */
@@ -156,6 +181,12 @@ static lucent_status decode_more(lucent_reader *r)
         int z = inflate(&r->zs, Z_NO_FLUSH);
         size_t made = (size_t)(r->zs.next_out - (r->buf + r->len));
         r->len += made, room -= made;
+        if ((uint64_t)r->zs.total_out > inflate_cap(r->zs.total_in))
+            return lucent_error(LUCENT_ERR_PARSE,
+                                "%s: gzip data inflating more than %d times its size (%llu bytes from %llu): refused "
+                                "as a decompression bomb (gunzip it to read it whole)",
+                                r->name, LUCENT_MESH_MAX_INFLATE_RATIO, (unsigned long long)r->zs.total_out,
+                                (unsigned long long)r->zs.total_in);
         if (z == Z_STREAM_END) {
             r->stream_end = r->eof = 1; /* anything after the first gzip member is ignored */
         } else if (z == Z_OK || z == Z_BUF_ERROR) {

@@ -1,6 +1,7 @@
 /* Point clouds read as surfels (lucent_surfels_load, lucent/surfels.h) through Lucent's PLY reader:
  * positions and normals with optional colour and radius, or 3D Gaussian splatting files. Every value
  * is checked here, so that a bad one is named by its file, vertex and property. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,6 +24,12 @@ static const char *missing(const lucent_ply *ply, const char *const *names, int 
     return NULL;
 }
 
+/* How a missing property is missing: absent, or declared as a list. */
+static const char *how_missing(const lucent_ply *ply, const char *name)
+{
+    return lucent_ply_property_is_list(ply, name) ? "is a list, not a number" : "missing";
+}
+
 /* What the file holds: the properties to read, in order, and where each part starts. */
 typedef struct cloud_layout {
     const char *names[MAX_NAMES];
@@ -37,16 +44,18 @@ static lucent_status layout_of(const lucent_ply *ply, const char *path, cloud_la
     memset(L, 0, sizeof *L);
     L->color = L->radius = -1;
     const char *lack = missing(ply, k_plain, 3);
-    if (lack) return lucent_error(LUCENT_ERR_PARSE, "%s: no vertex positions (property %s missing)", path, lack);
+    if (lack)
+        return lucent_error(LUCENT_ERR_PARSE, "%s: no vertex positions (property %s %s)", path, lack,
+                            how_missing(ply, lack));
     L->splat = lucent_ply_property_index(ply, "scale_0") >= 0 || lucent_ply_property_index(ply, "rot_0") >= 0;
     if (L->splat && (lack = missing(ply, k_splat, 13)))
-        return lucent_error(LUCENT_ERR_PARSE, "%s: a 3D Gaussian splatting file without the vertex property %s", path,
-                            lack);
+        return lucent_error(LUCENT_ERR_PARSE, "%s: a 3D Gaussian splatting file without the vertex property %s (%s)",
+                            path, lack, how_missing(ply, lack));
     if (!L->splat && (lack = missing(ply, k_plain, 6)))
         return lucent_error(LUCENT_ERR_PARSE,
-                            "%s: no vertex normals (property %s missing): a point cloud needs nx, ny, nz (or the "
+                            "%s: no vertex normals (property %s %s): a point cloud needs nx, ny, nz (or the "
                             "f_dc_*, scale_* and rot_* of a 3D Gaussian splatting file)",
-                            path, lack);
+                            path, lack, how_missing(ply, lack));
     L->count = L->splat ? 13 : 6;
     memcpy(L->names, L->splat ? k_splat : k_plain, (size_t)L->count * sizeof *L->names);
     if (!L->splat && !missing(ply, k_color, 3)) {
@@ -62,22 +71,38 @@ static lucent_status layout_of(const lucent_ply *ply, const char *path, cloud_la
     return LUCENT_OK;
 }
 
-/* Every value finite, normals not zero, radii > 0. */
-static lucent_status check_values(const char *path, const cloud_layout *L, const lucent_ply_data *d)
+/* The radii a surfel may have: r^2 and 1 / r^2 stay normal floats in the renderer's Gaussians, so that a
+ * surfel is neither too small nor too wide to be drawn at all (1e-45 or 3e38 rendered nothing). */
+#define RADIUS_MIN 1e-18
+#define RADIUS_MAX 1e18
+
+typedef struct row_check {
+    const char *path;
+    const cloud_layout *L;
+} row_check;
+
+/* Each vertex as it is read (lucent_ply_read_desc.check), in double before it becomes a float: every value
+ * finite and within float's range, normals not zero, radii in [RADIUS_MIN, RADIUS_MAX], rotations not zero. */
+static lucent_status check_row(void *user, uint64_t i, const double *v)
 {
-    for (size_t i = 0; i < d->vertex_count; i++) {
-        const double *v = d->values + (size_t)L->count * i;
-        for (int k = 0; k < L->count; k++)
-            if (!isfinite(v[k]))
-                return lucent_error(LUCENT_ERR_PARSE, "%s: vertex %zu: %s is not finite (%g)", path, i, L->names[k],
-                                    v[k]);
-        if (!L->splat && v[3] == 0 && v[4] == 0 && v[5] == 0)
-            return lucent_error(LUCENT_ERR_PARSE, "%s: vertex %zu: the normal (nx, ny, nz) is zero", path, i);
-        if (L->radius >= 0 && !(v[L->radius] > 0))
-            return lucent_error(LUCENT_ERR_PARSE, "%s: vertex %zu: radius must be > 0, got %g", path, i, v[L->radius]);
-        if (L->splat && v[9] == 0 && v[10] == 0 && v[11] == 0 && v[12] == 0)
-            return lucent_error(LUCENT_ERR_PARSE, "%s: vertex %zu: the rotation (rot_0..3) is zero", path, i);
+    const row_check *rc = user;
+    const cloud_layout *L = rc->L;
+    unsigned long long n = (unsigned long long)i;
+    for (int k = 0; k < L->count; k++) {
+        if (!isfinite(v[k]))
+            return lucent_error(LUCENT_ERR_PARSE, "%s: vertex %llu: %s is not finite (%g)", rc->path, n, L->names[k],
+                                v[k]);
+        if (fabs(v[k]) > FLT_MAX)
+            return lucent_error(LUCENT_ERR_PARSE, "%s: vertex %llu: %s = %g does not fit a float (at most %g)",
+                                rc->path, n, L->names[k], v[k], (double)FLT_MAX);
     }
+    if (!L->splat && v[3] == 0 && v[4] == 0 && v[5] == 0)
+        return lucent_error(LUCENT_ERR_PARSE, "%s: vertex %llu: the normal (nx, ny, nz) is zero", rc->path, n);
+    if (L->radius >= 0 && !(v[L->radius] >= RADIUS_MIN && v[L->radius] <= RADIUS_MAX))
+        return lucent_error(LUCENT_ERR_PARSE, "%s: vertex %llu: radius must be > 0, from %g to %g, got %g", rc->path, n,
+                            RADIUS_MIN, RADIUS_MAX, v[L->radius]);
+    if (L->splat && v[9] == 0 && v[10] == 0 && v[11] == 0 && v[12] == 0)
+        return lucent_error(LUCENT_ERR_PARSE, "%s: vertex %llu: the rotation (rot_0..3) is zero", rc->path, n);
     return LUCENT_OK;
 }
 
@@ -85,7 +110,7 @@ static lucent_status check_values(const char *path, const cloud_layout *L, const
  * scale_0..2 the logs of the standard deviations along the rotation's columns. The normal is the
  * column of the smallest scale, the radius two standard deviations of the geometric mean of the other
  * two, the colour 0.5 + C0 f_dc with C0 = 1 / (2 sqrt(pi)) = 0.28209479 (spherical harmonics band 0),
- * an sRGB display value. Returns false when the radius is not a positive finite number. */
+ * an sRGB display value. Returns false when the radius is outside [RADIUS_MIN, RADIUS_MAX]. */
 static bool gaussian_splat(const double *v, float *pos, float *nrm, float *radius, float *color)
 {
     double len = sqrt(v[9] * v[9] + v[10] * v[10] + v[11] * v[11] + v[12] * v[12]);
@@ -100,7 +125,8 @@ static bool gaussian_splat(const double *v, float *pos, float *nrm, float *radiu
         double e = 0.5 + 0.28209479177387814 * v[3 + c];
         color[c] = lucent_srgb_decode((float)fmin(fmax(e, 0), 1));
     }
-    return *radius > 0 && isfinite(*radius);
+    double r = 2 * exp(0.5 * (v[6 + (k + 1) % 3] + v[6 + (k + 2) % 3]));
+    return r >= RADIUS_MIN && r <= RADIUS_MAX;
 }
 
 /* Splat normals have no side: each is turned away from the cloud's centroid. */
@@ -122,11 +148,14 @@ static lucent_status unpack(const char *path, const cloud_layout *L, const lucen
 {
     size_t n = d->vertex_count;
     for (size_t i = 0; i < n; i++) {
-        const double *v = d->values + (size_t)L->count * i;
+        double v[MAX_NAMES];
+        for (int k = 0; k < L->count; k++) v[k] = d->values32[(size_t)L->count * i + (size_t)k];
         if (L->splat) {
             if (!gaussian_splat(v, pos + 3 * i, nrm + 3 * i, rad + i, col + 3 * i))
-                return lucent_error(LUCENT_ERR_PARSE, "%s: vertex %zu: the scales (scale_0..2) give a radius of %g",
-                                    path, i, (double)rad[i]);
+                return lucent_error(LUCENT_ERR_PARSE,
+                                    "%s: vertex %zu: the scales (scale_0..2) give a radius of %g, outside [%g, %g]",
+                                    path, i, 2 * exp(0.5 * (v[6] + v[7] + v[8] - fmin(v[6], fmin(v[7], v[8])))),
+                                    RADIUS_MIN, RADIUS_MAX);
             continue;
         }
         for (int a = 0; a < 3; a++) pos[3 * i + a] = (float)v[a], nrm[3 * i + a] = (float)v[3 + a];
@@ -150,9 +179,15 @@ static lucent_status read_cloud(const char *path, cloud_layout *L, lucent_ply_da
     if (s == LUCENT_OK && n < 2)
         s = lucent_error(LUCENT_ERR_PARSE, "%s: holds %zu point%s: surfels need two at least", path, n,
                          n == 1 ? "" : "s");
-    if (s == LUCENT_OK) s = lucent_ply_read(ply, &(lucent_ply_read_desc){.names = L->names, .count = L->count}, d);
+    /* Surfels are floats: the values are kept as floats (half the memory), each vertex checked in double as it
+     * is read, before the next one. */
+    row_check rc = {path, L};
+    if (s == LUCENT_OK)
+        s = lucent_ply_read(
+            ply,
+            &(lucent_ply_read_desc){.names = L->names, .count = L->count, .single = 1, .check = check_row, .user = &rc},
+            d);
     lucent_ply_close(ply);
-    if (s == LUCENT_OK && (s = check_values(path, L, d)) != LUCENT_OK) lucent_ply_data_free(d);
     return s;
 }
 

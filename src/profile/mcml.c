@@ -84,23 +84,31 @@ static lucent_status read_output(mcml_reader *r, lucent_mcml_run *run)
     return run->output ? LUCENT_OK : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
 }
 
-static lucent_status read_grid(mcml_reader *r, lucent_mc_desc *d)
+/* The line of each part of a run, so that the whole run's check (lucent_mc_validate) names the field's line. */
+typedef struct run_lines {
+    int photons, grid, bins, layer[LUCENT_MC_MAX_LAYERS];
+} run_lines;
+
+static lucent_status read_grid(mcml_reader *r, lucent_mc_desc *d, run_lines *at)
 {
     double v[3];
     lucent_status s = mcml_next_line(r, "the number of photons");
     if (s == LUCENT_OK) s = mcml_numbers(r, 1, v, "the number of photons");
     if (s != LUCENT_OK) return s;
+    at->photons = r->at;
     if (v[0] != floor(v[0]) || v[0] < 1 || v[0] > LUCENT_MC_MAX_PHOTONS)
         return mcml_fail(r, "the number of photons must be a whole number in [1, 1e12], got %g", v[0]);
     d->photons = (uint64_t)v[0];
     if ((s = mcml_next_line(r, "dz and dr [cm]")) != LUCENT_OK) return s;
     if ((s = mcml_numbers(r, 2, v, "dz and dr [cm]")) != LUCENT_OK) return s;
+    at->grid = r->at;
     if (!(v[0] > 0 && v[1] > 0 && isfinite(v[0]) && isfinite(v[1])))
         return mcml_fail(r, "dz and dr must be > 0, got %g and %g", v[0], v[1]);
     d->grid.dz = v[0] * CM;
     d->grid.dr = v[1] * CM;
     if ((s = mcml_next_line(r, "the numbers of bins nz, nr, na")) != LUCENT_OK) return s;
     if ((s = mcml_numbers(r, 3, v, "the numbers of bins nz, nr, na")) != LUCENT_OK) return s;
+    at->bins = r->at;
     if ((s = whole(r, v[0], 1, LUCENT_MC_MAX_RADIAL_BINS, "depth bins (nz)", &d->grid.nz)) ||
         (s = whole(r, v[1], 1, LUCENT_MC_MAX_RADIAL_BINS, "radial bins (nr)", &d->grid.nr)) ||
         (s = whole(r, v[2], 1, LUCENT_MC_MAX_ANGLE_BINS, "angle bins (na)", &d->grid.na)))
@@ -142,7 +150,7 @@ static lucent_status read_layer(mcml_reader *r, int i, int count, lucent_mc_laye
     return LUCENT_OK;
 }
 
-static lucent_status read_layers(mcml_reader *r, lucent_mcml_run *run)
+static lucent_status read_layers(mcml_reader *r, lucent_mcml_run *run, run_lines *at)
 {
     double v;
     lucent_status s = mcml_next_line(r, "the number of layers");
@@ -155,21 +163,40 @@ static lucent_status read_layers(mcml_reader *r, lucent_mcml_run *run)
     run->desc.layers = run->layers;
     run->desc.layer_count = count;
     if ((s = read_index(r, "n for the medium above", &run->desc.n_above)) != LUCENT_OK) return s;
-    for (int i = 0; i < count; i++)
+    for (int i = 0; i < count; i++) {
         if ((s = read_layer(r, i, count, &run->layers[i])) != LUCENT_OK) return s;
+        at->layer[i] = r->at;
+    }
     return read_index(r, "n for the medium below", &run->desc.n_below);
+}
+
+/* The line holding the field that lucent_mc_validate's message starts with ("grid.dr: ...", "layers[1].g: ..."),
+ * else the run's first line. */
+static int line_of_field(const char *message, const run_lines *at, int run_line)
+{
+    int i;
+    if (!strncmp(message, "grid.n", 6) || !strncmp(message, "grid: too many bins", 19)) return at->bins;
+    if (!strncmp(message, "grid", 4)) return at->grid;
+    if (!strncmp(message, "photons", 7)) return at->photons;
+    if (sscanf(message, "layers[%d]", &i) == 1 && i >= 0 && i < LUCENT_MC_MAX_LAYERS && at->layer[i])
+        return at->layer[i];
+    return run_line;
 }
 
 lucent_status mcml_read_run(mcml_reader *r, lucent_mcml_run *run)
 {
+    run_lines at = {0};
     lucent_status s = read_output(r, run);
-    if (s == LUCENT_OK) s = read_grid(r, &run->desc);
-    if (s == LUCENT_OK) s = read_layers(r, run);
+    if (s == LUCENT_OK) s = read_grid(r, &run->desc, &at);
+    if (s == LUCENT_OK) s = read_layers(r, run, &at);
     if (s != LUCENT_OK) return s;
     run->desc.score_a_rz = true;        /* MCML always scores A(r, z) */
     run->desc.last_bin_collects = true; /* and collects beyond the grid in the last bins */
     s = lucent_mc_validate(&run->desc);
-    return s == LUCENT_OK ? s : lucent_error_context(s, "%s: line %d (run)", r->name, run->line);
+    if (s == LUCENT_OK) return s;
+    int line = line_of_field(lucent_last_error(), &at, run->line);
+    return line == run->line ? lucent_error_context(s, "%s: line %d (run)", r->name, run->line)
+                             : lucent_error_context(s, "%s: line %d (the run of line %d)", r->name, line, run->line);
 }
 
 lucent_status lucent_mcml_parse(const char *text, const char *name, lucent_mcml_file *dest)
@@ -204,6 +231,7 @@ lucent_status lucent_mcml_parse(const char *text, const char *name, lucent_mcml_
 lucent_status lucent_mcml_load(const char *path, lucent_mcml_file *dest)
 {
     memset(dest, 0, sizeof *dest);
+    if (!path) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "mcml: no .mci file given (NULL path)");
     char *text;
     lucent_status s = lucent_read_text_file(path, &text);
     if (s != LUCENT_OK) return s;
@@ -310,6 +338,7 @@ static void write_results(FILE *f, const lucent_mc_result *r, double *rd_r, doub
 
 lucent_status lucent_mcml_write(const char *path, const lucent_mcml_run *run, const lucent_mc_result *result)
 {
+    if (!path) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "mcml: no .mco file given (NULL path)");
     const lucent_mc_result *r = result;
     size_t nr = (size_t)r->grid.nr, nz = (size_t)r->grid.nz, na = (size_t)r->grid.na;
     double *buf = malloc((2 * nr + nz + na) * sizeof *buf);

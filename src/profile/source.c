@@ -4,6 +4,7 @@
 
 #include "lucent/mc.h"
 #include "lucent/profile.h"
+#include "lucent/skin.h"
 
 static const char *const k_sources[] = {"dipole", "better-dipole", "burley", "mc", NULL};
 
@@ -75,6 +76,13 @@ lucent_status lucent_profile_from_source(const lucent_profile_source_desc *desc,
     if (!lucent_profile_source_known(source))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "unknown profile \"%s\" (dipole, better-dipole, burley, mc)",
                             source);
+    if (m->skin.layer_count > 0) { /* a spectral skin: every band carried, then weighted (lucent/skin.h) */
+        lucent_skin_desc sd = {.transport = strcmp(source, "mc") ? "multipole" : "mc",
+                               .photons = d->photons ? 3 * d->photons / LUCENT_BANDS_DEFAULT : 0,
+                               .seed = d->seed,
+                               .pool = d->pool};
+        return lucent_profile_skin(m, &sd, dest);
+    }
     if (!strcmp(source, "mc")) return profile_mc(d, m, dest);
     if (!strcmp(source, "better-dipole")) return lucent_profile_better_dipole(m, NULL, dest);
     if (!strcmp(source, "burley")) {

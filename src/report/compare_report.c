@@ -4,8 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/strbuf.h"
-#include "lucent/report.h"
+#include "report/compare_internal.h"
 
 static const char *k_style =
     "body{font-family:sans-serif;margin:2em auto;max-width:1400px;color:#222;line-height:1.4}"
@@ -33,19 +32,44 @@ static double net_of(const lucent_compare_scene *sc, int i)
     return isfinite(e) ? lucent_compare_net_error(e, sc->reference_noise) : INFINITY;
 }
 
+static double raw_of(const lucent_compare_scene *sc, int i)
+{
+    double e = sc->methods[i].rel_rms;
+    return isfinite(e) ? e : INFINITY;
+}
+
+double lucent_compare_pair_z(const lucent_compare_scene *sc, int i, int j)
+{
+    if (!sc->pair_se || i < 0 || j < 0 || i >= sc->method_count || j >= sc->method_count) return NAN;
+    double ei = sc->methods[i].rel_rms, ej = sc->methods[j].rel_rms, d = ei * ei - ej * ej;
+    double se = sc->pair_se[(size_t)i * (size_t)sc->method_count + (size_t)j];
+    if (!isfinite(d)) return NAN;
+    return se > 0 ? d / se : d == 0 ? 0 : copysign(INFINITY, d);
+}
+
+/* Whether method k shares the rank of leader: the paired test does not separate them (with pair_se),
+ * else their net errors lie within the reference's noise of each other. */
+static bool same_group(const lucent_compare_scene *sc, int leader, int k)
+{
+    if (sc->pair_se) {
+        return fabs(lucent_compare_pair_z(sc, k, leader)) < LUCENT_COMPARE_Z; /* NaN, inf: apart */
+    }
+    return net_of(sc, k) - net_of(sc, leader) < sc->reference_noise;
+}
+
 bool lucent_compare_rank(const lucent_compare_scene *sc, int *order, int *rank)
 {
     int n = sc->method_count;
     for (int i = 0; i < n; i++) order[i] = i, rank[i] = 0;
     if (!lucent_compare_noise_known(sc)) return false;
-    for (int i = 1; i < n; i++) /* insertion sort by net error: stable, few methods */
-        for (int k = i; k > 0 && net_of(sc, order[k]) < net_of(sc, order[k - 1]); k--) {
+    for (int i = 1; i < n; i++) /* insertion sort by error: stable, few methods */
+        for (int k = i; k > 0 && raw_of(sc, order[k]) < raw_of(sc, order[k - 1]); k--) {
             int t = order[k];
             order[k] = order[k - 1], order[k - 1] = t;
         }
     int leader = 0;
     for (int k = 0; k < n; k++) {
-        if (k > 0 && !(net_of(sc, order[k]) - net_of(sc, order[leader]) < sc->reference_noise)) leader = k;
+        if (k > 0 && !same_group(sc, order[leader], order[k])) leader = k;
         rank[order[k]] = leader + 1;
     }
     return true;
@@ -108,14 +132,73 @@ static void html_figure(lucent_strbuf *b, const char *image, const char *caption
     lucent_strbuf_printf(b, "</figcaption></figure>\n");
 }
 
+static bool any_flip(const lucent_compare_scene *sc)
+{
+    for (int i = 0; i < sc->method_count; i++)
+        if (sc->methods[i].has_flip) return true;
+    return false;
+}
+
+/* The z of the paired test of method order[k] against the next in order, as text ("" for the last). */
+static void z_next(const lucent_compare_scene *sc, const int *order, int k, char *dest, size_t size)
+{
+    dest[0] = '\0';
+    if (k + 1 >= sc->method_count || !sc->pair_se) return;
+    double z = fabs(lucent_compare_pair_z(sc, order[k], order[k + 1])); /* sorted: at or above 0 */
+    if (isinf(z))
+        snprintf(dest, size, "exact");
+    else if (isfinite(z))
+        snprintf(dest, size, "%.1f", z);
+}
+
+/* What a rank and a tie mean, once per table. */
+static void rank_note(lucent_strbuf *b, const lucent_compare_scene *sc)
+{
+    if (sc->pair_se) {
+        lucent_strbuf_printf(b,
+                             "<p class=\"note\">Ranked by the error. Methods share a rank when the paired test of "
+                             "their squared errors against the same reference cannot tell them apart: the "
+                             "difference e<sub>i</sub><sup>2</sup> - e<sub>j</sub><sup>2</sup> is within %.0f "
+                             "standard errors of zero against the group's first (the reference's noise enters that "
+                             "difference once, weighted by the two images' difference). The column z gives each "
+                             "method's separation from the next one down. ",
+                             LUCENT_COMPARE_Z);
+        if (sc->se_inflation > 1)
+            lucent_strbuf_printf(b,
+                                 "Its standard errors are calibrated on %d independent reference runs: the "
+                                 "per-pixel variances understate them by a factor of %.2f in variance (light paths "
+                                 "land one photon in many pixels).",
+                                 sc->reference_runs, sc->se_inflation);
+        else if (sc->se_inflation > 0)
+            lucent_strbuf_printf(b,
+                                 "Its standard errors come from the per-pixel variances; %d independent "
+                                 "reference runs found them not understated.",
+                                 sc->reference_runs);
+        else
+            lucent_strbuf_printf(b, "Its standard errors come from the per-pixel variances (pixels independent: "
+                                    "camera paths only).");
+        lucent_strbuf_printf(b, " The best rank is in bold.</p>\n");
+    } else {
+        lucent_strbuf_printf(b,
+                             "<p class=\"note\">Ranked by the error net of the reference's noise; methods whose net "
+                             "errors differ by less than that noise (%.2f%%) share a rank (tied): the reference "
+                             "cannot tell them apart. The best rank is in bold.</p>\n",
+                             100 * sc->reference_noise);
+    }
+}
+
 static void html_table(lucent_strbuf *b, const lucent_compare_scene *scene)
 {
     lucent_compare_scene clipped = *scene; /* the table holds 64 methods at most */
     const lucent_compare_scene *sc = &clipped;
     int order[64], rank[64], n = clipped.method_count = scene->method_count < 64 ? scene->method_count : 64;
-    bool ranked = lucent_compare_rank(sc, order, rank);
+    if (clipped.method_count < scene->method_count) clipped.pair_se = NULL; /* its rows are the scene's */
+    bool ranked = lucent_compare_rank(sc, order, rank), flip = any_flip(sc);
     lucent_strbuf_printf(b, "<table><tr><th>rank</th><th>method</th><th>relative RMS error</th><th>net of the "
-                            "reference's noise</th><th>R</th><th>G</th><th>B</th><th>frame (ms, GPU)</th><th>frame / "
+                            "reference's noise</th>");
+    if (ranked && sc->pair_se) lucent_strbuf_printf(b, "<th>z against the next</th>");
+    if (flip) lucent_strbuf_printf(b, "<th>FLIP (mean)</th>");
+    lucent_strbuf_printf(b, "<th>R</th><th>G</th><th>B</th><th>frame (ms, GPU)</th><th>frame / "
                             "Lambert's</th><th>setup (ms, CPU)</th><th>settings</th></tr>\n");
     for (int k = 0; k < n; k++) {
         int i = order[k];
@@ -130,7 +213,19 @@ static void html_table(lucent_strbuf *b, const lucent_compare_scene *scene)
         lucent_strbuf_xml(b, m->name);
         lucent_strbuf_printf(b, "</td><td>%.2f%%</td><td>", 100 * m->rel_rms);
         pct_or_unknown(b, ranked ? lucent_compare_net_error(m->rel_rms, sc->reference_noise) : NAN);
-        lucent_strbuf_printf(b, "</td><td>%.2f%%</td><td>%.2f%%</td><td>%.2f%%</td><td>%.3f</td><td>",
+        lucent_strbuf_printf(b, "</td>");
+        if (ranked && sc->pair_se) {
+            char z[32];
+            z_next(sc, order, k, z, sizeof z);
+            lucent_strbuf_printf(b, "<td>%s</td>", z);
+        }
+        if (flip) {
+            if (m->has_flip)
+                lucent_strbuf_printf(b, "<td>%.4f</td>", m->flip);
+            else
+                lucent_strbuf_printf(b, "<td>&ndash;</td>");
+        }
+        lucent_strbuf_printf(b, "<td>%.2f%%</td><td>%.2f%%</td><td>%.2f%%</td><td>%.3f</td><td>",
                              100 * m->rel_rms_rgb[0], 100 * m->rel_rms_rgb[1], 100 * m->rel_rms_rgb[2], m->frame_ms);
         double ratio = lambert_ratio(sc, i);
         if (isfinite(ratio))
@@ -142,12 +237,11 @@ static void html_table(lucent_strbuf *b, const lucent_compare_scene *scene)
         lucent_strbuf_printf(b, "</td></tr>\n");
     }
     lucent_strbuf_printf(b, "</table>\n");
-    if (ranked)
-        lucent_strbuf_printf(b,
-                             "<p class=\"note\">Ranked by the error net of the reference's noise; methods whose net "
-                             "errors differ by less than that noise (%.2f%%) share a rank (tied): the reference "
-                             "cannot tell them apart. The best rank is in bold.</p>\n",
-                             100 * sc->reference_noise);
+    if (ranked) rank_note(b, sc);
+    if (flip)
+        lucent_strbuf_printf(b, "<p class=\"note\">FLIP: the mean over the object's pixels of LDR-FLIP (Andersson "
+                                "et al. 2020) between the tonemapped images as shown, for an observer at 67 pixels "
+                                "per degree: 0 where the two look the same, 1 for the largest difference.</p>\n");
 }
 
 static double map_scale(const lucent_compare_scene *sc) { return sc->error_scale > 0 ? sc->error_scale : 0.5; }
@@ -246,6 +340,8 @@ static void html_scene(lucent_strbuf *b, const lucent_compare_scene *sc)
     lucent_strbuf_printf(b, ".</p>\n");
     html_table(b, sc);
     html_skipped(b, sc);
+    report_html_regions(b, sc);
+    report_html_lights(b, sc);
     html_images(b, sc);
     if (sc->chart) {
         lucent_strbuf_printf(b, "<p><img src=\"");
@@ -257,22 +353,60 @@ static void html_scene(lucent_strbuf *b, const lucent_compare_scene *sc)
     lucent_strbuf_printf(b, "</pre></details></section>\n");
 }
 
-/* The summary across scenes: per method (in the order they first appear) its net error and rank in
- * each scene, and per scene the reference's noise and the best method(s). */
-static void html_summary(lucent_strbuf *b, const lucent_compare_scene *scenes, int count)
+/* A scene's ranks and its methods' net errors, for the summary. */
+typedef struct summary_scene {
+    int order[64], rank[64];
+    bool ranked;
+    int groups;    /* distinct ranks */
+    double lo, hi; /* the best and the worst net error */
+} summary_scene;
+
+static void summary_rank(const lucent_compare_scene *sc, summary_scene *dest)
 {
-    const char *names[64];
-    int n = 0;
-    for (int i = 0; i < count; i++)
-        for (int k = 0; k < scenes[i].method_count; k++) {
-            bool seen = false;
-            for (int j = 0; j < n; j++) seen |= !strcmp(names[j], scenes[i].methods[k].name);
-            if (!seen && n < 64) names[n++] = scenes[i].methods[k].name;
+    *dest = (summary_scene){.lo = INFINITY, .hi = -INFINITY};
+    dest->ranked = sc->method_count <= 64 && lucent_compare_rank(sc, dest->order, dest->rank);
+    for (int k = 0; dest->ranked && k < sc->method_count; k++) {
+        double e = net_of(sc, k);
+        if (isfinite(e)) dest->lo = fmin(dest->lo, e), dest->hi = fmax(dest->hi, e);
+        dest->groups += k == 0 || dest->rank[dest->order[k]] != dest->rank[dest->order[k - 1]];
+    }
+}
+
+static int method_index(const lucent_compare_scene *sc, const char *name)
+{
+    for (int m = 0; m < sc->method_count && m < 64; m++)
+        if (!strcmp(sc->methods[m].name, name)) return m;
+    return -1;
+}
+
+/* The summary's row order: by mean rank over the scenes that rank, then by mean net error (unranked
+ * last, in their order of first appearance). */
+static void summary_order(const lucent_compare_scene *scenes, int count, const summary_scene *ss, const char **names,
+                          int n)
+{
+    double key[64][2];
+    for (int j = 0; j < n; j++) {
+        double sum = 0, err = 0;
+        int c = 0;
+        for (int i = 0; i < count; i++) {
+            int k = method_index(&scenes[i], names[j]);
+            if (k >= 0 && ss[i].ranked) sum += ss[i].rank[k], err += net_of(&scenes[i], k), c++;
         }
-    lucent_strbuf_printf(b, "<h2 id=\"summary\">Summary across scenes</h2>\n<p class=\"note\">Per scene the error "
-                            "net of the reference's noise and the rank (= marks a tie within the noise); bold: the "
-                            "best rank. A scene whose reference noise is unknown ranks nothing.</p>\n<table><tr>"
-                            "<th>method</th>");
+        key[j][0] = c ? sum / c : INFINITY, key[j][1] = c ? err / c : INFINITY;
+    }
+    for (int i = 1; i < n; i++) /* stable insertion sort */
+        for (int k = i;
+             k > 0 && (key[k][0] < key[k - 1][0] || (key[k][0] == key[k - 1][0] && key[k][1] < key[k - 1][1])); k--) {
+            double t0 = key[k][0], t1 = key[k][1];
+            key[k][0] = key[k - 1][0], key[k][1] = key[k - 1][1], key[k - 1][0] = t0, key[k - 1][1] = t1;
+            const char *u = names[k];
+            names[k] = names[k - 1], names[k - 1] = u;
+        }
+}
+
+static void summary_head(lucent_strbuf *b, const lucent_compare_scene *scenes, int count, const summary_scene *ss)
+{
+    lucent_strbuf_printf(b, "<table><tr><th>method</th>");
     for (int i = 0; i < count; i++) {
         lucent_strbuf_printf(b, "<th><a href=\"#");
         lucent_strbuf_xml(b, scenes[i].name);
@@ -286,31 +420,65 @@ static void html_summary(lucent_strbuf *b, const lucent_compare_scene *scenes, i
         pct_or_unknown(b, lucent_compare_noise_known(&scenes[i]) ? scenes[i].reference_noise : NAN);
         lucent_strbuf_printf(b, " (%d)</td>", scenes[i].reference_spp);
     }
+    lucent_strbuf_printf(b, "</tr>\n<tr><td>spread: best to worst (ranks)</td>");
+    for (int i = 0; i < count; i++) {
+        if (ss[i].ranked && isfinite(ss[i].lo))
+            lucent_strbuf_printf(b, "<td>%.2f%% to %.2f%% (%d)</td>", 100 * ss[i].lo, 100 * ss[i].hi, ss[i].groups);
+        else
+            lucent_strbuf_printf(b, "<td>&ndash;</td>");
+    }
     lucent_strbuf_printf(b, "</tr>\n");
+}
+
+/* The summary across scenes: per method its net error and rank in each scene (the methods ranked
+ * best over the scenes first), per scene the reference's noise and the spread of the errors. */
+static void html_summary(lucent_strbuf *b, const lucent_compare_scene *scenes, int count)
+{
+    const char *names[64];
+    int n = 0;
+    for (int i = 0; i < count; i++)
+        for (int k = 0; k < scenes[i].method_count; k++) {
+            bool seen = false;
+            for (int j = 0; j < n; j++) seen |= !strcmp(names[j], scenes[i].methods[k].name);
+            if (!seen && n < 64) names[n++] = scenes[i].methods[k].name;
+        }
+    summary_scene *ss = calloc((size_t)(count > 0 ? count : 1), sizeof *ss);
+    if (!ss) return; /* the buffer's own out-of-memory is reported by lucent_strbuf_finish */
+    for (int i = 0; i < count; i++) summary_rank(&scenes[i], &ss[i]);
+    summary_order(scenes, count, ss, names, n);
+    lucent_strbuf_printf(b,
+                         "<h2 id=\"summary\">Summary across scenes</h2>\n<p class=\"note\">Per scene the error "
+                         "net of the reference's noise and, in brackets, the rank. Methods of the same rank cannot "
+                         "be told apart in that scene: the paired test of their squared errors against the same "
+                         "reference puts them within %.0f standard errors of each other (where no test was made, "
+                         "their net errors lie within the reference's noise). Bold: the best rank where it is "
+                         "apart from some other method. The rows run from the best mean rank down; the spread "
+                         "row gives the best and the worst net error and how many ranks the scene "
+                         "separates. A scene whose reference noise is unknown ranks nothing.</p>\n",
+                         LUCENT_COMPARE_Z);
+    summary_head(b, scenes, count, ss);
     for (int j = 0; j < n; j++) {
         lucent_strbuf_printf(b, "<tr><td>");
         lucent_strbuf_xml(b, names[j]);
         lucent_strbuf_printf(b, "</td>");
         for (int i = 0; i < count; i++) {
             const lucent_compare_scene *sc = &scenes[i];
-            int order[64], rank[64], k = -1;
-            bool ranked = sc->method_count <= 64 && lucent_compare_rank(sc, order, rank);
-            for (int m = 0; m < sc->method_count && m < 64; m++)
-                if (!strcmp(sc->methods[m].name, names[j])) k = m;
+            int k = method_index(sc, names[j]);
             if (k < 0) {
                 lucent_strbuf_printf(b, "<td>&ndash;</td>");
-            } else if (!ranked) {
+            } else if (!ss[i].ranked) {
                 lucent_strbuf_printf(b, "<td>%.2f%% (not net; unranked)</td>", 100 * sc->methods[k].rel_rms);
             } else {
-                bool best = rank[k] == 1;
-                lucent_strbuf_printf(b, "<td>%s%.2f%% (%s%d)%s</td>", best ? "<b>" : "",
+                bool best = ss[i].rank[k] == 1 && ss[i].groups > 1;
+                lucent_strbuf_printf(b, "<td>%s%.2f%% (%d)%s</td>", best ? "<b>" : "",
                                      100 * lucent_compare_net_error(sc->methods[k].rel_rms, sc->reference_noise),
-                                     tied(sc, rank, k) ? "=" : "", rank[k], best ? "</b>" : "");
+                                     ss[i].rank[k], best ? "</b>" : "");
             }
         }
         lucent_strbuf_printf(b, "</tr>\n");
     }
     lucent_strbuf_printf(b, "</table>\n");
+    free(ss);
 }
 
 lucent_status lucent_compare_write_html(const char *path, const char *title, const lucent_compare_scene *scenes,
@@ -333,6 +501,7 @@ lucent_status lucent_compare_write_html(const char *path, const char *title, con
         lucent_strbuf_printf(&b, "</a></li>");
     }
     lucent_strbuf_printf(&b, "</ul>\n");
+    if (count > 0) report_html_provenance(&b, scenes[0].provenance);
     for (int i = 0; i < count; i++) {
         char warn[400];
         if (!noise_warning(&scenes[i], warn, sizeof warn)) continue;
@@ -355,6 +524,7 @@ lucent_status lucent_compare_write_html(const char *path, const char *title, con
 lucent_status lucent_compare_write_markdown(const char *path, const lucent_compare_scene *scenes, int count)
 {
     lucent_strbuf b = {0};
+    if (count > 0) report_md_provenance(&b, scenes[0].provenance);
     for (int i = 0; i < count; i++) {
         const lucent_compare_scene *sc = &scenes[i];
         char warn[400], noise[32];
@@ -367,10 +537,13 @@ lucent_status lucent_compare_write_markdown(const char *path, const lucent_compa
                              i ? "\n" : "", sc->name, sc->reference_spp, sc->reference_seconds, noise, sc->width,
                              sc->height, sc->device ? sc->device : "unknown");
         if (noise_warning(sc, warn, sizeof warn)) lucent_strbuf_printf(&b, "**Warning:** %s.\n\n", warn);
-        lucent_strbuf_printf(&b, "| rank | method | rel. RMS error | net of noise | R | G | B | frame ms | x Lambert | "
-                                 "setup ms |\n|---|---|---|---|---|---|---|---|---|---|\n");
         int order[64], rank[64];
         bool ranked = sc->method_count <= 64 && lucent_compare_rank(sc, order, rank);
+        bool zcol = ranked && sc->pair_se, flip = any_flip(sc);
+        lucent_strbuf_printf(&b,
+                             "| rank | method | rel. RMS error | net of noise | R | G | B | frame ms | x Lambert | "
+                             "setup ms |%s%s\n|---|---|---|---|---|---|---|---|---|---|%s%s\n",
+                             zcol ? " z next |" : "", flip ? " FLIP |" : "", zcol ? "---|" : "", flip ? "---|" : "");
         for (int j = 0; j < sc->method_count && j < 64; j++) {
             int k = ranked ? order[j] : j;
             const lucent_compare_method *m = &sc->methods[k];
@@ -382,10 +555,30 @@ lucent_status lucent_compare_write_markdown(const char *path, const lucent_compa
             double q = lambert_ratio(sc, k);
             if (isfinite(q)) snprintf(ratio, sizeof ratio, "%.2f", q);
             const char *bold = ranked && rank[k] == 1 ? "**" : "";
-            lucent_strbuf_printf(&b, "| %s | %s%s%s | %.2f%% | %s | %.2f%% | %.2f%% | %.2f%% | %.3f | %s | %.0f |\n", r,
+            lucent_strbuf_printf(&b, "| %s | %s%s%s | %.2f%% | %s | %.2f%% | %.2f%% | %.2f%% | %.3f | %s | %.0f |", r,
                                  bold, m->name, bold, 100 * m->rel_rms, net, 100 * m->rel_rms_rgb[0],
                                  100 * m->rel_rms_rgb[1], 100 * m->rel_rms_rgb[2], m->frame_ms, ratio, m->setup_ms);
+            if (zcol) {
+                char z[32];
+                z_next(sc, order, j, z, sizeof z);
+                lucent_strbuf_printf(&b, " %s |", z[0] ? z : "-");
+            }
+            if (flip) {
+                if (m->has_flip)
+                    lucent_strbuf_printf(&b, " %.4f |", m->flip);
+                else
+                    lucent_strbuf_printf(&b, " - |");
+            }
+            lucent_strbuf_printf(&b, "\n");
         }
+        if (ranked)
+            lucent_strbuf_printf(&b, "\n%s\n",
+                                 sc->pair_se ? "Same rank (=): the paired test of the squared errors "
+                                               "cannot tell the methods apart (|z| < 3); z next: "
+                                               "the separation from the next row."
+                                             : "Same rank (=): net errors within the reference's noise.");
+        report_md_regions(&b, sc);
+        report_md_lights(&b, sc);
         for (int j = 0; j < sc->skipped_count; j++)
             lucent_strbuf_printf(&b, "%s%s (skipped: %s)%s", j ? "; " : "\nNot in the table: ", sc->skipped[j].method,
                                  sc->skipped[j].reason, j + 1 == sc->skipped_count ? ".\n" : "");
@@ -470,7 +663,9 @@ lucent_status lucent_compare_write_chart(const char *path, const lucent_compare_
              known ? "" : " (reference noise unknown: raw errors)");
     snprintf(band, sizeof band, "reference noise (%.2f%%)", known ? 100 * sc->reference_noise : 0.0);
     lucent_plot_panel panel = {.title = title,
-                               .x_label = "frame time (ms, GPU)",
+                               .x_label = "frame time (ms, GPU; logarithmic)",
+                               .log_x = true,
+                               .legend_outside = true,
                                .y_label = known ? "relative RMS error net of the reference's noise (%)"
                                                 : "relative RMS error (%)",
                                .series = series,

@@ -25,10 +25,108 @@ static cJSON *method_json(const lucent_compare_method *m, const lucent_frame_tim
     cJSON_AddNumberToObject(j, "frame_ms", m->frame_ms);
     cJSON_AddNumberToObject(j, "setup_ms", m->setup_ms);
     cJSON_AddStringToObject(j, "settings", m->settings);
+    cJSON_AddStringToObject(j, "kind", m->kind ? m->kind : "gl");
+    if (m->has_flip)
+        cJSON_AddNumberToObject(j, "flip", m->flip);
+    else
+        cJSON_AddNullToObject(j, "flip");
     cJSON *passes = cJSON_AddObjectToObject(j, "passes_ms");
     for (int p = 0; passes && p < times->pass_count; p++)
         cJSON_AddNumberToObject(passes, times->pass_name[p], times->pass_ms[p]);
     return j;
+}
+
+/* A number, or null when it is not finite. */
+static void add_number(cJSON *o, const char *key, double v)
+{
+    if (isfinite(v))
+        cJSON_AddNumberToObject(o, key, v);
+    else
+        cJSON_AddNullToObject(o, key);
+}
+
+static void add_numbers(cJSON *o, const char *key, const double *v, int n)
+{
+    cJSON *a = cJSON_AddArrayToObject(o, key);
+    for (int i = 0; a && i < n; i++)
+        cJSON_AddItemToArray(a, isfinite(v[i]) ? cJSON_CreateNumber(v[i]) : cJSON_CreateNull());
+}
+
+static cJSON *regions_json(const lucent_compare_region *g, int count, int methods)
+{
+    cJSON *a = cJSON_CreateArray();
+    for (int r = 0; a && r < count; r++) {
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "region", g[r].name);
+        cJSON_AddNumberToObject(o, "pixels", (double)g[r].pixels);
+        add_number(o, "energy", g[r].energy);
+        add_number(o, "reference_noise", g[r].reference_noise);
+        add_numbers(o, "rel_rms", g[r].rel_rms, methods);
+        add_numbers(o, "ratio", g[r].ratio, methods);
+        add_numbers(o, "error_share", g[r].error_share, methods);
+        cJSON_AddItemToArray(a, o);
+    }
+    return a;
+}
+
+/* The paired tests: per pair of methods (i < j) the difference of squared errors, its standard
+ * error and z. */
+static void pairs_json(cJSON *sc, const lucent_compare_scene *r, int n)
+{
+    cJSON *paired = cJSON_AddObjectToObject(sc, "paired_test");
+    if (!paired) return;
+    cJSON_AddNumberToObject(paired, "z_threshold", LUCENT_COMPARE_Z);
+    cJSON_AddNumberToObject(paired, "reference_runs", r->reference_runs > 0 ? r->reference_runs : 1);
+    if (r->se_inflation > 0)
+        cJSON_AddNumberToObject(paired, "se_inflation", r->se_inflation);
+    else
+        cJSON_AddNullToObject(paired, "se_inflation");
+    cJSON *pairs = cJSON_AddArrayToObject(paired, "pairs");
+    for (int i = 0; pairs && r->pair_se && i < n; i++)
+        for (int j = i + 1; j < n; j++) {
+            cJSON *o = cJSON_CreateObject();
+            double ei = r->methods[i].rel_rms, ej = r->methods[j].rel_rms;
+            cJSON_AddStringToObject(o, "a", r->methods[i].name);
+            cJSON_AddStringToObject(o, "b", r->methods[j].name);
+            add_number(o, "d", ei * ei - ej * ej);
+            add_number(o, "se", r->pair_se[(size_t)i * (size_t)r->method_count + (size_t)j]);
+            double z = lucent_compare_pair_z(r, i, j);
+            if (isinf(z))
+                cJSON_AddStringToObject(o, "z", z > 0 ? "inf" : "-inf");
+            else
+                add_number(o, "z", z);
+            cJSON_AddItemToArray(pairs, o);
+        }
+}
+
+static cJSON *lights_json(const lucent_compare_scene *r, int methods)
+{
+    cJSON *a = cJSON_CreateArray();
+    for (int l = 0; a && l < r->light_count; l++) {
+        const lucent_compare_light *li = &r->lights[l];
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "light", li->name);
+        cJSON_AddNumberToObject(o, "reference_spp", li->reference_spp);
+        add_number(o, "reference_noise", li->reference_noise);
+        add_numbers(o, "rel_rms", li->rel_rms, methods);
+        add_numbers(o, "ratio", li->ratio, methods);
+        if (li->regions) cJSON_AddItemToObject(o, "regions", regions_json(li->regions, li->region_count, methods));
+        cJSON_AddItemToArray(a, o);
+    }
+    return a;
+}
+
+static cJSON *provenance_json(const lucent_compare_provenance *p)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "lucent_version", p->version ? p->version : "unknown");
+    cJSON_AddStringToObject(o, "revision", p->revision ? p->revision : "unknown");
+    cJSON_AddStringToObject(o, "command", p->command ? p->command : "");
+    cJSON_AddStringToObject(o, "date", p->date ? p->date : "unknown");
+    cJSON_AddStringToObject(o, "machine", p->machine ? p->machine : "unknown");
+    cJSON_AddNumberToObject(o, "cores", p->cores);
+    cJSON_AddStringToObject(o, "gl_renderer", p->renderer ? p->renderer : "unknown");
+    return o;
 }
 
 static cJSON *scene_json(const lucent_compare_scene_result *sr)
@@ -49,6 +147,7 @@ static cJSON *scene_json(const lucent_compare_scene_result *sr)
     int n = r->method_count < LUCENT_COMPARE_MAX_METHODS ? r->method_count : LUCENT_COMPARE_MAX_METHODS;
     lucent_compare_scene clipped = *r;
     clipped.method_count = n;
+    if (n < r->method_count) clipped.pair_se = NULL; /* its rows are the whole scene's */
     lucent_compare_rank(&clipped, order, rank);
     int l = lucent_compare_lambert_index(r);
     cJSON_AddNumberToObject(sc, "object_pixels", (double)sr->object_pixels);
@@ -60,6 +159,10 @@ static cJSON *scene_json(const lucent_compare_scene_result *sr)
         cJSON_AddItemToArray(methods,
                              method_json(&r->methods[k], &sr->times[k], known ? r->reference_noise : NAN, rank[k], q));
     }
+    pairs_json(sc, &clipped, n);
+    if (r->reference_from) cJSON_AddStringToObject(sc, "reference_from", r->reference_from);
+    if (r->regions) cJSON_AddItemToObject(sc, "regions", regions_json(r->regions, r->region_count, n));
+    if (r->lights) cJSON_AddItemToObject(sc, "lights", lights_json(r, n));
     cJSON *skipped = cJSON_AddArrayToObject(sc, "skipped");
     for (int k = 0; skipped && k < r->skipped_count; k++) {
         cJSON *o = cJSON_CreateObject();
@@ -72,7 +175,10 @@ static cJSON *scene_json(const lucent_compare_scene_result *sr)
 
 lucent_status lucent_compare_write_results_json(const char *path, const lucent_compare_result *result)
 {
-    cJSON *root = cJSON_CreateObject(), *scenes = cJSON_AddArrayToObject(root, "scenes");
+    cJSON *root = cJSON_CreateObject();
+    if (root && result->scene_count > 0 && result->scenes[0].report.provenance)
+        cJSON_AddItemToObject(root, "provenance", provenance_json(result->scenes[0].report.provenance));
+    cJSON *scenes = cJSON_AddArrayToObject(root, "scenes");
     for (int i = 0; scenes && i < result->scene_count; i++)
         cJSON_AddItemToArray(scenes, scene_json(&result->scenes[i]));
     lucent_status s =

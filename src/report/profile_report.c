@@ -12,15 +12,37 @@ static const char *const k_channel_color[] = {"#c0392b", "#27ae60", "#2e64c8"};
 
 /* ---- JSON ---- */
 
-static void add_material(cJSON *root, const lucent_material *m)
+static void fill_material(cJSON *j, const lucent_material *m)
 {
-    cJSON *j = cJSON_AddObjectToObject(root, "material");
+    if (!j) return;
     cJSON_AddStringToObject(j, "name", m->name);
     cJSON_AddStringToObject(j, "units", "mm^-1");
     lucent_json_add_numbers(j, "sigma_a", m->sigma_a, 3);
     lucent_json_add_numbers(j, "sigma_s", m->sigma_s, 3);
     lucent_json_add_numbers(j, "g", m->g, 3);
     cJSON_AddNumberToObject(j, "eta", m->eta);
+}
+
+static void add_material(cJSON *root, const lucent_material *m)
+{
+    fill_material(cJSON_AddObjectToObject(root, "material"), m);
+}
+
+/* "layers": [{"material": {...}, "thickness_mm": d or "inf"}, ...], top first. */
+static void add_layers(cJSON *root, const lucent_layer *layers, int count)
+{
+    cJSON *a = cJSON_AddArrayToObject(root, "layers");
+    for (int i = 0; a && i < count; i++) {
+        cJSON *l = cJSON_CreateObject();
+        if (!l || !cJSON_AddItemToArray(a, l)) {
+            cJSON_Delete(l);
+            return;
+        }
+        fill_material(cJSON_AddObjectToObject(l, "material"), &layers[i].material);
+        double d = layers[i].slab.thickness;
+        isinf(d) ? (void)cJSON_AddStringToObject(l, "thickness_mm", "inf")
+                 : (void)lucent_json_add_number(l, "thickness_mm", d);
+    }
 }
 
 static void add_sog(cJSON *root, const lucent_sog *sog)
@@ -43,6 +65,7 @@ lucent_status lucent_profile_write_json(const char *path, const lucent_profile_r
     if (!root) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
     cJSON_AddStringToObject(root, "model", p->model);
     add_material(root, r->material);
+    if (r->layers && r->layer_count > 0) add_layers(root, r->layers, r->layer_count);
     cJSON *units = cJSON_AddObjectToObject(root, "units");
     cJSON_AddStringToObject(units, "r", "mm");
     cJSON_AddStringToObject(units, "R_d", "mm^-2 (average over the bin's annulus)");

@@ -1,4 +1,5 @@
-/* SVG line charts: panels side by side, linear or logarithmic y, legends, error bands. */
+/* SVG line charts: panels side by side, linear or logarithmic axes, legends placed off the data,
+ * point labels placed apart, error bands. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,9 +20,22 @@ int lucent_plot_marker_count(void) { return MARKERS; }
 /* The data rectangle of one panel, in SVG pixels, and its value ranges. */
 typedef struct frame {
     double left, top, width, height;
-    double x0, x1, y0, y1; /* y in log10 units when log */
-    bool log_y;
+    double x0, x1, y0, y1; /* x, y in log10 units when log */
+    bool log_x, log_y;
 } frame;
+
+/* A rectangle in SVG pixels. */
+typedef struct box {
+    double x0, y0, x1, y1;
+} box;
+
+static double overlap(box a, box b)
+{
+    double w = fmin(a.x1, b.x1) - fmax(a.x0, b.x0), h = fmin(a.y1, b.y1) - fmax(a.y0, b.y0);
+    return w > 0 && h > 0 ? w * h : 0;
+}
+
+void lucent_plot_text_box(int n, double *width, double *height) { *width = 7.0 * (n > 0 ? n : 0), *height = 14; }
 
 int lucent_plot_nice_ticks(double lo, double hi, int max_ticks, double *dest)
 {
@@ -36,7 +50,7 @@ int lucent_plot_nice_ticks(double lo, double hi, int max_ticks, double *dest)
 
 static bool usable(const lucent_plot_panel *p, double x, double y)
 {
-    if (!isfinite(x) || !isfinite(y) || (p->log_y && y <= 0)) return false;
+    if (!isfinite(x) || !isfinite(y) || (p->log_y && y <= 0) || (p->log_x && x <= 0)) return false;
     bool fixed_x = p->x_min != 0 || p->x_max != 0;
     return !fixed_x || (x >= p->x_min && x <= p->x_max);
 }
@@ -57,6 +71,9 @@ static void fit_ranges(const lucent_plot_panel *p, frame *f)
         ymin = fmin(ymin, fmin(p->band_y0, p->band_y1)), ymax = fmax(ymax, fmax(p->band_y0, p->band_y1));
     if (p->x_min != 0 || p->x_max != 0) {
         xmin = p->x_min, xmax = p->x_max;
+    } else if (p->log_x) { /* open log x: whole decades */
+        if (!(xmin > 0)) xmin = 0.1, xmax = fmax(xmax, 1);
+        xmin = pow(10, floor(log10(xmin))), xmax = pow(10, ceil(log10(xmax)));
     } else if (xmax > xmin) { /* open x: widen to whole ticks */
         double t[MAX_TICKS];
         int n = lucent_plot_nice_ticks(xmin, xmax, 7, t);
@@ -77,10 +94,21 @@ static void fit_ranges(const lucent_plot_panel *p, frame *f)
         double step = n > 1 ? t[1] - t[0] : ymax - ymin;
         f->y0 = floor(ymin / step + 1e-9) * step, f->y1 = ceil(ymax / step - 1e-9) * step;
     }
+    f->log_x = p->log_x;
+    if (p->log_x) {
+        f->x0 = log10(fmax(xmin, 1e-300)), f->x1 = log10(fmax(xmax, 1e-300));
+        if (f->x1 - f->x0 > LOG_MAX_DECADES) f->x0 = f->x1 - LOG_MAX_DECADES;
+        if (f->x1 <= f->x0) f->x1 = f->x0 + 1;
+        return;
+    }
     f->x0 = xmin, f->x1 = xmax;
 }
 
-static double px(const frame *f, double x) { return f->left + (x - f->x0) / (f->x1 - f->x0) * f->width; }
+static double px(const frame *f, double x)
+{
+    double v = f->log_x ? log10(x) : x;
+    return f->left + (v - f->x0) / (f->x1 - f->x0) * f->width;
+}
 
 static double py(const frame *f, double y)
 {
@@ -99,8 +127,15 @@ static void axis_label(lucent_strbuf *b, double x, double y, const char *anchor,
 
 static void draw_x_ticks(lucent_strbuf *b, const frame *f)
 {
-    double t[MAX_TICKS];
-    int n = lucent_plot_nice_ticks(f->x0, f->x1, 7, t);
+    double t[LOG_MAX_DECADES + 2];
+    int n = 0;
+    if (f->log_x) { /* a tick per decade (every other one past 7), labelled with its value */
+        int stride = (int)ceil((f->x1 - f->x0) / 7);
+        for (double e = ceil(f->x0 - 1e-9); e <= f->x1 + 1e-9 && n < LOG_MAX_DECADES + 2; e += stride)
+            t[n++] = pow(10, e);
+    } else {
+        n = lucent_plot_nice_ticks(f->x0, f->x1, 7, t);
+    }
     for (int i = 0; i < n; i++) {
         double x = px(f, t[i]);
         lucent_strbuf_printf(b, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"/>\n", x, f->top,
@@ -233,19 +268,116 @@ static void draw_series(lucent_strbuf *b, const frame *f, const lucent_plot_pane
     if (open) lucent_strbuf_printf(b, "\"/>\n");
     for (int i = 0; s->markers && i < s->count; i++)
         if (usable(p, s->x[i], s->y[i])) draw_marker(b, s->marker, px(f, s->x[i]), py(f, s->y[i]), color);
-    for (int i = 0; s->point_labels && i < s->count; i++)
-        if (usable(p, s->x[i], s->y[i]) && s->point_labels[i])
-            axis_label(b, px(f, s->x[i]) + 7, py(f, s->y[i]) - 5, "start", 0, s->point_labels[i]);
 }
 
-static void draw_legend(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p)
+/* The boxes of every drawable point of the panel (markers, or the points of labelled series), 10 px
+ * wide; returns how many (at most max). */
+static int point_boxes(const frame *f, const lucent_plot_panel *p, box *dest, int max)
+{
+    int n = 0;
+    for (int s = 0; s < p->series_count; s++) {
+        const lucent_plot_series *ser = &p->series[s];
+        if (!ser->markers && !ser->point_labels) continue;
+        for (int i = 0; i < ser->count && n < max; i++)
+            if (usable(p, ser->x[i], ser->y[i])) {
+                double x = px(f, ser->x[i]), y = py(f, ser->y[i]);
+                dest[n++] = (box){x - 5, y - 5, x + 5, y + 5};
+            }
+    }
+    return n;
+}
+
+enum { MAX_PLACED = 256 };
+
+/* Writes every point label where it overlaps least what is placed already (the points, the legend,
+ * the labels before it): the first of the places around its point (up right first, then the other
+ * sides, then farther out, ring after ring up to 12 rings of 8 px) that overlaps nothing and stays
+ * inside the panel, else the least overlapping of them; a label set away from its point gets a thin
+ * line to it. */
+static void place_labels(lucent_strbuf *b, const frame *f, const lucent_plot_panel *p, box legend)
+{
+    box taken[MAX_PLACED];
+    int n = point_boxes(f, p, taken, MAX_PLACED - 1);
+    taken[n++] = legend;
+    static const double dir[8][2] = {{1, -1}, {1, 1}, {-1, -1}, {-1, 1}, {0, -1}, {0, 1}, {1, 0}, {-1, 0}};
+    for (int s = 0; s < p->series_count; s++) {
+        const lucent_plot_series *ser = &p->series[s];
+        for (int i = 0; ser->point_labels && i < ser->count; i++) {
+            if (!usable(p, ser->x[i], ser->y[i]) || !ser->point_labels[i]) continue;
+            double x = px(f, ser->x[i]), y = py(f, ser->y[i]), w, h, best = INFINITY;
+            lucent_plot_text_box((int)strlen(ser->point_labels[i]), &w, &h);
+            box pick = {x + 7, y - 5 - h, x + 7 + w, y - 5};
+            int placed_ring = 1;
+            for (int ring = 1; ring <= 12 && best > 0; ring++)
+                for (int k = 0; k < 8 && best > 0; k++) {
+                    double gap = 8 * ring - 1, cx = x + dir[k][0] * gap, cy = y + dir[k][1] * gap;
+                    double bx = dir[k][0] > 0 ? cx : dir[k][0] < 0 ? cx - w : cx - w / 2;
+                    double by = dir[k][1] > 0 ? cy : dir[k][1] < 0 ? cy - h : cy - h / 2;
+                    box c = {bx, by, bx + w, by + h};
+                    double cost = 0;
+                    for (int t = 0; t < n; t++) cost += overlap(c, taken[t]);
+                    if (c.x0 < f->left || c.x1 > f->left + f->width || c.y0 < f->top || c.y1 > f->top + f->height)
+                        cost += w * h; /* outside the panel: as bad as covering a label */
+                    if (cost < best) best = cost, pick = c, placed_ring = ring;
+                }
+            if (n < MAX_PLACED) taken[n++] = pick;
+            if (placed_ring > 1) { /* a leader from the point to the label's nearest edge */
+                double lx = fmin(fmax(x, pick.x0), pick.x1), ly = fmin(fmax(y, pick.y0), pick.y1);
+                lucent_strbuf_printf(b,
+                                     "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#999\" "
+                                     "stroke-width=\"0.8\"/>\n",
+                                     x, y, lx, ly);
+            }
+            axis_label(b, pick.x0, pick.y1 - 3, "start", 0, ser->point_labels[i]);
+        }
+    }
+}
+
+/* The legend's box: rows of 16 px, a 28 px key and the longest text. */
+static box legend_size(const lucent_plot_panel *p)
+{
+    int rows = 0, chars = 0;
+    for (int s = 0; s < p->series_count; s++)
+        if (p->series[s].label) rows++, chars = fmax(chars, (int)strlen(p->series[s].label));
+    if (p->band_label && (p->band_y0 != 0 || p->band_y1 != 0)) rows++, chars = fmax(chars, (int)strlen(p->band_label));
+    double w, h;
+    lucent_plot_text_box(chars, &w, &h);
+    return (box){0, 0, rows ? w + 36 : 0, rows ? 16.0 * rows + 6 : 0};
+}
+
+/* The corner of the panel where the legend covers no point (top right, top left, bottom right,
+ * bottom left), else the one covering fewest. */
+static box legend_box(const frame *f, const lucent_plot_panel *p)
+{
+    box size = legend_size(p), pts[MAX_PLACED], best = {0};
+    int n = point_boxes(f, p, pts, MAX_PLACED), fewest = 1 << 30;
+    double w = size.x1, h = size.y1;
+    const double corner[4][2] = {{f->left + f->width - w - 4, f->top + 4},
+                                 {f->left + 4, f->top + 4},
+                                 {f->left + f->width - w - 4, f->top + f->height - h - 4},
+                                 {f->left + 4, f->top + f->height - h - 4}};
+    for (int c = 0; c < 4 && fewest > 0; c++) {
+        box cand = {corner[c][0], corner[c][1], corner[c][0] + w, corner[c][1] + h};
+        int covered = 0;
+        for (int i = 0; i < n; i++) covered += overlap(cand, pts[i]) > 0;
+        if (covered < fewest) fewest = covered, best = cand;
+    }
+    return best;
+}
+
+static void draw_legend(lucent_strbuf *b, const lucent_plot_panel *p, box at)
 {
     int row = 0;
+    if (at.x1 > at.x0)
+        lucent_strbuf_printf(b,
+                             "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"white\" "
+                             "fill-opacity=\"0.85\" stroke=\"#ccc\"/>\n",
+                             at.x0, at.y0, at.x1 - at.x0, at.y1 - at.y0);
     for (int s = 0; s < p->series_count; s++) {
         const lucent_plot_series *ser = &p->series[s];
         if (!ser->label) continue;
         const char *color = ser->color ? ser->color : k_palette[s % PALETTE];
-        double x = f->left + f->width - 150, y = f->top + 14 + 16 * row++;
+        double x = at.x0 + 4, y = at.y0 + 16 + 16 * row++;
         if (ser->markers && ser->count == 1) /* a lone point: its marker stands for it */
             draw_marker(b, ser->marker ? ser->marker : 0, x + 11, y - 4, color);
         else
@@ -256,7 +388,7 @@ static void draw_legend(lucent_strbuf *b, const frame *f, const lucent_plot_pane
         axis_label(b, x + 28, y, "start", 0, ser->label);
     }
     if (p->band_label && (p->band_y0 != 0 || p->band_y1 != 0)) {
-        double x = f->left + f->width - 150, y = f->top + 14 + 16 * row;
+        double x = at.x0 + 4, y = at.y0 + 16 + 16 * row;
         lucent_strbuf_printf(b,
                              "<rect x=\"%.1f\" y=\"%.1f\" width=\"22\" height=\"9\" fill=\"#888\" "
                              "fill-opacity=\"0.25\"/>\n",
@@ -288,6 +420,8 @@ static void draw_panel(lucent_strbuf *b, const lucent_plot_desc *d, int index, d
                .top = top + MARGIN_TOP,
                .width = w - MARGIN_LEFT - MARGIN_RIGHT,
                .height = h - MARGIN_TOP - MARGIN_BOTTOM};
+    box legend = legend_size(p);
+    if (p->legend_outside && legend.x1 > 0) f.width = fmax(f.width - legend.x1 - 12, 0.25 * f.width);
     fit_ranges(p, &f);
     lucent_strbuf_printf(b,
                          "<clipPath id=\"clip%d\"><rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" "
@@ -302,7 +436,12 @@ static void draw_panel(lucent_strbuf *b, const lucent_plot_desc *d, int index, d
     for (int s = 0; s < p->series_count; s++)
         draw_series(b, &f, p, &p->series[s], p->series[s].color ? p->series[s].color : k_palette[s % PALETTE]);
     lucent_strbuf_printf(b, "</g>\n");
-    draw_legend(b, &f, p);
+    if (p->legend_outside)
+        legend = (box){f.left + f.width + 12, f.top, f.left + f.width + 12 + legend.x1, f.top + legend.y1};
+    else
+        legend = legend_box(&f, p);
+    draw_legend(b, p, legend);
+    place_labels(b, &f, p, legend);
     if (p->title) axis_label(b, f.left + f.width / 2, f.top - 12, "middle", 0, p->title);
     if (p->x_label) axis_label(b, f.left + f.width / 2, f.top + f.height + 38, "middle", 0, p->x_label);
     if (p->y_label) axis_label(b, f.left - 52, f.top + f.height / 2, "middle", -90, p->y_label);

@@ -8,6 +8,7 @@
 
 #include "base/mat4.h"
 #include "base/optics.h"
+#include "lucent/skin.h"
 #include "material/internal.h"
 #include "scene/internal.h"
 
@@ -31,6 +32,15 @@ static const char *const k_primitive_names[] = {"uv_sphere", "icosphere", "torus
 static const char *const k_primitive_keys[] = {"primitive", "radius",  "major_radius", "axes",
                                                "u_count",   "v_count", "subdivisions", NULL};
 
+/* An optional length > 0 (0 when absent: the primitive's default). */
+static lucent_status read_positive(const lucent_json_node *n, const char *key, double *dest)
+{
+    lucent_status s = lucent_json_number_or(n, key, 0, dest);
+    if (s == LUCENT_OK && lucent_json_has(n, key) && !(*dest > 0 && *dest <= 1e12))
+        s = lucent_json_fail(n, key, LUCENT_ERR_PARSE, "must be > 0 and at most 1e12, got %g", *dest);
+    return s;
+}
+
 static lucent_status read_primitive(const lucent_json_node *n, lucent_primitive_desc *d, const char **kind)
 {
     memset(d, 0, sizeof *d);
@@ -44,13 +54,29 @@ static lucent_status read_primitive(const lucent_json_node *n, lucent_primitive_
         s = lucent_json_fail(n, "primitive", LUCENT_ERR_PARSE,
                              "unknown primitive \"%s\" (uv_sphere, icosphere, torus, ellipsoid)", *kind);
     d->kind = (lucent_primitive_kind)(k < 0 ? 0 : k);
+    /* Each key that the primitive reads (a key it does not read is refused, not ignored); a value given is
+     * used as given: lucent_primitive_desc's zero means the default, so 0 is refused, never a unit sphere. */
+    /* per kind, the keys it reads (bit i: k_primitive_keys[i]): uv_sphere, icosphere, torus, ellipsoid */
+    static const unsigned reads[4] = {1u << 1 | 1u << 4 | 1u << 5, 1u << 1 | 1u << 6,
+                                      1u << 1 | 1u << 2 | 1u << 4 | 1u << 5, 1u << 3 | 1u << 4 | 1u << 5};
+    for (int i = 1; s == LUCENT_OK && k_primitive_keys[i]; i++)
+        if (!(reads[d->kind] >> i & 1) && lucent_json_has(n, k_primitive_keys[i]))
+            s = lucent_json_fail(n, k_primitive_keys[i], LUCENT_ERR_PARSE, "the primitive %s has no %s",
+                                 k_primitive_names[d->kind], k_primitive_keys[i]);
     static const double no_axes[3] = {0, 0, 0};
-    if (s == LUCENT_OK) s = scene_read_range(n, "radius", 0, 0, 1e12, &d->radius);
-    if (s == LUCENT_OK) s = scene_read_range(n, "major_radius", 0, 0, 1e12, &d->major_radius);
+    if (s == LUCENT_OK) s = read_positive(n, "radius", &d->radius);
+    if (s == LUCENT_OK) s = read_positive(n, "major_radius", &d->major_radius);
     if (s == LUCENT_OK) s = scene_read_vec3(n, "axes", no_axes, d->axes);
-    if (s == LUCENT_OK) s = scene_read_int(n, "u_count", 0, 0, 1 << 14, &d->u_count);
-    if (s == LUCENT_OK) s = scene_read_int(n, "v_count", 0, 0, 1 << 14, &d->v_count);
-    if (s == LUCENT_OK) s = scene_read_int(n, "subdivisions", 0, 0, 9, &d->subdivisions);
+    for (int a = 0; s == LUCENT_OK && lucent_json_has(n, "axes") && a < 3; a++)
+        if (!(d->axes[a] > 0 && d->axes[a] <= 1e12))
+            s = lucent_json_fail(n, "axes", LUCENT_ERR_PARSE, "each axis must be > 0 and at most 1e12, got %g",
+                                 d->axes[a]);
+    int min_v = d->kind == LUCENT_PRIMITIVE_TORUS ? 3 : 2;
+    if (s == LUCENT_OK && lucent_json_has(n, "u_count")) s = scene_read_int(n, "u_count", 0, 3, 1 << 14, &d->u_count);
+    if (s == LUCENT_OK && lucent_json_has(n, "v_count"))
+        s = scene_read_int(n, "v_count", 0, min_v, 1 << 14, &d->v_count);
+    if (s == LUCENT_OK && lucent_json_has(n, "subdivisions"))
+        s = scene_read_int(n, "subdivisions", 0, 1, 9, &d->subdivisions);
     return s;
 }
 
@@ -173,7 +199,8 @@ static lucent_status read_transform(const lucent_json_node *n, double mm_per_uni
         else
             memcpy(sc, one, sizeof sc);
         for (int i = 0; s == LUCENT_OK && i < 3; i++)
-            if (!(sc[i] != 0)) s = lucent_json_fail(&t, "scale", LUCENT_ERR_PARSE, "must not be zero");
+            if (!(fabs(sc[i]) >= 1e-12 && fabs(sc[i]) <= 1e12))
+                s = lucent_json_fail(&t, "scale", LUCENT_ERR_PARSE, "must be within +-[1e-12, 1e12], got %g", sc[i]);
         for (int a = 2; s == LUCENT_OK && a >= 0; a--) mat_rotation(a, rot[a], r), lucent_mat4_mul(m, r, m);
         for (int c = 0; c < 3; c++)
             for (int row = 0; row < 3; row++) m[4 * c + row] *= sc[c];
@@ -183,6 +210,22 @@ static lucent_status read_transform(const lucent_json_node *n, double mm_per_uni
         for (int row = 0; row < 3; row++) m[4 * c + row] *= mm_per_unit;
     memcpy(dest, m, sizeof m);
     return s;
+}
+
+/* The farthest a vertex may stand from the origin in world mm (1000 km): the renderers work in single
+ * precision, where a scale of 1e300 made every vertex infinite and the object vanished. */
+#define WORLD_MAX_MM 1e9
+
+/* After the transform: every vertex finite and within WORLD_MAX_MM, naming the transform and its scale. */
+static lucent_status check_placed(const lucent_json_node *n, const lucent_mesh *mesh)
+{
+    for (size_t i = 0; i < 3 * mesh->vertex_count; i++)
+        if (!(fabs(mesh->positions[i]) <= WORLD_MAX_MM))
+            return lucent_json_fail(n, lucent_json_has(n, "transform") ? "transform" : "mm_per_unit", LUCENT_ERR_PARSE,
+                                    "places vertex %zu at %g mm from the origin, beyond the %g mm the renderers "
+                                    "represent (check the scale, the translation and mm_per_unit)",
+                                    i / 3, mesh->positions[i], WORLD_MAX_MM);
+    return LUCENT_OK;
 }
 
 /* Moves the mesh into world mm; a mirroring map reverses the faces so normals stay outward. */
@@ -209,12 +252,17 @@ static lucent_status read_material(const lucent_json_node *n, lucent_material *m
     lucent_json_node mat;
     lucent_status s = lucent_json_member(n, "material", true, &mat);
     if (s != LUCENT_OK) return s;
-    if (cJSON_IsObject(mat.json)) return material_read_json(&mat, "material", m);
-    if (!cJSON_IsString(mat.json))
+    if (cJSON_IsObject(mat.json)) {
+        s = material_read_json(&mat, "material", m);
+    } else if (!cJSON_IsString(mat.json)) {
         return lucent_json_fail(&mat, NULL, LUCENT_ERR_PARSE, "expected a preset name, a file or a material object");
-    if (lucent_material_resolve(mat.json->valuestring, m) != LUCENT_OK)
+    } else if (lucent_material_resolve(mat.json->valuestring, m) != LUCENT_OK) {
         return lucent_json_fail(&mat, NULL, LUCENT_ERR_PARSE, "%s", lucent_last_error());
-    return LUCENT_OK;
+    }
+    /* a spectral skin: its equivalent medium for the tracer and the coefficient readers (lucent/skin.h) */
+    if (s == LUCENT_OK && lucent_skin_resolve(m) != LUCENT_OK)
+        return lucent_json_fail(&mat, NULL, LUCENT_ERR_PARSE, "%s", lucent_last_error());
+    return s;
 }
 
 /* Latitude-longitude coordinates about the bounding-box centre of the mesh as loaded. */
@@ -299,6 +347,7 @@ lucent_status scene_read_object(const lucent_json_node *n, const char *base_dir,
         place_points(o);
     else if (s == LUCENT_OK && o->mesh)
         transform_mesh(o->mesh, o->to_world);
+    if (s == LUCENT_OK && o->mesh) s = check_placed(n, o->mesh);
     if (s == LUCENT_OK && !o->name[0]) snprintf(o->name, sizeof o->name, "%s", o->material.name);
     if (s != LUCENT_OK) scene_object_free(o);
     return s;

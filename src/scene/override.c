@@ -30,7 +30,9 @@ static const char *segment_name(const char *p, char *name, size_t size)
 
 static lucent_status bad(const char *file, const char *ov, const char *why)
 {
-    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: override '%s': %s", file, ov, why);
+    char shown[1024];
+    lucent_json_printable(ov, shown, sizeof shown);
+    return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: override '%s': %s", file, shown, why);
 }
 
 /* Walks the indices "[i]..." after a member; *node becomes the element. */

@@ -120,6 +120,7 @@ lucent_status lucent_scene_load(const char *path, const lucent_scene_load_desc *
 {
     cJSON *json;
     *dest = NULL;
+    if (!path) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "scene: no file given (NULL path)");
     if (strlen(path) >= LUCENT_SCENE_PATH_SIZE)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%.64s...: path too long", path);
     lucent_status s = lucent_json_parse_file(path, &json);

@@ -203,7 +203,7 @@ static const lucent_setting k_view[] = {
      .parse = parse_method,
      .doc = "the GL renderer's method; ssss:<kernel>[rank] chooses the kernel too (ssss:svd3)"},
     SETTING_INT("shadow_map_size", view.shadow_map_size, 2048, 16, 16384, 0, "texels per side of each shadow map"),
-    SETTING_COLOR("background", view.background, 0, 0, INFINITY,
+    SETTING_COLOR("background", view.background, 0, 0, 1e30,
                   "linear RGB behind the objects (an environment light shows through)"),
     SETTING_CHOICE("tonemap", view.tonemap, "filmic", tonemap_name, "tone mapping of PNG outputs"),
     SETTING_REAL("exposure", view.exposure, 0, -64, 64, "exposure of PNG outputs, stops"),
@@ -216,16 +216,49 @@ static const lucent_settings_group k_view_group = SETTINGS_GROUP("view", "the im
 extern const lucent_settings_group gl_ssss_settings, gl_translucency_settings, gl_cdrf_settings, gl_points_settings,
     gl_tsd_settings, tr_trace_settings;
 
-/* In reading order: the method ("ssss:svd3") before the kernel and rank that may refine it. */
+/* The registry: every group, in reading order (the method "ssss:svd3" before the kernel and rank
+ * that may refine it). The settings engine of src/base/settings.c walks the table it is given; this
+ * is the one the library gives it. */
 static const lucent_settings_group *const k_groups[] = {
     &k_view_group,       &gl_ssss_settings, &gl_translucency_settings, &gl_cdrf_settings,
     &gl_points_settings, &gl_tsd_settings,  &tr_trace_settings};
+static const settings_table k_table = {k_groups, (int)(sizeof k_groups / sizeof k_groups[0])};
 
-int lucent_settings_group_count(void) { return (int)(sizeof k_groups / sizeof k_groups[0]); }
+int lucent_settings_group_count(void) { return k_table.count; }
 
 const lucent_settings_group *lucent_settings_group_get(int index)
 {
-    return index >= 0 && index < lucent_settings_group_count() ? k_groups[index] : NULL;
+    return index >= 0 && index < k_table.count ? k_groups[index] : NULL;
+}
+
+lucent_render_settings lucent_render_settings_defaults(void) { return settings_table_defaults(&k_table); }
+
+const lucent_setting *lucent_setting_find(const char *key, const lucent_settings_group **group)
+{
+    return settings_table_find(&k_table, key, group);
+}
+
+lucent_status lucent_render_settings_check(const lucent_render_settings *s)
+{
+    return settings_table_check(&k_table, s);
+}
+
+void lucent_settings_describe(const lucent_render_settings *s, const char *group, const char *const *skip, char *dest,
+                              size_t size)
+{
+    settings_table_describe(&k_table, s, group, skip, dest, size);
+}
+
+lucent_status lucent_settings_help(bool markdown, char **dest) { return settings_table_help(&k_table, markdown, dest); }
+
+lucent_status lucent_settings_read_json(const lucent_json_node *render, lucent_render_settings *dest)
+{
+    return settings_table_read_json(&k_table, render, dest);
+}
+
+bool lucent_settings_write_json(const lucent_render_settings *s, cJSON *object)
+{
+    return settings_table_write_json(&k_table, s, object);
 }
 
 lucent_status scene_read_render(const lucent_json_node *root, lucent_render_settings *dest)

@@ -156,6 +156,7 @@ bool tr_intersect(const tr_geometry *g, v3 o, v3 d, double tnear, double tfar, t
     /* Embree's geometric normal of a counter-clockwise triangle points outward (as (v1 - v0) x (v2 - v0)). */
     hit->n = v3_normalize(v3_make(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
     hit->object = g->object[rh.hit.geomID];
+    hit->prim = (int)rh.hit.primID, hit->u = rh.hit.u, hit->v = rh.hit.v;
     hit->t = rh.ray.tfar;
     double reach = fmax(fabs(o.x), fmax(fabs(o.y), fabs(o.z))) + hit->t;
     if (reach > g->far) { /* float precision of a long ray: redo the distance in double on the plane */

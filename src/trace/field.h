@@ -9,4 +9,7 @@
 lucent_status tr_field_build(lucent_tracer *tr, lucent_pool *pool, double deadline);
 void tr_field_destroy(lucent_tracer *tr);
 
+/* The share of each cell of f (object's grid) inside the object, from 2 x 2 x 2 points per cell (for tests). */
+void tr_field_inside_share(const lucent_tracer *tr, int object, const tr_field *f, float *dest);
+
 #endif

@@ -98,6 +98,8 @@ typedef struct tr_hit {
     double t;
     int object; /* index into the tracer's objects */
     v3 n;       /* outward unit geometric normal of the triangle hit */
+    int prim;   /* the triangle's index in its mesh */
+    float u, v; /* its barycentrics: the point is (1 - u - v) v0 + u v1 + v v2 */
 } tr_hit;
 
 lucent_status tr_geometry_create(const lucent_scene *scene, const int *object_of, int count, tr_geometry **dest);

@@ -227,7 +227,7 @@ lucent_status lucent_tracer_render(lucent_tracer *tr, const lucent_trace_desc *d
         (uint64_t)tr->render.view.width * (uint64_t)tr->render.view.height * (tr->desc.adaptive ? 5 : 1);
     lucent_progress *progress = lucent_progress_begin(d.label, (uint64_t)d.spp * per_pass);
     lucent_progress_set_deadline(progress, d.time_limit); /* the bar follows whichever limit stops the run */
-    double deadline = d.time_limit > 0 ? start + d.time_limit : 0;
+    double deadline = d.time_limit > 0 ? start + d.time_limit : 0, pass_start = lucent_clock_seconds();
     for (int i = 0; i < d.spp && s == LUCENT_OK; i++) {
         bool stop = false, cut = false; /* a cut pass is past the deadline, so should_stop (which all
                                            processes agree on) stops too */
@@ -237,6 +237,14 @@ lucent_status lucent_tracer_render(lucent_tracer *tr, const lucent_trace_desc *d
         if (stop) break;
     }
     lucent_progress_end(progress);
+    /* A time limit that ends before the first pass would give a black image that looks like a result: the
+     * run fails instead, saying why (docs/trace.md). */
+    if (s == LUCENT_OK && !merge && d.time_limit > 0 && tr->film->passes == 0)
+        s = lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                         "%s: %s: no pass completed within the time limit of %g s (%.3g s of it went to the set-up "
+                         "before the first pass): raise the time limit (render.time_limit, --time)",
+                         tr->scene && tr->scene->path[0] ? tr->scene->path : "(scene)", d.label, d.time_limit,
+                         pass_start - start);
     tr->film->seconds += lucent_clock_seconds() - start;
     if (!lucent_dist_active()) return s == LUCENT_OK ? tr_film_result(tr->film, dest) : s;
     tr_film *total = NULL; /* the estimate of every process (or part) together */

@@ -32,6 +32,36 @@ lucent_status gl_texture_from_image(const lucent_image *img, GLenum filter, GLui
     return s;
 }
 
+/* Why a framebuffer is incomplete, in the driver's own terms: the GL error its textures' allocation left
+ * (GL_OUT_OF_MEMORY for a 16384 x 16384 float target on llvmpipe), the size of its first attachment and the
+ * driver's limits, so that the message says what to lower. */
+static lucent_status framebuffer_error(const char *what, GLenum status, GLuint texture)
+{
+    GLenum error = glGetError();
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    GLint w = 0, h = 0, max_texture = 0, max_w = 0, max_h = 0;
+    if (texture) {
+        glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_WIDTH, &w);
+        glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_HEIGHT, &h);
+    }
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_w);
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &max_h);
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    char size[64] = "";
+    if (w > 0 && h > 0) snprintf(size, sizeof size, " of %d x %d", w, h);
+    const char *cause = error == GL_OUT_OF_MEMORY ? "the driver ran out of memory for its targets (GL_OUT_OF_MEMORY)"
+                        : status == GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT ? "an attachment could not be made"
+                        : status == GL_FRAMEBUFFER_UNSUPPORTED           ? "the formats are not supported together"
+                                                                         : "the driver refused it";
+    return lucent_error(LUCENT_ERR_GL,
+                        "%s: the GL driver cannot make the framebuffer%s (status 0x%04x: %s; its limits: textures of "
+                        "%d texels a side, framebuffers of %d x %d); lower render.width and render.height",
+                        what, size, (unsigned)status, cause, max_texture, max_w, max_h);
+}
+
 lucent_status gl_framebuffer(int count, const GLuint *colors, GLuint depth, const char *what, GLuint *dest)
 {
     GLuint f;
@@ -47,7 +77,7 @@ lucent_status gl_framebuffer(int count, const GLuint *colors, GLuint depth, cons
     if (st != GL_FRAMEBUFFER_COMPLETE) {
         glDeleteFramebuffers(1, &f);
         *dest = 0;
-        return lucent_error(LUCENT_ERR_GL, "%s: framebuffer incomplete (status 0x%04x)", what, (unsigned)st);
+        return framebuffer_error(what, st, count ? colors[0] : depth);
     }
     *dest = f;
     return gl_check(what);

@@ -7,12 +7,10 @@
 #include "base/settings_table.h"
 #include "gl/methods/surface.h"
 
-SETTINGS_NAMES(transmittance_names, "slab", "profile")
-
-const char *lucent_transmittance_name(lucent_transmittance_model model)
+/* The names are the bake room's (lucent_transmittance_name), the model being a part of the bake. */
+static const char *transmittance_names(int i)
 {
-    const char *n = transmittance_names((int)model);
-    return n ? n : "unknown";
+    return i >= 0 && i <= LUCENT_TRANSMIT_PROFILE ? lucent_transmittance_name((lucent_transmittance_model)i) : NULL;
 }
 
 static const lucent_setting k_translucency[] = {
