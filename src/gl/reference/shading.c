@@ -105,7 +105,12 @@ void gl_ref_shade(const lucent_scene *scene, lucent_render_method method, lucent
     double v[3], e_sum[3] = {0}, ambient[3] = {0}, spec[3] = {0};
     for (int i = 0; i < 3; i++) v[i] = scene->camera.position[i] - p->position[i];
     normalise3(v);
-    double mu_o = fmin(fmax(dot3(p->normal, v), 0), 1);
+    /* A normal seen from behind is bent toward the viewer until n.v = 0.01, as the shaders' face_viewer
+     * (lights.glsl) */
+    double n[3], c0 = dot3(p->normal, v);
+    for (int i = 0; i < 3; i++) n[i] = c0 >= 0.01 ? p->normal[i] : p->normal[i] + (0.01 - c0) * v[i];
+    normalise3(n);
+    double mu_o = fmin(fmax(dot3(n, v), 0), 1);
     int k = 0; /* index among the non-environment lights (the visibility array's order) */
     for (int i = 0; i < scene->light_count; i++) {
         const lucent_light *l = &scene->lights[i];
@@ -113,16 +118,16 @@ void gl_ref_shade(const lucent_scene *scene, lucent_render_method method, lucent
             for (int c = 0; c < 3; c++) ambient[c] += l->intensity * l->color[c];
             continue;
         }
-        double dir[3], e = incident(l, p->position, dir), ndl = dot3(p->normal, dir);
+        double dir[3], e = incident(l, p->position, dir), ndl = dot3(n, dir);
         double vis = p->visibility ? p->visibility[k] : 1,
-               s = boundary_reflection(p->normal, v, dir, m->roughness, m->eta);
+               s = boundary_reflection(n, v, dir, m->roughness, m->eta);
         for (int c = 0; c < 3; c++) {
             double f = method == LUCENT_METHOD_LAMBERT ? fmax(ndl, 0)
                        : m->spheres
                            ? gl_ref_curved(m->spheres, m->sphere_r0, c, ndl, p->curvature)          /* curved parts */
                            : cdrf_value(variant, lut, sigma_max, ndl, m->sigma0[c] * p->curvature); /* Kubo 4-5 */
             double lean =
-                m->spheres ? gl_ref_curved_lean(m->spheres, m->sphere_r0, c, p->normal, dir, v, p->curvature) : 1;
+                m->spheres ? gl_ref_curved_lean(m->spheres, m->sphere_r0, c, n, dir, v, p->curvature) : 1;
             e_sum[c] += e * l->color[c] * f * vis * gl_ref_boundary(m->boundary, c, fmax(ndl, 0), mu_o, false) * lean;
             spec[c] += e * l->color[c] * vis * s;
         }
