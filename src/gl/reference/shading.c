@@ -119,15 +119,13 @@ void gl_ref_shade(const lucent_scene *scene, lucent_render_method method, lucent
             continue;
         }
         double dir[3], e = incident(l, p->position, dir), ndl = dot3(n, dir);
-        double vis = p->visibility ? p->visibility[k] : 1,
-               s = boundary_reflection(n, v, dir, m->roughness, m->eta);
+        double vis = p->visibility ? p->visibility[k] : 1, s = boundary_reflection(n, v, dir, m->roughness, m->eta);
         for (int c = 0; c < 3; c++) {
             double f = method == LUCENT_METHOD_LAMBERT ? fmax(ndl, 0)
                        : m->spheres
                            ? gl_ref_curved(m->spheres, m->sphere_r0, c, ndl, p->curvature)          /* curved parts */
                            : cdrf_value(variant, lut, sigma_max, ndl, m->sigma0[c] * p->curvature); /* Kubo 4-5 */
-            double lean =
-                m->spheres ? gl_ref_curved_lean(m->spheres, m->sphere_r0, c, n, dir, v, p->curvature) : 1;
+            double lean = m->spheres ? gl_ref_curved_lean(m->spheres, m->sphere_r0, c, n, dir, v, p->curvature) : 1;
             e_sum[c] += e * l->color[c] * f * vis * gl_ref_boundary(m->boundary, c, fmax(ndl, 0), mu_o, false) * lean;
             spec[c] += e * l->color[c] * vis * s;
         }
