@@ -217,7 +217,7 @@ typedef struct hs_bins {
 } hs_bins;
 
 static void halfspace_case(const char *material, double roughness, const double light[3], int spp, uint64_t photons,
-                           lucent_pool *pool, hs_bins *out)
+                           lucent_pool *pool, lucent_cache *cache, hs_bins *out)
 {
     /* the camera 40 mm above the face looking 42 degrees from straight down: views from 2 to 82 degrees */
     char json[2048];
@@ -241,7 +241,7 @@ static void halfspace_case(const char *material, double roughness, const double 
         &o->material,
         &(lucent_bake_desc){
             .what = LUCENT_BAKE_BOUNDARY, .roughness = roughness, .boundary_photons = photons, .pool = pool},
-        NULL, &b));
+        cache, &b));
     gl_ref_material m = {.roughness = roughness, .eta = o->material.eta, .boundary = b.boundary};
     memcpy(m.albedo, b.boundary_albedo, sizeof m.albedo);
     for (int y = 0; r.image && y < HS_H; y++)
@@ -271,10 +271,12 @@ static void halfspace_case(const char *material, double roughness, const double 
 
 /* The acceptance of issue 31: the real-time methods' light on a half-space within 3% of the path
  * tracer's per bin of view angle up to 80 degrees, for a translucent (Skin1) and a dense (marble)
- * material, roughness 0.01 to 0.5, light along the normal and at 60 degrees. The bound is 3% plus
- * 2.5 standard errors of the comparison: the tracer's (its per-pixel variance) and the baked table's
- * (its relative standard error at this photon count, measured: 1.2% for Skin1 at 2000 photons per
- * incidence bin, 2.5% for marble at 1000, the table's rows scaled together; per bin of a few cells). */
+ * material, roughness 0.01, 0.2 or 0.3, and 0.5, light along the normal and at 60 degrees. The bound is
+ * 3% plus 2.5 standard errors of the comparison: the tracer's (its per-pixel variance, printed per bin)
+ * and the baked table's (its relative standard error at this photon count, measured: 1.2% for Skin1 at
+ * 2000 photons per incidence bin, 2% for marble at 2000, the table's rows scaled together). With 8000
+ * photons per incidence bin and 64 spp (table se about 1%, a scratch run) the ratios were marble 0.949-1.038
+ * (0.01, 0.2, 0.5) and Skin1 0.997-1.032 (0.3): blue about 2% high in every bin. */
 TEST(halfspace_agrees_with_the_tracer)
 {
     static const struct {
@@ -284,14 +286,18 @@ TEST(halfspace_agrees_with_the_tracer)
         uint64_t photons;
     } cases[] = {{"skin1", 0.01, 0, 0.012, 64, 2000}, {"skin1", 0.3, 0, 0.012, 64, 2000},
                  {"skin1", 0.5, 0, 0.012, 64, 2000},  {"skin1", 0.3, 60, 0.012, 64, 2000},
-                 {"marble", 0.2, 0, 0.025, 32, 1000}, {"marble", 0.2, 60, 0.025, 32, 1000}};
+                 {"marble", 0.01, 0, 0.02, 32, 2000}, {"marble", 0.2, 0, 0.02, 32, 2000},
+                 {"marble", 0.5, 0, 0.02, 32, 2000},  {"marble", 0.2, 60, 0.02, 32, 2000}};
     lucent_pool *pool = lucent_pool_create(2);
+    lucent_cache *cache = NULL; /* the two lights of a material and roughness share one table */
+    CHECK_OK(lucent_cache_create(test_path("cache/halfspace"), &cache));
+    double worst = 0;
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
-        if (SLOW > 1 && k != 1 && k != 4) continue; /* under the sanitizers one case per material */
+        if (SLOW > 1 && k != 1 && k != 5) continue; /* under the sanitizers one case per material */
         double a = cases[k].light_deg * M_PI / 180, light[3] = {0, -sin(a), -cos(a)};
         hs_bins h;
         uint64_t photons = cases[k].photons / SLOW;
-        halfspace_case(cases[k].material, cases[k].roughness, light, cases[k].spp / SLOW, photons, pool, &h);
+        halfspace_case(cases[k].material, cases[k].roughness, light, cases[k].spp / SLOW, photons, pool, cache, &h);
         double table_se = cases[k].table_se * sqrt((double)SLOW);
         printf("     %s roughness %.2f light %2.0f deg, GL / tracer per view bin (R G B):", cases[k].material,
                cases[k].roughness, cases[k].light_deg);
@@ -299,7 +305,8 @@ TEST(halfspace_agrees_with_the_tracer)
             printf(" %2.0f-%2.0f:", k_hs_edges[j], k_hs_edges[j + 1]);
             for (int c = 0; c < 3; c++) {
                 double ratio = h.gl[j][c] / h.tracer[j][c], se = hypot(sqrt(h.var[j][c]) / h.tracer[j][c], table_se);
-                printf(" %.3f", ratio);
+                printf(" %.3f+-%.3f", ratio, se);
+                worst = fmax(worst, fabs(ratio - 1) / se);
                 CHECK_MSG(h.pixels[j] > 0 && fabs(ratio - 1) <= 0.03 + 2.5 * se,
                           "%s %.2f light %.0f, %.0f-%.0f deg, channel %d: GL / tracer %.4f (se %.4f)",
                           cases[k].material, cases[k].roughness, cases[k].light_deg, k_hs_edges[j], k_hs_edges[j + 1],
@@ -308,6 +315,8 @@ TEST(halfspace_agrees_with_the_tracer)
         }
         printf("\n");
     }
+    printf("     largest |GL / tracer - 1| over its standard error: %.2f\n", worst);
+    lucent_cache_destroy(cache);
     lucent_pool_destroy(pool);
 }
 
