@@ -3,7 +3,8 @@
 # -DLUCENT_FUZZ=ON: the library is compiled once, with -fsanitize=fuzzer-no-link), seeds a corpus per
 # target from tests/fixtures, and runs each target in turn:
 #   fuzz/build.sh [SECONDS_PER_TARGET] [TARGET...]     (make fuzz FUZZ_SECONDS=600)
-# Targets: mesh (PLY/OBJ/STL/OFF/glTF import), ply (the PLY property API), material, scene (+ --set),
+# Targets: mesh (PLY/OBJ/STL/OFF/glTF import), ply (the PLY property API), material, scene (+ --set), gltf
+# (glTF scenes: .gltf/.glb, buffers, accessors, nodes, cameras, lights, materials),
 # mcml (.mci/.mco), image (PNG/EXR/PFM), part (the part files of --part K/N that lucent merge reads). Findings land in build-fuzz/artifacts_<target>/; each run's
 # last lines (executions, coverage) in build-fuzz/fuzz_<target>.log. Exit status 1 when a target found
 # a crash, a leak or a timeout.
@@ -12,7 +13,7 @@ cd "$(dirname "$0")/.."
 secs=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(mesh ply material scene mcml image part)
+[ ${#targets[@]} -gt 0 ] || targets=(mesh ply material scene gltf mcml image part)
 command -v clang >/dev/null || { echo "fuzz: clang is needed (Debian: clang)"; exit 1; }
 out=build-fuzz
 cmake -S . -B "$out" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DLUCENT_FUZZ=ON -DLUCENT_MPI=OFF \
@@ -43,6 +44,7 @@ seed ply tests/fixtures/mesh/*.ply tests/fixtures/bad-meshes/*.ply
 seed material tests/fixtures/materials/*.json data/materials.json
 seed mcml tests/fixtures/mcml/*.mci tests/fixtures/mcml/mco/*.mco
 seed scene data/scenes/*.json tests/fixtures/scenes/*.json
+seed gltf tests/fixtures/gltf/*.gltf tests/fixtures/gltf/*.glb
 mkdir -p "$out/corpus_image"
 for f in tests/fixtures/images/*.png; do [ -f "$f" ] && { printf '\0'; cat "$f"; } >"$out/corpus_image/$(basename "$f")"; done
 for f in tests/fixtures/images/*.exr; do [ -f "$f" ] && { printf '\1'; cat "$f"; } >"$out/corpus_image/$(basename "$f")"; done

@@ -72,10 +72,10 @@ static void glsl_blur_declarations(FILE *f, const pack_ctx *p)
 
 static void blur_glsl(FILE *f, const pack_ctx *p)
 {
-    static const char *const version[] = {"#version 450 core\n",
-                                          "#version 300 es\nprecision highp float;\nprecision highp int;\n"
-                                          "precision highp sampler2D;\n",
-                                          "#version 450\n"};
+    static const char *const version[] = {
+        "#version 450 core\n",
+        "#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp sampler2D;\n",
+        "#version 450\n"};
     fputs(version[p->d.engine], f);
     fprintf(f, k_blur_intro, p->m->name);
     fputc('\n', f);
