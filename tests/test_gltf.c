@@ -329,6 +329,8 @@ TEST(malformed_gltf_fails_naming_the_file_and_the_member)
         {"[0.5, 0.6, 0.7]", "[1.5, 0.6, 0.7]", "attenuationColor[0]: must be in [0, 1]"},
         {"\"material\": 0", "\"material\": 3", "3: no such material"},
         {"\"indices\": 1,", "\"indices\": 1, \"mode\": 1,", "no mesh of triangles"},
+        {"\"indices\": 1,", "\"indices\": 1, \"mode\": 1e300,", "mode: must be 0 to 6"},
+        {"\"material\": 0", "\"material\": 1e300", "must be a material index"},
         {"\"version\": \"2.0\"", "\"version\": \"1.0\"", "glTF 1.0 (only 2.x is read)"},
         {"\"uri\": \"data:", "\"uri\": \"../x.bin\", \"x\": \"", "only files in the asset's folder"},
     };

@@ -328,8 +328,8 @@ lucent_status lucent_pack(const lucent_material *m, const lucent_pack_desc *desc
                            .transmit_photons = p.d.transmit_photons,
                            .pool = p.d.pool};
     lucent_mesh *mesh = NULL;
-    s = lucent_material_bake(m, &bd, p.d.cache, &b);
-    if (s == LUCENT_OK) s = pack_mesh(p.d.mesh, p.d.object_height_mm, &mesh);
+    s = pack_mesh(p.d.mesh, p.d.object_height_mm, &mesh); /* before the bake: a bad mesh fails at once */
+    if (s == LUCENT_OK) s = lucent_material_bake(m, &bd, p.d.cache, &b);
     if (s == LUCENT_OK) {
         p.b = &b;
         p.r.radius_mm = lucent_taps_radius(b.taps);

@@ -98,8 +98,8 @@ static void curvature(FILE *f, const pack_ctx *p)
     fprintf(f,
             "## Curvature at run time (CDRF)\n\n"
             "`lucent_cdrf` takes the mean curvature kappa in 1/mm (> 0 on convex parts; a sphere of radius r has "
-            "1/r). Either bake it per vertex (`lucent curvature MESH --out curvature.csv`, in 1/mesh units: divide "
-            "by mm per unit) and pass it as a vertex attribute, or estimate it per pixel from screen-space "
+            "1/r). Either bake it per vertex (`lucent curvature MESH --mm-per-unit N --out curvature.csv`, in 1/mm) "
+            "and pass it as a vertex attribute, or estimate it per pixel from screen-space "
             "derivatives,\n\n"
             "    kappa = length(fwidth(N)) / length(fwidth(P_mm))\n\n"
             "(the estimate of pre-integrated skin shading, Penner & Borshukov 2011), which is noisy at silhouettes "

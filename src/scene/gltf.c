@@ -217,11 +217,13 @@ static lucent_status primitive_object(convert *cv, int mesh, int p, const lucent
     lucent_json_node attrs;
     double mode = 4, mat = -1, alpha = 0;
     lucent_status s = lucent_json_number_or(prim, "mode", 4, &mode);
+    if (s == LUCENT_OK && !(mode >= 0 && mode <= 6 && mode == (int)mode))
+        s = lucent_json_fail(prim, "mode", LUCENT_ERR_PARSE, "must be 0 to 6, got %g", mode);
     if (s == LUCENT_OK && !gltf_mode_is_surface((int)mode)) return LUCENT_OK; /* points, lines: no surface */
     if (s == LUCENT_OK) s = lucent_json_object(prim, "attributes", true, &attrs);
     if (s == LUCENT_OK) s = bounds(cv, &attrs, world);
     if (s == LUCENT_OK) s = lucent_json_number_or(prim, "material", -1, &mat);
-    if (s == LUCENT_OK && !(mat >= -1 && mat == (int)mat))
+    if (s == LUCENT_OK && !(mat >= -1 && mat <= 2147483647.0 && mat == (int)mat))
         s = lucent_json_fail(prim, "material", LUCENT_ERR_PARSE, "must be a material index, got %g", mat);
     cJSON *m = NULL, *o = cJSON_CreateObject(), *ref = NULL, *t = NULL;
     if (s == LUCENT_OK && (!o || !cJSON_AddItemToArray(cv->objects, o)))
