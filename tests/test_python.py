@@ -168,5 +168,20 @@ check("trace: an image with light on it", sum(tr[y][x][1] for y in range(len(tr)
 check("a bad scene override raises, naming it",
       *raises(lambda: lucent.trace(scene, settings={"objects[0].material": "unobtainium"}), "objects[0].material"))
 
+# pack(): the files of `lucent pack` with the same arguments, byte for byte (the same library: the bake's
+# Monte Carlo has fixed seeds), and the width the CLI prints.
+few = ["--sigma0-photons", "500", "--transmit-photons", "100", "--lut-size", "8x8", "--object-height", "0.05m"]
+cli = subprocess.run([lucent_bin, "pack", "skin1", "--engine", "gles", "--no-cache", "--out", os.path.join(tmp, "pk-cli")]
+                     + few, check=True, capture_output=True, text=True).stdout
+r = lucent.pack("skin1", "gles", os.path.join(tmp, "pk-py"), object_height_mm=50, lut_size=(8, 8), sigma0_photons=500,
+                transmit_photons=100)
+names = sorted(os.listdir(os.path.join(tmp, "pk-cli")))
+same = names == sorted(os.listdir(os.path.join(tmp, "pk-py"))) and all(
+    open(os.path.join(tmp, "pk-cli", n), "rb").read() == open(os.path.join(tmp, "pk-py", n), "rb").read() for n in names)
+check("pack(): the CLI's %d files, byte for byte" % len(names), same and r["file_count"] == len(names) == 11, names)
+check("pack(): the CLI's kernel width", "kernel width: %.2f px" % r["width_px"] in cli, (r, cli))
+check("pack(): an unknown engine raises, naming it",
+      *raises(lambda: lucent.pack("skin1", "wgsl", os.path.join(tmp, "pk-x")), "unknown engine 'wgsl'"))
+
 print("%d failed" % failed)
 sys.exit(1 if failed else 0)

@@ -223,7 +223,7 @@ int cli_view_option(const char *command, int argc, char **argv, int *i, cli_view
 
 double cli_view_depth_mm(const cli_view *v)
 {
-    return v->distance_mm > 0 ? v->distance_mm : v->object_height_mm / (2 * tan(0.5 * v->fov * M_PI / 180));
+    return v->distance_mm > 0 ? v->distance_mm : lucent_screen_depth_mm(v->object_height_mm, v->fov);
 }
 
 void cli_print_kernel_width(FILE *out, double radius_mm, const cli_view *v)

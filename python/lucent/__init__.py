@@ -493,6 +493,35 @@ def trace(scene_path, spp=16, seed=1, settings=None, threads=0, time_limit=0):
         _L.lucent_scene_destroy(sc)
 
 
+def pack(spec, engine, out, screen=(1920, 1080), fov=45.0, object_height_mm=1800.0, distance_mm=0.0,
+         lut_size=(64, 64), kappa_max=1.0, sigma0_photons=0, transmit_photons=0, mesh=None, roughness=0.3,
+         cache_dir=None, threads=0):
+    """Writes the engine pack of a material into the folder out, as `lucent pack` (docs/pack.md):
+    engine "glsl", "gles", "vulkan", "hlsl" or "json"; the screen (width, height) in pixels with
+    vertical field of view fov (degrees); the object's height (its mesh in material.gltf, a sphere
+    unless mesh names a mesh file) and the depth the kernel's width is measured at (distance_mm, 0:
+    where the object fills the screen's height). The renderer's default settings. Returns a dict:
+    radius_mm, depth_mm, pixels_per_mm, width_px, pixels_per_mm_at_1mm, thickness_m, file_count."""
+    m = material(spec)
+    e = ctypes.c_int()
+    _check(_L.lucent_pack_engine_find(_b(engine), ctypes.byref(e)))
+    mp, cache = ctypes.c_void_p(), ctypes.c_void_p()
+    try:
+        if mesh:
+            _check(_L.lucent_mesh_load(_b(mesh), None, ctypes.byref(mp)))
+        if cache_dir:
+            _check(_L.lucent_cache_create(_b(cache_dir), ctypes.byref(cache)))
+        d = _lib.PackDesc(e.value, _b(out), int(screen[0]), int(screen[1]), float(fov), float(object_height_mm),
+                          float(distance_mm), None, int(lut_size[0]), int(lut_size[1]), float(kappa_max),
+                          int(sigma0_photons), int(transmit_photons), mp, float(roughness), cache, _pool(threads))
+        r = _lib.PackResult()
+        _check(_L.lucent_pack(ctypes.byref(m._c), ctypes.byref(d), ctypes.byref(r)))
+        return {n: getattr(r, n) for n, _ in _lib.PackResult._fields_}
+    finally:
+        _L.lucent_mesh_destroy(mp)
+        _L.lucent_cache_destroy(cache)
+
+
 def versions():
     """What the library links: {"lucent", "embree", "openexr", "library"}."""
     return {"lucent": __version__, "embree": _L.lucent_trace_embree_version().decode(),
@@ -500,4 +529,4 @@ def versions():
 
 
 __all__ = ["LucentError", "ArgumentError", "ArgumentTypeError", "Material", "material", "materials", "Profile", "profile", "mcml", "Kernel", "kernel",
-           "cdrf", "cdrf_lut", "cdrf_fit", "curvature", "render", "trace", "versions"]
+           "cdrf", "cdrf_lut", "cdrf_fit", "curvature", "render", "trace", "pack", "versions"]

@@ -209,6 +209,20 @@ class TraceResult(ctypes.Structure):  # lucent_trace_result: the images, spp, sa
                 ("seed", ctypes.c_uint64), ("seconds", ctypes.c_double), ("rest", ctypes.c_double * 64)]
 
 
+class PackDesc(ctypes.Structure):  # lucent_pack_desc (pack.h)
+    _fields_ = [("engine", ctypes.c_int), ("out", c_char_p), ("screen_width", ctypes.c_int),
+                ("screen_height", ctypes.c_int), ("fov_y", ctypes.c_double), ("object_height_mm", ctypes.c_double),
+                ("distance_mm", ctypes.c_double), ("settings", c_void_p), ("lut_width", ctypes.c_int),
+                ("lut_height", ctypes.c_int), ("kappa_max", ctypes.c_double), ("sigma0_photons", ctypes.c_uint64),
+                ("transmit_photons", ctypes.c_uint64), ("mesh", c_void_p), ("roughness", ctypes.c_double),
+                ("cache", c_void_p), ("pool", c_void_p)]
+
+
+class PackResult(ctypes.Structure):  # lucent_pack_result
+    _fields_ = [(n, ctypes.c_double) for n in ("radius_mm", "depth_mm", "pixels_per_mm", "width_px",
+                                               "pixels_per_mm_at_1mm", "thickness_m")] + [("file_count", ctypes.c_int)]
+
+
 def declare(lib):
     """Argument and result types of the functions the API calls."""
     P = ctypes.POINTER
@@ -275,6 +289,10 @@ def declare(lib):
         "lucent_trace_result_free": (None, [P(TraceResult)]),
         "lucent_trace_embree_version": (c_char_p, []),
         "lucent_image_openexr_version": (c_char_p, []),
+        "lucent_cache_create": (st, [c_char_p, P(c_void_p)]),
+        "lucent_cache_destroy": (None, [c_void_p]),
+        "lucent_pack_engine_find": (st, [c_char_p, P(ctypes.c_int)]),
+        "lucent_pack": (st, [P(Material), P(PackDesc), P(PackResult)]),
     }
     for name, (res, args) in sigs.items():
         f = getattr(lib, name)
