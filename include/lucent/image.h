@@ -248,6 +248,19 @@ lucent_status lucent_image_percentile(const lucent_image *img, int c, double p, 
  * the ramp's sRGB colours). scale <= 0: the 99th percentile of the values (1 when that is 0). */
 lucent_status lucent_image_heatmap(const lucent_image *values, float scale, lucent_image **dest);
 
+/* ---- Colour differences -----------------------------------------------------------------------
+ * Linear sRGB (IEC 61966-2-1 primaries, white D65) to CIE XYZ and CIELAB (reference white D65:
+ * Xn = 0.95047, Yn = 1, Zn = 1.08883), and the CIEDE2000 colour difference (Sharma, Wu & Dalal 2005). */
+
+/* XYZ of linear sRGB rgb (Y = 1 for white). */
+void lucent_linear_srgb_to_xyz(const double rgb[3], double dest[3]);
+
+/* CIELAB (L*, a*, b*) of linear sRGB rgb against the D65 white. */
+void lucent_linear_srgb_to_lab(const double rgb[3], double dest[3]);
+
+/* The CIEDE2000 difference of two CIELAB colours (k_L = k_C = k_H = 1). */
+double lucent_ciede2000(const double lab1[3], const double lab2[3]);
+
 #ifdef __cplusplus
 }
 #endif
