@@ -9,11 +9,13 @@ cd "$(dirname "$0")/.."
 # GLSL/HLSL kernels with glslangValidator; libopenmpi-dev and openmpi-bin: Open MPI, for
 # `mpirun -np N lucent ...` (docs/scale.md; the build works without it); libgl1-mesa-dri and libegl-mesa0: Mesa's llvmpipe,
 # the OpenGL 4.5 renderer of machines without a GPU, reached through EGL's surfaceless platform;
-# libimgui-dev: the panel of `lucent view`; xvfb and xauth: the viewer's window tests without a display).
+# libimgui-dev: the panel of `lucent view`; xvfb and xauth: the viewer's window tests without a display;
+# blender: the engine peer of `lucent compare --peers` and its test, Cycles and EEVEE headless).
 PACKAGES=(build-essential cmake pkg-config zlib1g-dev libpng-dev libopenexr-dev libcjson-dev
           libassimp-dev liblapacke-dev libopenblas-dev libnlopt-dev libfftw3-dev glslang-tools
           libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev
-          libembree-dev clang-format libopenmpi-dev openmpi-bin libimgui-dev xvfb xauth)
+          libembree-dev clang-format libopenmpi-dev openmpi-bin libimgui-dev xvfb xauth
+          blender)
 command -v npm >/dev/null 2>&1 || PACKAGES+=(nodejs npm)
 
 missing=()

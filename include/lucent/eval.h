@@ -96,6 +96,15 @@ typedef struct lucent_compare_desc {
     lucent_pool *pool;             /* NULL: serial */
     lucent_eval_event_fn on_event; /* NULL: none */
     void *user;                    /* passed to on_event */
+    /* Real engines rendering each scene beside the methods, with the parameters `lucent fit` gives each
+     * material (lucent/engine.h): "blender-cycles" (Cycles' Random Walk), "blender-cycles-burley",
+     * "blender-eevee", each optionally ":hand" (the hand mapping instead of the fit). Blender 3.4 headless
+     * (docs/engines.md); missing, the run fails saying so. Counted with the methods in
+     * LUCENT_COMPARE_MAX_METHODS. */
+    const char *const *peers;
+    int peer_count;
+    int peer_spp;        /* the peers' samples per pixel (0: 64) */
+    const char *blender; /* the program (NULL: $LUCENT_BLENDER, else blender on PATH) */
 } lucent_compare_desc;
 
 /* Returns what a zero lucent_compare_desc stands for (no scenes; the default methods are left to

@@ -60,4 +60,9 @@ lucent_status eng_fit_godot(const lucent_engine_target *t, lucent_engine_fit_res
 lucent_status eng_fit_walk(const lucent_engine_target *t, lucent_engine_id e, bool hand,
                            const lucent_engine_fit_desc *desc, lucent_engine_fit_result *r);
 
+/* Cycles 3.4's random walk in a half-space at unit extinction (cycles_walk.c): single-scattering albedo
+ * alpha, anisotropy g; rd_r (nr bins of width dr) the bin averages of the exit radius, total and its error. */
+lucent_status eng_cycles_walk(double alpha, double g, uint64_t photons, uint64_t seed, double dr, int nr,
+                              lucent_pool *pool, double *rd_r, double *total, double *total_se);
+
 #endif

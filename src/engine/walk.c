@@ -10,8 +10,8 @@
  *   OpenPBR 1.1, Subsurface: mu_t = 1 / (subsurface_radius x subsurface_radius_scale), the single-scattering
  *     albedo from subsurface_color by van de Hulst's relation inverted (the spec's example), HG g =
  *     subsurface_scatter_anisotropy, under the dielectric interface of specular_ior.
- * The model's profile and total are Lucent's Monte Carlo of that medium (lucent/mc.h) at unit extinction,
- * rescaled: R(r) = sigma_t^2 R1(sigma_t r). The fit finds the colour whose medium reflects the truth's T
+ * The model's profile and total are, at unit extinction and rescaled (R(r) = sigma_t^2 R1(sigma_t r)), Cycles'
+ * own walk (cycles_walk.c) or, for OpenPBR's dielectric slab, Lucent's Monte Carlo (lucent/mc.h). The fit finds the colour whose medium reflects the truth's T
  * (secant steps on the Monte Carlo total), then the extinction that minimises e_p. */
 #include <stdlib.h>
 #include <string.h>
@@ -130,17 +130,27 @@ static lucent_status walk_run(const walk *w, double color, uint64_t photons, uin
     dest->dr = 0.025;
     double want = ceil(extent / dest->dr);
     dest->count = want > 40000 ? 40000 : want < 200 ? 200 : (int)want;
-    lucent_mc_layer layer = {.n = w->n, .sigma_a = 1.0 - a, .sigma_s = a, .g = w->g, .thickness = INFINITY};
     lucent_mc_result r = {0};
-    lucent_status s = lucent_mc_run(&(lucent_mc_desc){.layers = &layer,
-                                                      .layer_count = 1,
-                                                      .photons = photons,
-                                                      .seed = seed,
-                                                      .grid = {.dr = dest->dr, .nr = dest->count},
-                                                      .pool = pool,
-                                                      .label = "engine model"},
-                                    &r);
-    if (s != LUCENT_OK) return s;
+    lucent_status s;
+    if (w->e == LUCENT_ENGINE_OPENPBR) { /* the spec's dielectric slab: Lucent's Monte Carlo */
+        lucent_mc_layer layer = {.n = w->n, .sigma_a = 1.0 - a, .sigma_s = a, .g = w->g, .thickness = INFINITY};
+        s = lucent_mc_run(&(lucent_mc_desc){.layers = &layer,
+                                            .layer_count = 1,
+                                            .photons = photons,
+                                            .seed = seed,
+                                            .grid = {.dr = dest->dr, .nr = dest->count},
+                                            .pool = pool,
+                                            .label = "engine model"},
+                          &r);
+    } else { /* Cycles' own walk */
+        r.rd_r = malloc((size_t)dest->count * sizeof *r.rd_r);
+        s = r.rd_r ? eng_cycles_walk(a, w->g, photons, seed, dest->dr, dest->count, pool, r.rd_r, &r.rd, &r.rd_se)
+                   : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    }
+    if (s != LUCENT_OK) {
+        lucent_mc_result_free(&r);
+        return s;
+    }
     free(dest->cum);
     dest->cum = malloc(((size_t)dest->count + 1) * sizeof *dest->cum);
     if (!dest->cum) {
@@ -256,8 +266,8 @@ static void walk_params(const lucent_engine_target *t, const walk *w, const doub
         eng_param(r, "Subsurface Radius", "scene units (mm)", 3, radius);
         eng_param1(r, "Subsurface IOR", "", w->ior);
         eng_param1(r, "Subsurface Anisotropy", "", w->g);
-        eng_note(r, "one Blender unit is 1 mm; the model is Lucent's Monte Carlo of the medium Cycles builds, "
-                    "index-matched and entered at normal incidence (Cycles enters diffusely)");
+        eng_note(r, "one Blender unit is 1 mm; the model is Cycles 3.4's own walk of the medium it builds "
+                    "(src/engine/cycles_walk.c)");
         eng_cannot(r, "the refractive boundary: the walk enters and leaves through a diffuse interface (the IOR only "
                       "scales the radius)");
         eng_cannot_common(t, r, true, true);

@@ -76,6 +76,13 @@ static lucent_status resolve(const lucent_compare_desc *desc, run *r)
                             desc->override_count);
     if (desc->spp < 0 || desc->frames < 0 || !(desc->time_limit >= 0) || !(desc->scale >= 0) || !isfinite(desc->scale))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "compare: spp, frames, time_limit and scale must be >= 0");
+    if (desc->peer_count < 0 || (desc->peer_count && !desc->peers) ||
+        (desc->method_count ? desc->method_count : 1) + desc->peer_count > LUCENT_COMPARE_MAX_METHODS)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "compare: peer_count: at most %d methods and peers",
+                            LUCENT_COMPARE_MAX_METHODS);
+    for (int i = 0; i < desc->peer_count; i++)
+        if (eval_peer_check(desc->peers[i]) != LUCENT_OK)
+            return lucent_error_context(LUCENT_ERR_INVALID_ARGUMENT, "compare");
     if (!desc->method_count) default_methods(r);
     for (int i = 0; i < r->d.method_count; i++) {
         lucent_render_settings probe = lucent_render_settings_defaults();
@@ -268,6 +275,36 @@ static lucent_status run_method(const run *r, scene_store *ss, lucent_renderer *
     return LUCENT_OK;
 }
 
+/* Peer i (compare_peers.c) renders the scene; its image is measured as a method's, without frame times. */
+static lucent_status run_peer(const run *r, scene_store *ss, int i, const char *cache_dir)
+{
+    const char *peer = r->d.peers[i];
+    if (ss->method_count == LUCENT_COMPARE_MAX_METHODS)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: at most %d methods and peers", ss->stem,
+                            LUCENT_COMPARE_MAX_METHODS);
+    int m = ss->method_count++;
+    method_store *ms = &ss->methods[m];
+    char stem[EVAL_NAME_SIZE];
+    eval_peer_result pr = {0};
+    snprintf(ms->name, sizeof ms->name, "%s", peer);
+    eval_file_stem(peer, stem, sizeof stem);
+    lucent_status s = eval_peer_render(&(eval_peer_desc){.spec = peer,
+                                                         .scene = ss->scene,
+                                                         .spp = r->d.peer_spp,
+                                                         .seed = 1,
+                                                         .blender = r->d.blender,
+                                                         .cache_dir = cache_dir,
+                                                         .pool = r->d.pool},
+                                       &pr);
+    if (s == LUCENT_OK) s = write_image(r, ss, stem, pr.image, &ss->scene->render);
+    if (s == LUCENT_OK) s = measure(r, ss, pr.image, &ss->scene->render, m);
+    ss->rows[m].frame_ms = ss->rows[m].setup_ms = NAN; /* not a real-time method: its seconds are in settings */
+    snprintf(ms->image, sizeof ms->image, "%s/%s.png", ss->stem, stem);
+    snprintf(ms->settings, sizeof ms->settings, "%s", pr.settings);
+    lucent_image_destroy(pr.image);
+    return s == LUCENT_OK ? s : lucent_error_context(s, "%s", ss->stem);
+}
+
 /* Loads the scene with the overrides and, for a scale, two more that resize it (read from a first,
  * mesh-less load), so that the scene's JSON records the size the images have. */
 static lucent_status load_scene(const run *r, const char *path, lucent_scene **dest)
@@ -346,6 +383,7 @@ static lucent_status measure_scene(const run *r, const char *path, scene_store *
                                    &rend);
     for (int i = 0; i < r->d.method_count && s == LUCENT_OK; i++) s = run_method(r, ss, rend, i);
     lucent_renderer_destroy(rend);
+    for (int i = 0; i < r->d.peer_count && s == LUCENT_OK; i++) s = run_peer(r, ss, i, cache_dir);
     return s;
 }
 

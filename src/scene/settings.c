@@ -215,11 +215,12 @@ static const lucent_settings_group k_view_group = SETTINGS_GROUP("view", "the im
  * src/trace/settings.c. */
 extern const lucent_settings_group gl_ssss_settings, gl_translucency_settings, gl_cdrf_settings, gl_points_settings,
     gl_tsd_settings, tr_trace_settings;
+extern const lucent_settings_group gl_burley_settings;
 
 /* In reading order: the method ("ssss:svd3") before the kernel and rank that may refine it. */
 static const lucent_settings_group *const k_groups[] = {
     &k_view_group,       &gl_ssss_settings, &gl_translucency_settings, &gl_cdrf_settings,
-    &gl_points_settings, &gl_tsd_settings,  &tr_trace_settings};
+    &gl_points_settings, &gl_tsd_settings,  &tr_trace_settings,        &gl_burley_settings};
 
 int lucent_settings_group_count(void) { return (int)(sizeof k_groups / sizeof k_groups[0]); }
 
