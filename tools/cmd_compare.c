@@ -26,7 +26,7 @@ static const char k_usage[] =
     "  --peers LIST     real engines beside the methods, with `lucent fit`'s parameters: blender-cycles\n"
     "                   (Random Walk), blender-cycles-burley, blender-eevee; NAME:hand for the hand\n"
     "                   mapping (Blender 3.4, headless; $LUCENT_BLENDER names another program)\n"
-    "  --peer-spp N     the peers' samples per pixel (default 64)\n"
+    "  --peer-spp N     the peers' samples per pixel (default 64); --peer-seed S: their seed\n"
     "  --spp N          reference samples per pixel (default: the scene's render.spp)\n"
     "  --time S         at most S seconds per reference (default: no limit)\n"
     "  --frames N       GL frames timed per method; the median is reported (default 5)\n"
@@ -54,7 +54,7 @@ typedef struct options {
     const char *out, *title;
     char peers_text[512];
     const char *peers[MAX_METHODS];
-    int peer_count, peer_spp;
+    int peer_count, peer_spp, peer_seed;
 } options;
 
 /* ---- options ---- */
@@ -97,6 +97,8 @@ static int parse_args(int argc, char **argv, options *o)
         const char *v;
         if (cli_option(argc, argv, &i, "--peer-spp", &v) && !(cli_parse_int(v, &o->peer_spp) && o->peer_spp >= 1))
             return cli_usage_error("compare", "--peer-spp needs a whole number >= 1");
+        if (cli_option(argc, argv, &i, "--peer-seed", &v) && !(cli_parse_int(v, &o->peer_seed) && o->peer_seed >= 1))
+            return cli_usage_error("compare", "--peer-seed needs a whole number >= 1");
         if (!cli_option(argc, argv, &i, "--peers", &v)) continue;
         if (!v || strlen(v) >= sizeof o->peers_text) return cli_usage_error("compare", "--peers needs a list");
         snprintf(o->peers_text, sizeof o->peers_text, "%s", v);
@@ -111,7 +113,8 @@ static int parse_args(int argc, char **argv, options *o)
             if (cli_option(argc, argv, &i, numeric[k], &v)) rc = parse_number_option(numeric[k], v, o);
         if (rc > 0) return rc;
         if (rc == 0) continue;
-        if (cli_option(argc, argv, &i, "--peers", &v) || cli_option(argc, argv, &i, "--peer-spp", &v)) {
+        if (cli_option(argc, argv, &i, "--peers", &v) || cli_option(argc, argv, &i, "--peer-spp", &v) ||
+            cli_option(argc, argv, &i, "--peer-seed", &v)) {
             continue;
         } else if (cli_option(argc, argv, &i, "--methods", &v)) {
             if (!v || strlen(v) >= sizeof o->methods_text) return cli_usage_error("compare", "--methods needs a list");
@@ -207,7 +210,8 @@ int cmd_compare(int argc, char **argv)
                              .user = &result,
                              .peers = o.peers,
                              .peer_count = o.peer_count,
-                             .peer_spp = o.peer_spp};
+                             .peer_spp = o.peer_spp,
+                             .peer_seed = (uint64_t)o.peer_seed};
     lucent_status s = lucent_compare_run(&d, &result);
     if (s == LUCENT_OK) cli_wrote("wrote %s/report.html (and report.md, report.csv, results.json)", o.out);
     lucent_compare_result_free(&result);

@@ -179,6 +179,10 @@ lucent_status lucent_engine_report_run(const lucent_engine_report_desc *desc, lu
 
 void lucent_engine_report_free(lucent_engine_report *report);
 
+/* The same on the heap (for bindings: Python's fit()); destroy with lucent_engine_report_destroy. */
+lucent_status lucent_engine_report_create(const lucent_engine_report_desc *desc, lucent_engine_report **dest);
+void lucent_engine_report_destroy(lucent_engine_report *report);
+
 /* The report as JSON text (the truth, and per engine its parameters, errors and notes); free with free(). */
 lucent_status lucent_engine_report_json(const lucent_engine_report *report, char **dest);
 

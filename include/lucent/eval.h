@@ -104,6 +104,7 @@ typedef struct lucent_compare_desc {
     const char *const *peers;
     int peer_count;
     int peer_spp;        /* the peers' samples per pixel (0: 64) */
+    uint64_t peer_seed;  /* the peers' seed (0: 1) */
     const char *blender; /* the program (NULL: $LUCENT_BLENDER, else blender on PATH) */
 } lucent_compare_desc;
 

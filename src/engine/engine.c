@@ -131,3 +131,18 @@ void lucent_engine_report_free(lucent_engine_report *report)
     lucent_engine_target_free(&report->target);
     *report = (lucent_engine_report){0};
 }
+
+lucent_status lucent_engine_report_create(const lucent_engine_report_desc *desc, lucent_engine_report **dest)
+{
+    *dest = malloc(sizeof **dest);
+    if (!*dest) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "engine report: out of memory");
+    lucent_status s = lucent_engine_report_run(desc, *dest);
+    if (s != LUCENT_OK) free(*dest), *dest = NULL;
+    return s;
+}
+
+void lucent_engine_report_destroy(lucent_engine_report *report)
+{
+    lucent_engine_report_free(report);
+    free(report);
+}

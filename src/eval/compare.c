@@ -291,7 +291,7 @@ static lucent_status run_peer(const run *r, scene_store *ss, int i, const char *
     lucent_status s = eval_peer_render(&(eval_peer_desc){.spec = peer,
                                                          .scene = ss->scene,
                                                          .spp = r->d.peer_spp,
-                                                         .seed = 1,
+                                                         .seed = r->d.peer_seed ? r->d.peer_seed : 1,
                                                          .blender = r->d.blender,
                                                          .cache_dir = cache_dir,
                                                          .pool = r->d.pool},
