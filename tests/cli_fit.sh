@@ -4,7 +4,9 @@
 
 FIT_FAST=(--photons 10000 --model-photons 2000 --cache "$TMP/fit-cache")
 expect_ok -- "$LUCENT" fit skin1 "${FIT_FAST[@]}" --transmittance --out "$TMP/fit/skin1"
-expect_true "fit wrote skin1.json and skin1.md" -- test -s "$TMP/fit/skin1.json" -a -s "$TMP/fit/skin1.md"
+expect_true "fit wrote skin1.json, skin1.md and skin1.svg" -- \
+  test -s "$TMP/fit/skin1.json" -a -s "$TMP/fit/skin1.md" -a -s "$TMP/fit/skin1.svg"
+expect_true "fit's chart is a complete SVG" -- grep -q "</svg>" "$TMP/fit/skin1.svg"
 expect_true "fit says what it wrote" -- grep -q "^wrote $TMP/fit/skin1.md$" <<<"$OUT"
 # every engine, each with a parameter in its own name
 for pair in "unreal-burley:Mean Free Path Distance" "unreal-separable:Falloff Color" \

@@ -16,7 +16,8 @@ static const char k_usage[] =
     "Per engine it\n"
     "prints the parameters in the engine's names and units, e_p, the CIEDE2000 difference of T\n"
     "(D65), what the model cannot express, and the hand mapping (radius = 1/sigma_tr, colour = T)\n"
-    "for comparison; and writes PREFIX.json and PREFIX.md. MATERIAL is a preset, FILE.json or\n"
+    "for comparison; and writes PREFIX.json, PREFIX.md and PREFIX.svg (r R(r) of the truth and of\n"
+    "each model, one panel per channel). MATERIAL is a preset, FILE.json or\n"
     "FILE.json#NAME. See docs/engines.md.\n"
     "\n"
     "engines:\n"
@@ -161,7 +162,7 @@ static lucent_status prepare(options *o)
 
 static int run(options *o)
 {
-    char cache_buf[1024], prefix[512], name[256], paths[2][600];
+    char cache_buf[1024], prefix[512], name[256], paths[3][600];
     const char *cdir = cli_cache_dir(o->cache, o->no_cache, cache_buf, sizeof cache_buf);
     snprintf(name, sizeof name, "%s-fit", o->layer_count ? "layers" : o->material.name);
     for (char *p = name; *p; p++)
@@ -169,10 +170,11 @@ static int run(options *o)
     cli_out_prefix(o->out, name, prefix, sizeof prefix);
     snprintf(paths[0], sizeof paths[0], "%s.json", prefix);
     snprintf(paths[1], sizeof paths[1], "%s.md", prefix);
+    snprintf(paths[2], sizeof paths[2], "%s.svg", prefix);
     char file[1024];
-    const char *ins[1] = {cli_spec_file(o->spec, file, sizeof file)}, *outs[2] = {paths[0], paths[1]};
-    static const char *const flags[2] = {"--out (JSON)", "--out (Markdown)"};
-    int rc = cli_check_outputs("fit", ins, 1, outs, flags, 2);
+    const char *ins[1] = {cli_spec_file(o->spec, file, sizeof file)}, *outs[3] = {paths[0], paths[1], paths[2]};
+    static const char *const flags[3] = {"--out (JSON)", "--out (Markdown)", "--out (SVG)"};
+    int rc = cli_check_outputs("fit", ins, 1, outs, flags, 3);
     if (rc != CLI_OK) return rc;
     lucent_cache *cache = NULL;
     if (cdir && lucent_cache_create(cdir, &cache) != LUCENT_OK) return cli_fail();
@@ -197,6 +199,8 @@ static int run(options *o)
         if (s == LUCENT_OK) cli_wrote("wrote %s", paths[0]);
         if (s == LUCENT_OK) s = lucent_engine_report_write_markdown(paths[1], &rep);
         if (s == LUCENT_OK) cli_wrote("wrote %s", paths[1]);
+        if (s == LUCENT_OK) s = lucent_engine_report_write_svg(paths[2], &rep);
+        if (s == LUCENT_OK) cli_wrote("wrote %s", paths[2]);
         lucent_engine_report_free(&rep);
     }
     lucent_cache_destroy(cache);

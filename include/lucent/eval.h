@@ -320,6 +320,14 @@ lucent_status lucent_cdrf_fit_write_csv(const char *path, const lucent_cdrf_fit_
 /* The data and the fitted curves, one panel per channel, as SVG. */
 lucent_status lucent_cdrf_fit_write_svg(const char *path, const lucent_cdrf_fit_report *report);
 
+/* ---- The chart of engine fits (lucent fit; lucent/engine.h) ------------------------------------ */
+
+typedef struct lucent_engine_report lucent_engine_report;
+
+/* r R(r) of the truth and of each engine's fit and hand mapping (dashed), one panel per channel up to
+ * r99, as SVG. */
+lucent_status lucent_engine_report_write_svg(const char *path, const lucent_engine_report *report);
+
 #ifdef __cplusplus
 }
 #endif

@@ -9,7 +9,7 @@
 #include "engine/internal.h"
 
 static const char k_error_text[] =
-    "the fit matches the total diffuse reflectance T (the engine's albedo or colour) and minimises over R, G, B the "
+    "The fit matches the total diffuse reflectance T (the engine's albedo or colour) and minimises over R, G, B the "
     "sum of e_p^2, e_p the relative RMS of r R(r) against the truth over r <= r99 (99% of T); delta_e: CIEDE2000 of "
     "the model's T against the truth's (linear sRGB, white D65)";
 
