@@ -67,7 +67,8 @@ class Grid(ctypes.Structure):  # lucent_profile_grid
 
 
 class SourceDesc(ctypes.Structure):  # lucent_profile_source_desc
-    _fields_ = [("source", c_char_p), ("photons", ctypes.c_uint64), ("seed", ctypes.c_uint64), ("pool", c_void_p)]
+    _fields_ = [("source", c_char_p), ("photons", ctypes.c_uint64), ("seed", ctypes.c_uint64), ("pool", c_void_p),
+                ("grid", Grid)]
 
 
 class McLayer(ctypes.Structure):  # lucent_mc_layer (mc.h)
