@@ -3,17 +3,20 @@
 # installed by `make setup`; not under the sanitizers, since Blender is not ours).
 # Usage: peer_blender_test.sh path/to/lucent
 #
-# A Skin1 sphere (6 mm, 48 x 36 pixels) lit from the side: the path-traced reference at 128 spp and
-# Cycles' Christensen-Burley with `lucent fit`'s parameters at 64 spp. Checked:
-#   - the peer's relative RMS error against the reference is below 0.30. The bound's origin, measured on
-#     this scene: the reference's own noise at 128 spp is 9.5% (reported by compare); Cycles' at 64 spp
-#     15.5% (two seeds differ by 21.9% relative RMS, / sqrt 2); the model's own error 11.2% (at 512 and
-#     256 spp the error is 14.4% with noises 4.7% and 7.8%: sqrt(14.4^2 - 4.7^2 - 7.8^2)). Together
-#     sqrt(9.5^2 + 15.5^2 + 11.2^2) = 21.3% (measured: 21.8% and 21.5% with seeds 1 and 2); the bound
-#     leaves 40% margin. A wrong light unit, a mirrored camera or sun, or wound-in meshes fail the checks
-#     below;
-#   - the image's mean is within 10% of the reference's (the same light reaches the camera);
-#   - the lit side is left in both (the camera and the sun are not mirrored);
+# A Skin1 sphere (6 mm, 48 x 36 pixels) lit from the side: the path-traced reference at 128 spp, and
+# Cycles with `lucent fit`'s parameters at 64 spp, its Random Walk (blender-cycles, Blender's default)
+# and its Christensen-Burley. Checked:
+#   - each peer's relative RMS error against the reference is below its bound, measured on this scene:
+#     the reference's own noise at 128 spp is 9.5% (reported by compare); Cycles' at 64 spp 15.5% for
+#     Christensen-Burley and 12.5% for the Random Walk (two seeds differ by 21.9% and 17.7% relative RMS,
+#     / sqrt 2); the model's own error 11.2% for Christensen-Burley (at 512 and 256 spp the error is 14.4%
+#     with noises 4.7% and 7.8%: sqrt(14.4^2 - 4.7^2 - 7.8^2)), 26.4% for the Random Walk, whose diffuse
+#     entry lets the light in at grazing angles where the material's boundary reflects it (docs/engines.md).
+#     Together sqrt(9.5^2 + 15.5^2 + 11.2^2) = 21.3% (measured 21.8%, 21.5% with seeds 1 and 2) and
+#     sqrt(9.5^2 + 12.5^2 + 26.4^2) = 30.7% (measured 32.1%, 29.4%); the bounds, 0.30 and 0.42, leave 35-40%
+#     margin. A wrong light unit, a mirrored camera or sun, or meshes wound inward fail the checks below;
+#   - Christensen-Burley's mean is within 10% of the reference's (the same light reaches the camera);
+#   - the lit side is left in all three (the camera and the sun are not mirrored);
 #   - a missing Blender fails with a message naming what to install; an unknown peer is refused.
 set -u
 LUCENT=$1
@@ -36,26 +39,33 @@ cat >"$TMP/sphere.json" <<'EOF'
 }
 EOF
 
-out=$("$LUCENT" compare "$TMP/sphere.json" --methods lambert --spp 128 --peers blender-cycles-burley \
-  --peer-spp 64 --out "$TMP/out" 2>&1)
+out=$("$LUCENT" compare "$TMP/sphere.json" --methods lambert --spp 128 \
+  --peers blender-cycles,blender-cycles-burley --peer-spp 64 --out "$TMP/out" 2>&1)
 rc=$?
-check "compare --peers blender-cycles-burley runs" test "$rc" = 0 || echo "$out"
+check "compare --peers blender-cycles,blender-cycles-burley runs" test "$rc" = 0 || echo "$out"
 results=$TMP/out/results.json
-check "the peer's image is written beside the methods'" test -s "$TMP/out/peer-sphere/blender-cycles-burley.exr"
-err=$(python3 -c '
+check "the peers' images are written beside the methods'" \
+  test -s "$TMP/out/peer-sphere/blender-cycles.exr" -a -s "$TMP/out/peer-sphere/blender-cycles-burley.exr"
+error_of() { # PEER: its relative RMS error in results.json
+  python3 -c '
 import json, sys
 r = json.load(open(sys.argv[1]))
-m = [m for s in r["scenes"] for m in s["methods"] if m.get("method", m.get("name")) == "blender-cycles-burley"]
-print(m[0]["rel_rms"] if m else "nan")' "$results" 2>/dev/null)
-echo "     blender-cycles-burley: relative RMS error $err against the reference"
-check "the peer's error against the reference is below 0.30" python3 -c "import sys; sys.exit(not float('$err') < 0.30)"
+m = [m for s in r["scenes"] for m in s["methods"] if m.get("method", m.get("name")) == sys.argv[2]]
+print(m[0]["rel_rms"] if m else "nan")' "$results" "$1" 2>/dev/null
+}
+for pair in blender-cycles:0.42 blender-cycles-burley:0.30; do
+  peer=${pair%%:*} bound=${pair#*:}
+  err=$(error_of "$peer")
+  echo "     $peer: relative RMS error $err against the reference"
+  check "$peer's error against the reference is below $bound" python3 -c "import sys; sys.exit(not float('$err') < $bound)"
+done
 
 means() { # FILE: "r g b" means
   "$LUCENT" image info "$1" | awk '$1 == "R" || $1 == "G" || $1 == "B" {printf "%s ", $4}'
 }
 ref=$(means "$TMP/out/peer-sphere/reference.exr") peer=$(means "$TMP/out/peer-sphere/blender-cycles-burley.exr")
 echo "     means: reference $ref, peer $peer"
-check "the peer's mean is within 10% of the reference's" python3 -c "
+check "Christensen-Burley's mean is within 10% of the reference's" python3 -c "
 r = [float(x) for x in '$ref'.split()]; p = [float(x) for x in '$peer'.split()]
 import sys; sys.exit(not all(abs(a / b - 1) < 0.10 for a, b in zip(p, r)))"
 halves() { # FILE: the mean of the left half over the right half, red channel
@@ -67,8 +77,10 @@ left = sum(px[3 * (y * w + x)] for y in range(h) for x in range(w // 2))
 right = sum(px[3 * (y * w + x)] for y in range(h) for x in range(w // 2, w))
 print(left / right)' "$TMP/h.pfm"
 }
-check "the sphere is lit from the left in the reference and in Blender" python3 -c "
-import sys; sys.exit(not ($(halves "$TMP/out/peer-sphere/reference.exr") > 1.5 and $(halves "$TMP/out/peer-sphere/blender-cycles-burley.exr") > 1.5))"
+for f in reference blender-cycles blender-cycles-burley; do
+  check "the sphere is lit from the left in $f" python3 -c "
+import sys; sys.exit(not $(halves "$TMP/out/peer-sphere/$f.exr") > 1.5)"
+done
 
 out=$(LUCENT_BLENDER=/nonexistent/blender "$LUCENT" compare "$TMP/sphere.json" --methods lambert --spp 1 \
   --peers blender-cycles --out "$TMP/none" 2>&1)
