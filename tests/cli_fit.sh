@@ -3,7 +3,7 @@
 # parameters in its own names; the models' numbers are tested in tests/test_engine.c.
 
 FIT_FAST=(--photons 10000 --model-photons 2000 --cache "$TMP/fit-cache")
-expect_ok -- "$LUCENT" fit skin1 "${FIT_FAST[@]}" --transmittance --out "$TMP/fit/skin1"
+expect_ok -- "$LUCENT" fit skin1 "${FIT_FAST[@]}" --out "$TMP/fit/skin1"
 expect_true "fit wrote skin1.json, skin1.md and skin1.svg" -- \
   test -s "$TMP/fit/skin1.json" -a -s "$TMP/fit/skin1.md" -a -s "$TMP/fit/skin1.svg"
 expect_true "fit's chart is a complete SVG" -- grep -q "</svg>" "$TMP/fit/skin1.svg"
@@ -16,8 +16,9 @@ for pair in "unreal-burley:Mean Free Path Distance" "unreal-separable:Falloff Co
   expect_true "fit skin1: $engine in the JSON" -- grep -q "\"$engine\"" "$TMP/fit/skin1.json"
   expect_true "fit skin1: $engine's $param printed" -- grep -q "$param" <<<"$OUT"
 done
+expect_ok -- "$LUCENT" fit ketchup "${FIT_FAST[@]}" --engines unity-hdrp,godot --transmittance --out "$TMP/fit/ketchup"
 expect_true "fit --transmittance fits HDRP's tint and Godot's depth" -- \
-  grep -q "subsurf_scatter_transmittance_depth" "$TMP/fit/skin1.md"
+  grep -q "subsurf_scatter_transmittance_depth" "$TMP/fit/ketchup.md"
 expect_true "fit prints the hand mapping beside the fit" -- grep -q "^  hand " <<<"$OUT"
 expect_true "fit's Markdown has a table per engine" -- test "$(grep -c '^| parameter | value | unit |$' "$TMP/fit/skin1.md")" = 8
 

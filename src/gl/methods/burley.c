@@ -48,7 +48,8 @@ static lucent_status variant(const char *text, lucent_render_settings *s)
     return LUCENT_OK;
 }
 
-/* (A, d) of every material: its truth through the bake room (disk-cached) and HDRP's fit or hand mapping. */
+/* (A, d) of every material: its truth (the renderer's profile_photons when given, T then from twice as many;
+ * else the defaults, T disk-cached) and HDRP's fit or hand mapping. */
 static lucent_status prepare_params(lucent_renderer *r, burley_state *st, const lucent_render_settings *s)
 {
     char key[sizeof st->key];
@@ -60,9 +61,13 @@ static lucent_status prepare_params(lucent_renderer *r, burley_state *st, const 
     for (int m = 0; m < r->tables.count; m++) {
         lucent_engine_target t;
         lucent_engine_fit_result fit;
-        lucent_status e = lucent_engine_target_build(
-            &(lucent_engine_target_desc){.material = &r->tables.material[m], .pool = r->desc.pool, .cache = r->cache},
-            &t);
+        lucent_status e =
+            lucent_engine_target_build(&(lucent_engine_target_desc){.material = &r->tables.material[m],
+                                                                    .photons = r->desc.profile_photons,
+                                                                    .total_photons = 2 * r->desc.profile_photons,
+                                                                    .pool = r->desc.pool,
+                                                                    .cache = r->cache},
+                                       &t);
         if (e == LUCENT_OK)
             e = s->burley.params == LUCENT_BURLEY_PARAMS_HAND
                     ? lucent_engine_hand(&t, LUCENT_ENGINE_UNITY_HDRP, NULL, &fit)
