@@ -24,16 +24,23 @@ sets() { # SCENE MATERIAL: --set objects[i].material=MATERIAL for every object
 for scene in spheres-skin bunny-skin; do
   for material in skin1 marble ketchup; do
     dir=$OUT/$scene-$material
-    [ -s "$dir/results.json" ] && continue
-    # shellcheck disable=SC2046
-    nice -n 5 "$LUCENT" compare "data/scenes/$scene.json" --scale 0.5 $(sets "$scene" "$material") \
-      --spp "$SPP" --time "$TIME" --methods "$METHODS" --peers "$PEERS" --peer-spp "$PEER_SPP" --out "$dir" \
-      >"$dir.log" 2>&1
-    # the peers again with another seed (a cheap reference: only the peers' images are used)
-    # shellcheck disable=SC2046
-    nice -n 5 "$LUCENT" compare "data/scenes/$scene.json" --scale 0.5 $(sets "$scene" "$material") \
-      --spp 4 --methods lambert --peers "$PEERS" --peer-spp "$PEER_SPP" --peer-seed 2 --out "$dir-seed2" \
-      >"$dir-seed2.log" 2>&1
+    # the peers (Blender), and a cheap second run of them with another seed for their own noise
+    if [ ! -s "$dir/results.json" ]; then
+      # shellcheck disable=SC2046
+      nice -n 5 "$LUCENT" compare "data/scenes/$scene.json" --scale 0.5 $(sets "$scene" "$material") \
+        --spp "$SPP" --time "$TIME" --methods lambert --peers "$PEERS" --peer-spp "$PEER_SPP" --out "$dir" \
+        >"$dir.log" 2>&1
+      # shellcheck disable=SC2046
+      nice -n 5 "$LUCENT" compare "data/scenes/$scene.json" --scale 0.5 $(sets "$scene" "$material") \
+        --spp 4 --methods lambert --peers "$PEERS" --peer-spp "$PEER_SPP" --peer-seed 2 --out "$dir-seed2" \
+        >"$dir-seed2.log" 2>&1
+    fi
+    # Lucent's methods
+    if [ ! -s "$dir-methods/results.json" ]; then
+      # shellcheck disable=SC2046
+      nice -n 5 "$LUCENT" compare "data/scenes/$scene.json" --scale 0.5 $(sets "$scene" "$material") \
+        --spp "$SPP" --time "$TIME" --methods "$METHODS" --out "$dir-methods" >"$dir-methods.log" 2>&1
+    fi
   done
 done
 

@@ -49,13 +49,18 @@ def main():
             d = os.path.join(out, "%s-%s" % (scene, material))
             if not os.path.exists(os.path.join(d, "results.json")):
                 continue
-            r = json.load(open(os.path.join(d, "results.json")))["scenes"][0]
-            err = {m.get("method", m.get("name")): m["rel_rms"] for m in r["methods"]}
-            noise = r["reference"]["noise"] if isinstance(r.get("reference"), dict) else r.get("reference_noise")
-            spp = r["reference"]["spp"] if isinstance(r.get("reference"), dict) else r.get("reference_spp")
+            runs = {}
+            for run_dir in (d, d + "-methods"):  # the peers' run, and Lucent's methods' run
+                if os.path.exists(os.path.join(run_dir, "results.json")):
+                    r = json.load(open(os.path.join(run_dir, "results.json")))["scenes"][0]
+                    for m in r["methods"]:
+                        runs[m.get("method", m.get("name"))] = (m["rel_rms"], r["reference_noise"],
+                                                                r["reference_spp"])
             for fit, hand, title in ROWS:
-                if fit not in err:
+                if fit not in runs or hand not in runs:
                     continue
+                err = {fit: runs[fit][0], hand: runs[hand][0]}
+                noise, spp = runs[fit][1], runs[fit][2]
                 pn = "-"
                 if fit.startswith("blender"):
                     stem = fit.replace(":", "-")

@@ -6,7 +6,8 @@
  * sampling density, the sums normalised per channel. Each material's albedo A and d = 1 / s are those
  * `lucent fit` gives HDRP (lucent/engine.h), or the hand mapping (d = 1 / sigma_tr, colour T), so that
  * the renderer shows what an engine shows with those parameters. The surface pass is ssss's (Lambert
- * irradiance times the albedo); the compose pass adds the specular. */
+ * irradiance times the albedo, and with render.translucency the light through thin parts, as ssss: the
+ * engines carry their own transmission); the compose pass adds the specular. */
 #include <math.h>
 #include <string.h>
 
@@ -95,6 +96,7 @@ static lucent_status prepare(lucent_renderer *r, void *state, const lucent_rende
 {
     burley_state *st = state;
     lucent_status e = prepare_params(r, st, s);
+    if (e == LUCENT_OK && s->translucency.enabled) e = gl_translucency_prepare(r, s);
     if (e == LUCENT_OK) e = prepare_target(r, st);
     if (e == LUCENT_OK) e = gl_surface_program(r, "ssss.frag.glsl", NULL, &st->surface);
     if (e == LUCENT_OK && !st->blur)
@@ -108,11 +110,10 @@ static void object_uniforms(const lucent_renderer *r, const void *state, const l
 {
     const burley_state *st = state;
     const double *a = st->albedo[r->tables.object_material[i]];
-    (void)s;
     if (r->scene->objects[i].albedo_source == LUCENT_ALBEDO_FROM_MATERIAL)
         glUniform3f(glGetUniformLocation(p, "u_albedo"), (float)a[0], (float)a[1], (float)a[2]);
     glUniform1f(glGetUniformLocation(p, "u_strength"), (float)r->scene->objects[i].sss_strength);
-    glUniform1i(glGetUniformLocation(p, "u_translucency"), 0);
+    gl_translucency_uniforms(r, s, i, p, s->translucency.enabled);
 }
 
 static void blur(lucent_renderer *r, burley_state *st, const lucent_render_settings *s)
@@ -170,11 +171,15 @@ static void release(void *state)
     memset(st, 0, sizeof *st);
 }
 
-static unsigned bakes(const lucent_renderer *r, const lucent_render_settings *s) { return (void)r, (void)s, 0u; }
+static unsigned bakes(const lucent_renderer *r, const lucent_render_settings *s)
+{
+    (void)r;
+    return s->translucency.enabled ? LUCENT_BAKE_TRANSMITTANCE : 0u;
+}
 
 const gl_method gl_method_burley = {
     .name = "burley",
-    .settings = (const char *const[]){"burley_params", "burley_samples", NULL},
+    .settings = (const char *const[]){"burley_params", "burley_samples", "translucency", "transmittance", NULL},
     .variant = variant,
     .variant_doc = "fit|hand",
     .bakes = bakes,
