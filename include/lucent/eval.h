@@ -68,7 +68,8 @@ enum { LUCENT_COMPARE_MAX_SCENES = 16, LUCENT_COMPARE_MAX_METHODS = 32, LUCENT_C
 
 /* The methods compared when a desc names none. */
 #define LUCENT_COMPARE_DEFAULT_METHODS                                                                                 \
-    "lambert,cdrf,cdrf+translucency,ssss:preint,ssss:svd1,ssss:svd3,ssss:guided,ssss:manual,ssss:jimenez,tsd,points,burley"
+    "lambert,cdrf,cdrf+translucency,ssss:preint,ssss:svd1,ssss:svd3,ssss:guided,ssss:manual,ssss:jimenez,tsd,points,"  \
+    "burley"
 /* The report's title when a desc gives none. */
 #define LUCENT_COMPARE_DEFAULT_TITLE "Lucent: real-time subsurface scattering against a path-traced reference"
 /* The relative error drawn in full colour in the error maps (50%). */
