@@ -2,7 +2,7 @@
 # expect_true, expect_no_file). Few photons: these check the command, the files and every engine's
 # parameters in its own names; the models' numbers are tested in tests/test_engine.c.
 
-FIT_FAST=(--photons 10000 --model-photons 2000 --cache "$TMP/fit-cache")
+FIT_FAST=(--photons 5000 --model-photons 1000 --cache "$TMP/fit-cache")
 expect_ok -- "$LUCENT" fit skin1 "${FIT_FAST[@]}" --out "$TMP/fit/skin1"
 expect_true "fit wrote skin1.json, skin1.md and skin1.svg" -- \
   test -s "$TMP/fit/skin1.json" -a -s "$TMP/fit/skin1.md" -a -s "$TMP/fit/skin1.svg"
