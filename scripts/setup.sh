@@ -10,7 +10,8 @@ cd "$(dirname "$0")/.."
 # `mpirun -np N lucent ...` (docs/scale.md; the build works without it); libgl1-mesa-dri and libegl-mesa0: Mesa's llvmpipe,
 # the OpenGL 4.5 renderer of machines without a GPU, reached through EGL's surfaceless platform;
 # libimgui-dev: the panel of `lucent view`; xvfb and xauth: the viewer's window tests without a display;
-# blender and python3-numpy: Blender 3.4 as the pack's glTF peer, whose importer needs numpy).
+# blender and python3-numpy: Blender 3.4 as the pack's glTF peer, whose importer needs numpy, and the engine
+# peer of `lucent compare --peers` and its test, Cycles and EEVEE headless).
 PACKAGES=(build-essential cmake pkg-config zlib1g-dev libpng-dev libopenexr-dev libcjson-dev
           libassimp-dev liblapacke-dev libopenblas-dev libnlopt-dev libfftw3-dev glslang-tools
           libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglfw3-dev

@@ -39,6 +39,7 @@ small_options() { # SUBCOMMAND: what makes its example small
     cdrf-fit) echo "--photons 2000 --bins 6" ;;
     cdrf-lut) echo "--width 16 --height 8" ;;
     pack) echo "--sigma0-photons 2000 --transmit-photons 500" ;;
+    fit) echo "--photons 5000 --model-photons 1000" ;;
     *) echo "" ;;
   esac
 }

@@ -5,6 +5,7 @@
 #include "lucent/base.h"
 #include "lucent/cdrf.h"
 #include "lucent/convolve.h"
+#include "lucent/engine.h"
 #include "lucent/eval.h"
 #include "lucent/gltf.h"
 #include "lucent/image.h"

@@ -522,6 +522,68 @@ def pack(spec, engine, out, screen=(1920, 1080), fov=45.0, object_height_mm=1800
         _L.lucent_cache_destroy(cache)
 
 
+# ---- engines ----------------------------------------------------------------------------------
+
+def fit(spec=None, layers=None, engines=None, photons=0, model_photons=0, seed=1, transmittance=False, hand=True,
+        cache_dir=None, threads=0):
+    """Each engine's subsurface parameters fitted to a material's truth, as `lucent fit` (docs/engines.md):
+    a dict with "truth" (T, r99, the profile's noise) and "engines", a list of per-engine dicts with
+    "engine", "parameters" (name, value, unit, in the engine's own terms), "profile_error", "delta_e2000",
+    "cannot_express", "notes" and, with hand, "hand_mapping" (radius = 1/sigma_tr, colour = T).
+    spec: a material (preset, FILE.json, FILE.json#NAME or a Material); layers: [(spec, thickness_mm), ...]
+    top first, the last may be float("inf"). engines: names ("unreal-burley", "unity-hdrp", "blender3-burley",
+    ...; None: all). photons: the truth's profile photons per channel (0: 200000; given, T takes twice as
+    many, else the bake's 400000, kept in cache_dir)."""
+    import json
+    ids = []
+    for name in engines or []:
+        e = ctypes.c_int()
+        _check(_L.lucent_engine_parse(_b(name), ctypes.byref(e)))
+        ids.append(e.value)
+    d = _lib.EngineReportDesc()
+    keep = []
+    if layers:
+        arr = (_lib.Layer * len(layers))()
+        for i, (lspec, thickness) in enumerate(layers):
+            arr[i].material = material(lspec)._c
+            arr[i].slab.thickness = float(thickness)
+        d.target.layers, d.target.layer_count = arr, len(layers)
+        keep.append(arr)
+    else:
+        m = material(spec)
+        d.target.material = ctypes.pointer(m._c)
+        keep.append(m)
+    d.target.photons = int(photons)
+    d.target.total_photons = 2 * int(photons)
+    d.target.seed = int(seed)
+    d.target.transmittance = bool(transmittance)
+    d.target.pool = d.fit.pool = _pool(threads)
+    d.fit.model_photons = int(model_photons)
+    d.hand = bool(hand)
+    if ids:
+        d.engines, d.engine_count = (ctypes.c_int * len(ids))(*ids), len(ids)
+    cache = ctypes.c_void_p()
+    if cache_dir:
+        _check(_L.lucent_cache_create(_b(cache_dir), ctypes.byref(cache)))
+        d.target.cache = cache
+    report, text = ctypes.c_void_p(), ctypes.c_void_p()
+    try:
+        _check(_L.lucent_engine_report_create(ctypes.byref(d), ctypes.byref(report)))
+        _check(_L.lucent_engine_report_json(report, ctypes.byref(text)))
+        return json.loads(ctypes.string_at(text).decode("utf-8"))
+    finally:
+        if text:
+            _libc_free(text)
+        _L.lucent_engine_report_destroy(report)
+        _L.lucent_cache_destroy(cache)
+
+
+def _libc_free(ptr):
+    libc = ctypes.CDLL(None)
+    libc.free.argtypes = [ctypes.c_void_p]
+    libc.free(ptr)
+
+
 def versions():
     """What the library links: {"lucent", "embree", "openexr", "library"}."""
     return {"lucent": __version__, "embree": _L.lucent_trace_embree_version().decode(),
