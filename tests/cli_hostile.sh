@@ -193,7 +193,7 @@ expect_fail 1 "trace-small.json: trace: no pass completed within the time limit 
 expect_fail 1 "no pass completed within the time limit of 1e-300 s" -- \
   "$LUCENT" trace "$FIXTURES/scenes/trace-small.json" --set render.time_limit=1e-300 --out "$TMP/t0.png"
 expect_no_file "$TMP/t0.png" "$TMP/t0.exr"
-expect_fail 1 "sphere.json: reference test-sphere: no pass completed within the time limit" -- \
+expect_fail 1 "sphere.json: reference test-sphere, run 1 of 2: no pass completed within the time limit" -- \
   "${GLRUN[@]}" compare "$FIXTURES/scenes/sphere.json" --methods lambert --time 0.001 --out "$TMP/c0"
 
 # 6. Meshes and point clouds under hostile counts: .ply.gz bombs refused from the header (30 M faces in
