@@ -69,7 +69,7 @@ typedef struct options {
     const char *out, *title, *reference;
     int reference_runs;
     bool per_light;
-        char peers_text[512];
+    char peers_text[512];
     const char *peers[MAX_METHODS];
     int peer_count, peer_spp, peer_seed;
 } options;

@@ -57,7 +57,6 @@ void lucent_bands_rgb_to_xyz(const lucent_bands *b, const double rgb[3], double 
 double lucent_ita(const double lab[3]);
 const char *lucent_ita_category(double ita);
 
-
 /* ---- Chromophores (mm^-1 at wavelength nm in [380, 780]; data/spectra.json) ---- */
 
 /* Whole blood (150 g Hb per litre) of oxygen saturation s: s mu_a(HbO2) + (1 - s) mu_a(Hb) (Prahl). */
