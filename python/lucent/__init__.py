@@ -591,4 +591,4 @@ def versions():
 
 
 __all__ = ["LucentError", "ArgumentError", "ArgumentTypeError", "Material", "material", "materials", "Profile", "profile", "mcml", "Kernel", "kernel",
-           "cdrf", "cdrf_lut", "cdrf_fit", "curvature", "render", "trace", "pack", "versions"]
+           "cdrf", "cdrf_lut", "cdrf_fit", "curvature", "render", "trace", "pack", "fit", "versions"]
