@@ -590,5 +590,5 @@ def versions():
             "openexr": _L.lucent_image_openexr_version().decode(), "library": library_path}
 
 
-__all__ = ["LucentError", "ArgumentError", "ArgumentTypeError", "Material", "material", "materials", "Profile", "profile", "mcml", "Kernel", "kernel",
+__all__ = ["LucentError", "ArgumentError", "ArgumentTypeError", "Material", "material", "materials", "Profile", "profile", "skin_profile", "skin_color", "ciede2000", "mcml", "Kernel", "kernel",
            "cdrf", "cdrf_lut", "cdrf_fit", "curvature", "render", "trace", "pack", "fit", "versions"]
