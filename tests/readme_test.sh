@@ -62,9 +62,11 @@ while IFS= read -r line; do
   fi
   extra=""
   [ "${LUCENT_README_FULL:-0}" = 1 ] || [[ "$cmd" != lucent* ]] || extra=$(small_options "$sub")
+  t0=$(date +%s.%N)
   out=$(cd "$work" && bash -c "$cmd $extra" 2>&1 </dev/null); rc=$?
+  secs=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
   if [ "$rc" = 0 ]; then
-    passed=$((passed + 1)); echo "ok   $line"
+    passed=$((passed + 1)); echo "ok   ${secs} s  $line"
   else
     failed=$((failed + 1)); echo "FAIL $line (exit $rc)"; { grep '^lucent' <<<"$out" | tail -5; printf '%s\n' "$out" | tail -5; } | sed 's/^/     /'
   fi
