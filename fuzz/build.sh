@@ -4,9 +4,10 @@
 # target from tests/fixtures, and runs each target in turn:
 #   fuzz/build.sh [SECONDS_PER_TARGET] [TARGET...]     (make fuzz FUZZ_SECONDS=600)
 # Targets: mesh (PLY/OBJ/STL/OFF/glTF import), ply (the PLY property API), plygz (.ply.gz: gzip framing and
-# what it inflates to), points (point clouds as surfels), material, scene (+ --set), mcml (.mci/.mco), image
-# (PNG/EXR/PFM, scanline and tiled), part (the part files of --part K/N that lucent merge reads), reference
-# (compare's reference.json), view_script (`lucent view --script` files, checked whole).
+# what it inflates to), points (point clouds as surfels), material, scene (+ --set), gltf (glTF scenes: .gltf/.glb,
+# buffers, accessors, nodes, cameras, lights, materials), mcml (.mci/.mco), image (PNG/EXR/PFM, scanline and
+# tiled), part (the part files of --part K/N that lucent merge reads), reference (compare's reference.json),
+# view_script (`lucent view --script` files, checked whole).
 # Findings land in build-fuzz/artifacts_<target>/; each run's
 # last lines (executions, coverage) in build-fuzz/fuzz_<target>.log. Exit status 1 when a target found
 # a crash, a leak or a timeout.
@@ -15,7 +16,7 @@ cd "$(dirname "$0")/.."
 secs=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(mesh ply plygz points material scene mcml image part reference view_script)
+[ ${#targets[@]} -gt 0 ] || targets=(mesh ply plygz points material scene gltf mcml image part reference view_script)
 command -v clang >/dev/null || { echo "fuzz: clang is needed (Debian: clang)"; exit 1; }
 out=build-fuzz
 cmake -S . -B "$out" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DLUCENT_FUZZ=ON -DLUCENT_MPI=OFF \
@@ -63,6 +64,7 @@ seed mcml tests/fixtures/mcml/*.mci tests/fixtures/mcml/mco/*.mco
 seed scene data/scenes/*.json tests/fixtures/scenes/*.json
 seed reference tests/fixtures/compare/reference.json
 seed view_script tests/fixtures/view/*.txt
+seed gltf tests/fixtures/gltf/*.gltf tests/fixtures/gltf/*.glb
 mkdir -p "$out/corpus_image"
 for f in tests/fixtures/images/*.png; do [ -f "$f" ] && { printf '\0'; cat "$f"; } >"$out/corpus_image/$(basename "$f")"; done
 for f in tests/fixtures/images/*.exr tests/fixtures/bad-images/*.exr; do # scanline and tiled, good and short

@@ -24,6 +24,7 @@ ALLOWED = {
     ("scene", "gl_cdrf_settings"): "settings registry",
     ("scene", "gl_points_settings"): "settings registry",
     ("scene", "gl_tsd_settings"): "settings registry",
+    ("scene", "gl_burley_settings"): "settings registry",
     ("scene", "tr_trace_settings"): "settings registry",
     ("scene", "lucent_render_method_name"): "settings registry: the method setting's names",
     ("scene", "lucent_render_method_parse"): "settings registry: ssss:svd3 sets the kernel too",

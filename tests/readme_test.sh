@@ -39,6 +39,7 @@ small_options() { # SUBCOMMAND: what makes its example small
     cdrf-fit) echo "--photons 2000 --bins 6" ;;
     cdrf-lut) echo "--width 16 --height 8" ;;
     pack) echo "--sigma0-photons 2000 --transmit-photons 500" ;;
+    fit) echo "--photons 5000 --model-photons 1000" ;;
     *) echo "" ;;
   esac
 }
@@ -61,9 +62,11 @@ while IFS= read -r line; do
   fi
   extra=""
   [ "${LUCENT_README_FULL:-0}" = 1 ] || [[ "$cmd" != lucent* ]] || extra=$(small_options "$sub")
+  t0=$(date +%s.%N)
   out=$(cd "$work" && bash -c "$cmd $extra" 2>&1 </dev/null); rc=$?
+  secs=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
   if [ "$rc" = 0 ]; then
-    passed=$((passed + 1)); echo "ok   $line"
+    passed=$((passed + 1)); echo "ok   ${secs} s  $line"
   else
     failed=$((failed + 1)); echo "FAIL $line (exit $rc)"; { grep '^lucent' <<<"$out" | tail -5; printf '%s\n' "$out" | tail -5; } | sed 's/^/     /'
   fi

@@ -174,8 +174,10 @@ TEST(sphere_lit_along_view_axis_is_symmetric)
         CHECK_OK(lucent_render(r, &s, &res));
         double a = res.image ? asymmetry(res.image) : 1;
         /* tsd diffuses in the icosphere's atlas, whose charts are not mirror-symmetric (its accuracy is
-         * tested against the object-space convolution in test_gl_tsd.c): printed, not checked */
-        if (m != LUCENT_METHOD_TSD)
+         * tested against the object-space convolution in test_gl_tsd.c); burley's disk of samples turns per
+         * pixel (noise, as HDRP's before its temporal filter; its accuracy is tested against Burley's edge
+         * response in test_gl_burley.c): printed, not checked */
+        if (m != LUCENT_METHOD_TSD && m != LUCENT_METHOD_BURLEY)
             CHECK_MSG(a <= 1e-3, "%s: asymmetry %.3g of the peak", lucent_render_method_name(s.view.method), a);
         printf("     %s: asymmetry %.2g of the peak\n", lucent_render_method_name(s.view.method), a);
         CHECK(res.mask && lucent_image_get(res.mask, 0, 0, 0) == 0 && lucent_image_get(res.mask, 32, 32, 0) == 1);

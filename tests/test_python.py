@@ -168,5 +168,39 @@ check("trace: an image with light on it", sum(tr[y][x][1] for y in range(len(tr)
 check("a bad scene override raises, naming it",
       *raises(lambda: lucent.trace(scene, settings={"objects[0].material": "unobtainium"}), "objects[0].material"))
 
+# pack(): the files of `lucent pack` with the same arguments, byte for byte (the same library: the bake's
+# Monte Carlo has fixed seeds), and the width the CLI prints.
+few = ["--sigma0-photons", "500", "--transmit-photons", "100", "--lut-size", "8x8", "--object-height", "0.05m"]
+cli = subprocess.run([lucent_bin, "pack", "skin1", "--engine", "gles", "--no-cache", "--out", os.path.join(tmp, "pk-cli")]
+                     + few, check=True, capture_output=True, text=True).stdout
+r = lucent.pack("skin1", "gles", os.path.join(tmp, "pk-py"), object_height_mm=50, lut_size=(8, 8), sigma0_photons=500,
+                transmit_photons=100)
+names = sorted(os.listdir(os.path.join(tmp, "pk-cli")))
+same = names == sorted(os.listdir(os.path.join(tmp, "pk-py"))) and all(
+    open(os.path.join(tmp, "pk-cli", n), "rb").read() == open(os.path.join(tmp, "pk-py", n), "rb").read() for n in names)
+check("pack(): the CLI's %d files, byte for byte" % len(names), same and r["file_count"] == len(names) == 11, names)
+check("pack(): the CLI's kernel width", "kernel width: %.2f px" % r["width_px"] in cli, (r, cli))
+check("pack(): an unknown engine raises, naming it",
+      *raises(lambda: lucent.pack("skin1", "wgsl", os.path.join(tmp, "pk-x")), "unknown engine 'wgsl'"))
+
+# Engine parameters: fit() gives the CLI's numbers (same truth: the same seeds and photons); the hand mapping's
+# HDRP scattering distance is 1 / sigma_tr of the material (Jensen 2001's sigma_tr = sqrt(3 sigma_a sigma_t'),
+# computed here from the preset's coefficients); a stack says that its layers are beyond a homogeneous model.
+r = lucent.fit("ketchup", engines=["unity-hdrp"], photons=20000)
+subprocess.run([lucent_bin, "-q", "fit", "ketchup", "--engines", "unity-hdrp", "--photons", "20000", "--no-cache",
+                "--out", os.path.join(tmp, "fit")], check=True)
+cli = json.load(open(os.path.join(tmp, "fit.json")))
+check("fit(): the CLI's parameters", r["engines"][0]["parameters"] == cli["engines"][0]["parameters"])
+k = lucent.material("ketchup")
+hand = {p["name"]: p["value"] for p in r["engines"][0]["hand_mapping"]["parameters"]}
+for c in range(3):
+    sig_tr = math.sqrt(3 * k.sigma_a[c] * (k.sigma_a[c] + k.sigma_s[c] * (1 - k.g[c])))
+    check("fit(): the hand mapping's d = 1 / sigma_tr, channel %d" % c,
+          abs(hand["Scattering Color"][c] * hand["Multiplier"] - 1 / sig_tr) < 1e-9 / sig_tr)
+r = lucent.fit(layers=[("skin1", 0.5), ("skin2", float("inf"))], engines=["blender3-burley"], photons=5000)
+check("fit(layers=...): the stack is what the model cannot express", "layers (2)" in r["engines"][0]["cannot_express"])
+check("fit(): an unknown engine raises, naming the known ones",
+      *raises(lambda: lucent.fit("skin1", engines=["unreal"]), "unknown engine", "unity-hdrp"))
+
 print("%d failed" % failed)
 sys.exit(1 if failed else 0)

@@ -126,6 +126,9 @@ const char *cli_cache_dir(const char *option, bool none, char *buf, size_t size)
 /* The pool shared by the command's work, sized by --threads (created on first use). */
 lucent_pool *cli_pool(void);
 
+/* Reads --layers "MATERIAL:THICKNESS_MM,..." (the last may be "inf") into dest (at most max layers). */
+lucent_status cli_parse_layers(const char *list, lucent_layer *dest, int max, int *count);
+
 /* The subcommands (one cmd_<name>.c each). */
 int cmd_materials(int argc, char **argv);
 int cmd_image(int argc, char **argv);
@@ -142,5 +145,6 @@ int cmd_render(int argc, char **argv);
 int cmd_trace(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 int cmd_view(int argc, char **argv);
+int cmd_fit(int argc, char **argv);
 
 #endif

@@ -24,6 +24,10 @@ static const char k_usage[] =
     "  --methods LIST   comma-separated methods (default " DEFAULT_METHODS ");\n"
     "                   any of lambert, cdrf, cdrf+translucency, ssss, ssss:<model>[rank], tsd,\n"
     "                   points, points:sog<N>|deon|brdf|disks\n"
+    "  --peers LIST     real engines beside the methods, with `lucent fit`'s parameters: blender-cycles\n"
+    "                   (Random Walk), blender-cycles-burley, blender-eevee; NAME:hand for the hand\n"
+    "                   mapping (Blender 3.4, headless; $LUCENT_BLENDER names another program)\n"
+    "  --peer-spp N     the peers' samples per pixel (default 64); --peer-seed S: their seed\n"
     "  --spp N          reference samples per pixel (default: the scene's render.spp)\n"
     "  --time S         at most S seconds per reference (default: no limit)\n"
     "  --frames N       GL frames timed per method; the median is reported (default 5)\n"
@@ -65,6 +69,9 @@ typedef struct options {
     const char *out, *title, *reference;
     int reference_runs;
     bool per_light;
+    char peers_text[512];
+    const char *peers[MAX_METHODS];
+    int peer_count, peer_spp, peer_seed;
 } options;
 
 /* ---- options ---- */
@@ -103,6 +110,19 @@ static int parse_number_option(const char *name, const char *v, options *o)
 static int parse_args(int argc, char **argv, options *o)
 {
     static const char *const numeric[] = {"--spp", "--frames", "--time", "--scale"};
+    for (int i = 1; i < argc; i++) { /* the peers: their names are checked by lucent_compare_run */
+        const char *v;
+        if (cli_option(argc, argv, &i, "--peer-spp", &v) && !(cli_parse_int(v, &o->peer_spp) && o->peer_spp >= 1))
+            return cli_usage_error("compare", "--peer-spp needs a whole number >= 1");
+        if (cli_option(argc, argv, &i, "--peer-seed", &v) && !(cli_parse_int(v, &o->peer_seed) && o->peer_seed >= 1))
+            return cli_usage_error("compare", "--peer-seed needs a whole number >= 1");
+        if (!cli_option(argc, argv, &i, "--peers", &v)) continue;
+        if (!v || strlen(v) >= sizeof o->peers_text) return cli_usage_error("compare", "--peers needs a list");
+        snprintf(o->peers_text, sizeof o->peers_text, "%s", v);
+        for (char *save = NULL, *t = strtok_r(o->peers_text, ",", &save); t && o->peer_count < MAX_METHODS;
+             t = strtok_r(NULL, ",", &save))
+            o->peers[o->peer_count++] = t;
+    }
     for (int i = 1; i < argc; i++) {
         const char *v;
         int rc = -1;
@@ -110,7 +130,10 @@ static int parse_args(int argc, char **argv, options *o)
             if (cli_option(argc, argv, &i, numeric[k], &v)) rc = parse_number_option(numeric[k], v, o);
         if (rc > 0) return rc;
         if (rc == 0) continue;
-        if (cli_option(argc, argv, &i, "--methods", &v)) {
+        if (cli_option(argc, argv, &i, "--peers", &v) || cli_option(argc, argv, &i, "--peer-spp", &v) ||
+            cli_option(argc, argv, &i, "--peer-seed", &v)) {
+            continue;
+        } else if (cli_option(argc, argv, &i, "--methods", &v)) {
             if (!v || strlen(v) >= sizeof o->methods_text) return cli_usage_error("compare", "--methods needs a list");
             snprintf(o->methods_text, sizeof o->methods_text, "%s", v);
         } else if (cli_option(argc, argv, &i, "--set", &v)) {
@@ -250,7 +273,12 @@ int cmd_compare(int argc, char **argv)
                              .reference = o.reference,
                              .per_light = o.per_light,
                              .revision = lucent_cli_revision,
-                             .command = command};
+                             .command = command,
+
+                             .peers = o.peers,
+                             .peer_count = o.peer_count,
+                             .peer_spp = o.peer_spp,
+                             .peer_seed = (uint64_t)o.peer_seed};
     lucent_status s = lucent_compare_run(&d, &result);
     if (s == LUCENT_OK) cli_wrote("wrote %s/report.html (and report.md, report.csv, results.json)", o.out);
     lucent_compare_result_free(&result);

@@ -22,6 +22,7 @@ static const cli_command k_commands[] = {
     {"cdrf-fit", "fit the CDRF's sigma0 to Monte Carlo spheres of a material", cmd_cdrf_fit},
     {"kernel", "separable subsurface-scattering kernels for a material, with taps and shader exports", cmd_kernel},
     {"pack", "an engine pack for a material: taps, blur pass, CDRF LUT and snippet, T(s), constants, glTF", cmd_pack},
+    {"fit", "fit each engine's subsurface parameters (Unreal, Unity, Blender, OpenPBR, Godot) to a material", cmd_fit},
     {"kernel-eval", "evaluate every kernel model of a material against the exact 2-D convolution", cmd_kernel_eval},
     {"render", "render a scene with OpenGL: Lambert, CDRF, CDRF + translucency, screen-space SSS", cmd_render},
     {"trace", "path-traced reference of a scene (Embree): media, rough or smooth boundaries", cmd_trace},
@@ -223,7 +224,7 @@ int cli_view_option(const char *command, int argc, char **argv, int *i, cli_view
 
 double cli_view_depth_mm(const cli_view *v)
 {
-    return v->distance_mm > 0 ? v->distance_mm : v->object_height_mm / (2 * tan(0.5 * v->fov * M_PI / 180));
+    return v->distance_mm > 0 ? v->distance_mm : lucent_screen_depth_mm(v->object_height_mm, v->fov);
 }
 
 void cli_print_kernel_width(FILE *out, double radius_mm, const cli_view *v)

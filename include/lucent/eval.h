@@ -73,7 +73,7 @@ enum { LUCENT_COMPARE_MAX_SCENES = 16, LUCENT_COMPARE_MAX_METHODS = 32, LUCENT_C
  * renderer (llvmpipe); tsd and points take tens of seconds a frame there and run only when asked for
  * (LUCENT_EVAL_SLOW tells their estimate first). */
 #define LUCENT_COMPARE_DEFAULT_METHODS                                                                                 \
-    "lambert,cdrf,cdrf+translucency,ssss:preint,ssss:svd1,ssss:svd3,ssss:guided,ssss:manual,ssss:jimenez"
+    "lambert,cdrf,cdrf+translucency,ssss:preint,ssss:svd1,ssss:svd3,ssss:guided,ssss:manual,ssss:jimenez,burley"
 /* The report's title when a desc gives none. */
 #define LUCENT_COMPARE_DEFAULT_TITLE "Lucent: real-time subsurface scattering against a path-traced reference"
 /* The relative error drawn in full colour in the error maps (50%). */
@@ -110,6 +110,16 @@ typedef struct lucent_compare_desc {
     bool per_light;                /* also each light alone, reference and methods (a reference per light) */
     const char *revision;          /* provenance: the program's git revision (NULL: "unknown") */
     const char *command;           /* provenance: the command line (NULL: none recorded) */
+    /* Real engines rendering each scene beside the methods, with the parameters `lucent fit` gives each
+     * material (lucent/engine.h): "blender-cycles" (Cycles' Random Walk), "blender-cycles-burley",
+     * "blender-eevee", each optionally ":hand" (the hand mapping instead of the fit). Blender 3.4 headless
+     * (docs/engines.md); missing, the run fails saying so. Counted with the methods in
+     * LUCENT_COMPARE_MAX_METHODS. */
+    const char *const *peers;
+    int peer_count;
+    int peer_spp;        /* the peers' samples per pixel (0: 64) */
+    uint64_t peer_seed;  /* the peers' seed (0: 1) */
+    const char *blender; /* the program (NULL: $LUCENT_BLENDER, else blender on PATH) */
 } lucent_compare_desc;
 
 /* Returns what a zero lucent_compare_desc stands for (no scenes; the default methods are left to
@@ -409,6 +419,14 @@ lucent_status lucent_cdrf_fit_write_csv(const char *path, const lucent_cdrf_fit_
 
 /* The data and the fitted curves, one panel per channel, as SVG. */
 lucent_status lucent_cdrf_fit_write_svg(const char *path, const lucent_cdrf_fit_report *report);
+
+/* ---- The chart of engine fits (lucent fit; lucent/engine.h) ------------------------------------ */
+
+typedef struct lucent_engine_report lucent_engine_report;
+
+/* r R(r) of the truth and of each engine's fit and hand mapping (dashed), one panel per channel up to
+ * r99, as SVG. */
+lucent_status lucent_engine_report_write_svg(const char *path, const lucent_engine_report *report);
 
 #ifdef __cplusplus
 }

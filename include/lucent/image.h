@@ -280,6 +280,22 @@ lucent_status lucent_image_heatmap_scale(const lucent_image *values, float scale
  * be NULL) receives the scale. */
 lucent_status lucent_image_heatmap_with_bar(const lucent_image *values, float scale, const char *label,
                                             lucent_image **dest, float *used);
+/* ---- Colour differences -----------------------------------------------------------------------
+ * Linear sRGB (IEC 61966-2-1 primaries, white D65) to CIE XYZ and CIELAB (reference white D65:
+ * Xn = 0.95047, Yn = 1, Zn = 1.08883), and the CIEDE2000 colour difference (Sharma, Wu & Dalal 2005). */
+
+/* XYZ of linear sRGB rgb (Y = 1 for white). */
+void lucent_linear_srgb_to_xyz(const double rgb[3], double dest[3]);
+
+/* CIELAB (CIE 15:2004) of XYZ relative to the white white_xyz (for a spectral reflectance, the bands' white:
+ * D65 through the same tables, so that a flat reflector has a* = b* = 0). */
+void lucent_xyz_to_lab(const double xyz[3], const double white_xyz[3], double lab[3]);
+
+/* CIELAB (L*, a*, b*) of linear sRGB rgb against the D65 white. */
+void lucent_linear_srgb_to_lab(const double rgb[3], double dest[3]);
+
+/* The CIEDE2000 difference of two CIELAB colours (k_L = k_C = k_H = 1). */
+double lucent_ciede2000(const double lab1[3], const double lab2[3]);
 
 #ifdef __cplusplus
 }

@@ -175,6 +175,10 @@ double lucent_taps_radius(const lucent_taps *t);
  * the renderer's blur divides by the depth (src/gl/shaders/blur.frag.glsl). */
 double lucent_screen_pixels_per_mm(int height_px, double fov_y_deg, double depth_mm);
 
+/* The depth (mm) at which an object object_height_mm tall fills the screen's height under that
+ * camera: object_height / (2 tan(fov_y / 2)) (lucent pack's and lucent kernel's --object-height). */
+double lucent_screen_depth_mm(double object_height_mm, double fov_y_deg);
+
 /* Samples k into taps. Free with lucent_taps_destroy. */
 lucent_status lucent_kernel_taps(const lucent_kernel *k, const lucent_taps_desc *desc, lucent_taps **dest);
 

@@ -47,6 +47,10 @@ lucent_status lucent_outputs_end(bool commit);
  * that comes while lucent_outputs_end renames is held until the last rename, so the set lands whole. */
 void lucent_outputs_handle_signals(void);
 
+/* Writes size bytes to path atomically and at once, outside the output set: for a working file the
+ * command hands to another program while it runs (a peer renderer's scene), never for an output. */
+lucent_status lucent_write_file_now(const char *path, const void *data, size_t size);
+
 #ifdef __cplusplus
 }
 #endif

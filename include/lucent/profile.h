@@ -220,13 +220,14 @@ lucent_status lucent_profile_from_sog(const lucent_sog *s, const lucent_profile_
 
 /* ---- Profiles by name ----
  * The profile a kernel or a renderer builds from a material: "dipole" (the default),
- * "better-dipole", "burley" (searchlight fit) or "mc" (Monte Carlo of a half-space on the default
- * grid, Freude Table 6.1). */
+ * "better-dipole", "burley" (searchlight fit) or "mc" (Monte Carlo of a half-space on desc's grid, by
+ * default Freude Table 6.1's). */
 typedef struct lucent_profile_source_desc {
-    const char *source; /* NULL: "dipole" */
-    uint64_t photons;   /* mc only, per channel (0: 200000) */
-    uint64_t seed;      /* mc only */
-    lucent_pool *pool;  /* mc only; NULL: serial */
+    const char *source;       /* NULL: "dipole" */
+    uint64_t photons;         /* mc only, per channel (0: 200000) */
+    uint64_t seed;            /* mc only */
+    lucent_pool *pool;        /* mc only; NULL: serial */
+    lucent_profile_grid grid; /* mc only: the radial grid (zero fields: Freude Table 6.1's default) */
 } lucent_profile_source_desc;
 
 /* True when name is one of the profile names above. */

@@ -12,6 +12,7 @@
 #define LUCENT_SCENE_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "lucent/base.h"
@@ -146,7 +147,11 @@ typedef struct lucent_scene_load_desc {
     bool skip_meshes; /* read and check everything but do not load meshes (mesh is NULL) */
 } lucent_scene_load_desc;
 
-/* Loads a scene file. Relative mesh and texture paths are relative to the scene file's folder.
+/* Loads a scene file: Lucent's JSON, or a glTF 2.0 asset (.gltf with external or data-URI buffers,
+ * .glb), read as the Lucent scene it describes (docs/scenes.md#gltf-scenes: meshes with their node
+ * transforms, the first perspective camera, KHR_lights_punctual, the materials' extensions or their
+ * extras.lucent; overrides apply to that scene, and scene->json records it).
+ * Relative mesh and texture paths are relative to the scene file's folder.
  * Errors name the file and the JSON path: "dragon.json: objects[0].material: unknown material
  * \"marbel\" ...", "dragon.json: objects[0].mesh: cannot open ../meshes/x.ply: No such file".
  * Free with lucent_scene_destroy. */
@@ -156,6 +161,12 @@ lucent_status lucent_scene_load(const char *path, const lucent_scene_load_desc *
  * (NULL: the current directory). */
 lucent_status lucent_scene_parse(const char *text, const char *name, const char *base_dir,
                                  const lucent_scene_load_desc *desc, lucent_scene **dest);
+
+/* A glTF asset from memory (.gltf text or .glb bytes, copied); name stands for the file in messages
+ * and in the objects' mesh references, base_dir resolves external buffers (NULL: they are refused
+ * and the current directory stands for the folder). */
+lucent_status lucent_scene_parse_gltf(const void *data, size_t size, const char *name, const char *base_dir,
+                                      const lucent_scene_load_desc *desc, lucent_scene **dest);
 
 void lucent_scene_destroy(lucent_scene *scene);
 

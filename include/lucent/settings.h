@@ -38,6 +38,7 @@ typedef enum lucent_render_method {
     LUCENT_METHOD_SSSS,              /* screen-space separable subsurface scattering */
     LUCENT_METHOD_POINTS,            /* surfels: splatting and splat-based diffusion (Kim et al.) */
     LUCENT_METHOD_TSD,               /* texture-space diffusion (d'Eon, Luebke & Enderton 2007) */
+    LUCENT_METHOD_BURLEY,            /* Burley's profile sampled on a disk as Unity HDRP samples it */
     LUCENT_METHOD_COUNT
 } lucent_render_method;
 
@@ -133,6 +134,16 @@ typedef struct lucent_tsd_settings {
     bool seams;    /* the blur's taps follow texture seams into the chart across */
 } lucent_tsd_settings;
 
+typedef enum lucent_burley_source {
+    LUCENT_BURLEY_PARAMS_FIT = 0, /* lucent fit's HDRP parameters (lucent/engine.h): T, and d fitted */
+    LUCENT_BURLEY_PARAMS_HAND     /* the hand mapping: d = 1 / sigma_tr, colour T */
+} lucent_burley_source;
+
+typedef struct lucent_burley_settings {
+    lucent_burley_source params; /* where each material's (A, d) come from */
+    int samples;                 /* disk samples per pixel (HDRP's sample budget) */
+} lucent_burley_settings;
+
 typedef struct lucent_trace_settings {
     int spp; /* samples per pixel */
     uint64_t seed;
@@ -152,6 +163,7 @@ typedef struct lucent_render_settings {
     lucent_points_settings points;
     lucent_tsd_settings tsd;
     lucent_trace_settings trace;
+    lucent_burley_settings burley;
 } lucent_render_settings;
 
 /* Returns every setting at its default. */

@@ -10,6 +10,7 @@
 #define LUCENT_SPECTRAL_H
 
 #include "lucent/base.h"
+#include "lucent/image.h" /* lucent_xyz_to_lab, lucent_ciede2000 */
 #include "lucent/material.h"
 
 #ifdef __cplusplus
@@ -47,18 +48,14 @@ void lucent_bands_rgb(const lucent_bands *b, const double *reflectance, double r
  * mapping for a spectrum: the white balance undone, the sRGB matrix inverted). */
 void lucent_bands_rgb_to_xyz(const lucent_bands *b, const double rgb[3], double xyz[3]);
 
-/* CIELAB (CIE 15:2004) of XYZ relative to the white white_xyz (the bands' white_xyz: D65 through the
- * same tables, so a flat reflector has a* = b* = 0). */
-void lucent_xyz_to_lab(const double xyz[3], const double white_xyz[3], double lab[3]);
+/* CIELAB of XYZ against a white (lucent_xyz_to_lab) and the CIEDE2000 difference (lucent_ciede2000): in
+ * lucent/image.h, the image room's colour differences, which the skin's colours use. */
 
 /* The individual typology angle ITA = atan((L* - 50) / b*) in degrees (Chardon et al. 1991), and its
  * category (Del Bino et al. 2006): "very light" (> 55), "light" (41..55], "intermediate" (28..41],
  * "tan" (10..28], "brown" (-30..10], "dark" (<= -30). */
 double lucent_ita(const double lab[3]);
 const char *lucent_ita_category(double ita);
-
-/* The CIEDE2000 colour difference (CIE 142-2001; Sharma, Wu & Dalal 2005), kL = kC = kH = 1. */
-double lucent_ciede2000(const double lab1[3], const double lab2[3]);
 
 /* ---- Chromophores (mm^-1 at wavelength nm in [380, 780]; data/spectra.json) ---- */
 

@@ -493,11 +493,102 @@ def trace(scene_path, spp=16, seed=1, settings=None, threads=0, time_limit=0):
         _L.lucent_scene_destroy(sc)
 
 
+def pack(spec, engine, out, screen=(1920, 1080), fov=45.0, object_height_mm=1800.0, distance_mm=0.0,
+         lut_size=(64, 64), kappa_max=1.0, sigma0_photons=0, transmit_photons=0, mesh=None, roughness=0.3,
+         cache_dir=None, threads=0):
+    """Writes the engine pack of a material into the folder out, as `lucent pack` (docs/pack.md):
+    engine "glsl", "gles", "vulkan", "hlsl" or "json"; the screen (width, height) in pixels with
+    vertical field of view fov (degrees); the object's height (its mesh in material.gltf, a sphere
+    unless mesh names a mesh file) and the depth the kernel's width is measured at (distance_mm, 0:
+    where the object fills the screen's height). The renderer's default settings. Returns a dict:
+    radius_mm, depth_mm, pixels_per_mm, width_px, pixels_per_mm_at_1mm, thickness_m, file_count."""
+    m = material(spec)
+    e = ctypes.c_int()
+    _check(_L.lucent_pack_engine_find(_b(engine), ctypes.byref(e)))
+    mp, cache = ctypes.c_void_p(), ctypes.c_void_p()
+    try:
+        if mesh:
+            _check(_L.lucent_mesh_load(_b(mesh), None, ctypes.byref(mp)))
+        if cache_dir:
+            _check(_L.lucent_cache_create(_b(cache_dir), ctypes.byref(cache)))
+        d = _lib.PackDesc(e.value, _b(out), int(screen[0]), int(screen[1]), float(fov), float(object_height_mm),
+                          float(distance_mm), None, int(lut_size[0]), int(lut_size[1]), float(kappa_max),
+                          int(sigma0_photons), int(transmit_photons), mp, float(roughness), cache, _pool(threads))
+        r = _lib.PackResult()
+        _check(_L.lucent_pack(ctypes.byref(m._c), ctypes.byref(d), ctypes.byref(r)))
+        return {n: getattr(r, n) for n, _ in _lib.PackResult._fields_}
+    finally:
+        _L.lucent_mesh_destroy(mp)
+        _L.lucent_cache_destroy(cache)
+
+
+# ---- engines ----------------------------------------------------------------------------------
+
+def fit(spec=None, layers=None, engines=None, photons=0, model_photons=0, seed=1, transmittance=False, hand=True,
+        cache_dir=None, threads=0):
+    """Each engine's subsurface parameters fitted to a material's truth, as `lucent fit` (docs/engines.md):
+    a dict with "truth" (T, r99, the profile's noise) and "engines", a list of per-engine dicts with
+    "engine", "parameters" (name, value, unit, in the engine's own terms), "profile_error", "delta_e2000",
+    "cannot_express", "notes" and, with hand, "hand_mapping" (radius = 1/sigma_tr, colour = T).
+    spec: a material (preset, FILE.json, FILE.json#NAME or a Material); layers: [(spec, thickness_mm), ...]
+    top first, the last may be float("inf"). engines: names ("unreal-burley", "unity-hdrp", "blender3-burley",
+    ...; None: all). photons: the truth's profile photons per channel (0: 200000; given, T takes twice as
+    many, else the bake's 400000, kept in cache_dir)."""
+    import json
+    ids = []
+    for name in engines or []:
+        e = ctypes.c_int()
+        _check(_L.lucent_engine_parse(_b(name), ctypes.byref(e)))
+        ids.append(e.value)
+    d = _lib.EngineReportDesc()
+    keep = []
+    if layers:
+        arr = (_lib.Layer * len(layers))()
+        for i, (lspec, thickness) in enumerate(layers):
+            arr[i].material = material(lspec)._c
+            arr[i].slab.thickness = float(thickness)
+        d.target.layers, d.target.layer_count = arr, len(layers)
+        keep.append(arr)
+    else:
+        m = material(spec)
+        d.target.material = ctypes.pointer(m._c)
+        keep.append(m)
+    d.target.photons = int(photons)
+    d.target.total_photons = 2 * int(photons)
+    d.target.seed = int(seed)
+    d.target.transmittance = bool(transmittance)
+    d.target.pool = d.fit.pool = _pool(threads)
+    d.fit.model_photons = int(model_photons)
+    d.hand = bool(hand)
+    if ids:
+        d.engines, d.engine_count = (ctypes.c_int * len(ids))(*ids), len(ids)
+    cache = ctypes.c_void_p()
+    if cache_dir:
+        _check(_L.lucent_cache_create(_b(cache_dir), ctypes.byref(cache)))
+        d.target.cache = cache
+    report, text = ctypes.c_void_p(), ctypes.c_void_p()
+    try:
+        _check(_L.lucent_engine_report_create(ctypes.byref(d), ctypes.byref(report)))
+        _check(_L.lucent_engine_report_json(report, ctypes.byref(text)))
+        return json.loads(ctypes.string_at(text).decode("utf-8"))
+    finally:
+        if text:
+            _libc_free(text)
+        _L.lucent_engine_report_destroy(report)
+        _L.lucent_cache_destroy(cache)
+
+
+def _libc_free(ptr):
+    libc = ctypes.CDLL(None)
+    libc.free.argtypes = [ctypes.c_void_p]
+    libc.free(ptr)
+
+
 def versions():
     """What the library links: {"lucent", "embree", "openexr", "library"}."""
     return {"lucent": __version__, "embree": _L.lucent_trace_embree_version().decode(),
             "openexr": _L.lucent_image_openexr_version().decode(), "library": library_path}
 
 
-__all__ = ["LucentError", "ArgumentError", "ArgumentTypeError", "Material", "material", "materials", "Profile", "profile", "mcml", "Kernel", "kernel",
-           "cdrf", "cdrf_lut", "cdrf_fit", "curvature", "render", "trace", "versions"]
+__all__ = ["LucentError", "ArgumentError", "ArgumentTypeError", "Material", "material", "materials", "Profile", "profile", "skin_profile", "skin_color", "ciede2000", "mcml", "Kernel", "kernel",
+           "cdrf", "cdrf_lut", "cdrf_fit", "curvature", "render", "trace", "pack", "fit", "versions"]

@@ -63,7 +63,7 @@ COPIED = {
     "LUCENT_PROFILE_MAX_COUNT": (100000000, "src/profile/profile.c"),
     "LUCENT_CDRF_MAX_BINS": (720, "include/lucent/cdrf.h"),
     "LUCENT_CDRF_FIT_MAX_RADII": (16, "include/lucent/cdrf.h"),
-    "POOL_MAX_THREADS": (256, "src/base/pool.c"),
+    "LUCENT_POOL_MAX_THREADS": (256, "include/lucent/base.h"),
     "LUCENT_BANDS_MAX": (80, "include/lucent/spectral.h"),
 }
 _C = {k: v[0] for k, v in COPIED.items()}
@@ -122,7 +122,7 @@ def load(lib):
         "smooth": int_(0, 1000, "lucent curvature --smooth"),
         "mm_per_unit": real(0, inf, "lucent curvature --mm-per-unit", lo_open=True),
         # the pool (src/base/pool.c): 0 is LUCENT_THREADS or every core
-        "threads": int_(1, _C["POOL_MAX_THREADS"], "POOL_MAX_THREADS", zero="every core"),
+        "threads": int_(1, _C["LUCENT_POOL_MAX_THREADS"], "LUCENT_POOL_MAX_THREADS", zero="every core"),
         # a kernel's width on a screen (lucent pack)
         "fov_y": real(0, 180, "degrees", lo_open=True),
         "depth_mm": real(0, inf, "mm", lo_open=True),

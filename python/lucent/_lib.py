@@ -88,7 +88,8 @@ class SkinColor(ctypes.Structure):  # lucent_skin_color (skin.h)
 
 
 class SourceDesc(ctypes.Structure):  # lucent_profile_source_desc
-    _fields_ = [("source", c_char_p), ("photons", ctypes.c_uint64), ("seed", ctypes.c_uint64), ("pool", c_void_p)]
+    _fields_ = [("source", c_char_p), ("photons", ctypes.c_uint64), ("seed", ctypes.c_uint64), ("pool", c_void_p),
+                ("grid", Grid)]
 
 
 class McLayer(ctypes.Structure):  # lucent_mc_layer (mc.h)
@@ -210,12 +211,56 @@ class TraceResult(ctypes.Structure):  # lucent_trace_result: the images, spp, sa
                 ("seed", ctypes.c_uint64), ("seconds", ctypes.c_double), ("rest", ctypes.c_double * 64)]
 
 
+class PackDesc(ctypes.Structure):  # lucent_pack_desc (pack.h)
+    _fields_ = [("engine", ctypes.c_int), ("out", c_char_p), ("screen_width", ctypes.c_int),
+                ("screen_height", ctypes.c_int), ("fov_y", ctypes.c_double), ("object_height_mm", ctypes.c_double),
+                ("distance_mm", ctypes.c_double), ("settings", c_void_p), ("lut_width", ctypes.c_int),
+                ("lut_height", ctypes.c_int), ("kappa_max", ctypes.c_double), ("sigma0_photons", ctypes.c_uint64),
+                ("transmit_photons", ctypes.c_uint64), ("mesh", c_void_p), ("roughness", ctypes.c_double),
+                ("cache", c_void_p), ("pool", c_void_p)]
+
+
+class PackResult(ctypes.Structure):  # lucent_pack_result
+    _fields_ = [(n, ctypes.c_double) for n in ("radius_mm", "depth_mm", "pixels_per_mm", "width_px",
+                                               "pixels_per_mm_at_1mm", "thickness_m")] + [("file_count", ctypes.c_int)]
+
+
+class SlabDesc(ctypes.Structure):  # lucent_slab_desc (profile.h)
+    _fields_ = [("thickness", ctypes.c_double), ("poles", ctypes.c_int), ("eta_above", ctypes.c_double),
+                ("eta_below", ctypes.c_double)]
+
+
+class Layer(ctypes.Structure):  # lucent_layer (profile.h)
+    _fields_ = [("material", Material), ("slab", SlabDesc)]
+
+
+class EngineTargetDesc(ctypes.Structure):  # lucent_engine_target_desc (engine.h)
+    _fields_ = [("material", ctypes.POINTER(Material)), ("layers", ctypes.POINTER(Layer)), ("layer_count", ctypes.c_int),
+                ("photons", ctypes.c_uint64), ("total_photons", ctypes.c_uint64), ("seed", ctypes.c_uint64),
+                ("transmittance", ctypes.c_bool), ("pool", c_void_p), ("cache", c_void_p)]
+
+
+class EngineFitDesc(ctypes.Structure):  # lucent_engine_fit_desc
+    _fields_ = [("model_photons", ctypes.c_uint64), ("pool", c_void_p)]
+
+
+class EngineReportDesc(ctypes.Structure):  # lucent_engine_report_desc
+    _fields_ = [("target", EngineTargetDesc), ("engines", ctypes.POINTER(ctypes.c_int)), ("engine_count", ctypes.c_int),
+                ("hand", ctypes.c_bool), ("fit", EngineFitDesc)]
+
+
 def declare(lib):
     """Argument and result types of the functions the API calls."""
     P = ctypes.POINTER
     st = ctypes.c_int
     sigs = {
         "lucent_last_error": (c_char_p, []),
+        "lucent_engine_parse": (st, [c_char_p, P(ctypes.c_int)]),
+        "lucent_engine_report_create": (st, [P(EngineReportDesc), P(c_void_p)]),
+        "lucent_engine_report_destroy": (None, [c_void_p]),
+        "lucent_engine_report_json": (st, [c_void_p, P(c_void_p)]),
+        "lucent_cache_create": (st, [c_char_p, P(c_void_p)]),
+        "lucent_cache_destroy": (None, [c_void_p]),
         "lucent_clear_error": (None, []),
         "lucent_pool_create": (c_void_p, [ctypes.c_int]),
         "lucent_pool_destroy": (None, [c_void_p]),
@@ -276,6 +321,10 @@ def declare(lib):
         "lucent_trace_result_free": (None, [P(TraceResult)]),
         "lucent_trace_embree_version": (c_char_p, []),
         "lucent_image_openexr_version": (c_char_p, []),
+        "lucent_cache_create": (st, [c_char_p, P(c_void_p)]),
+        "lucent_cache_destroy": (None, [c_void_p]),
+        "lucent_pack_engine_find": (st, [c_char_p, P(ctypes.c_int)]),
+        "lucent_pack": (st, [P(Material), P(PackDesc), P(PackResult)]),
     }
     for name, (res, args) in sigs.items():
         f = getattr(lib, name)

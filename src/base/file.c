@@ -382,6 +382,11 @@ lucent_status base_write_file_direct(const char *path, const void *data, size_t 
     return write_file(path, true, data, size);
 }
 
+lucent_status lucent_write_file_now(const char *path, const void *data, size_t size)
+{
+    return base_write_file_direct(path, data, size);
+}
+
 lucent_status lucent_open_regular(const char *path, int *fd, uint64_t *size)
 {
     *fd = -1;

@@ -44,6 +44,13 @@ static lucent_status resolve(const lucent_compare_desc *desc, run *r)
     if (desc->reference_runs < 0 || desc->reference_runs > 2)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "compare: reference_runs: 0 (automatic), 1 or 2, got %d",
                             desc->reference_runs);
+    if (desc->peer_count < 0 || (desc->peer_count && !desc->peers) ||
+        (desc->method_count ? desc->method_count : 1) + desc->peer_count > LUCENT_COMPARE_MAX_METHODS)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "compare: peer_count: at most %d methods and peers",
+                            LUCENT_COMPARE_MAX_METHODS);
+    for (int i = 0; i < desc->peer_count; i++)
+        if (eval_peer_check(desc->peers[i]) != LUCENT_OK)
+            return lucent_error_context(LUCENT_ERR_INVALID_ARGUMENT, "compare");
     if (!desc->method_count) default_methods(r);
     for (int i = 0; i < r->d.method_count; i++) {
         lucent_render_settings probe = lucent_render_settings_defaults();
@@ -301,6 +308,37 @@ static lucent_status run_method(const run *r, scene_store *ss, lucent_renderer *
     return LUCENT_OK;
 }
 
+/* Peer i (compare_peers.c) renders the scene; its image is measured as a method's, without frame times. */
+static lucent_status run_peer(const run *r, scene_store *ss, int i, const char *cache_dir)
+{
+    const char *peer = r->d.peers[i];
+    if (ss->method_count == LUCENT_COMPARE_MAX_METHODS)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: at most %d methods and peers", ss->stem,
+                            LUCENT_COMPARE_MAX_METHODS);
+    int m = ss->method_count++;
+    method_store *ms = &ss->methods[m];
+    char stem[EVAL_NAME_SIZE];
+    eval_peer_result pr = {0};
+    snprintf(ms->name, sizeof ms->name, "%s", peer);
+    eval_file_stem(peer, stem, sizeof stem);
+    lucent_status s = eval_peer_render(&(eval_peer_desc){.spec = peer,
+                                                         .scene = ss->scene,
+                                                         .spp = r->d.peer_spp,
+                                                         .seed = r->d.peer_seed ? r->d.peer_seed : 1,
+                                                         .blender = r->d.blender,
+                                                         .cache_dir = cache_dir,
+                                                         .pool = r->d.pool},
+                                       &pr);
+    if (s == LUCENT_OK) s = eval_write_image(r, ss, stem, pr.image, &ss->scene->render);
+    if (s == LUCENT_OK) s = measure(r, ss, pr.image, &ss->scene->render, m);
+    ss->rows[m].frame_ms = ss->rows[m].setup_ms = NAN; /* not a real-time method: its seconds are in settings */
+    snprintf(ms->image, sizeof ms->image, "%s/%s.png", ss->stem, stem);
+    snprintf(ms->settings, sizeof ms->settings, "%s", pr.settings);
+    if (s == LUCENT_OK) ss->images[m] = pr.image, pr.image = NULL; /* kept for the paired tests and regions */
+    lucent_image_destroy(pr.image);
+    return s == LUCENT_OK ? s : lucent_error_context(s, "%s", ss->stem);
+}
+
 lucent_status eval_load_scene(const run *r, const char *path, const char *const *extra, int extra_count,
                               lucent_scene **dest)
 {
@@ -372,9 +410,11 @@ static lucent_status measure_scene(const run *r, const char *path, scene_store *
                                    &rend);
     for (int i = 0; i < r->d.method_count && s == LUCENT_OK; i++) s = run_method(r, ss, rend, i);
     lucent_renderer_destroy(rend);
+    ss->renderer_count = ss->method_count;
+    for (int i = 0; i < r->d.peer_count && s == LUCENT_OK; i++) s = run_peer(r, ss, i, cache_dir);
     if (s == LUCENT_OK) s = pair_tests(ss);
     if (s == LUCENT_OK) s = eval_scene_regions(r, ss);
-    if (s == LUCENT_OK && r->d.per_light) s = eval_scene_lights(r, cache_dir, ss);
+    if (s == LUCENT_OK && r->d.per_light) s = eval_scene_lights(r, cache_dir, ss); /* the renderer's methods */
     return s;
 }
 

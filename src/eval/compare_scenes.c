@@ -68,9 +68,9 @@ static lucent_status render_methods(const run *r, const scene_store *ss, const l
     lucent_renderer *rend = NULL;
     lucent_status s =
         lucent_renderer_create(r->gl, scene, &(lucent_renderer_desc){.pool = r->d.pool, .cache_dir = cache_dir}, &rend);
-    lucent_progress *bar = lucent_progress_begin(label, (uint64_t)ss->method_count);
+    lucent_progress *bar = lucent_progress_begin(label, (uint64_t)ss->renderer_count);
     lucent_progress_set_unit(bar, "method");
-    for (int m = 0; m < ss->method_count && s == LUCENT_OK; m++) {
+    for (int m = 0; m < ss->renderer_count && s == LUCENT_OK; m++) {
         lucent_render_settings rs = scene->render;
         lucent_render_result res = {0};
         s = eval_method_settings(ss->methods[m].name, &rs);
@@ -118,8 +118,13 @@ static lucent_status measure_light(const run *r, const char *cache_dir, scene_st
         s = lucent_compare_regions(full, &ss->probe, ss->ref.result.coverage, ss->mask, on, r->d.pool, bits);
     if (s == LUCENT_OK)
         s = fill_regions(&ss->light_region[l], bits, ss->mask, ref.result.image, ref.result.variance, images,
-                         ss->method_count);
-    for (int m = 0; m < ss->method_count && s == LUCENT_OK; m++) {
+                         ss->renderer_count);
+    for (int m = ss->renderer_count; m < ss->method_count; m++) { /* a peer renders the whole scene only */
+        ss->light_rms[l][m] = ss->light_ratio[l][m] = NAN;
+        for (int k = 0; k < LUCENT_COMPARE_REGION_COUNT; k++)
+            ss->light_region[l].rel_rms[k][m] = ss->light_region[l].ratio[k][m] = ss->light_region[l].share[k][m] = NAN;
+    }
+    for (int m = 0; m < ss->renderer_count && s == LUCENT_OK; m++) {
         lucent_image_error_stats e;
         s = lucent_image_compare(images[m], ref.result.image, ss->mask, &e);
         ss->light_rms[l][m] = e.rel_rms_all;

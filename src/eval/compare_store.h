@@ -29,6 +29,7 @@ typedef struct scene_store {
     float *mask; /* object pixels counted in the errors */
     uint64_t mask_pixels;
     int method_count;
+    int renderer_count; /* methods[0 .. renderer_count) are the renderer's; the peers (real engines) follow */
     method_store methods[LUCENT_COMPARE_MAX_METHODS];
     lucent_compare_method rows[LUCENT_COMPARE_MAX_METHODS]; /* the report's view of methods[] */
     lucent_frame_times times[LUCENT_COMPARE_MAX_METHODS];

@@ -95,4 +95,29 @@ void eval_machine(char *dest, size_t size, int *cores);
 /* The current time as ISO 8601 UTC. */
 void eval_date(char *dest, size_t size);
 
+/* ---- compare_peers.c: a real engine (Blender) rendering the scene with the fitted parameters ---- */
+
+typedef struct eval_peer_desc {
+    const char *spec;          /* "blender-cycles", "blender-cycles-burley", "blender-eevee", ":hand" after one */
+    const lucent_scene *scene; /* loaded, meshes in world mm */
+    int spp;                   /* samples per pixel (0: 64) */
+    uint64_t seed;
+    const char *blender;   /* the program (NULL: $LUCENT_BLENDER, else blender on PATH) */
+    const char *cache_dir; /* the disk cache of the fits' truths (NULL: none) */
+    lucent_pool *pool;     /* NULL: serial (Blender then runs 1 thread) */
+} eval_peer_desc;
+
+typedef struct eval_peer_result {
+    lucent_image *image; /* RGB, the scene's size, linear */
+    char settings[EVAL_SETTINGS_SIZE];
+    double seconds; /* Blender's wall time */
+} eval_peer_result;
+
+/* Whether spec names a peer (an error naming the known ones otherwise). */
+lucent_status eval_peer_check(const char *spec);
+
+/* Fits each material, writes the scene for Blender, runs it, reads its image. Blender missing: a clear
+ * LUCENT_ERR_UNSUPPORTED saying how to get it. */
+lucent_status eval_peer_render(const eval_peer_desc *desc, eval_peer_result *dest);
+
 #endif

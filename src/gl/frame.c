@@ -14,6 +14,7 @@
 
 extern const gl_method gl_method_lambert, gl_method_cdrf, gl_method_cdrf_translucency, gl_method_ssss, gl_method_points,
     gl_method_tsd;
+extern const gl_method gl_method_burley;
 
 const gl_method *const gl_methods[LUCENT_METHOD_COUNT] = {
     [LUCENT_METHOD_LAMBERT] = &gl_method_lambert,
@@ -22,6 +23,7 @@ const gl_method *const gl_methods[LUCENT_METHOD_COUNT] = {
     [LUCENT_METHOD_SSSS] = &gl_method_ssss,
     [LUCENT_METHOD_POINTS] = &gl_method_points,
     [LUCENT_METHOD_TSD] = &gl_method_tsd,
+    [LUCENT_METHOD_BURLEY] = &gl_method_burley,
 };
 
 const char *lucent_render_method_name(lucent_render_method method)

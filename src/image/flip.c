@@ -63,21 +63,14 @@ static void yycxcz_to_rgb(const double o[3], double dest[3])
     mat3(k_xyz2rgb, xyz, dest);
 }
 
-static double lab_f(double t)
-{
-    const double d = 6.0 / 29.0;
-    return t > d * d * d ? cbrt(t) : t / (3 * d * d) + 4.0 / 29.0;
-}
-
 /* Linear RGB to CIELAB with the Hunt adjustment (a and b times L / 100). */
 static void rgb_to_hunt_lab(const double rgb[3], double dest[3])
 {
     double xyz[3], w[3];
     mat3(k_rgb2xyz, rgb, xyz);
     white(w);
-    double fx = lab_f(xyz[0] / w[0]), fy = lab_f(xyz[1] / w[1]), fz = lab_f(xyz[2] / w[2]);
-    double L = 116 * fy - 16;
-    dest[0] = L, dest[1] = 0.01 * L * 500 * (fx - fy), dest[2] = 0.01 * L * 200 * (fy - fz);
+    lucent_xyz_to_lab(xyz, w, dest); /* CIE 15:2004 (cielab.c) */
+    dest[1] *= 0.01 * dest[0], dest[2] *= 0.01 * dest[0];
 }
 
 static double hyab(const double a[3], const double b[3]) { return fabs(a[0] - b[0]) + hypot(a[1] - b[1], a[2] - b[2]); }

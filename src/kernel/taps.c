@@ -96,6 +96,11 @@ double lucent_screen_pixels_per_mm(int height_px, double fov_y_deg, double depth
     return height_px / (2 * tan(0.5 * fov_y_deg * M_PI / 180) * depth_mm);
 }
 
+double lucent_screen_depth_mm(double object_height_mm, double fov_y_deg)
+{
+    return object_height_mm / (2 * tan(0.5 * fov_y_deg * M_PI / 180));
+}
+
 lucent_status lucent_kernel_taps(const lucent_kernel *k, const lucent_taps_desc *desc, lucent_taps **dest)
 {
     *dest = NULL;

@@ -241,21 +241,6 @@ void lucent_bands_rgb_to_xyz(const lucent_bands *b, const double rgb[3], double 
     for (int i = 0; i < 3; i++) xyz[i] = inv[3 * i] * u[0] + inv[3 * i + 1] * u[1] + inv[3 * i + 2] * u[2];
 }
 
-/* CIE 15:2004, CIELAB. */
-static double lab_f(double t)
-{
-    const double d = 6.0 / 29.0;
-    return t > d * d * d ? cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0;
-}
-
-void lucent_xyz_to_lab(const double xyz[3], const double white_xyz[3], double lab[3])
-{
-    double fx = lab_f(xyz[0] / white_xyz[0]), fy = lab_f(xyz[1] / white_xyz[1]), fz = lab_f(xyz[2] / white_xyz[2]);
-    lab[0] = 116.0 * fy - 16.0;
-    lab[1] = 500.0 * (fx - fy);
-    lab[2] = 200.0 * (fy - fz);
-}
-
 /* Chardon, Cretois & Hourseau 1991: ITA = arctan((L* - 50) / b*) 180 / pi. */
 double lucent_ita(const double lab[3]) { return atan2(lab[0] - 50.0, lab[2]) * 180.0 / M_PI; }
 
@@ -268,46 +253,4 @@ const char *lucent_ita_category(double ita)
     if (ita > 10.0) return "tan";
     if (ita > -30.0) return "brown";
     return "dark";
-}
-
-/* Hue angle in degrees in [0, 360). */
-static double hue_deg(double b, double a)
-{
-    if (a == 0.0 && b == 0.0) return 0.0;
-    double h = atan2(b, a) * 180.0 / M_PI;
-    return h < 0.0 ? h + 360.0 : h;
-}
-
-/* CIEDE2000: Sharma, Wu & Dalal 2005, eqs. 1-20 (kL = kC = kH = 1). */
-double lucent_ciede2000(const double lab1[3], const double lab2[3])
-{
-    const double rad = M_PI / 180.0, p25 = 6103515625.0; /* 25^7 */
-    double c1 = hypot(lab1[1], lab1[2]), c2 = hypot(lab2[1], lab2[2]), cm = 0.5 * (c1 + c2);
-    double cm7 = pow(cm, 7.0), g = 0.5 * (1.0 - sqrt(cm7 / (cm7 + p25)));
-    double a1 = (1.0 + g) * lab1[1], a2 = (1.0 + g) * lab2[1];
-    double cp1 = hypot(a1, lab1[2]), cp2 = hypot(a2, lab2[2]);
-    double h1 = hue_deg(lab1[2], a1), h2 = hue_deg(lab2[2], a2);
-    double dl = lab2[0] - lab1[0], dc = cp2 - cp1, dh = 0.0;
-    if (cp1 * cp2 != 0.0) {
-        dh = h2 - h1;
-        if (dh > 180.0) dh -= 360.0;
-        if (dh < -180.0) dh += 360.0;
-    }
-    double dhh = 2.0 * sqrt(cp1 * cp2) * sin(0.5 * dh * rad);
-    double lm = 0.5 * (lab1[0] + lab2[0]), cpm = 0.5 * (cp1 + cp2), hm = h1 + h2;
-    if (cp1 * cp2 != 0.0) {
-        if (fabs(h1 - h2) <= 180.0)
-            hm = 0.5 * (h1 + h2);
-        else
-            hm = h1 + h2 < 360.0 ? 0.5 * (h1 + h2 + 360.0) : 0.5 * (h1 + h2 - 360.0);
-    }
-    double t = 1.0 - 0.17 * cos((hm - 30.0) * rad) + 0.24 * cos(2.0 * hm * rad) + 0.32 * cos((3.0 * hm + 6.0) * rad) -
-               0.20 * cos((4.0 * hm - 63.0) * rad);
-    double dtheta = 30.0 * exp(-((hm - 275.0) / 25.0) * ((hm - 275.0) / 25.0));
-    double cpm7 = pow(cpm, 7.0), rc = 2.0 * sqrt(cpm7 / (cpm7 + p25));
-    double lm50 = (lm - 50.0) * (lm - 50.0);
-    double sl = 1.0 + 0.015 * lm50 / sqrt(20.0 + lm50), sc = 1.0 + 0.045 * cpm, sh = 1.0 + 0.015 * cpm * t;
-    double rt = -sin(2.0 * dtheta * rad) * rc;
-    double xl = dl / sl, xc = dc / sc, xh = dhh / sh;
-    return sqrt(xl * xl + xc * xc + xh * xh + rt * xc * xh);
 }

@@ -2,6 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mesh/gltf.h"
 #include "mesh/internal.h"
 
 static lucent_status finish(lucent_atomic_file *af, FILE *f, const char *path)
@@ -44,73 +45,142 @@ lucent_status lucent_mesh_write_obj(const char *path, const lucent_mesh *m)
 
 /* ---- glTF: one buffer (positions, normals, texture coordinates as floats, indices as uint32) ---- */
 
-static void put_base64(FILE *f, const unsigned char *data, size_t n)
+static char *base64(const unsigned char *data, size_t n)
 {
     static const char k[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    static const char prefix[] = "data:application/octet-stream;base64,";
+    char *out = malloc(sizeof prefix + (n + 2) / 3 * 4), *o = out;
+    if (!out) return NULL;
+    memcpy(o, prefix, sizeof prefix - 1), o += sizeof prefix - 1;
     for (size_t i = 0; i < n; i += 3) {
         uint32_t w =
             (uint32_t)data[i] << 16 | (i + 1 < n ? (uint32_t)data[i + 1] << 8 : 0) | (i + 2 < n ? data[i + 2] : 0);
-        char out[4] = {k[w >> 18 & 63], k[w >> 12 & 63], i + 1 < n ? k[w >> 6 & 63] : '=', i + 2 < n ? k[w & 63] : '='};
-        fwrite(out, 1, 4, f);
+        *o++ = k[w >> 18 & 63], *o++ = k[w >> 12 & 63];
+        *o++ = i + 1 < n ? k[w >> 6 & 63] : '=', *o++ = i + 2 < n ? k[w & 63] : '=';
     }
+    *o = '\0';
+    return out;
 }
 
-lucent_status lucent_mesh_write_gltf(const char *path, const lucent_mesh *m)
+/* The vertex data as glTF wants it: vertices split where texture coordinates differ. */
+typedef struct gltf_pack {
+    unsigned char *buf;
+    size_t nv, nf, bytes;
+    double lo[3], hi[3];
+} gltf_pack;
+
+static lucent_status pack_mesh(const lucent_mesh *m, double scale, gltf_pack *p)
 {
     lucent_uv_split sp = {0};
-    size_t nv = m->vertex_count;
+    size_t nv = m->vertex_count, stride = m->uvs ? 32 : 24;
     if (m->uvs) {
         lucent_status s = lucent_mesh_uv_split(m, &sp);
         if (s != LUCENT_OK) return s;
         nv = sp.count;
     }
-    size_t nf = m->face_count, bytes = nv * 32 + nf * 12;
-    unsigned char *buf = malloc(bytes + 1);
-    if (!buf) {
+    *p = (gltf_pack){.nv = nv, .nf = m->face_count, .bytes = nv * stride + m->face_count * 12};
+    p->buf = malloc(p->bytes + 1);
+    if (!p->buf) {
         lucent_uv_split_free(&sp);
-        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
+        return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory writing glTF");
     }
-    float *pos = (float *)buf, *nrm = pos + 3 * nv, *tex = nrm + 3 * nv;
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    float *pos = (float *)p->buf, *nrm = pos + 3 * nv, *tex = nrm + 3 * nv;
+    for (int k = 0; k < 3; k++) p->lo[k] = INFINITY, p->hi[k] = -INFINITY;
     for (size_t v = 0; v < nv; v++) {
         size_t o = m->uvs ? sp.vertex[v] : v;
         for (int k = 0; k < 3; k++) {
-            pos[3 * v + k] = (float)m->positions[3 * o + k], nrm[3 * v + k] = (float)m->normals[3 * o + k];
-            lo[k] = fmin(lo[k], pos[3 * v + k]), hi[k] = fmax(hi[k], pos[3 * v + k]);
+            pos[3 * v + k] = (float)(scale * m->positions[3 * o + k]), nrm[3 * v + k] = (float)m->normals[3 * o + k];
+            p->lo[k] = fmin(p->lo[k], pos[3 * v + k]), p->hi[k] = fmax(p->hi[k], pos[3 * v + k]);
         }
-        tex[2 * v] = m->uvs ? (float)sp.uv[2 * v] : 0, tex[2 * v + 1] = m->uvs ? (float)(1 - sp.uv[2 * v + 1]) : 0;
+        if (m->uvs) tex[2 * v] = (float)sp.uv[2 * v], tex[2 * v + 1] = (float)(1 - sp.uv[2 * v + 1]);
     }
-    uint32_t *idx = (uint32_t *)(tex + 2 * nv);
-    memcpy(idx, m->uvs ? sp.faces : m->faces, nf * 3 * sizeof *idx);
+    uint32_t *idx = (uint32_t *)(m->uvs ? tex + 2 * nv : tex);
+    memcpy(idx, m->uvs ? sp.faces : m->faces, p->nf * 3 * sizeof *idx);
     lucent_uv_split_free(&sp);
-    lucent_atomic_file *af;
-    FILE *f;
-    lucent_status s = lucent_atomic_open(path, &af, &f);
-    if (s != LUCENT_OK) return free(buf), s;
-    fprintf(f,
-            "{\"asset\": {\"version\": \"2.0\", \"generator\": \"Lucent %s\"},\n"
-            " \"scene\": 0, \"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"mesh\": 0}],\n"
-            " \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0, \"NORMAL\": 1, \"TEXCOORD_0\": 2}, "
-            "\"indices\": 3, \"mode\": 4}]}],\n",
-            LUCENT_VERSION_STRING);
-    fprintf(f,
-            " \"accessors\": [\n"
-            "  {\"bufferView\": 0, \"componentType\": 5126, \"count\": %zu, \"type\": \"VEC3\", "
-            "\"min\": [%.9g, %.9g, %.9g], \"max\": [%.9g, %.9g, %.9g]},\n"
-            "  {\"bufferView\": 1, \"componentType\": 5126, \"count\": %zu, \"type\": \"VEC3\"},\n"
-            "  {\"bufferView\": 2, \"componentType\": 5126, \"count\": %zu, \"type\": \"VEC2\"},\n"
-            "  {\"bufferView\": 3, \"componentType\": 5125, \"count\": %zu, \"type\": \"SCALAR\"}],\n",
-            nv, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], nv, nv, 3 * nf);
-    fprintf(f,
-            " \"bufferViews\": [\n"
-            "  {\"buffer\": 0, \"byteOffset\": 0, \"byteLength\": %zu, \"target\": 34962},\n"
-            "  {\"buffer\": 0, \"byteOffset\": %zu, \"byteLength\": %zu, \"target\": 34962},\n"
-            "  {\"buffer\": 0, \"byteOffset\": %zu, \"byteLength\": %zu, \"target\": 34962},\n"
-            "  {\"buffer\": 0, \"byteOffset\": %zu, \"byteLength\": %zu, \"target\": 34963}],\n",
-            12 * nv, 12 * nv, 12 * nv, 24 * nv, 8 * nv, 32 * nv, 12 * nf);
-    fprintf(f, " \"buffers\": [{\"byteLength\": %zu, \"uri\": \"data:application/octet-stream;base64,", bytes);
-    put_base64(f, buf, bytes);
-    fprintf(f, "\"}]}\n");
-    free(buf);
-    return finish(af, f, path);
+    return LUCENT_OK;
+}
+
+/* Appends an item to root's array `key` (made when absent); returns the item's index or -1. */
+static int append(cJSON *root, const char *key, cJSON *item)
+{
+    cJSON *list = cJSON_GetObjectItemCaseSensitive(root, key);
+    if (!list) list = cJSON_AddArrayToObject(root, key);
+    if (!item || !list || !cJSON_AddItemToArray(list, item)) {
+        cJSON_Delete(item);
+        return -1;
+    }
+    return cJSON_GetArraySize(list) - 1;
+}
+
+static int add_view(cJSON *root, size_t offset, size_t length, int target)
+{
+    cJSON *v = cJSON_CreateObject();
+    if (v &&
+        !(cJSON_AddNumberToObject(v, "buffer", 0) && cJSON_AddNumberToObject(v, "byteOffset", (double)offset) &&
+          cJSON_AddNumberToObject(v, "byteLength", (double)length) && cJSON_AddNumberToObject(v, "target", target)))
+        cJSON_Delete(v), v = NULL;
+    return append(root, "bufferViews", v);
+}
+
+static int add_accessor(cJSON *root, int view, int type, size_t count, const char *kind, const gltf_pack *bounds)
+{
+    cJSON *a = cJSON_CreateObject();
+    bool ok = a && cJSON_AddNumberToObject(a, "bufferView", view) &&
+              cJSON_AddNumberToObject(a, "componentType", type) && cJSON_AddNumberToObject(a, "count", (double)count) &&
+              cJSON_AddStringToObject(a, "type", kind);
+    if (ok && bounds)
+        ok = lucent_json_add_numbers(a, "min", bounds->lo, 3) && lucent_json_add_numbers(a, "max", bounds->hi, 3);
+    if (!ok) cJSON_Delete(a), a = NULL;
+    return view < 0 ? (cJSON_Delete(a), -1) : append(root, "accessors", a);
+}
+
+lucent_status gltf_add_mesh(cJSON *root, const lucent_mesh *m, double scale, int material, int *index)
+{
+    gltf_pack p;
+    lucent_status s = pack_mesh(m, scale, &p);
+    if (s != LUCENT_OK) return s;
+    char *uri = base64(p.buf, p.bytes);
+    free(p.buf);
+    cJSON *buffer = cJSON_CreateObject();
+    bool ok = uri && buffer && cJSON_AddNumberToObject(buffer, "byteLength", (double)p.bytes) &&
+              cJSON_AddStringToObject(buffer, "uri", uri) && append(root, "buffers", buffer) == 0;
+    free(uri);
+    if (!ok) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory writing glTF");
+    size_t nv = p.nv, at = 24 * nv;
+    int pos = add_accessor(root, add_view(root, 0, 12 * nv, 34962), 5126, nv, "VEC3", &p);
+    int nrm = add_accessor(root, add_view(root, 12 * nv, 12 * nv, 34962), 5126, nv, "VEC3", NULL);
+    int tex = m->uvs ? add_accessor(root, add_view(root, at, 8 * nv, 34962), 5126, nv, "VEC2", NULL) : 0;
+    at += m->uvs ? 8 * nv : 0;
+    int idx = add_accessor(root, add_view(root, at, 12 * p.nf, 34963), 5125, 3 * p.nf, "SCALAR", NULL);
+    cJSON *mesh = cJSON_CreateObject(), *prims = mesh ? cJSON_AddArrayToObject(mesh, "primitives") : NULL;
+    cJSON *prim = cJSON_CreateObject(), *attr = prim ? cJSON_AddObjectToObject(prim, "attributes") : NULL;
+    ok = pos >= 0 && nrm >= 0 && tex >= 0 && idx >= 0 && prims && attr &&
+         cJSON_AddNumberToObject(attr, "POSITION", pos) && cJSON_AddNumberToObject(attr, "NORMAL", nrm) &&
+         (!m->uvs || cJSON_AddNumberToObject(attr, "TEXCOORD_0", tex)) &&
+         cJSON_AddNumberToObject(prim, "indices", idx) && cJSON_AddNumberToObject(prim, "mode", 4) &&
+         (material < 0 || cJSON_AddNumberToObject(prim, "material", material)) && cJSON_AddItemToArray(prims, prim);
+    if (!ok) cJSON_Delete(prim), prim = NULL;
+    *index = ok ? append(root, "meshes", mesh) : (cJSON_Delete(mesh), -1);
+    return *index >= 0 ? LUCENT_OK : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory writing glTF");
+}
+
+lucent_status lucent_mesh_write_gltf(const char *path, const lucent_mesh *m)
+{
+    char generator[64];
+    snprintf(generator, sizeof generator, "Lucent %s", LUCENT_VERSION_STRING);
+    cJSON *root = cJSON_CreateObject(), *asset = root ? cJSON_AddObjectToObject(root, "asset") : NULL;
+    bool ok = asset && cJSON_AddStringToObject(asset, "version", "2.0") &&
+              cJSON_AddStringToObject(asset, "generator", generator) && cJSON_AddNumberToObject(root, "scene", 0);
+    cJSON *scene = cJSON_CreateObject(), *nodes = scene ? cJSON_AddArrayToObject(scene, "nodes") : NULL;
+    ok = nodes && cJSON_AddItemToArray(nodes, cJSON_CreateNumber(0)) && ok;
+    ok = append(root, "scenes", scene) == 0 && ok; /* append owns the item, also when it fails */
+    cJSON *node = cJSON_CreateObject();
+    ok = node && cJSON_AddNumberToObject(node, "mesh", 0) && ok;
+    ok = append(root, "nodes", node) == 0 && ok;
+    int mesh = -1;
+    lucent_status s =
+        ok ? gltf_add_mesh(root, m, 1, -1, &mesh) : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
+    if (s == LUCENT_OK) s = lucent_json_write_file(path, root);
+    cJSON_Delete(root);
+    return s;
 }

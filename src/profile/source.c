@@ -37,12 +37,13 @@ static lucent_status mc_half_space(const lucent_material *m, int c, uint64_t pho
     return lucent_mc_run(&md, r);
 }
 
-/* Monte Carlo R_d(r) of a half-space of m, per channel, on the default grid (Freude Table 6.1). */
+/* Monte Carlo R_d(r) of a half-space of m, per channel, on desc's grid (zero fields: the default grid,
+ * Freude Table 6.1). */
 static lucent_status profile_mc(const lucent_profile_source_desc *d, const lucent_material *m, lucent_profile **dest)
 {
     lucent_profile_grid g;
-    lucent_profile_grid_default(m, &g);
-    lucent_status s = lucent_profile_create(&g, "mc", dest);
+    lucent_status s = lucent_profile_grid_resolve(&d->grid, m, &g);
+    if (s == LUCENT_OK) s = lucent_profile_create(&g, "mc", dest);
     for (int c = 0; c < 3 && s == LUCENT_OK; c++) {
         lucent_mc_result r = {0};
         if ((s = mc_half_space(m, c, d->photons, d->seed, d->pool, &g, &r)) != LUCENT_OK) break;

@@ -80,11 +80,35 @@ static lucent_status read_primitive(const lucent_json_node *n, lucent_primitive_
     return s;
 }
 
-static lucent_status load_mesh(const lucent_json_node *n, const char *base_dir, bool skip, lucent_scene_object *o)
+/* {"gltf": FILE, "mesh": M, "primitive": P}: one primitive of a glTF file's mesh, in its units. */
+static const char *const k_gltf_mesh_keys[] = {"gltf", "mesh", "primitive", NULL};
+
+static lucent_status load_gltf_mesh(const lucent_json_node *m, const char *base_dir, bool skip, scene_gltf_cache *cache,
+                                    lucent_scene_object *o)
+{
+    const char *file;
+    int mesh = 0, prim = 0;
+    char path[LUCENT_SCENE_PATH_SIZE];
+    lucent_status s = lucent_json_check_keys(m, k_gltf_mesh_keys);
+    if (s == LUCENT_OK) s = lucent_json_string(m, "gltf", &file);
+    if (s == LUCENT_OK) s = scene_read_int(m, "mesh", 0, 0, 1 << 30, &mesh);
+    if (s == LUCENT_OK) s = scene_read_int(m, "primitive", 0, 0, 1 << 30, &prim);
+    if (s != LUCENT_OK) return s;
+    join_path(base_dir, file, path, sizeof path);
+    snprintf(o->mesh_source, sizeof o->mesh_source, "%.900s#meshes[%d].primitives[%d]", path, mesh, prim);
+    gltf_doc *doc;
+    if (skip) return LUCENT_OK;
+    if ((s = scene_gltf_get(cache, path, &doc)) == LUCENT_OK) s = gltf_read_primitive(doc, mesh, prim, &o->mesh);
+    return s == LUCENT_OK ? s : lucent_json_fail(m, NULL, s, "%s", lucent_last_error());
+}
+
+static lucent_status load_mesh(const lucent_json_node *n, const char *base_dir, bool skip, scene_gltf_cache *cache,
+                               lucent_scene_object *o)
 {
     lucent_json_node m;
     lucent_status s = lucent_json_member(n, "mesh", true, &m);
     if (s != LUCENT_OK) return s;
+    if (cJSON_IsObject(m.json) && lucent_json_has(&m, "gltf")) return load_gltf_mesh(&m, base_dir, skip, cache, o);
     if (cJSON_IsObject(m.json)) {
         lucent_primitive_desc d;
         const char *kind;
@@ -327,7 +351,7 @@ static lucent_status read_surface(const lucent_json_node *n, lucent_scene_object
 }
 
 lucent_status scene_read_object(const lucent_json_node *n, const char *base_dir, bool skip_meshes,
-                                lucent_scene_object *o)
+                                scene_gltf_cache *cache, lucent_scene_object *o)
 {
     const char *name;
     memset(o, 0, sizeof *o);
@@ -340,7 +364,7 @@ lucent_status scene_read_object(const lucent_json_node *n, const char *base_dir,
     if (s == LUCENT_OK) s = read_surface(n, o);
     if (s == LUCENT_OK)
         s = lucent_json_has(n, "points") ? load_points(n, base_dir, skip_meshes, o)
-                                         : load_mesh(n, base_dir, skip_meshes, o);
+                                         : load_mesh(n, base_dir, skip_meshes, cache, o);
     if (s == LUCENT_OK) s = subdivide(n, o);
     if (s == LUCENT_OK) s = read_albedo(n, base_dir, skip_meshes, o);
     if (s == LUCENT_OK && o->points)

@@ -2,12 +2,14 @@
 #include <libgen.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "scene/internal.h"
 
 static const char *const k_scene_keys[] = {"name", "description", "camera", "lights", "objects", "render", NULL};
 
-static lucent_status read_objects(const lucent_json_node *root, const char *base_dir, bool skip, lucent_scene *sc)
+static lucent_status read_objects(const lucent_json_node *root, const char *base_dir, bool skip,
+                                  scene_gltf_cache *cache, lucent_scene *sc)
 {
     lucent_json_node list, e;
     int n = 0;
@@ -18,7 +20,7 @@ static lucent_status read_objects(const lucent_json_node *root, const char *base
     if (!sc->objects) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
     for (int i = 0; i < n && s == LUCENT_OK; i++) {
         s = lucent_json_element(&list, i, &e);
-        if (s == LUCENT_OK) s = scene_read_object(&e, base_dir, skip, &sc->objects[i]);
+        if (s == LUCENT_OK) s = scene_read_object(&e, base_dir, skip, cache, &sc->objects[i]);
         if (s == LUCENT_OK) sc->object_count = i + 1;
     }
     return s;
@@ -54,7 +56,8 @@ static void resolve_planes(lucent_scene *sc)
     c->near_plane = fmin(near, 0.5 * far), c->far_plane = far;
 }
 
-static lucent_status read_scene(const lucent_json_node *root, const char *base_dir, bool skip, lucent_scene *sc)
+static lucent_status read_scene(const lucent_json_node *root, const char *base_dir, bool skip, scene_gltf_cache *cache,
+                                lucent_scene *sc)
 {
     const char *name, *description;
     if (!cJSON_IsObject(root->json))
@@ -67,7 +70,7 @@ static lucent_status read_scene(const lucent_json_node *root, const char *base_d
     if (s == LUCENT_OK) s = scene_read_camera(root, &sc->camera);
     if (s == LUCENT_OK) s = scene_read_lights(root, &sc->lights, &sc->light_count);
     if (s == LUCENT_OK) s = scene_read_render(root, &sc->render);
-    if (s == LUCENT_OK) s = read_objects(root, base_dir, skip, sc);
+    if (s == LUCENT_OK) s = read_objects(root, base_dir, skip, cache, sc);
     if (s == LUCENT_OK) resolve_planes(sc);
     return s;
 }
@@ -81,8 +84,10 @@ static void stem(const char *path, char *dest, size_t size)
     snprintf(dest, size, "%.*s", (int)len, base);
 }
 
-static lucent_status parse_doc(cJSON *json, const char *name, const char *base_dir, const lucent_scene_load_desc *desc,
-                               lucent_scene **dest)
+/* Reads a scene document; cache holds the glTF documents already open (a glTF scene's own) and is
+ * freed. */
+static lucent_status parse_doc_with(cJSON *json, const char *name, const char *base_dir,
+                                    const lucent_scene_load_desc *desc, scene_gltf_cache *cache, lucent_scene **dest)
 {
     static const lucent_scene_load_desc none = {0};
     const lucent_scene_load_desc *d = desc ? desc : &none;
@@ -91,8 +96,9 @@ static lucent_status parse_doc(cJSON *json, const char *name, const char *base_d
     if (s == LUCENT_OK && !sc) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
     if (s == LUCENT_OK) {
         lucent_json_node root = lucent_json_root(json, name, "");
-        s = read_scene(&root, base_dir, d->skip_meshes, sc);
+        s = read_scene(&root, base_dir, d->skip_meshes, cache, sc);
     }
+    scene_gltf_cache_free(cache);
     if (s == LUCENT_OK && !sc->name[0]) stem(name, sc->name, sizeof sc->name);
     if (s == LUCENT_OK && !(sc->json = cJSON_Print(json))) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
     if (s != LUCENT_OK) {
@@ -101,6 +107,62 @@ static lucent_status parse_doc(cJSON *json, const char *name, const char *base_d
     }
     *dest = sc;
     return LUCENT_OK;
+}
+
+static lucent_status parse_doc(cJSON *json, const char *name, const char *base_dir, const lucent_scene_load_desc *desc,
+                               lucent_scene **dest)
+{
+    scene_gltf_cache cache = {0};
+    return parse_doc_with(json, name, base_dir, desc, &cache, dest);
+}
+
+/* ---- glTF scenes: the document they describe, read as any (gltf.c) ---- */
+
+static bool has_suffix(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), k = strlen(suffix);
+    return n >= k && strcasecmp(s + n - k, suffix) == 0;
+}
+
+/* doc becomes the cache's first entry, under base_dir/<its base name>, what its objects name. */
+static lucent_status parse_gltf(gltf_doc *doc, const char *name, const char *base_dir,
+                                const lucent_scene_load_desc *desc, lucent_scene **dest)
+{
+    const char *base = strrchr(name, '/');
+    base = base ? base + 1 : name;
+    char key[LUCENT_SCENE_PATH_SIZE];
+    snprintf(key, sizeof key, "%s/%s", base_dir, base);
+    scene_gltf_cache cache = {0};
+    cJSON *json = NULL;
+    lucent_status s = scene_gltf_put(&cache, key, doc);
+    if (s == LUCENT_OK) s = scene_gltf_document(doc, base, &json);
+    if (s != LUCENT_OK) {
+        scene_gltf_cache_free(&cache);
+        return s;
+    }
+    s = parse_doc_with(json, name, base_dir, desc, &cache, dest);
+    cJSON_Delete(json);
+    return s;
+}
+
+lucent_status lucent_scene_parse_gltf(const void *data, size_t size, const char *name, const char *base_dir,
+                                      const lucent_scene_load_desc *desc, lucent_scene **dest)
+{
+    *dest = NULL;
+    if (!name) name = "<scene>.gltf";
+    gltf_doc *doc;
+    lucent_status s = gltf_open_memory(data, size, name, base_dir, &doc);
+    if (s == LUCENT_OK) s = parse_gltf(doc, name, base_dir ? base_dir : ".", desc, dest);
+    return s;
+}
+
+static lucent_status load_gltf(const char *path, const char *dir, const lucent_scene_load_desc *desc,
+                               lucent_scene **dest)
+{
+    gltf_doc *doc;
+    lucent_status s = gltf_open(path, &doc);
+    if (s == LUCENT_OK) s = parse_gltf(doc, path, dir, desc, dest);
+    return s;
 }
 
 lucent_status lucent_scene_parse(const char *text, const char *name, const char *base_dir,
@@ -123,12 +185,15 @@ lucent_status lucent_scene_load(const char *path, const lucent_scene_load_desc *
     if (!path) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "scene: no file given (NULL path)");
     if (strlen(path) >= LUCENT_SCENE_PATH_SIZE)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%.64s...: path too long", path);
-    lucent_status s = lucent_json_parse_file(path, &json);
-    if (s != LUCENT_OK) return s;
     char dir[LUCENT_SCENE_PATH_SIZE];
     snprintf(dir, sizeof dir, "%s", path);
-    s = parse_doc(json, path, dirname(dir), desc, dest);
-    cJSON_Delete(json);
+    lucent_status s;
+    if (has_suffix(path, ".gltf") || has_suffix(path, ".glb")) {
+        s = load_gltf(path, dirname(dir), desc, dest);
+    } else if ((s = lucent_json_parse_file(path, &json)) == LUCENT_OK) {
+        s = parse_doc(json, path, dirname(dir), desc, dest);
+        cJSON_Delete(json);
+    }
     if (s == LUCENT_OK) snprintf((*dest)->path, sizeof(*dest)->path, "%s", path);
     return s;
 }

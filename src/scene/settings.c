@@ -215,13 +215,14 @@ static const lucent_settings_group k_view_group = SETTINGS_GROUP("view", "the im
  * src/trace/settings.c. */
 extern const lucent_settings_group gl_ssss_settings, gl_translucency_settings, gl_cdrf_settings, gl_points_settings,
     gl_tsd_settings, tr_trace_settings;
+extern const lucent_settings_group gl_burley_settings;
 
 /* The registry: every group, in reading order (the method "ssss:svd3" before the kernel and rank
  * that may refine it). The settings engine of src/base/settings.c walks the table it is given; this
  * is the one the library gives it. */
 static const lucent_settings_group *const k_groups[] = {
     &k_view_group,       &gl_ssss_settings, &gl_translucency_settings, &gl_cdrf_settings,
-    &gl_points_settings, &gl_tsd_settings,  &tr_trace_settings};
+    &gl_points_settings, &gl_tsd_settings,  &tr_trace_settings,        &gl_burley_settings};
 static const settings_table k_table = {k_groups, (int)(sizeof k_groups / sizeof k_groups[0])};
 
 int lucent_settings_group_count(void) { return k_table.count; }
