@@ -40,8 +40,11 @@ static lucent_scene *load_scene(const char *name, int width, int height)
     return load_scene_tsd(name, width, height, 256);
 }
 
-static const lucent_renderer_desc k_quick = {
-    .sigma0_photons = 1000, .transmit_photons = 1000, .boundary_photons = 200, .sphere_photons = 1000};
+static const lucent_renderer_desc k_quick = {.sigma0_photons = 1000,
+                                             .transmit_photons = 1000,
+                                             .boundary_photons = 200,
+                                             .sphere_photons = 1000,
+                                             .profile_photons = 20000};
 
 /* Inside the object: covered, with the eight neighbours covered (compare's mask). */
 static bool interior(const lucent_image *mask, int x, int y)
