@@ -6,6 +6,7 @@
 # reference (--reference), for their own noise. About 45 minutes on two shared cores.
 #
 #   scripts/engines_figures_quick.sh [build/lucent] [out/engines-quick] [TIME] [PEER_SPP]
+# (LIBLUCENT: the liblucent.so the noise script loads; default beside LUCENT)
 set -euo pipefail
 LUCENT=${1:-build/lucent}
 OUT=${2:-out/engines-quick}
@@ -33,7 +34,7 @@ done
 # reference, burley:fit, burley:hand, Cycles' Christensen-Burley fitted and by hand (linear, 2-pixel
 # white rules between them; docs/images/engines-spheres-skin1.png).
 for scene in spheres-skin bunny-skin; do
-  python3 scripts/engines_peer_noise.py "$(dirname "$LUCENT")/liblucent.so" "$OUT/$scene/$scene" \
+  python3 scripts/engines_peer_noise.py "${LIBLUCENT:-$(dirname "$LUCENT")/liblucent.so}" "$OUT/$scene/$scene" \
     "$OUT/$scene-seed2/$scene" blender-cycles-burley blender-cycles-burley-hand | tee "$OUT/$scene-peer-noise.txt"
 done
 python3 - "$LUCENT" "$OUT/spheres-skin/spheres-skin" "$OUT/engines-spheres-skin1" <<'PY'
