@@ -49,7 +49,7 @@ static const char k_usage[] =
     "  --sigma0-photons N  photons per channel and sphere of the sigma0 fit (default 40000)\n"
     "  --transmit-photons N  photons per channel and thickness of T(s) (default 20000)\n"
     "  --fit-photons N     the README's engine fit: the truth's photons per channel (default:\n"
-    "                      lucent fit's, 200000 and the cached Rd; about 10-20 s of CPU)\n"
+    "                      lucent fit's: 200000, and the bake's Rd for T, cached)\n"
     "  --fit-model-photons N  the random-walk and glTF models' photons (default 50000)\n"
     "  --no-fit            leave the engine fit out of the README\n"
     "  --out DIR           the folder (created; default MATERIAL-ENGINE)\n"
