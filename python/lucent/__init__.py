@@ -543,8 +543,9 @@ def fit(spec=None, layers=None, engines=None, photons=0, model_photons=0, seed=1
     "engine", "parameters" (name, value, unit, in the engine's own terms), "profile_error", "delta_e2000",
     "cannot_express", "notes" and, with hand, "hand_mapping" (radius = 1/sigma_tr, colour = T).
     spec: a material (preset, FILE.json, FILE.json#NAME or a Material); layers: [(spec, thickness_mm), ...]
-    top first, the last may be float("inf"). engines: names ("unreal-burley", "unity-hdrp", "blender3-burley",
-    ...; None: all). photons: the truth's profile photons per channel (0: 200000; given, T takes twice as
+    top first, the last may be float("inf"); a spectral skin as spec is fitted through its equivalent medium,
+    in layers it is refused. engines: names ("unreal-burley", "unity-hdrp", "blender3-burley", ..., "gltf";
+    None: all). photons: the truth's profile photons per channel (0: 200000; given, T takes twice as
     many, else the bake's 400000, kept in cache_dir)."""
     import json
     photons, model_photons = _args.integer("photons", photons, "engine_photons"), _args.integer(
