@@ -11,7 +11,8 @@ expect_true "fit says what it wrote" -- grep -q "^wrote $TMP/fit/skin1.md$" <<<"
 # every engine, each with a parameter in its own name
 for pair in "unreal-burley:Mean Free Path Distance" "unreal-separable:Falloff Color" \
   "unity-hdrp:Scattering Color" "blender3-burley:Subsurface Radius" "blender3-rw:Subsurface Anisotropy" \
-  "blender4-burley:Subsurface Scale" "openpbr:subsurface_radius_scale" "godot:subsurf_scatter_strength"; do
+  "blender4-burley:Subsurface Scale" "openpbr:subsurface_radius_scale" "godot:subsurf_scatter_strength" \
+  "gltf:KHR_materials_volume_scatter.multiscatterColor (draft)"; do
   engine=${pair%%:*} param=${pair#*:}
   expect_true "fit skin1: $engine in the JSON" -- grep -q "\"$engine\"" "$TMP/fit/skin1.json"
   expect_true "fit skin1: $engine's $param printed" -- grep -q "$param" <<<"$OUT"
@@ -20,15 +21,24 @@ expect_ok -- "$LUCENT" fit ketchup "${FIT_FAST[@]}" --engines unity-hdrp,godot -
 expect_true "fit --transmittance fits HDRP's tint and Godot's depth" -- \
   grep -q "subsurf_scatter_transmittance_depth" "$TMP/fit/ketchup.md"
 expect_true "fit prints the hand mapping beside the fit" -- grep -q "^  hand " <<<"$OUT"
-expect_true "fit's Markdown has a table per engine" -- test "$(grep -c '^| parameter | value | unit |$' "$TMP/fit/skin1.md")" = 8
+expect_true "fit's Markdown has a table per engine" -- test "$(grep -c '^| parameter | value | unit |$' "$TMP/fit/skin1.md")" = 9
 
 expect_ok -- "$LUCENT" fit marble "${FIT_FAST[@]}" --out "$TMP/fit/"
 expect_true "fit marble: the default name in the folder" -- test -s "$TMP/fit/Marble-fit.json"
-expect_true "fit marble: every engine" -- test "$(grep -c '^  fitted ' <<<"$OUT")" = 8
+expect_true "fit marble: every engine" -- test "$(grep -c '^  fitted ' <<<"$OUT")" = 9
 
 expect_ok -- "$LUCENT" fit --layers skin1:0.5,skin2:inf --engines unity-hdrp,blender3-rw "${FIT_FAST[@]}" \
   --out "$TMP/fit/layers"
 expect_true "fit --layers says what it cannot express" -- grep -q "layers (2)" "$TMP/fit/layers.json"
+
+# A spectral skin: its bands' truth, its equivalent medium for the models (as every command resolves it);
+# in --layers it is refused (it is layered already).
+expect_ok -- "$LUCENT" fit skin-light "${FIT_FAST[@]}" --engines unity-hdrp,gltf --out "$TMP/fit/skin-light"
+expect_true "fit skin-light says its layers are fitted by one medium" -- \
+  grep -q "layers (2, a spectral skin)" "$TMP/fit/skin-light.json"
+expect_fail 1 "layers[0]: Skin-Light is a spectral skin, already layered" -- \
+  "$LUCENT" fit --layers skin-light:0.25,skin2:inf "${FIT_FAST[@]}" --out "$TMP/fit/none"
+expect_no_file "$TMP/fit/none.json"
 
 # Bad input and usage.
 expect_fail 2 "unknown engine \"unreal5\"" -- "$LUCENT" fit skin1 --engines unreal5

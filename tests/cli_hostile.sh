@@ -250,10 +250,10 @@ expect_fail 2 "--radii: '1e-300' is not a radius from 1e-06 to 1e+06 (mm)" -- \
   "$LUCENT" cdrf-fit skin1 --radii 1e-300 --photons 2000 --out "$TMP/cf"
 expect_fail 2 "--screen needs WxH in pixels (1..65536 each), got '4294967297x1080'" -- \
   "$LUCENT" pack skin1 --engine glsl --screen 4294967297x1080 --out "$TMP/pk"
-expect_fail 2 "--object-height needs a length from 0.001 mm to 1e12 mm" -- \
+expect_fail 2 "--object-height needs a length with its unit (m, cm or mm) from 0.001 mm to 1e12 mm" -- \
   "$LUCENT" pack skin1 --engine glsl --object-height 1e-300mm --out "$TMP/pk"
-expect_fail 2 "--distance needs a length from 0.001 mm to 1e12 mm" -- \
-  "$LUCENT" kernel skin1 --export json --distance 1e-300 --out "$TMP/k.json"
+expect_fail 2 "--distance needs a length with its unit (m, cm or mm) from 0.001 mm to 1e12 mm" -- \
+  "$LUCENT" kernel skin1 --export json --distance 1e-300m --out "$TMP/k.json"
 expect_fail 2 "--object-height and --distance: give one" -- \
   "$LUCENT" pack skin1 --engine glsl --object-height 1m --distance 1m --out "$TMP/pk"
 expect_no_file "$TMP/pk" "$TMP/cf.json"

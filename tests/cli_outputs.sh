@@ -69,7 +69,7 @@ expect_fail 1 "$A/sub/t.exr: cannot create: $A $nf" -- \
 expect_fail 1 "$A/p.json: cannot create: $A $nf" -- \
   timeout 20 "$LUCENT" profile skin1 --model mc --photons 1000000000 --out "$A/p"
 expect_fail 1 "$A/k.json: cannot create" -- "$LUCENT" kernel skin1 --export json --out "$A/k.json"
-expect_fail 1 "$A/pk: cannot create: $A $nf" -- timeout 20 "$LUCENT" pack skin1 --engine glsl --no-cache --out "$A/pk"
+expect_fail 1 "$A/pk: cannot create: $A $nf" -- timeout 20 "$LUCENT" pack skin1 --engine glsl --no-cache --no-fit --out "$A/pk"
 expect_fail 1 "$A/c: cannot create: $A $nf" -- timeout 20 "${GLRUN[@]}" compare "$SC/sphere.json" --out "$A/c"
 expect_fail 1 "$A/e: cannot create: $A $nf" -- timeout 20 "$LUCENT" kernel-eval skin1 --out "$A/e"
 expect_fail 1 "$A/l.exr: cannot create" -- "$LUCENT" cdrf-lut --out "$A/l.exr"

@@ -1,7 +1,7 @@
 # Cases for `lucent pack` and the kernel's width on screen (sourced by cli_test.sh: $LUCENT, $TMP,
 # $FIXTURES, $GLRUN, expect_ok, expect_fail, expect_true, expect_no_file).
 export LUCENT_CACHE_DIR=$TMP/cache
-few=(--sigma0-photons 2000 --transmit-photons 500)
+few=(--sigma0-photons 2000 --transmit-photons 500 --fit-photons 5000 --fit-model-photons 1000)
 
 # A GLSL pack in a folder that does not exist yet: every file (the shaders' compilation by glslang, the
 # glTF's by Khronos' validator and Blender: tests/pack_peer_test.sh).
@@ -19,6 +19,20 @@ for ext in KHR_materials_transmission KHR_materials_volume KHR_materials_diffuse
   expect_true "glTF uses $ext" -- grep -q "\"$ext\"" "$TMP/packs/new/marble/material.gltf"
 done
 expect_true "the README names the passes" -- grep -q "^## The passes, in order" "$TMP/packs/new/marble/README.md"
+# The README carries the library's fit (lucent/engine.h): every engine, and the values `lucent fit` finds with
+# the same photons (one library; the numbers themselves are tested in tests/test_engine.c).
+expect_true "the README has every engine's fitted parameters" -- \
+  test "$(grep -c '^### .* (`[a-z0-9-]*`)$' "$TMP/packs/new/marble/README.md")" = 9
+expect_ok -- "$LUCENT" fit marble --no-hand --photons 5000 --model-photons 1000 --out "$TMP/packs/marble-fit"
+for param in "Mean Free Path Distance" "Subsurface Radius" "KHR_materials_volume_scatter.multiscatterColor (draft)"; do
+  expect_true "the README's $param is lucent fit's" -- \
+    grep -qF "$(grep -m1 "^| $param |" "$TMP/packs/marble-fit.md")" "$TMP/packs/new/marble/README.md"
+done
+expect_ok -- "$LUCENT" pack marble --engine json "${few[@]}" --no-fit --out "$TMP/packs/marble-nofit"
+expect_true "--no-fit: the README says how to get the fit" -- \
+  grep -q "^Left out when this pack was made (\`--no-fit\`): \`lucent fit Marble\`" "$TMP/packs/marble-nofit/README.md"
+expect_fail 2 "--fit-photons needs a whole number > 0" -- "$LUCENT" pack marble --engine json --fit-photons 0 \
+  --out "$TMP/packs/none"
 for e in gles vulkan; do
   expect_ok -- "$LUCENT" pack marble --engine $e "${few[@]}" --out "$TMP/packs/marble-$e"
   expect_true "$e pack has its blur pass" -- test -s "$TMP/packs/marble-$e/blur.frag.glsl"
@@ -52,6 +66,16 @@ expect_ok -- "$LUCENT" pack skin1 --engine json --screen 96x32 --fov 25 --distan
 expect_true "pack's width = the renderer's ($want px)" -- grep -q "^kernel width: $want px" <<<"$OUT"
 expect_ok -- "$LUCENT" kernel skin1 --screen 96x32 --fov 25 --distance 125mm --out "$TMP/packs/k.json"
 expect_true "kernel's width = the renderer's ($want px)" -- grep -q "^kernel width: $want px" <<<"$OUT"
+# -q: the width is an informational line (both commands); a length needs its unit (a bare 30 was 30 m).
+expect_ok -- "$LUCENT" -q pack skin1 --engine json --screen 96x32 --fov 25 --distance 125mm "${few[@]}" --out "$TMP/packs/skin1-q"
+expect_true "-q pack prints no kernel width" -- test -z "$OUT"
+expect_ok -- "$LUCENT" -q kernel skin1 --screen 96x32 --fov 25 --distance 125mm --out "$TMP/packs/kq.json"
+expect_true "-q kernel prints no kernel width" -- test -z "$OUT"
+expect_fail 2 "--object-height needs a length with its unit (m, cm or mm) from 0.001 mm to 1e12 mm, got '30'" -- \
+  "$LUCENT" pack marble --engine glsl --object-height 30 --out "$TMP/packs/none"
+expect_fail 2 "--distance needs a length with its unit (m, cm or mm)" -- \
+  "$LUCENT" kernel skin1 --distance 0.125 --out "$TMP/packs/none.json"
+expect_no_file "$TMP/packs/none.json"
 
 # Bad usage and input: nothing written.
 expect_fail 2 "--engine is required" -- "$LUCENT" pack marble --out "$TMP/packs/none"

@@ -29,7 +29,7 @@ expect_fail 2 "--bands needs a count from 1 to 80" -- "$LUCENT" profile skin-lig
 expect_ok -- "$LUCENT" kernel skin-tan --out "$TMP/skin/k.json"
 expect_true "kernel writes the skin's taps" -- test -s "$TMP/skin/k.json"
 expect_ok -- "${SK[@]}" "$LUCENT" pack skin-tan --engine glsl --sigma0-photons 2000 --transmit-photons 500 \
-  --out "$TMP/skin/pack"
+  --fit-photons 5000 --fit-model-photons 1000 --out "$TMP/skin/pack"
 expect_true "the pack's glTF volume is finite" -- \
   bash -c "grep -q KHR_materials_volume '$TMP/skin/pack/material.gltf' && ! grep -Eqi 'nan|inf' '$TMP/skin/pack/material.gltf'"
 

@@ -82,6 +82,22 @@ for f in reference blender-cycles blender-cycles-burley; do
 import sys; sys.exit(not $(halves "$TMP/out/peer-sphere/$f.exr") > 1.5)"
 done
 
+# EEVEE headless (no display: Debian's Blender 3.4 renders EEVEE under -b here), against the same
+# reference (--reference): its mean within 20% of the reference's per channel (measured at 16 spp:
+# +3%, -9%, -5%; EEVEE's screen-space subsurface is not Cycles' and needs no bound of its own) and lit
+# from the left.
+out=$("$LUCENT" compare "$TMP/sphere.json" --methods lambert --reference "$TMP/out" --spp 128 \
+  --peers blender-eevee --peer-spp 16 --out "$TMP/eevee" 2>&1)
+rc=$?
+check "compare --peers blender-eevee runs without a display" test "$rc" = 0 || echo "$out"
+peer=$(means "$TMP/eevee/peer-sphere/blender-eevee.exr")
+echo "     means: reference $ref, EEVEE $peer"
+check "EEVEE's mean is within 20% of the reference's" python3 -c "
+r = [float(x) for x in '$ref'.split()]; p = [float(x) for x in '$peer'.split()]
+import sys; sys.exit(not all(abs(a / b - 1) < 0.20 for a, b in zip(p, r)))"
+check "the sphere is lit from the left in EEVEE" python3 -c "
+import sys; sys.exit(not $(halves "$TMP/eevee/peer-sphere/blender-eevee.exr") > 1.5)"
+
 out=$(LUCENT_BLENDER=/nonexistent/blender "$LUCENT" compare "$TMP/sphere.json" --methods lambert --spp 1 \
   --peers blender-cycles --out "$TMP/none" 2>&1)
 check "a missing Blender fails, saying what to install" grep -q "Blender not found.*install Debian's blender" <<<"$out"

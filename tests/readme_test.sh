@@ -38,7 +38,7 @@ small_options() { # SUBCOMMAND: what makes its example small
     kernel-eval) echo "--size 32" ;;
     cdrf-fit) echo "--photons 2000 --bins 6" ;;
     cdrf-lut) echo "--width 16 --height 8" ;;
-    pack) echo "--sigma0-photons 2000 --transmit-photons 500" ;;
+    pack) echo "--sigma0-photons 2000 --transmit-photons 500 --fit-photons 5000 --fit-model-photons 1000" ;;
     fit) echo "--photons 5000 --model-photons 1000" ;;
     *) echo "" ;;
   esac

@@ -7,6 +7,7 @@
 
 #include "base/json.h"
 #include "engine/internal.h"
+#include "lucent/gltf.h"
 #include "lucent/image.h"
 #include "lucent/material.h"
 #include "test.h"
@@ -239,6 +240,42 @@ TEST(separable_and_godot_fit_a_burley_truth)
     lucent_engine_target_free(&t);
 }
 
+/* glTF's extensions: the values are the KHR_materials_volume definition's (light through x keeps
+ * attenuationColor^(x / attenuationDistance), so sigma_a = -ln(colour) / distance) and the draft's albedo
+ * (lucent_gltf_single_albedo of multiscatterColor = sigma_s / sigma_t), so the medium a reader builds is the
+ * material: its Monte Carlo T agrees with the truth's within their standard errors (5 sigma) and its
+ * profile within the two runs' noise (e_p below twice their combined noise, plus 1% for the bins). */
+TEST(gltf_is_the_material_under_its_extensions)
+{
+    lucent_material m;
+    CHECK_OK(lucent_material_preset_find("skin1", &m));
+    lucent_engine_target t;
+    CHECK_OK(lucent_engine_target_build(
+        &(lucent_engine_target_desc){.material = &m, .photons = 4000, .total_photons = 20000}, &t));
+    lucent_engine_fit_result r;
+    uint64_t model_photons = 20000;
+    CHECK_OK(lucent_engine_fit(&t, LUCENT_ENGINE_GLTF, &(lucent_engine_fit_desc){.model_photons = model_photons}, &r));
+    const lucent_engine_param *col = lucent_engine_fit_param(&r, "KHR_materials_volume.attenuationColor");
+    const lucent_engine_param *dist = lucent_engine_fit_param(&r, "KHR_materials_volume.attenuationDistance");
+    const lucent_engine_param *ms =
+        lucent_engine_fit_param(&r, "KHR_materials_volume_scatter.multiscatterColor (draft)");
+    CHECK(col && dist && ms && !strcmp(dist->unit, "m"));
+    for (int c = 0; col && dist && ms && c < 3; c++) {
+        CHECK_NEAR(-log(col->value[c]) / (dist->value[0] * 1000.0), m.sigma_a[c], 1e-12 * m.sigma_a[c]);
+        CHECK_NEAR(lucent_gltf_single_albedo(ms->value[c]), m.sigma_s[c] / (m.sigma_a[c] + m.sigma_s[c]), 1e-9);
+        double se = sqrt(2.0) * t.rd_se[c]; /* the model's run has the truth's total photons */
+        CHECK_MSG(fabs(r.total[c] - t.rd[c]) < 5.0 * se, "channel %d: T %.4f, truth %.4f +- %.4f", c, r.total[c],
+                  t.rd[c], se);
+        double noise = t.noise[c] * sqrt(1.0 + 4000.0 / (double)model_photons);
+        CHECK_MSG(r.profile_error[c] < 2.0 * noise + 0.01, "channel %d: e_p %.3f, noise %.3f", c, r.profile_error[c],
+                  noise);
+    }
+    CHECK(strstr(r.cannot, "without the draft") != NULL);
+    lucent_engine_fit_result_free(&r);
+    CHECK_ERR(lucent_engine_hand(&t, LUCENT_ENGINE_GLTF, NULL, &r), LUCENT_ERR_UNSUPPORTED, "gltf has no radius");
+    lucent_engine_target_free(&t);
+}
+
 TEST(layered_truth_and_random_walk_fit)
 {
     /* A stack: 0.5 mm of Skin1 over Skin2 (Jensen 2001's presets). The truth's energy holds T; the random walk's
@@ -382,6 +419,6 @@ TEST_MAIN(TEST_ENTRY(ciede2000_matches_sharma_test_data), TEST_ENTRY(unreal_scal
           TEST_ENTRY(cycles_random_walk_albedo_agrees_with_chiang_2016),
           TEST_ENTRY(openpbr_van_de_hulst_and_its_inverse), TEST_ENTRY(hdrp_and_godot_transmittance),
           TEST_ENTRY(engine_names_parse), TEST_ENTRY(fit_recovers_a_burley_truth),
-          TEST_ENTRY(separable_and_godot_fit_a_burley_truth), TEST_ENTRY(layered_truth_and_random_walk_fit),
-          TEST_ENTRY(report_text), TEST_ENTRY(target_rejects_bad_input), TEST_ENTRY(cycles_burley_edge_is_blenders),
-          TEST_ENTRY(cycles_random_walk_edge_is_blenders))
+          TEST_ENTRY(separable_and_godot_fit_a_burley_truth), TEST_ENTRY(gltf_is_the_material_under_its_extensions),
+          TEST_ENTRY(layered_truth_and_random_walk_fit), TEST_ENTRY(report_text), TEST_ENTRY(target_rejects_bad_input),
+          TEST_ENTRY(cycles_burley_edge_is_blenders), TEST_ENTRY(cycles_random_walk_edge_is_blenders))

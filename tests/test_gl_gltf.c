@@ -32,7 +32,8 @@ TEST(gltf_sphere_renders_the_pixels_of_the_json_sphere)
                           .sigma0_photons = 300,
                           .transmit_photons = 100,
                           .lut_width = 4,
-                          .lut_height = 4};
+                          .lut_height = 4,
+                          .no_fit = true};
     CHECK_OK(lucent_pack(&m, &d, NULL));
     snprintf(gltf, sizeof gltf, "%s/material.gltf", out);
     static const char *const sets[] = {"render.width=48", "render.height=40", "render.method=lambert",

@@ -170,11 +170,12 @@ check("a bad scene override raises, naming it",
 
 # pack(): the files of `lucent pack` with the same arguments, byte for byte (the same library: the bake's
 # Monte Carlo has fixed seeds), and the width the CLI prints.
-few = ["--sigma0-photons", "500", "--transmit-photons", "100", "--lut-size", "8x8", "--object-height", "0.05m"]
+few = ["--sigma0-photons", "500", "--transmit-photons", "100", "--lut-size", "8x8", "--object-height", "0.05m",
+       "--fit-photons", "3000", "--fit-model-photons", "500"]
 cli = subprocess.run([lucent_bin, "pack", "skin1", "--engine", "gles", "--no-cache", "--out", os.path.join(tmp, "pk-cli")]
                      + few, check=True, capture_output=True, text=True).stdout
 r = lucent.pack("skin1", "gles", os.path.join(tmp, "pk-py"), object_height_mm=50, lut_size=(8, 8), sigma0_photons=500,
-                transmit_photons=100)
+                transmit_photons=100, fit_photons=3000, fit_model_photons=500)
 names = sorted(os.listdir(os.path.join(tmp, "pk-cli")))
 same = names == sorted(os.listdir(os.path.join(tmp, "pk-py"))) and all(
     open(os.path.join(tmp, "pk-cli", n), "rb").read() == open(os.path.join(tmp, "pk-py", n), "rb").read() for n in names)

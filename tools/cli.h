@@ -102,10 +102,10 @@ int cli_view_option(const char *command, int argc, char **argv, int *i, cli_view
 double cli_view_depth_mm(const cli_view *v);
 
 /* Prints "kernel width: W px (2 x R mm at depth Z mm; WxH, fov_y F deg)" for a kernel of half-width
- * radius_mm: W = 2 R lucent_screen_pixels_per_mm(H, F, Z), the renderer's scale (ssss.c). */
+ * radius_mm: W = 2 R lucent_screen_pixels_per_mm(H, F, Z), the renderer's scale (ssss.c); nothing under --quiet. */
 void cli_print_kernel_width(FILE *out, double radius_mm, const cli_view *v);
 
-/* "1.8m", "180cm", "1800mm", "1.8" (m): a length in mm, from CLI_LENGTH_MIN_MM (1 um) to CLI_LENGTH_MAX_MM
+/* "1.8m", "180cm", "1800mm" (the unit is required: "1.8" is refused): a length in mm, from CLI_LENGTH_MIN_MM (1 um) to CLI_LENGTH_MAX_MM
  * (beyond them the kernel's width in pixels has hundreds of digits, or none). */
 #define CLI_LENGTH_MIN_MM 1e-3
 #define CLI_LENGTH_MAX_MM 1e12

@@ -29,6 +29,9 @@ static const char k_usage[] =
     "  blender4-burley   Blender 4.x Principled BSDF (Subsurface Weight, Radius, Scale)\n"
     "  openpbr           OpenPBR 1.x subsurface_*\n"
     "  godot             Godot 4 StandardMaterial3D subsurf_scatter_* and transmittance\n"
+    "  gltf              glTF 2.0 KHR_materials_volume, _transmission, _diffuse_transmission and the\n"
+    "                    draft KHR_materials_volume_scatter (the pack's mapping: the error of the\n"
+    "                    medium a reader of the draft builds; without the draft, no scattering)\n"
     "\n"
     "options:\n"
     "  --engines LIST     engines to fit (default: all)\n"
@@ -146,7 +149,6 @@ static void print_report(const lucent_engine_report *rep)
         if (rep->hand[i].param_count) print_errors("hand", &rep->hand[i]);
         if (r->cannot[0]) printf("  cannot express: %s\n", r->cannot);
     }
-    /* glTF (KHR_materials_*): the pack's section joins here once both branches are merged. */
 }
 
 static lucent_status prepare(options *o)

@@ -39,8 +39,9 @@ static const char k_usage[] =
     "  --out FILE         write there (atomically) instead of stdout\n"
     "  --screen WxH --fov DEG --object-height H | --distance D\n"
     "                     print the kernel's width in pixels on that screen (defaults 1920x1080,\n"
-    "                     45 degrees, an object of 1.8m filling the height; lengths m, cm or mm); printed\n"
-    "                     with --out too (to stderr when the export goes to stdout)\n"
+    "                     45 degrees, an object of 1.8m filling the height; lengths with their\n"
+    "                     unit: m, cm or mm); printed with --out too (to stderr when the export goes\n"
+    "                     to stdout)\n"
     "  -q, --quiet        no informational lines\n";
 
 typedef struct options {

@@ -28,6 +28,8 @@ static const char k_usage[] =
     "  material.gltf           a glTF 2.0 scene: a mesh in the material (KHR_materials_transmission,\n"
     "                          _volume, _diffuse_transmission, _ior, the draft _volume_scatter, the\n"
     "                          exact medium under extras.lucent), a camera and a key light\n"
+    "README.md also holds each engine's parameters fitted to MATERIAL (as `lucent fit`: Unreal,\n"
+    "Unity HDRP, Blender, OpenPBR, Godot, glTF, each with its error against the Monte Carlo truth).\n"
     "MATERIAL is a preset name (see 'lucent materials'), FILE.json or FILE.json#NAME.\n"
     "\n"
     "options:\n"
@@ -35,9 +37,9 @@ static const char k_usage[] =
     "                      SPIR-V), hlsl (shader model 5) or json (data only)\n"
     "  --screen WxH        the screen in pixels (default 1920x1080)\n"
     "  --fov DEG           vertical field of view in degrees (default 45)\n"
-    "  --object-height H   the object's height (default 1.8m; m, cm or mm, bare: m); the printed\n"
+    "  --object-height H   the object's height (default 1.8m; with its unit: m, cm or mm); the printed\n"
     "                      width is for the object filling the screen's height; the glTF's mesh\n"
-    "  --distance D        instead: the object's depth from the camera (m, cm or mm, bare: m)\n"
+    "  --distance D        instead: the object's depth from the camera (with its unit: m, cm or mm)\n"
     "  --mesh FILE         the glTF's mesh (PLY, OBJ, ...; centred, scaled to --object-height;\n"
     "                      default: a sphere)\n"
     "  --set KEY=VALUE     a render setting (docs/scenes.md): kernel, taps, profile,\n"
@@ -46,6 +48,10 @@ static const char k_usage[] =
     "  --lut-size WxH      the LUT's size (default 64x64)\n"
     "  --sigma0-photons N  photons per channel and sphere of the sigma0 fit (default 40000)\n"
     "  --transmit-photons N  photons per channel and thickness of T(s) (default 20000)\n"
+    "  --fit-photons N     the README's engine fit: the truth's photons per channel (default:\n"
+    "                      lucent fit's: 200000, and the bake's Rd for T, cached)\n"
+    "  --fit-model-photons N  the random-walk and glTF models' photons (default 50000)\n"
+    "  --no-fit            leave the engine fit out of the README\n"
     "  --out DIR           the folder (created; default MATERIAL-ENGINE)\n"
     "  --cache DIR         where sigma0 fits and slab tables are kept (as lucent render)\n"
     "  --no-cache          do not read or write that cache\n"
@@ -63,7 +69,8 @@ typedef struct options {
     cli_view view;
     double kappa_max;
     int sigma0_photons, transmit_photons; /* 0: the bake's defaults (the renderer's) */
-    bool no_cache, have_engine;
+    int fit_photons, fit_model_photons;   /* 0: lucent fit's defaults */
+    bool no_cache, have_engine, no_fit;
 } options;
 
 static int usage(const char *fmt, const char *v) { return cli_usage_error("pack", fmt, v ? v : ""); }
@@ -91,6 +98,10 @@ static int parse_valued(options *o, const char *name, const char *v)
                        (name[2] == 's' ? o->sigma0_photons : o->transmit_photons) > 0
                    ? CLI_OK
                    : usage("%s needs a whole number > 0", name);
+    if (!strcmp(name, "--fit-photons") || !strcmp(name, "--fit-model-photons")) {
+        int *dest = name[6] == 'p' ? &o->fit_photons : &o->fit_model_photons;
+        return cli_parse_int(v, dest) && *dest > 0 ? CLI_OK : usage("%s needs a whole number > 0", name);
+    }
     if (!strcmp(name, "--set")) {
         if (o->set_count == MAX_SETS) return usage("at most 32 --set%s", "");
         o->sets[o->set_count++] = v;
@@ -104,8 +115,9 @@ static int parse_valued(options *o, const char *name, const char *v)
 static int parse_args(int argc, char **argv, options *o)
 {
     static const char *const valued[] = {
-        "--engine",         "--lut-size",         "--set", "--cache", "--out", "--kappa-max",
-        "--sigma0-photons", "--transmit-photons", "--mesh"};
+        "--engine",          "--lut-size",       "--set",  "--cache",       "--out",
+        "--kappa-max",       "--sigma0-photons", "--mesh", "--fit-photons", "--fit-model-photons",
+        "--transmit-photons"};
     for (int i = 1; i < argc; i++) {
         const char *v = NULL;
         int matched = -1;
@@ -119,6 +131,8 @@ static int parse_args(int argc, char **argv, options *o)
             if (rc != CLI_OK) return rc;
         } else if (!strcmp(argv[i], "--no-cache")) {
             o->no_cache = true;
+        } else if (!strcmp(argv[i], "--no-fit")) {
+            o->no_fit = true;
         } else if (argv[i][0] == '-') {
             return usage("unknown option '%s'", argv[i]);
         } else if (o->spec) {
@@ -187,7 +201,10 @@ static lucent_status run(const options *o)
                           .transmit_photons = (uint64_t)o->transmit_photons,
                           .mesh = mesh,
                           .cache = cache,
-                          .pool = cli_pool()};
+                          .pool = cli_pool(),
+                          .fit_photons = (uint64_t)o->fit_photons,
+                          .fit_model_photons = (uint64_t)o->fit_model_photons,
+                          .no_fit = o->no_fit};
     lucent_pack_result r;
     if (s == LUCENT_OK) s = lucent_pack(&m, &d, &r);
     if (s == LUCENT_OK) {

@@ -157,7 +157,8 @@ bool cli_parse_length_mm(const char *text, double *mm)
     char *end;
     errno = 0;
     double v = strtod(text, &end);
-    double unit = !strcmp(end, "") || !strcmp(end, "m") ? 1000 : !strcmp(end, "cm") ? 10 : !strcmp(end, "mm") ? 1 : 0;
+    /* a unit is required: a bare "30" read as 30 m drew a kernel 1000 times too narrow for 30 mm */
+    double unit = !strcmp(end, "m") ? 1000 : !strcmp(end, "cm") ? 10 : !strcmp(end, "mm") ? 1 : 0;
     if (errno || !(unit > 0) || !(v * unit >= CLI_LENGTH_MIN_MM && v * unit <= CLI_LENGTH_MAX_MM)) return false;
     *mm = v * unit;
     return true;
@@ -203,8 +204,8 @@ int cli_view_option(const char *command, int argc, char **argv, int *i, cli_view
 {
     static const char *const names[] = {"--screen", "--fov", "--object-height", "--distance"};
     static const char *const wants[] = {"WxH in pixels (1..65536 each)", "degrees in (0, 180)",
-                                        "a length from 0.001 mm to 1e12 mm (m, cm or mm)",
-                                        "a length from 0.001 mm to 1e12 mm (m, cm or mm)"};
+                                        "a length with its unit (m, cm or mm) from 0.001 mm to 1e12 mm",
+                                        "a length with its unit (m, cm or mm) from 0.001 mm to 1e12 mm"};
     const char *t = NULL;
     int n = 0;
     while (n < 4 && !cli_option(argc, argv, i, names[n], &t)) n++;
@@ -229,6 +230,7 @@ double cli_view_depth_mm(const cli_view *v)
 
 void cli_print_kernel_width(FILE *out, double radius_mm, const cli_view *v)
 {
+    if (g_cli.quiet) return;
     double z = cli_view_depth_mm(v), w = 2 * radius_mm * lucent_screen_pixels_per_mm(v->height, v->fov, z);
     fprintf(out, "kernel width: %.2f px (2 x %.6g mm at depth %.6g mm; %dx%d, fov_y %.6g deg)\n", w, radius_mm, z,
             v->width, v->height, v->fov);

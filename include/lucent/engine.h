@@ -5,7 +5,10 @@
  * The truth (lucent_engine_target): the radial profile R(r) of a half-space of the material lit by a
  * thin beam at normal incidence (the bake room's "mc" profile, lucent/bake.h) and its total diffuse
  * reflectance T (the bake's Monte Carlo Rd, disk-cached), or, for a layered material, one Monte Carlo
- * run of the stack (lucent/mc.h) giving both.
+ * run of the stack (lucent/mc.h) giving both. A spectral skin (lucent/skin.h) is resolved to its
+ * equivalent medium (the material the engines' models read: g, eta, the hand mapping's radius), while
+ * its truth stays its own: the bands' Monte Carlo profile and the bake's T (its bands' totals, whatever
+ * total_photons says); in layers it is refused (it is layered already).
  *
  * A fit matches T exactly (each engine's albedo or colour carries the total: the random walks' colour is
  * found on their own Monte Carlo) and chooses the shape parameters that minimise, summed over R, G, B, e_p^2:
@@ -40,6 +43,8 @@ typedef enum lucent_engine_id {
     LUCENT_ENGINE_BLENDER4_BURLEY,      /* Blender 4.x Principled BSDF, Christensen-Burley */
     LUCENT_ENGINE_OPENPBR,              /* OpenPBR Surface 1.x subsurface */
     LUCENT_ENGINE_GODOT,                /* Godot 4 StandardMaterial3D */
+    LUCENT_ENGINE_GLTF,                 /* glTF 2.0 KHR_materials_transmission, _volume, _diffuse_transmission and the
+                                           draft KHR_materials_volume_scatter (lucent/gltf.h's mapping, not a fit) */
     LUCENT_ENGINE_COUNT
 } lucent_engine_id;
 
@@ -141,12 +146,16 @@ typedef struct lucent_engine_fit_desc {
 
 enum { LUCENT_ENGINE_MODEL_PHOTONS = 50000 };
 
-/* Fits engine's model to target. Free the result with lucent_engine_fit_result_free. */
+/* Fits engine's model to target. Free the result with lucent_engine_fit_result_free. gltf is not fitted:
+ * its values are lucent_gltf_material_from_lucent's, its errors those of the medium a reader of the draft
+ * KHR_materials_volume_scatter builds from them (lucent_gltf_material_to_lucent), traced by Lucent's
+ * Monte Carlo with model_photons per channel; a material whose channel does not absorb fails (the
+ * attenuation cannot carry it). */
 lucent_status lucent_engine_fit(const lucent_engine_target *target, lucent_engine_id engine,
                                 const lucent_engine_fit_desc *desc, lucent_engine_fit_result *dest);
 
 /* Evaluates the hand mapping users type today, radius = 1 / sigma_tr of the (top) material and colour
- * = T, in engine's parameters. Engines without a radius (unreal-separable, godot) fail with
+ * = T, in engine's parameters. Engines without a radius (unreal-separable, godot, gltf) fail with
  * LUCENT_ERR_UNSUPPORTED. */
 lucent_status lucent_engine_hand(const lucent_engine_target *target, lucent_engine_id engine,
                                  const lucent_engine_fit_desc *desc, lucent_engine_fit_result *dest);

@@ -3,11 +3,13 @@
  * shading snippet and look-up table, the translucency table T(s), in the engine's shading language
  * (GLSL 4.50, GLSL ES 3.00 for WebGL2, Vulkan GLSL, HLSL) or as data only; the tables as float EXR,
  * 16-bit PNG and CSV; the constants as JSON; a glTF 2.0 scene of a small mesh in the material
- * (lucent/gltf.h's mapping); and a README that says how to wire it. The parts come from the bake
- * room (lucent/bake.h) with the renderer's settings. */
+ * (lucent/gltf.h's mapping); and a README that says how to wire it, with each engine's parameters
+ * fitted to the material (lucent/engine.h). The parts come from the bake room (lucent/bake.h) with
+ * the renderer's settings. */
 #ifndef LUCENT_PACK_H
 #define LUCENT_PACK_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "lucent/base.h"
@@ -55,6 +57,14 @@ typedef struct lucent_pack_desc {
     double roughness;    /* the boundary's microfacet alpha in the glTF; 0: 0.3, the scenes' default */
     lucent_cache *cache; /* sigma0 fits and slab tables kept between runs; NULL: none */
     lucent_pool *pool;   /* NULL: serial */
+    /* The README's engine parameters, fitted to the material by lucent/engine.h (every engine, no hand
+     * mapping), as `lucent fit` fits them: */
+    uint64_t fit_photons;       /* the truth's profile photons per channel; 0: the fit's default
+                                   (LUCENT_BAKE_PROFILE_PHOTONS, and the bake's Rd for T, kept in cache);
+                                   N: N, and 2 N for T (as `lucent fit --photons N`) */
+    uint64_t fit_model_photons; /* the random-walk and glTF models' photons per channel; 0:
+                                   LUCENT_ENGINE_MODEL_PHOTONS */
+    bool no_fit;                /* true: no fit (the README says how to get one) */
 } lucent_pack_desc;
 
 /* The defaults a zero desc stands for (out NULL). */

@@ -495,25 +495,37 @@ def trace(scene_path, spp=16, seed=1, settings=None, threads=0, time_limit=0):
 
 def pack(spec, engine, out, screen=(1920, 1080), fov=45.0, object_height_mm=1800.0, distance_mm=0.0,
          lut_size=(64, 64), kappa_max=1.0, sigma0_photons=0, transmit_photons=0, mesh=None, roughness=0.3,
-         cache_dir=None, threads=0):
+         cache_dir=None, threads=0, fit=True, fit_photons=0, fit_model_photons=0):
     """Writes the engine pack of a material into the folder out, as `lucent pack` (docs/pack.md):
     engine "glsl", "gles", "vulkan", "hlsl" or "json"; the screen (width, height) in pixels with
     vertical field of view fov (degrees); the object's height (its mesh in material.gltf, a sphere
     unless mesh names a mesh file) and the depth the kernel's width is measured at (distance_mm, 0:
-    where the object fills the screen's height). The renderer's default settings. Returns a dict:
+    where the object fills the screen's height). The renderer's default settings. The README's engine
+    parameters are fitted as fit() fits them (fit_photons, fit_model_photons: its photons and
+    model_photons, 0: the defaults; fit=False leaves them out). Returns a dict:
     radius_mm, depth_mm, pixels_per_mm, width_px, pixels_per_mm_at_1mm, thickness_m, file_count."""
     m = material(spec)
+    engine_name, out_path = _args.text("engine", engine), _args.path("out", out)
+    width, height = _args.pair("screen", screen, "screen")
+    lut_w, lut_h = _args.pair("lut_size", lut_size, "lut_side")
+    fov, height_mm = _args.real("fov", fov, "fov_y"), _args.real("object_height_mm", object_height_mm)
+    distance_mm, kappa_max = _args.real("distance_mm", distance_mm), _args.real("kappa_max", kappa_max)
+    roughness, fit = _args.real("roughness", roughness), _args.flag("fit", fit)
+    photons = [_args.integer(n, v, "pack_photons") for n, v in (("sigma0_photons", sigma0_photons),
+               ("transmit_photons", transmit_photons), ("fit_photons", fit_photons),
+               ("fit_model_photons", fit_model_photons))]
+    mesh, cache_dir = _args.optional(_args.path, "mesh", mesh), _args.optional(_args.path, "cache_dir", cache_dir)
+    pool = _pool(threads)
     e = ctypes.c_int()
-    _check(_L.lucent_pack_engine_find(_b(engine), ctypes.byref(e)))
+    _check(_L.lucent_pack_engine_find(engine_name, ctypes.byref(e)))
     mp, cache = ctypes.c_void_p(), ctypes.c_void_p()
     try:
         if mesh:
-            _check(_L.lucent_mesh_load(_b(mesh), None, ctypes.byref(mp)))
+            _check(_L.lucent_mesh_load(mesh, None, ctypes.byref(mp)))
         if cache_dir:
-            _check(_L.lucent_cache_create(_b(cache_dir), ctypes.byref(cache)))
-        d = _lib.PackDesc(e.value, _b(out), int(screen[0]), int(screen[1]), float(fov), float(object_height_mm),
-                          float(distance_mm), None, int(lut_size[0]), int(lut_size[1]), float(kappa_max),
-                          int(sigma0_photons), int(transmit_photons), mp, float(roughness), cache, _pool(threads))
+            _check(_L.lucent_cache_create(cache_dir, ctypes.byref(cache)))
+        d = _lib.PackDesc(e.value, out_path, width, height, fov, height_mm, distance_mm, None, lut_w, lut_h, kappa_max,
+                          photons[0], photons[1], mp, roughness, cache, pool, photons[2], photons[3], not fit)
         r = _lib.PackResult()
         _check(_L.lucent_pack(ctypes.byref(m._c), ctypes.byref(d), ctypes.byref(r)))
         return {n: getattr(r, n) for n, _ in _lib.PackResult._fields_}
@@ -531,40 +543,47 @@ def fit(spec=None, layers=None, engines=None, photons=0, model_photons=0, seed=1
     "engine", "parameters" (name, value, unit, in the engine's own terms), "profile_error", "delta_e2000",
     "cannot_express", "notes" and, with hand, "hand_mapping" (radius = 1/sigma_tr, colour = T).
     spec: a material (preset, FILE.json, FILE.json#NAME or a Material); layers: [(spec, thickness_mm), ...]
-    top first, the last may be float("inf"). engines: names ("unreal-burley", "unity-hdrp", "blender3-burley",
-    ...; None: all). photons: the truth's profile photons per channel (0: 200000; given, T takes twice as
+    top first, the last may be float("inf"); a spectral skin as spec is fitted through its equivalent medium,
+    in layers it is refused. engines: names ("unreal-burley", "unity-hdrp", "blender3-burley", ..., "gltf";
+    None: all). photons: the truth's profile photons per channel (0: 200000; given, T takes twice as
     many, else the bake's 400000, kept in cache_dir)."""
     import json
+    photons, model_photons = _args.integer("photons", photons, "engine_photons"), _args.integer(
+        "model_photons", model_photons)
+    seed, transmittance, hand = _args.integer("seed", seed), _args.flag("transmittance", transmittance), _args.flag(
+        "hand", hand)
+    cache_dir = _args.optional(_args.path, "cache_dir", cache_dir)
     ids = []
-    for name in engines or []:
+    for name in _args.optional(_args.names, "engines", engines) or []:
         e = ctypes.c_int()
         _check(_L.lucent_engine_parse(_b(name), ctypes.byref(e)))
         ids.append(e.value)
     d = _lib.EngineReportDesc()
     keep = []
-    if layers:
+    if layers is not None:
+        layers = _args.layers("layers", layers, _args.COPIED["LUCENT_ENGINE_MAX_LAYERS"][0])
         arr = (_lib.Layer * len(layers))()
         for i, (lspec, thickness) in enumerate(layers):
             arr[i].material = material(lspec)._c
-            arr[i].slab.thickness = float(thickness)
+            arr[i].slab.thickness = thickness
         d.target.layers, d.target.layer_count = arr, len(layers)
         keep.append(arr)
     else:
         m = material(spec)
         d.target.material = ctypes.pointer(m._c)
         keep.append(m)
-    d.target.photons = int(photons)
-    d.target.total_photons = 2 * int(photons)
-    d.target.seed = int(seed)
-    d.target.transmittance = bool(transmittance)
+    d.target.photons = photons
+    d.target.total_photons = 2 * photons
+    d.target.seed = seed
+    d.target.transmittance = transmittance
     d.target.pool = d.fit.pool = _pool(threads)
-    d.fit.model_photons = int(model_photons)
-    d.hand = bool(hand)
+    d.fit.model_photons = model_photons
+    d.hand = hand
     if ids:
         d.engines, d.engine_count = (ctypes.c_int * len(ids))(*ids), len(ids)
     cache = ctypes.c_void_p()
     if cache_dir:
-        _check(_L.lucent_cache_create(_b(cache_dir), ctypes.byref(cache)))
+        _check(_L.lucent_cache_create(cache_dir, ctypes.byref(cache)))
         d.target.cache = cache
     report, text = ctypes.c_void_p(), ctypes.c_void_p()
     try:

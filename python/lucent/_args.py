@@ -65,6 +65,7 @@ COPIED = {
     "LUCENT_CDRF_FIT_MAX_RADII": (16, "include/lucent/cdrf.h"),
     "LUCENT_POOL_MAX_THREADS": (256, "include/lucent/base.h"),
     "LUCENT_BANDS_MAX": (80, "include/lucent/spectral.h"),
+    "LUCENT_ENGINE_MAX_LAYERS": (16, "include/lucent/engine.h"),
 }
 _C = {k: v[0] for k, v in COPIED.items()}
 
@@ -127,6 +128,18 @@ def load(lib):
         "fov_y": real(0, 180, "degrees", lo_open=True),
         "depth_mm": real(0, inf, "mm", lo_open=True),
         "object_height_mm": real(0, inf, "mm", lo_open=True),
+        # lucent pack (cmd_pack.c, the desc's checks in src/engine/pack.c)
+        "screen": int_(1, 65536, "lucent pack --screen"),
+        "lut_side": int_(2, 4096, "lucent pack --lut-size"),
+        "kappa_max": real(0, 1e12, "lucent pack --kappa-max", lo_open=True),
+        "distance_mm": real(0, 1e12, "lucent pack --distance", lo_open=True, zero="where the object fills the screen"),
+        "roughness": real(0, 1, "lucent_pack_desc.roughness", lo_open=True, zero="0.3"),
+        "pack_photons": int_(1, _C["LUCENT_MC_MAX_PHOTONS"], "lucent pack --sigma0-photons, --transmit-photons, "
+                             "--fit-photons, --fit-model-photons", zero="the default"),
+        # lucent fit (cmd_fit.c): T takes twice the profile's photons
+        "engine_photons": int_(1, _C["LUCENT_MC_MAX_PHOTONS"] / 2, "lucent fit --photons", zero="the default"),
+        "model_photons": int_(1, _C["LUCENT_MC_MAX_PHOTONS"], "lucent fit --model-photons", zero="the default"),
+        "thickness": real(0, inf, "lucent fit --layers: mm, the last may be inf", lo_open=True),
     })
 
 
@@ -268,6 +281,47 @@ def reals(name, values, rule, at_most):
     if not 1 <= len(items) <= at_most:
         raise ArgumentError("%s: expected 1 to %d numbers, got %d" % (name, at_most, len(items)))
     return [real("%s[%d]" % (name, i), x, rule) for i, x in enumerate(items)]
+
+
+def pair(name, values, rule):
+    """Two whole numbers (width, height), each checked by RULES[rule], as a tuple of ints."""
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__len__"):
+        raise ArgumentTypeError("%s: expected (width, height), got %s (%s)" % (name, _shown(values), _type_name(values)))
+    items = list(values)
+    if len(items) != 2:
+        raise ArgumentError("%s: expected (width, height), got %d numbers" % (name, len(items)))
+    return tuple(integer("%s[%d]" % (name, i), x, rule) for i, x in enumerate(items))
+
+
+def names(name, values):
+    """A list of names (not one string, whose letters would each be a name), as a list of str."""
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
+        raise ArgumentTypeError("%s: expected a list of names, got %s (%s)" % (name, _shown(values), _type_name(values)))
+    return [text("%s[%d]" % (name, i), v).decode("utf-8") for i, v in enumerate(values)]
+
+
+def layers(name, values, at_most):
+    """[(material, thickness_mm), ...], top first: 1 to at_most layers, each thickness > 0 (the last may be
+    float("inf")); the materials as given (lucent.material checks them)."""
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__len__"):
+        raise ArgumentTypeError("%s: expected a list of (material, thickness_mm), got %s (%s)"
+                                % (name, _shown(values), _type_name(values)))
+    items = list(values)
+    if not 1 <= len(items) <= at_most:
+        raise ArgumentError("%s: expected 1 to %d layers, got %d" % (name, at_most, len(items)))
+    out = []
+    for i, item in enumerate(items):
+        if isinstance(item, (str, bytes)) or not hasattr(item, "__len__") or len(item) != 2:
+            raise ArgumentTypeError("%s[%d]: expected (material, thickness_mm), got %s (%s)"
+                                    % (name, i, _shown(item), _type_name(item)))
+        spec_, h = item
+        if isinstance(h, numbers.Real) and not isinstance(h, bool) and h == math.inf:
+            if i < len(items) - 1:
+                raise ArgumentError("%s[%d] thickness: only the last layer may be inf" % (name, i))
+            out.append((spec_, math.inf))
+            continue
+        out.append((spec_, real("%s[%d] thickness" % (name, i), h, "thickness")))
+    return out
 
 
 def overrides(name, values):

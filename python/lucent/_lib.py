@@ -217,7 +217,8 @@ class PackDesc(ctypes.Structure):  # lucent_pack_desc (pack.h)
                 ("distance_mm", ctypes.c_double), ("settings", c_void_p), ("lut_width", ctypes.c_int),
                 ("lut_height", ctypes.c_int), ("kappa_max", ctypes.c_double), ("sigma0_photons", ctypes.c_uint64),
                 ("transmit_photons", ctypes.c_uint64), ("mesh", c_void_p), ("roughness", ctypes.c_double),
-                ("cache", c_void_p), ("pool", c_void_p)]
+                ("cache", c_void_p), ("pool", c_void_p), ("fit_photons", ctypes.c_uint64),
+                ("fit_model_photons", ctypes.c_uint64), ("no_fit", ctypes.c_bool)]
 
 
 class PackResult(ctypes.Structure):  # lucent_pack_result

@@ -5,7 +5,8 @@
 #
 #   blender -b --factory-startup -noaudio -P blender_scene.py -- SCENE.json
 #
-# (EEVEE needs an OpenGL context: Lucent runs it under xvfb-run when there is no display.)
+# (EEVEE needs an OpenGL context: Debian's Blender 3.4 gets one under -b without a display here;
+# tests/peer_blender_test.sh renders with it headless.)
 #
 # SCENE.json, written by Lucent (all lengths in mm: one Blender unit is one millimetre):
 #   {"width", "height", "output": EXR path,

@@ -4,7 +4,7 @@
 
 #include "engine/internal.h"
 
-typedef enum family { FAMILY_BURLEY, FAMILY_SEPARABLE, FAMILY_GODOT, FAMILY_WALK } family;
+typedef enum family { FAMILY_BURLEY, FAMILY_SEPARABLE, FAMILY_GODOT, FAMILY_WALK, FAMILY_GLTF } family;
 
 static const struct {
     const char *name, *title;
@@ -21,6 +21,9 @@ static const struct {
                                        FAMILY_BURLEY},
     [LUCENT_ENGINE_OPENPBR] = {"openpbr", "OpenPBR Surface 1.x (subsurface)", FAMILY_WALK},
     [LUCENT_ENGINE_GODOT] = {"godot", "Godot 4 StandardMaterial3D", FAMILY_GODOT},
+    [LUCENT_ENGINE_GLTF] =
+        {"gltf", "glTF 2.0 KHR_materials_volume, _transmission, _diffuse_transmission, draft _volume_scatter",
+         FAMILY_GLTF},
 };
 
 const char *lucent_engine_name(lucent_engine_id engine)
@@ -61,6 +64,10 @@ static lucent_status run_fit(const lucent_engine_target *target, lucent_engine_i
     case FAMILY_SEPARABLE:
         s = hand ? lucent_error(LUCENT_ERR_UNSUPPORTED, "%s has no radius for the hand mapping", k_engines[engine].name)
                  : eng_fit_separable(target, dest);
+        break;
+    case FAMILY_GLTF:
+        s = hand ? lucent_error(LUCENT_ERR_UNSUPPORTED, "%s has no radius for the hand mapping", k_engines[engine].name)
+                 : eng_fit_gltf(target, desc, dest);
         break;
     default:
         s = hand ? lucent_error(LUCENT_ERR_UNSUPPORTED, "%s has no radius for the hand mapping", k_engines[engine].name)

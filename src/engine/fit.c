@@ -159,6 +159,9 @@ void eng_cannot_common(const lucent_engine_target *t, lucent_engine_fit_result *
     bool g_differs;
     double g = eng_mean_g(t, &g_differs);
     if (t->layer_count > 1) eng_cannot(r, "layers (%d): one homogeneous medium is fitted to the stack", t->layer_count);
+    if (t->material.skin.layer_count > 0)
+        eng_cannot(r, "layers (%d, a spectral skin): one homogeneous medium is fitted to its bands' truth",
+                   t->material.skin.layer_count);
     if (!has_g && (g != 0.0 || g_differs))
         eng_cannot(r, "the phase function's g (the profile carries it)");
     else if (has_g && g_differs)

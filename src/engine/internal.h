@@ -66,6 +66,9 @@ lucent_status eng_fit_separable(const lucent_engine_target *t, lucent_engine_fit
 lucent_status eng_fit_godot(const lucent_engine_target *t, lucent_engine_fit_result *r);
 lucent_status eng_fit_walk(const lucent_engine_target *t, lucent_engine_id e, bool hand,
                            const lucent_engine_fit_desc *desc, lucent_engine_fit_result *r);
+/* glTF's extensions (gltf_model.c): lucent/gltf.h's values, the errors of the medium a reader builds. */
+lucent_status eng_fit_gltf(const lucent_engine_target *t, const lucent_engine_fit_desc *desc,
+                           lucent_engine_fit_result *r);
 
 /* Cycles 3.4's random walk in a half-space at unit extinction (cycles_walk.c): single-scattering albedo
  * alpha, anisotropy g; rd_r (nr bins of width dr) the bin averages of the exit radius, total and its error. */
@@ -82,8 +85,9 @@ typedef struct pack_ctx {
     const lucent_baked *b;
     const lucent_render_settings *rs;
     lucent_pack_result r;
-    const char *taps_text; /* the taps in the engine's language (lucent_taps_export) */
-    double lut_png_scale;  /* cdrf-lut.png holds value / scale */
+    const lucent_engine_report *fit; /* the engines' fitted parameters (NULL: desc.no_fit) */
+    const char *taps_text;           /* the taps in the engine's language (lucent_taps_export) */
+    double lut_png_scale;            /* cdrf-lut.png holds value / scale */
 } pack_ctx;
 
 /* True for the engines that get shaders in a GLSL dialect. */

@@ -66,6 +66,9 @@ static lucent_status resolve(const lucent_pack_desc *in, lucent_pack_desc *d)
                             d->lut_height);
     if (!(d->kappa_max > 0 && d->kappa_max < 1e12))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "pack: kappa_max %g: must be > 0", d->kappa_max);
+    if (d->fit_photons > 1000000000000ull || d->fit_model_photons > 1000000000000ull)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "pack: fit photons %llu, model photons %llu: at most 1e12",
+                            (unsigned long long)d->fit_photons, (unsigned long long)d->fit_model_photons);
     if (!(d->roughness > 0 && d->roughness <= 1))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "pack: roughness %g: must be in (0, 1]", d->roughness);
     return LUCENT_OK;
@@ -330,6 +333,19 @@ lucent_status lucent_pack(const lucent_material *m, const lucent_pack_desc *desc
     lucent_mesh *mesh = NULL;
     s = pack_mesh(p.d.mesh, p.d.object_height_mm, &mesh); /* before the bake: a bad mesh fails at once */
     if (s == LUCENT_OK) s = lucent_material_bake(m, &bd, p.d.cache, &b);
+    lucent_engine_report fit = {0};
+    if (s == LUCENT_OK && !p.d.no_fit) {
+        lucent_engine_report_desc fd = {.target = {.material = m,
+                                                   .photons = p.d.fit_photons,
+                                                   .total_photons = 2 * p.d.fit_photons,
+                                                   .pool = p.d.pool,
+                                                   .cache = p.d.cache},
+                                        .fit = {.model_photons = p.d.fit_model_photons, .pool = p.d.pool}};
+        s = lucent_engine_report_run(&fd, &fit);
+        if (s != LUCENT_OK)
+            s = lucent_error_context(s, "pack: the engines' fitted parameters (no_fit leaves them out)");
+        p.fit = &fit;
+    }
     if (s == LUCENT_OK) {
         p.b = &b;
         p.r.radius_mm = lucent_taps_radius(b.taps);
@@ -342,6 +358,7 @@ lucent_status lucent_pack(const lucent_material *m, const lucent_pack_desc *desc
     }
     lucent_mesh_destroy(mesh);
     lucent_baked_free(&b);
+    lucent_engine_report_free(&fit);
     if (s == LUCENT_OK && result) *result = p.r;
     return s;
 }

@@ -2,6 +2,9 @@
  * numbers: the files, the passes in order and the buffers each reads and writes, the kernel width from
  * the camera, thickness and curvature at run time, the composition with the specular, the engine's
  * bindings, the glTF mapping, and the engine parameters fitted to the material (readme_fitted). */
+#include <stdlib.h>
+#include <string.h>
+
 #include "engine/internal.h"
 #include "lucent/gltf.h"
 
@@ -200,18 +203,40 @@ static void gltf(FILE *f, const pack_ctx *p)
             g.multiscatter_color[2], g.scatter_anisotropy, p->derived.rd[0], p->derived.rd[1], p->derived.rd[2]);
 }
 
-/* The engine parameters fitted to the material (issue 30 item 1, `lucent fit`): this section is fed by
- * the fit's library call once that is part of the library. Until then it says so; it never guesses. */
+/* The engine parameters fitted to the material: the report of lucent/engine.h (what `lucent fit` writes
+ * as PREFIX.md), its title left out and its engines' headings one level down. */
 static void readme_fitted(FILE *f, const pack_ctx *p)
 {
-    (void)p;
-    fputs("## Engine parameters fitted to this material\n\n"
-          "<!-- lucent:fit:begin (filled by the fit's library call; see src/engine/pack_readme.c) -->\n"
-          "This build of Lucent does not fit engine parameters (Unreal, Unity, Blender, OpenPBR, Godot) yet: "
-          "`lucent fit` will fill this section with each engine's values and their error against Lucent's Monte "
-          "Carlo reference.\n"
-          "<!-- lucent:fit:end -->\n",
-          f);
+    fputs("## Engine parameters fitted to this material\n\n", f);
+    char *md = NULL;
+    if (!p->fit) {
+        fprintf(f,
+                "Left out when this pack was made (`--no-fit`): `lucent fit %s` gives each engine's parameters "
+                "(Unreal, Unity HDRP, Blender, OpenPBR, Godot, glTF) with their error against Lucent's Monte Carlo "
+                "reference.\n",
+                p->m->name);
+        return;
+    }
+    if (lucent_engine_report_markdown(p->fit, &md) != LUCENT_OK) {
+        fputs("(out of memory writing the fitted parameters)\n", f);
+        return;
+    }
+    fprintf(
+        f,
+        "What to type into each engine so that it draws %s, fitted by Lucent's library (`lucent_engine_report_run`, "
+        "the numbers of `lucent fit %s --no-hand` with the same photons; docs/engines.md in Lucent says how). ",
+        p->m->name, p->m->name);
+    const char *line = strchr(md, '\n'); /* past the report's title */
+    for (line = line ? line + 1 : md; *line == '\n'; line++) {
+    }
+    while (*line) {
+        const char *end = strchr(line, '\n');
+        size_t n = end ? (size_t)(end - line + 1) : strlen(line);
+        if (!strncmp(line, "## ", 3)) fputc('#', f);
+        fwrite(line, 1, n, f);
+        line += n;
+    }
+    free(md);
 }
 
 void pack_readme(FILE *f, const pack_ctx *p)

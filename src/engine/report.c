@@ -1,6 +1,6 @@
 /* The report of one material's engine parameters: JSON and Markdown, as text and as files (written
- * atomically). The glTF material extensions (src/engine/gltf_material.c, the pack's) join these
- * tables where marked. */
+ * atomically); glTF's material extensions are one of its engines (gltf_model.c), and the pack's README
+ * carries the Markdown (pack_readme.c). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -107,8 +107,6 @@ static cJSON *report_json(const lucent_engine_report *rep)
             add_errors(h, &rep->hand[i]);
         }
     }
-    /* glTF (KHR_materials_volume / transmission / diffuse_transmission / scatter): the pack's
-     * src/engine/gltf_material.c adds its object here once both branches are merged. */
     return root;
 }
 
@@ -194,7 +192,6 @@ lucent_status lucent_engine_report_markdown(const lucent_engine_report *report, 
                          (unsigned long long)t->photons, t->rd[0], t->rd[1], t->rd[2], t->r99[0], t->r99[1], t->r99[2],
                          100 * t->noise[0], 100 * t->noise[1], 100 * t->noise[2], k_error_text);
     for (int i = 0; i < report->count; i++) md_engine(&b, report, i);
-    /* glTF: the pack's section (src/engine/gltf_material.c) goes here once both branches are merged. */
     return lucent_strbuf_finish(&b, dest);
 }
 

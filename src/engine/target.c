@@ -7,6 +7,7 @@
 #include "engine/internal.h"
 #include "lucent/bake.h"
 #include "lucent/mc.h"
+#include "lucent/skin.h"
 
 /* The truth's grid: Freude Table 6.1's bin width, and far enough to hold the tail, 8 / sigma_tr of the
  * slowest channel (diffusion's tail beyond it: e^-8 (1 + 8), 0.3%) when that passes the default's 32 reduced
@@ -31,17 +32,18 @@ static lucent_status bake_homogeneous(const lucent_engine_target_desc *d, lucent
     lucent_status s = lucent_profile_from_source(&pd, &t->material, &t->profile);
     lucent_render_settings rs = lucent_render_settings_defaults();
     rs.translucency.transmittance = LUCENT_TRANSMIT_SLAB;
-    lucent_bake_desc bd = {.what = (d->total_photons ? 0u : LUCENT_BAKE_RD) |
+    bool skin = t->material.skin.layer_count > 0; /* its T: the bake's, its bands' Monte Carlo (cached) */
+    lucent_bake_desc bd = {.what = (d->total_photons && !skin ? 0u : LUCENT_BAKE_RD) |
                                    (d->transmittance ? LUCENT_BAKE_TRANSMITTANCE : 0u),
                            .settings = &rs,
                            .pool = d->pool};
     lucent_baked b = {0};
     if (s == LUCENT_OK && bd.what) s = lucent_material_bake(&t->material, &bd, d->cache, &b);
-    if (s == LUCENT_OK && !d->total_photons) {
+    if (s == LUCENT_OK && (!d->total_photons || skin)) {
         memcpy(t->rd, b.rd, sizeof t->rd);
         memcpy(t->rd_se, b.rd_se, sizeof t->rd_se);
     }
-    if (s == LUCENT_OK && d->total_photons)
+    if (s == LUCENT_OK && d->total_photons && !skin)
         s = lucent_profile_mc_total(&t->material, d->total_photons, t->seed, d->pool, t->rd, t->rd_se);
     if (s == LUCENT_OK && d->transmittance) { /* the Monte Carlo half of the bake's table (beyond: diffusion) */
         int n = LUCENT_BAKE_TRANSMIT_SIZE, half = (n - 1) / 2;
@@ -99,12 +101,18 @@ static lucent_status check_desc(const lucent_engine_target_desc *d)
         if (!(h > 0.0) || (isinf(h) && i + 1 < d->layer_count))
             return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
                                 "engine target: layers[%d].thickness: > 0 mm, and only the last may be infinite", i);
+        if (d->layers[i].material.skin.layer_count > 0)
+            return lucent_error(
+                LUCENT_ERR_INVALID_ARGUMENT,
+                "engine target: layers[%d]: %s is a spectral skin, already layered: the layers take RGB "
+                "materials",
+                i, d->layers[i].material.name);
         lucent_status s = lucent_material_validate(&d->layers[i].material);
         if (s != LUCENT_OK) return lucent_error_context(s, "engine target: layers[%d]", i);
     }
     if (d->transmittance && d->layers && d->layer_count > 1)
         return lucent_error(LUCENT_ERR_UNSUPPORTED, "engine target: the slab transmittance of a stack is not computed");
-    return d->material ? lucent_material_validate(d->material) : LUCENT_OK;
+    return LUCENT_OK; /* a homogeneous material is validated once resolved (a spectral skin: lucent/skin.h) */
 }
 
 /* r99, the counted bins, the coverage and the noise floor of each channel. */
@@ -144,6 +152,9 @@ lucent_status lucent_engine_target_build(const lucent_engine_target_desc *desc, 
     } else {
         t->layer_count = 1;
         t->material = *desc->material;
+        s = lucent_skin_resolve(&t->material); /* a spectral skin: its equivalent medium beside its bands */
+        if (s == LUCENT_OK) s = lucent_material_validate(&t->material);
+        if (s != LUCENT_OK) return s;
         t->layers[0] = (lucent_layer){.material = t->material, .slab = {.thickness = INFINITY}};
     }
     if (t->layer_count == 1 && isinf(t->layers[0].slab.thickness)) {
