@@ -226,10 +226,30 @@ static void make_plan(const lucent_mc_desc *d, mc_plan *p)
     plan_layout(p);
 }
 
+/* ---- the kernels ---- */
+
+static const mc_kernel k_kernels[] = {
+    {LUCENT_ISA_SCALAR, 1, mc_trace, NULL, NULL, NULL},
+#if defined(LUCENT_SIMD_X86)
+    {LUCENT_ISA_AVX2, 8, mc_trace_avx2, mc_simd_neglog_avx2, mc_simd_sincos_avx2, mc_simd_hg_avx2},
+    {LUCENT_ISA_AVX512, 16, mc_trace_avx512, mc_simd_neglog_avx512, mc_simd_sincos_avx512, mc_simd_hg_avx512},
+#endif
+};
+
+const mc_kernel *mc_kernel_get(lucent_isa isa)
+{
+    if (isa == LUCENT_ISA_AUTO) isa = lucent_isa_active();
+    if (!lucent_isa_supported(isa)) return NULL;
+    for (size_t i = 0; i < sizeof k_kernels / sizeof k_kernels[0]; i++)
+        if (k_kernels[i].isa == isa) return &k_kernels[i];
+    return NULL;
+}
+
 /* ---- the parallel run ---- */
 
 typedef struct run_ctx {
     const mc_plan *plan;
+    const mc_kernel *kernel;
     int64_t **batch, **grid; /* per thread */
     lucent_progress *progress;
 } run_ctx;
@@ -239,7 +259,7 @@ static lucent_status run_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64
     run_ctx *c = ctx;
     lucent_rng rng;
     lucent_rng_init(c->plan->seed, chunk, &rng);
-    mc_trace(c->plan, &rng, begin, end, c->batch[thread], c->grid[thread]);
+    c->kernel->trace(c->plan, &rng, begin, end, c->batch[thread], c->grid[thread]);
     lucent_progress_add(c->progress, end - begin);
     return LUCENT_OK;
 }
@@ -466,7 +486,9 @@ lucent_status lucent_mc_run(const lucent_mc_desc *desc, lucent_mc_result *dest)
                             d.label, per_thread / 1e6, per_thread * threads / 1e6, threads,
                             (double)LUCENT_MC_MAX_TALLY_BYTES / 1e6);
     }
-    run_ctx ctx = {plan, alloc_counters(threads, bsize), alloc_counters(threads, plan->lay.grid_size), NULL};
+    const mc_kernel *kernel = mc_kernel_get(LUCENT_ISA_AUTO);
+    if (!kernel) kernel = mc_kernel_get(LUCENT_ISA_SCALAR);
+    run_ctx ctx = {plan, kernel, alloc_counters(threads, bsize), alloc_counters(threads, plan->lay.grid_size), NULL};
     if (!ctx.batch || !ctx.grid) {
         s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "Monte Carlo: out of memory for the scores");
     } else {

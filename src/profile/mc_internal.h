@@ -3,6 +3,7 @@
 #ifndef LUCENT_SRC_PROFILE_MC_INTERNAL_H
 #define LUCENT_SRC_PROFILE_MC_INTERNAL_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "base/optics.h"
@@ -49,7 +50,33 @@ typedef struct mc_plan {
 } mc_plan;
 
 /* Traces photons [begin, end) with rng, adding to batch counters `batch` (batches * batch_size)
- * and grid counters `grid` (grid_size). */
+ * and grid counters `grid` (grid_size). The scalar kernel, the reference (mc_transport.c). */
 void mc_trace(const mc_plan *plan, lucent_rng *rng, uint64_t begin, uint64_t end, int64_t *batch, int64_t *grid);
+
+/* The kernel of one instruction set (lucent_isa): the photons, and test hooks that evaluate its
+ * approximations over arrays (n a multiple of `lanes`): -ln(m 2^-24), cos and sin of the azimuth
+ * from 20 bits, Henyey-Greenstein's cos theta for g from xi (mc_lanes.h). */
+typedef struct mc_kernel {
+    lucent_isa isa;
+    int lanes;
+    void (*trace)(const mc_plan *plan, lucent_rng *rng, uint64_t begin, uint64_t end, int64_t *batch, int64_t *grid);
+    void (*neglog)(const uint32_t *m, float *dest, size_t n);
+    void (*sincos)(const uint32_t *phi, float *c, float *s, size_t n);
+    void (*hg)(double g, const float *xi, float *mu, size_t n);
+} mc_kernel;
+
+/* The kernel of `isa` (AUTO: lucent_isa_active()); NULL where this build or CPU has none. */
+const mc_kernel *mc_kernel_get(lucent_isa isa);
+
+#if defined(LUCENT_SIMD_X86)
+void mc_trace_avx2(const mc_plan *plan, lucent_rng *rng, uint64_t begin, uint64_t end, int64_t *batch, int64_t *grid);
+void mc_simd_neglog_avx2(const uint32_t *m, float *dest, size_t n);
+void mc_simd_sincos_avx2(const uint32_t *phi, float *c, float *s, size_t n);
+void mc_simd_hg_avx2(double g, const float *xi, float *mu, size_t n);
+void mc_trace_avx512(const mc_plan *plan, lucent_rng *rng, uint64_t begin, uint64_t end, int64_t *batch, int64_t *grid);
+void mc_simd_neglog_avx512(const uint32_t *m, float *dest, size_t n);
+void mc_simd_sincos_avx512(const uint32_t *phi, float *c, float *s, size_t n);
+void mc_simd_hg_avx512(double g, const float *xi, float *mu, size_t n);
+#endif
 
 #endif
