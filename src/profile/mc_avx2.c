@@ -66,6 +66,8 @@ static inline vm vi_ne0(vi a)
 {
     return _mm256_castsi256_ps(_mm256_xor_si256(_mm256_cmpeq_epi32(a, _mm256_setzero_si256()), _mm256_set1_epi32(-1)));
 }
+#define LOG2W 3
+static inline vi vi_iota(void) { return _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7); }
 #define vi_srli(a, n) _mm256_srli_epi32((a), (n))
 #define vi_slli(a, n) _mm256_slli_epi32((a), (n))
 #define vi_srai(a, n) _mm256_srai_epi32((a), (n))
@@ -82,6 +84,18 @@ static inline vm m_from_bits(unsigned b)
 {
     const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
     return _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)b), bit), bit));
+}
+
+/* round(a) as 64-bit integers into p[0..7] (0 <= a < 2^51, nearest): in double, a + 2^52 has a's
+ * integer part in its low mantissa bits (the classic magic-number conversion; AVX2 has no
+ * float-to-int64 instruction) */
+static inline void v_store_fixed(int64_t *p, vf a)
+{
+    const __m256d magic = _mm256_set1_pd(4503599627370496.0); /* 2^52 */
+    __m256d lo = _mm256_add_pd(_mm256_cvtps_pd(_mm256_castps256_ps128(a)), magic);
+    __m256d hi = _mm256_add_pd(_mm256_cvtps_pd(_mm256_extractf128_ps(a, 1)), magic);
+    _mm256_storeu_si256((__m256i *)p, _mm256_sub_epi64(_mm256_castpd_si256(lo), _mm256_castpd_si256(magic)));
+    _mm256_storeu_si256((__m256i *)(p + 4), _mm256_sub_epi64(_mm256_castpd_si256(hi), _mm256_castpd_si256(magic)));
 }
 
 static inline vf v_perm(const float *tab, vi idx) { return _mm256_permutevar8x32_ps(_mm256_loadu_ps(tab), idx); }

@@ -64,6 +64,8 @@ static inline vm vi_gt(vi a, vi b) { return _mm512_cmpgt_epi32_mask(a, b); }
 static inline vm vi_eq(vi a, vi b) { return _mm512_cmpeq_epi32_mask(a, b); }
 static inline vi vi_blend(vm m, vi a, vi b) { return _mm512_mask_blend_epi32(m, a, b); } /* m ? b : a */
 static inline vm vi_ne0(vi a) { return _mm512_test_epi32_mask(a, a); }
+#define LOG2W 4
+static inline vi vi_iota(void) { return _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15); }
 #define vi_srli(a, n) _mm512_srli_epi32((a), (n))
 #define vi_slli(a, n) _mm512_slli_epi32((a), (n))
 #define vi_srai(a, n) _mm512_srai_epi32((a), (n))
@@ -77,6 +79,13 @@ static inline vm m_or(vm a, vm b) { return (vm)(a | b); }
 static inline vm m_andnot(vm a, vm b) { return (vm)(a & ~b); } /* a and not b */
 static inline unsigned m_bits(vm a) { return (unsigned)a; }
 static inline vm m_from_bits(unsigned b) { return (vm)b; }
+
+/* round(a) as 64-bit integers into p[0..15] (|a| < 2^62; nearest, the MXCSR default) */
+static inline void v_store_fixed(int64_t *p, vf a)
+{
+    _mm512_storeu_si512(p, _mm512_cvtps_epi64(_mm512_castps512_ps256(a)));
+    _mm512_storeu_si512(p + 8, _mm512_cvtps_epi64(_mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(a), 1))));
+}
 
 static inline vf v_perm(const float *tab, vi idx) { return _mm512_permutexvar_ps(idx, _mm512_loadu_ps(tab)); }
 static inline vf v_gather(const float *tab, vi idx) { return _mm512_i32gather_ps(idx, tab, 4); }

@@ -8,29 +8,31 @@
  * photon (an escape and its scores, roulette, the step limit, clear layers) runs per lane in scalar
  * code on the lanes' state in memory, and a lane whose photon ended takes the chunk's next photon at
  * once. Scores:
- *   - A(z) and A(r, z) per interaction: each step appends its W (counter, cell, weight) triples to a
- *     log that a tight scalar loop adds to the fixed-point counters every LOG_ROWS steps (the misses
- *     on the A(r, z) grid then overlap, as in mc_transport.c);
- *   - A per layer: not per interaction. A packet's weight changes only by absorption while it stays
- *     in a layer (roulette aside), so what it absorbed there is the weight it had when it came in
- *     (or after roulette) minus the weight it has when it leaves (lane_absorbed, in double: exact);
+ *   - absorption per interaction: each step appends its W (counter, cell, weight) triples to a log
+ *     that a tight scalar loop adds to the fixed-point counters every LOG_ROWS steps (the misses on
+ *     the A(r, z) grid then overlap, as in mc_transport.c). The counter is the lane's own bin
+ *     iz + layer of its batch (the a_zl layout of mc_internal.h: one array for A(z) and A per layer;
+ *     lanes that score the same bin at once do not wait on each other's additions), added to the
+ *     batch's a_zl when the lane moves to another batch and at the chunk's end; mc.c folds a_zl into
+ *     A(z) and A per layer after the run, so a packet changing layer scores nothing;
  *   - R and T (r, angle) when a packet escapes, per lane.
  * All scores are integers (weight x plan->scale), so their order does not matter.
  *
  * Random numbers: each lane has its own xoshiro256** state (Blackman & Vigna 2018), seeded at the
- * start of a chunk from the chunk's stream (lucent_rng_init(seed, chunk)), lane 0 first; lanes take
- * the chunk's photons in order as they free up. A chunk is thus a function of its stream alone, and
+ * start of a chunk by hashing a key drawn from the chunk's stream (lucent_rng_init(seed, chunk)) with
+ * the lane's number (lucent_rng_init(key, lane)); lanes take the chunk's photons in order as they
+ * free up. A chunk is thus a function of its stream alone, and
  * a run is identical for any thread or process count. Every step takes one 64-bit draw per lane
  * (24 bits for the step length, 20 for the deflection, 20 for the azimuth; at a boundary the
- * deflection's 20 bits decide between reflection and refraction); roulette takes another draw from
- * the lane's state.
+ * deflection's 20 bits decide between reflection and refraction), made DRAW_ROWS steps ahead in a
+ * loop of their own; roulette and clear layers draw from a second state per lane.
  *
  * Floating point: float, as the scalar kernel; the approximations (one each, tested against libm by
- * tests/test_mc.c) are
+ * tests/test_mc_simd.c) are
  *   - -ln(u), u = m 2^-24, m in [1, 2^24]: exponent from the float's bits, ln of the mantissa by a
- *     degree-7 polynomial (the scalar kernel's): relative error below 3e-7;
+ *     degree-7 polynomial (the scalar kernel's): relative error at most 3.1e-7 over every m;
  *   - cos and sin of the azimuth (a quarter-turn index and t in [-pi/4, pi/4)): Taylor polynomials of
- *     degree 8 and 9 (the scalar kernel's): absolute error below 2e-7 with float rounding;
+ *     degree 8 and 9 (the scalar kernel's): absolute error below 1e-7 with float rounding;
  *   - Henyey-Greenstein's cos theta (MCML manual eq. 3.28) rewritten without cancellation:
  *     cos theta = (k0 + p (k1 + p k2)) / (1 - |g| + |g| p)^2 with p = 2 xi (2 (1 - xi) for g < 0, the
  *     result negated), k0 = -(1 - |g|)^2, k1 = (1 + g^2)(1 - |g|), k2 = |g| (1 + g^2) / 2: absolute
@@ -50,6 +52,8 @@
 #define MC_CHANCE_L 0.1f  /* roulette survival (MCML's CHANCE) */
 #define LOG_ROWS 64       /* steps logged between flushes */
 #define LOG_N (LOG_ROWS * W)
+#define DRAW_ROWS 16 /* steps whose random numbers are made at once */
+#define DRAW_N (DRAW_ROWS * W)
 #define TAB_N 128 /* layer tables: LUCENT_MC_MAX_LAYERS rounded up, at least W */
 
 #define MC_CAT2(a, b) a##_##b
@@ -60,12 +64,13 @@
 typedef struct lanes {
     _Alignas(64) float x[W], y[W], z[W], ux[W], uy[W], uz[W];
     float w[W];     /* packet weight */
-    float wmark[W]; /* its weight at the lane's last rare event: A per layer is wmark - w */
     float sleft[W]; /* step left after a boundary, in mean free paths (0: draw a new one) */
     float ca2[W];   /* the exit cosine of a packet that escapes (for its scores) */
     int32_t layer[W], steps[W];
     int32_t bbase[W];                    /* the photon's batch: offset of its counters */
-    uint64_t r0[W], r1[W], r2[W], r3[W]; /* xoshiro256** state, word k of lane i in rk[i] */
+    uint64_t r0[W], r1[W], r2[W], r3[W]; /* the steps' xoshiro256** state, word k of lane i in rk[i] */
+    uint64_t e0[W], e1[W], e2[W], e3[W]; /* a second one for roulette and clear layers */
+    unsigned active;                     /* lanes holding a photon */
 } lanes;
 
 /* Per-layer constants as tables indexed by layer (permuted or gathered into lanes). */
@@ -80,13 +85,21 @@ typedef struct layer_tabs {
 typedef struct kctx {
     const mc_plan *plan;
     int64_t *batch, *grid;
+    int64_t *zl;        /* per lane: the a_zl counters of the lane's batch bacc, bin v of lane i at v W + i */
+    int32_t bacc[W];    /* the batch (counter offset) zl holds for each lane, -1: none yet */
+    int arz;            /* A(r, z) is scored */
+    int any_clear;      /* a layer is clear (its lanes go to lane_glass) */
+    int any_backward;   /* a layer has g < 0 (HG's xi reversed there) */
     uint64_t next, end; /* the chunk's photons not yet launched */
     unsigned active;    /* lanes holding a photon */
     int32_t zlim, rlim; /* bin clamps */
     int n_log;
-    int32_t log_z[LOG_N]; /* counter of A(z) (batch offset included) */
+    int32_t log_z[LOG_N]; /* the lane's counter of the depth-and-layer bin, in zl */
     int32_t log_c[LOG_N]; /* cell of A(r, z) */
-    float log_q[LOG_N];   /* absorbed weight */
+    int64_t log_q[LOG_N]; /* absorbed weight, fixed point (weight x plan->scale) */
+    /* the next DRAW_ROWS steps' random numbers, every lane's in a row (draws_fill) */
+    float d_step[DRAW_N], d_xi[DRAW_N], d_cp[DRAW_N], d_sp[DRAW_N], d_c[DRAW_N], d_st[DRAW_N];
+    int prefetch; /* the A(r, z) grid is larger than the caches */
     layer_tabs t;
 } kctx;
 
@@ -94,7 +107,7 @@ typedef struct kctx {
 
 static inline uint64_t lane_next(lanes *S, int i)
 {
-    uint64_t s0 = S->r0[i], s1 = S->r1[i], s2 = S->r2[i], s3 = S->r3[i];
+    uint64_t s0 = S->e0[i], s1 = S->e1[i], s2 = S->e2[i], s3 = S->e3[i];
     uint64_t x = s1 * 5u, result = ((x << 7) | (x >> 57)) * 9u, t = s1 << 17;
     s2 ^= s0;
     s3 ^= s1;
@@ -102,7 +115,7 @@ static inline uint64_t lane_next(lanes *S, int i)
     s0 ^= s3;
     s2 ^= t;
     s3 = (s3 << 45) | (s3 >> 19);
-    S->r0[i] = s0, S->r1[i] = s1, S->r2[i] = s2, S->r3[i] = s3;
+    S->e0[i] = s0, S->e1[i] = s1, S->e2[i] = s2, S->e3[i] = s3;
     return result;
 }
 
@@ -110,13 +123,56 @@ static inline float lane_uniform(lanes *S, int i) { return (float)(lane_next(S, 
 
 static inline int64_t lane_fixed(const mc_plan *p, double w) { return (int64_t)(w * p->scale + 0.5); }
 
-/* Scores what the lane's packet absorbed in its layer since its last rare event (its weight then
- * minus its weight now; exact in double: both are floats within 2^29 of each other). */
-static inline void lane_absorbed(kctx *k, lanes *S, int i)
+/* Adds the logged absorption to its counters (the weights converted to fixed point in the lanes): the
+ * lanes' own depth-and-layer counters (lanes that score the same bin at once do not then wait on each
+ * other's additions) and the shared A(r, z) grid,
+ * on a large A(r, z) grid prefetching the cells LOG_AHEAD entries ahead (the prefetches retire at
+ * once, so more misses overlap than the reorder window alone allows). */
+#define LOG_AHEAD 48
+#define LOG_PREFETCH_BYTES (256 << 10) /* grids smaller than this stay in the caches */
+
+static void log_flush_z(kctx *k)
 {
-    double d = (double)S->wmark[i] - (double)S->w[i];
-    if (d > 0.0) k->batch[S->bbase[i] + (int32_t)k->plan->lay.a_l + S->layer[i]] += lane_fixed(k->plan, d);
-    S->wmark[i] = S->w[i];
+    int64_t *b = k->zl;
+#pragma GCC unroll 4
+    for (int j = 0; j < k->n_log; j++) b[k->log_z[j]] += k->log_q[j];
+    k->n_log = 0;
+}
+
+static void log_flush_rz(kctx *k)
+{
+    int64_t *b = k->zl, *g = k->grid + k->plan->lay.a_rz;
+    int n = k->n_log, j = 0;
+    if (k->prefetch)
+#pragma GCC unroll 4
+        for (; j < n - LOG_AHEAD; j++) {
+            __builtin_prefetch(g + k->log_c[j + LOG_AHEAD], 1, 3);
+            b[k->log_z[j]] += k->log_q[j];
+            g[k->log_c[j]] += k->log_q[j];
+        }
+#pragma GCC unroll 4
+    for (; j < n; j++) {
+        b[k->log_z[j]] += k->log_q[j];
+        g[k->log_c[j]] += k->log_q[j];
+    }
+    k->n_log = 0;
+}
+
+static inline void log_flush(kctx *k, int arz)
+{
+    if (arz)
+        log_flush_rz(k);
+    else
+        log_flush_z(k);
+}
+
+/* Adds lane i's counters (and what the log holds for them) to its batch's a_zl and zeroes them. */
+static void lane_counters_out(kctx *k, int i)
+{
+    const mc_plan *p = k->plan;
+    log_flush(k, k->arz);
+    int64_t *dest = k->batch + k->bacc[i] + p->lay.a_zl, *src = k->zl + i;
+    for (int v = 0; v < p->nz + p->layer_count; v++) dest[v] += src[(size_t)v * W], src[(size_t)v * W] = 0;
 }
 
 /* The lane takes the chunk's next photon, or goes idle (a valid state that scores nothing). */
@@ -127,20 +183,24 @@ static void lane_launch(kctx *k, lanes *S, int i)
     S->z[i] = p->launch_z;
     S->ux[i] = S->uy[i] = 0.0f;
     S->uz[i] = 1.0f;
-    S->w[i] = S->wmark[i] = p->w_launch;
+    S->w[i] = p->w_launch;
     S->sleft[i] = 0.0f;
     S->layer[i] = p->launch_layer;
     S->steps[i] = 0;
     S->bbase[i] = 0;
     if (k->next == k->end) {
-        k->active &= ~(1u << i);
-        S->w[i] = S->wmark[i] = 1.0f;
+        S->active &= ~(1u << i);
+        S->w[i] = 1.0f;
         return;
     }
     uint64_t photon = k->next++;
     uint64_t b = photon * (uint64_t)p->batches / p->photons; /* contiguous photon ranges */
     S->bbase[i] = (int32_t)(b * p->lay.batch_size);
-    k->active |= 1u << i;
+    S->active |= 1u << i;
+    if (k->bacc[i] != S->bbase[i]) { /* the lane's counters go to the batch they were made in */
+        if (k->bacc[i] >= 0) lane_counters_out(k, i);
+        k->bacc[i] = S->bbase[i];
+    }
 }
 
 /* Scores a packet leaving through the top (up) or the bottom with exit cosine ca (outside). */
@@ -151,9 +211,11 @@ static void lane_exit(kctx *k, lanes *S, int i, float ca, int up)
     int64_t w = lane_fixed(p, S->w[i]);
     float rb = sqrtf(S->x[i] * S->x[i] + S->y[i] * S->y[i]) * p->inv_dr;
     int ir = rb >= (float)p->r_lim ? p->r_lim : (int)rb;
-    float ang = acosf(ca < 0.0f ? 0.0f : ca > 1.0f ? 1.0f : ca);
-    int ia = (int)(ang * (float)p->inv_da);
-    if (ia > p->na - 1) ia = p->na - 1;
+    int ia = 0;
+    if (p->na > 1) {
+        ia = (int)(acosf(ca < 0.0f ? 0.0f : ca > 1.0f ? 1.0f : ca) * (float)p->inv_da);
+        if (ia > p->na - 1) ia = p->na - 1;
+    }
     int64_t *b = k->batch + S->bbase[i];
     b[(up ? l->rd_r : l->tt_r) + (size_t)ir] += w;
     b[(up ? l->rd_a : l->tt_a) + (size_t)ia] += w;
@@ -180,7 +242,6 @@ static int lane_cross(kctx *k, lanes *S, int i, int up)
         S->uz[i] = -S->uz[i];
         return 0;
     }
-    lane_absorbed(k, S, i); /* it leaves the layer */
     if ((up && S->layer[i] == 0) || (!up && S->layer[i] == p->layer_count - 1)) {
         lane_exit(k, S, i, ca2, up);
         return 1;
@@ -208,8 +269,8 @@ static int lane_glass(kctx *k, lanes *S, int i)
 }
 
 /* Every rare event of lane i after a step: `esc` (the packet escaped through a boundary: its exit
- * cosine in ca2[i], what it absorbed already scored), `roul` (its weight fell below MC_WEIGHT_L in
- * an interaction); clear layers and the step limit are read here. */
+ * cosine in ca2[i]), `roul` (its weight fell below MC_WEIGHT_L in an interaction); clear layers and
+ * the step limit are read here. */
 static void lane_rare(kctx *k, lanes *S, int i, int esc, int roul)
 {
     int ended = 0;
@@ -219,63 +280,16 @@ static void lane_rare(kctx *k, lanes *S, int i, int esc, int roul)
         lane_exit(k, S, i, S->ca2[i], S->uz[i] < 0.0f);
         ended = 1;
     } else if (roul) { /* Russian roulette (MCML manual section 3.8) */
-        lane_absorbed(k, S, i);
         if (lane_uniform(S, i) < MC_CHANCE_L)
-            S->w[i] = S->wmark[i] = S->w[i] / MC_CHANCE_L;
+            S->w[i] = S->w[i] / MC_CHANCE_L;
         else
             ended = 1;
     }
     if (!ended && S->steps[i] >= LUCENT_MC_MAX_STEPS) { /* dropped unscored, counted */
-        lane_absorbed(k, S, i);
         k->batch[S->bbase[i] + (int32_t)k->plan->lay.capped]++;
         ended = 1;
     }
     if (ended) lane_launch(k, S, i);
-}
-
-/* Adds the logged A(z) and A(r, z) scores to their counters, prefetching the A(r, z) cells
- * LOG_AHEAD entries ahead (the grid is larger than the caches; the prefetches retire at once, so
- * more misses overlap than the reorder window alone allows). */
-#define LOG_AHEAD 48
-
-static inline int64_t log_q(const kctx *k, int j, float scale)
-{
-    return (int64_t)_mm_cvtss_si64(_mm_set_ss(k->log_q[j] * scale)); /* nearest; q scale is exact */
-}
-
-static void log_flush_z(kctx *k)
-{
-    float scale = (float)k->plan->scale; /* a power of two */
-    int64_t *b = k->batch;
-    for (int j = 0; j < k->n_log; j++) b[k->log_z[j]] += log_q(k, j, scale);
-    k->n_log = 0;
-}
-
-static void log_flush_rz(kctx *k)
-{
-    float scale = (float)k->plan->scale;
-    int64_t *b = k->batch, *g = k->grid + k->plan->lay.a_rz;
-    int n = k->n_log, j = 0;
-    for (; j < n - LOG_AHEAD; j++) {
-        __builtin_prefetch(g + k->log_c[j + LOG_AHEAD], 1, 3);
-        int64_t q = log_q(k, j, scale);
-        b[k->log_z[j]] += q;
-        g[k->log_c[j]] += q;
-    }
-    for (; j < n; j++) {
-        int64_t q = log_q(k, j, scale);
-        b[k->log_z[j]] += q;
-        g[k->log_c[j]] += q;
-    }
-    k->n_log = 0;
-}
-
-static inline void log_flush(kctx *k, int arz)
-{
-    if (arz)
-        log_flush_rz(k);
-    else
-        log_flush_z(k);
 }
 
 /* ---- the lanes ---- */
@@ -324,13 +338,47 @@ static inline vf v_hg(vf xi, vf k0, vf k1, vf k2, vf m0, vf g, vf pv, vf po)
 {
     vf p = v_fma(xi, pv, po);
     vf d = v_fma(g, p, m0);
-    vf mu = v_div(v_fma(p, v_fma(p, k2, k1), k0), v_mul(d, d));
+    vf mu = v_div(v_fma(p, v_fma(p, k2, k1), k0), v_mul(d, d)); /* d > 0 */
     return v_min(v_max(mu, v_set1(-1.0f)), v_set1(1.0f));
 }
 
 /* A layer's constant for every lane: broadcast (one layer), permuted (up to W) or gathered. */
 #define LAYER_GET(tab, lay) (MULTI == 0 ? v_set1((tab)[0]) : MULTI == 1 ? v_perm((tab), (lay)) : v_gather((tab), (lay)))
 
+/* The random numbers of the lanes' next DRAW_ROWS steps, made in a loop of their own (the step loop
+ * then keeps its registers for the photons): one 64-bit draw per lane and step, 24 bits for the step
+ * length, 20 for xi (HG's deflection; at a boundary the reflection's uniform), 20 for the azimuth.
+ * With one layer, the deflection's cos theta and sin theta too. */
+static inline __attribute__((always_inline)) void draws_fill(kctx *k, lanes *S, const int MULTI, const int ISO)
+{
+    const layer_tabs *T = &k->t;
+    vu r0 = u_load(S->r0), r1 = u_load(S->r1), r2 = u_load(S->r2), r3 = u_load(S->r3);
+    for (int j = 0; j < DRAW_N; j += W) {
+        vi hi, lo;
+        u_next(&r0, &r1, &r2, &r3, &hi, &lo);
+        vf xi = v_mul(v_add(v_cvt(vi_srli(lo, 12)), v_set1(0.5f)), v_set1(9.5367431640625e-7f)); /* (0, 1) */
+        vf cp, sp;
+        v_sincos20(vi_or(vi_slli(vi_and(lo, vi_set1(0xFFF)), 8), vi_and(hi, vi_set1(0xFF))), &cp, &sp);
+        v_store(k->d_step + j, v_neglog24(vi_add(vi_srli(hi, 8), vi_set1(1))));
+        v_store(k->d_xi + j, xi);
+        v_store(k->d_cp + j, cp);
+        v_store(k->d_sp + j, sp);
+        if (ISO) { /* cos theta = 1 - 2 xi, sin theta = 2 sqrt(xi (1 - xi)) */
+            v_store(k->d_c + j, v_fnma(v_set1(2.0f), xi, v_set1(1.0f)));
+            v_store(k->d_st + j, v_mul(v_set1(2.0f), v_sqrt(v_mul(xi, v_sub(v_set1(1.0f), xi)))));
+        } else if (!MULTI) {
+            vf c = v_hg(xi, v_set1(T->k0[0]), v_set1(T->k1[0]), v_set1(T->k2[0]), v_set1(T->m0[0]), v_set1(T->g[0]),
+                        v_set1(T->pv[0]), v_set1(T->po[0]));
+            v_store(k->d_c + j, c);
+            v_store(k->d_st + j, v_sqrt(v_max(v_fnma(c, c, v_set1(1.0f)), v_set1(0.0f))));
+        }
+    }
+    u_store(S->r0, r0), u_store(S->r1, r1), u_store(S->r2, r2), u_store(S->r3, r3);
+}
+
+/* Runs the chunk's photons through the lanes. (Two groups of lanes stepped in turn, so that their
+ * chains of dependent operations overlap, ran 4-9% slower on a loaded Sapphire Rapids: the core was
+ * short of issue slots, not of independent work.) */
 static inline __attribute__((always_inline)) void lanes_run(kctx *k, lanes *S, const int MULTI, const int ARZ,
                                                             const int ISO)
 {
@@ -338,25 +386,21 @@ static inline __attribute__((always_inline)) void lanes_run(kctx *k, lanes *S, c
     const layer_tabs *T = &k->t;
     const vf inv_dz = v_set1(p->inv_dz), inv_dr = v_set1(p->inv_dr);
     const vf zlim = v_set1((float)k->zlim), rlim = v_set1((float)k->rlim);
-    const vi az = vi_set1((int32_t)p->lay.a_z), stride = vi_set1(p->nz + 1), izero = vi_set1(0);
+    const vi lane_id = vi_iota(), stride = vi_set1(p->nz + 1), izero = vi_set1(0);
     const vi last = vi_set1(p->layer_count - 1);
-    const vf zero = v_set1(0.0f), one = v_set1(1.0f), sign = v_set1(-0.0f);
+    const vf zero = v_set1(0.0f), one = v_set1(1.0f), sign = v_set1(-0.0f), qscale = v_set1((float)p->scale);
     vf x = v_load(S->x), y = v_load(S->y), z = v_load(S->z);
     vf ux = v_load(S->ux), uy = v_load(S->uy), uz = v_load(S->uz);
     vf w = v_load(S->w), sleft = v_load(S->sleft);
     vi layer = vi_load(S->layer), steps = vi_load(S->steps), bbase = vi_load(S->bbase);
-    vu r0 = u_load(S->r0), r1 = u_load(S->r1), r2 = u_load(S->r2), r3 = u_load(S->r3);
-    vm act = m_from_bits(k->active);
-    for (;;) {
-        /* one 64-bit draw per lane: 24 bits for the step, 20 for the deflection, 20 for the azimuth */
-        vi hi, lo;
-        u_next(&r0, &r1, &r2, &r3, &hi, &lo);
-        vf step = v_neglog24(vi_add(vi_srli(hi, 8), vi_set1(1)));
-        vf xi = v_mul(v_add(v_cvt(vi_srli(lo, 12)), v_set1(0.5f)), v_set1(9.5367431640625e-7f)); /* (0, 1) */
+    vm act = m_from_bits(S->active);
+    for (int row = DRAW_N;; row += W) {
+        if (row == DRAW_N) draws_fill(k, S, MULTI, ISO), row = 0;
+        vf step = v_load(k->d_step + row), xi = v_load(k->d_xi + row);
 
         /* hop (MCML manual eq. 3.19; the rest of a step after a boundary) */
         vm live = act;
-        if (MULTI) live = m_andnot(live, v_gt(LAYER_GET(T->clear, layer), zero)); /* clear: lane_glass */
+        if (MULTI && k->any_clear) live = m_andnot(live, v_gt(LAYER_GET(T->clear, layer), zero)); /* lane_glass */
         vf s = v_mul(v_blend(v_gt(sleft, zero), step, sleft), LAYER_GET(T->inv_mut, layer));
         vf zn = v_fma(s, uz, z);
         vf z0 = LAYER_GET(T->z0, layer), z1 = LAYER_GET(T->z1, layer);
@@ -368,28 +412,34 @@ static inline __attribute__((always_inline)) void lanes_run(kctx *k, lanes *S, c
         vf w1 = v_fnma(w, LAYER_GET(T->absorb, layer), w);
         vf q = v_zero_unless(inter, v_sub(w, w1));
         vi iz = vi_max(v_cvtt(v_min(v_mul(zn, inv_dz), zlim)), izero);
-        vi_store(k->log_z + k->n_log, vi_add(vi_add(bbase, az), iz));
+        vi zi = vi_add(vi_slli(MULTI ? vi_add(iz, layer) : iz, LOG2W), lane_id); /* the lane's own counter */
         if (ARZ) {
             vf rb = v_min(v_mul(v_sqrt(v_fma(xn, xn, v_mul(yn, yn))), inv_dr), rlim);
             vi_store(k->log_c + k->n_log, vi_add(vi_mullo(vi_max(v_cvtt(rb), izero), stride), iz));
         }
-        v_store(k->log_q + k->n_log, q);
+        vi_store(k->log_z + k->n_log, zi);
+        v_store_fixed(k->log_q + k->n_log, v_mul(q, qscale)); /* q scale is exact: a power of two */
         k->n_log += W;
 
         /* spin (MCML manual eqs. 3.28 to 3.31) */
-        vf cp, sp;
-        v_sincos20(vi_or(vi_slli(vi_and(lo, vi_set1(0xFFF)), 8), vi_and(hi, vi_set1(0xFF))), &cp, &sp);
+        vf cp = v_load(k->d_cp + row), sp = v_load(k->d_sp + row);
         vf nx, ny, nz;
         if (ISO) { /* isotropic: the new direction does not depend on the old (as mc_transport.c) */
-            vf st = v_mul(v_set1(2.0f), v_sqrt(v_mul(xi, v_sub(one, xi))));
+            vf st = v_load(k->d_st + row);
             nx = v_mul(st, cp);
             ny = v_mul(st, sp);
-            nz = v_fnma(v_set1(2.0f), xi, one);
+            nz = v_load(k->d_c + row);
         } else {
-            vf c =
-                v_hg(xi, LAYER_GET(T->k0, layer), LAYER_GET(T->k1, layer), LAYER_GET(T->k2, layer),
-                     LAYER_GET(T->m0, layer), LAYER_GET(T->g, layer), LAYER_GET(T->pv, layer), LAYER_GET(T->po, layer));
-            vf st = v_sqrt(v_max(v_fnma(c, c, one), zero));
+            vf c, st;
+            if (MULTI) {
+                c = v_hg(xi, LAYER_GET(T->k0, layer), LAYER_GET(T->k1, layer), LAYER_GET(T->k2, layer),
+                         LAYER_GET(T->m0, layer), LAYER_GET(T->g, layer),
+                         k->any_backward ? LAYER_GET(T->pv, layer) : v_set1(2.0f),
+                         k->any_backward ? LAYER_GET(T->po, layer) : zero);
+                st = v_sqrt(v_max(v_fnma(c, c, one), zero));
+            } else {
+                c = v_load(k->d_c + row), st = v_load(k->d_st + row);
+            }
             vf qz = v_fnma(uz, uz, one);
             vf kq = v_mul(st, v_rsqrt_nr(v_max(qz, v_set1(1e-20f)))); /* sin theta / sqrt(1 - uz^2) */
             vf cpuz = v_mul(cp, uz);
@@ -419,36 +469,30 @@ static inline __attribute__((always_inline)) void lanes_run(kctx *k, lanes *S, c
         vm esc = m_from_bits(0), up = v_lt(uz, zero);
         vf ca2 = zero;
         if (m_bits(hit)) {
-            vf db = v_min(v_max(v_div(v_sub(v_blend(up, z1, z0), z), uz), zero), s);
+            vf db = v_min(v_max(v_div(v_sub(v_blend(up, z1, z0), z), uz), zero), s); /* NaN: 0 */
             x = v_blend(hit, x, v_fma(db, ux, x));
             y = v_blend(hit, y, v_fma(db, uy, y));
             z = v_blend(hit, z, v_blend(up, z1, z0));
             sleft = v_blend(hit, sleft, v_mul(v_sub(s, db), LAYER_GET(T->mut, layer)));
             vf eta = v_blend(up, LAYER_GET(T->eta_d, layer), LAYER_GET(T->eta_u, layer)); /* n_t / n_i */
-            vf ie2 = v_blend(up, LAYER_GET(T->ie2_d, layer), LAYER_GET(T->ie2_u, layer));
-            vf cc = v_blend(up, LAYER_GET(T->cc_d, layer), LAYER_GET(T->cc_u, layer));
             vf ca1 = v_abs(uz);
-            ca2 = v_sqrt(v_max(v_fnma(v_fnma(ca1, ca1, one), ie2, one), zero)); /* cos of refraction */
-            ca2 = v_blend(v_eq(eta, one), ca2, ca1);                            /* matched: exact */
-            /* rs = a / b, rp = c / d: R = (rs^2 + rp^2) / 2 = (a^2 d^2 + c^2 b^2) / (2 b^2 d^2), one division */
-            vf eca2 = v_mul(eta, ca2), eca1 = v_mul(eta, ca1);
-            vf ra = v_sub(ca1, eca2), rb = v_add(ca1, eca2), rc = v_sub(ca2, eca1), rd = v_add(ca2, eca1);
-            vf ad = v_mul(ra, rd), cb = v_mul(rc, rb), bd = v_mul(rb, rd);
-            vf r = v_div(v_fma(ad, ad, v_mul(cb, cb)), v_mul(v_set1(2.0f), v_mul(bd, bd)));
-            vm tir = v_le(ca1, cc);
-            vm reflect = m_and(hit, m_or(tir, v_lt(xi, r)));
-            uz = v_blend(reflect, uz, v_xor(uz, sign));
+            vm mism = m_andnot(hit, v_eq(eta, one)), reflect = m_from_bits(0); /* matched: R = 0, no bend */
+            ca2 = ca1;
+            if (m_bits(mism)) {
+                vf ie2 = v_blend(up, LAYER_GET(T->ie2_d, layer), LAYER_GET(T->ie2_u, layer));
+                vf cc = v_blend(up, LAYER_GET(T->cc_d, layer), LAYER_GET(T->cc_u, layer));
+                ca2 = v_blend(mism, ca1, v_sqrt(v_max(v_fnma(v_fnma(ca1, ca1, one), ie2, one), zero))); /* refracted */
+                /* rs = a / b, rp = c / d: R = (rs^2 + rp^2) / 2 = (a^2 d^2 + c^2 b^2) / (2 b^2 d^2), one division */
+                vf eca2 = v_mul(eta, ca2), eca1 = v_mul(eta, ca1);
+                vf ra = v_sub(ca1, eca2), rb = v_add(ca1, eca2), rc = v_sub(ca2, eca1), rd = v_add(ca2, eca1);
+                vf ad = v_mul(ra, rd), cb = v_mul(rc, rb), bd = v_mul(rb, rd);
+                vf r = v_div(v_fma(ad, ad, v_mul(cb, cb)), v_mul(v_set1(2.0f), v_mul(bd, bd)));
+                reflect = m_and(mism, m_or(v_le(ca1, cc), v_lt(xi, r))); /* total internal reflection, Fresnel */
+                uz = v_blend(reflect, uz, v_xor(uz, sign));
+            }
             vm trans = m_andnot(hit, reflect);
-            unsigned tbits = m_bits(trans);
-            if (tbits) {
-                /* what the packets absorbed in the layer they leave (lane_absorbed, per lane) */
-                v_store(S->w, w), vi_store(S->layer, layer), vi_store(S->bbase, bbase);
-                do {
-                    int i = __builtin_ctz(tbits);
-                    tbits &= tbits - 1;
-                    lane_absorbed(k, S, i);
-                } while (tbits);
-                esc = m_and(trans, m_or(m_and(up, vi_eq(layer, izero)), m_andnot(vi_eq(layer, last), up)));
+            esc = m_and(trans, m_or(m_and(up, vi_eq(layer, izero)), m_andnot(vi_eq(layer, last), up)));
+            if (MULTI) {
                 vm inner = m_andnot(trans, esc);
                 vf kn = v_blend(up, LAYER_GET(T->ie_d, layer), LAYER_GET(T->ie_u, layer)); /* n_i / n_t */
                 ux = v_blend(inner, ux, v_mul(ux, kn));
@@ -461,31 +505,30 @@ static inline __attribute__((always_inline)) void lanes_run(kctx *k, lanes *S, c
         steps = vi_add(steps, vi_set1(1));
         vm roul = m_and(inter, v_lt(w, v_set1(MC_WEIGHT_L)));
         vm rare = m_or(m_or(esc, roul), m_and(act, vi_gt(steps, vi_set1(LUCENT_MC_MAX_STEPS - 1))));
-        if (MULTI) rare = m_or(rare, m_andnot(act, live));
+        if (MULTI && k->any_clear) rare = m_or(rare, m_andnot(act, live));
         unsigned rbits = m_bits(rare);
         if (rbits) {
             v_store(S->x, x), v_store(S->y, y), v_store(S->z, z);
             v_store(S->ux, ux), v_store(S->uy, uy), v_store(S->uz, uz);
             v_store(S->w, w), v_store(S->sleft, sleft), v_store(S->ca2, ca2);
             vi_store(S->layer, layer), vi_store(S->steps, steps), vi_store(S->bbase, bbase);
-            u_store(S->r0, r0), u_store(S->r1, r1), u_store(S->r2, r2), u_store(S->r3, r3);
             unsigned ebits = m_bits(esc), qbits = m_bits(roul);
             do {
                 int i = __builtin_ctz(rbits);
                 rbits &= rbits - 1;
                 lane_rare(k, S, i, (int)(ebits >> i) & 1, (int)(qbits >> i) & 1);
             } while (rbits);
-            if (!k->active) break;
+            if (!S->active) break;
             x = v_load(S->x), y = v_load(S->y), z = v_load(S->z);
             ux = v_load(S->ux), uy = v_load(S->uy), uz = v_load(S->uz);
             w = v_load(S->w), sleft = v_load(S->sleft);
             layer = vi_load(S->layer), steps = vi_load(S->steps), bbase = vi_load(S->bbase);
-            r0 = u_load(S->r0), r1 = u_load(S->r1), r2 = u_load(S->r2), r3 = u_load(S->r3);
-            act = m_from_bits(k->active);
+            act = m_from_bits(S->active);
         }
         if (k->n_log == LOG_N) log_flush(k, ARZ);
     }
-    log_flush(k, ARZ);
+    for (int i = 0; i < W; i++)
+        if (k->bacc[i] >= 0) lane_counters_out(k, i);
 }
 
 static void tabs_prepare(const mc_plan *p, layer_tabs *t)
@@ -493,19 +536,19 @@ static void tabs_prepare(const mc_plan *p, layer_tabs *t)
     memset(t, 0, sizeof *t);
     for (int i = 0; i < p->layer_count; i++) {
         const mc_layer_k *L = &p->layers[i];
-        double g = fabs((double)L->g), gg = g * g;
+        double g = fabs(L->g_exact), gg = g * g;
         t->z0[i] = L->z0, t->z1[i] = L->z1;
         t->inv_mut[i] = L->clear ? 0.0f : L->inv_mut; /* clear layers go to lane_glass */
         t->absorb[i] = L->absorb;
         t->clear[i] = L->clear ? 1.0f : 0.0f;
-        double sign = L->g < 0 ? -1.0 : 1.0; /* g < 0: -cos theta(|g|, 1 - xi) */
+        double sign = L->g_exact < 0 ? -1.0 : 1.0; /* g < 0: -cos theta(|g|, 1 - xi) */
         t->k0[i] = (float)(-sign * (1.0 - g) * (1.0 - g));
         t->k1[i] = (float)(sign * (1.0 + gg) * (1.0 - g));
         t->k2[i] = (float)(sign * g * (1.0 + gg) / 2.0);
         t->m0[i] = (float)(1.0 - g);
         t->g[i] = (float)g;
-        t->pv[i] = L->g < 0 ? -2.0f : 2.0f;
-        t->po[i] = L->g < 0 ? 2.0f : 0.0f;
+        t->pv[i] = L->g_exact < 0 ? -2.0f : 2.0f;
+        t->po[i] = L->g_exact < 0 ? 2.0f : 0.0f;
         t->mut[i] = L->mut;
         t->eta_u[i] = L->n_up / L->n, t->eta_d[i] = L->n_down / L->n;
         t->ie_u[i] = L->n / L->n_up, t->ie_d[i] = L->n / L->n_down;
@@ -514,20 +557,32 @@ static void tabs_prepare(const mc_plan *p, layer_tabs *t)
     }
 }
 
-void MC_FN(mc_trace)(const mc_plan *plan, lucent_rng *rng, uint64_t begin, uint64_t end, int64_t *batch, int64_t *grid)
+void MC_FN(mc_trace)(const mc_plan *plan, lucent_rng *rng, uint64_t begin, uint64_t end, int64_t *batch, int64_t *grid,
+                     int64_t *scratch)
 {
-    _Alignas(64) kctx kc; /* 19 KB on the stack (the scalar kernel takes 24) */
+    _Alignas(64) kctx kc; /* 30 KB on the stack */
     _Alignas(64) lanes ls;
     kctx *k = &kc;
     lanes *S = &ls;
-    k->plan = plan, k->batch = batch, k->grid = grid;
-    k->next = begin, k->end = end, k->active = 0, k->n_log = 0;
+    k->plan = plan, k->batch = batch, k->grid = grid, k->zl = scratch, k->arz = plan->score_a_rz;
+    for (int i = 0; i < W; i++) k->bacc[i] = -1;
+    k->any_clear = k->any_backward = 0;
+    for (int i = 0; i < plan->layer_count; i++)
+        k->any_clear |= plan->layers[i].clear, k->any_backward |= plan->layers[i].g_exact < 0;
+    k->next = begin, k->end = end, k->n_log = 0;
     k->zlim = plan->z_lim, k->rlim = plan->r_lim;
+    k->prefetch = plan->score_a_rz && (plan->lay.grid_size - plan->lay.a_rz) * sizeof(int64_t) > LOG_PREFETCH_BYTES;
     tabs_prepare(plan, &k->t);
-    for (int i = 0; i < W; i++) { /* the lanes' streams, from the chunk's, lane 0 first */
-        S->r0[i] = lucent_rng_next(rng), S->r1[i] = lucent_rng_next(rng);
-        S->r2[i] = lucent_rng_next(rng), S->r3[i] = lucent_rng_next(rng);
-        if (!(S->r0[i] | S->r1[i] | S->r2[i] | S->r3[i])) S->r0[i] = 1; /* xoshiro's fixed point */
+    S->active = 0;
+    /* the lanes' streams: one 64-bit key from the chunk's stream, hashed with the lane's number
+     * through SplitMix64 (lucent_rng_init), as the chunks' own streams are made from (seed, chunk) */
+    uint64_t key = lucent_rng_next(rng);
+    for (int i = 0; i < W; i++) {
+        lucent_rng a, b;
+        lucent_rng_init(key, 2 * (uint64_t)i, &a);
+        lucent_rng_init(key, 2 * (uint64_t)i + 1, &b);
+        S->r0[i] = a.s[0], S->r1[i] = a.s[1], S->r2[i] = a.s[2], S->r3[i] = a.s[3];
+        S->e0[i] = b.s[0], S->e1[i] = b.s[1], S->e2[i] = b.s[2], S->e3[i] = b.s[3];
         S->ca2[i] = 0.0f;
         lane_launch(k, S, i);
     }
@@ -537,7 +592,7 @@ void MC_FN(mc_trace)(const mc_plan *plan, lucent_rng *rng, uint64_t begin, uint6
     int multi = plan->layer_count == 1 && !plan->layers[0].clear ? 0 : plan->layer_count <= W ? 1 : 2;
     if (multi) iso = 0;
     int arz = plan->score_a_rz;
-    if (k->active) {
+    if (S->active) {
         if (multi == 0 && arz && iso)
             lanes_run(k, S, 0, 1, 1);
         else if (multi == 0 && arz)
@@ -578,6 +633,7 @@ void MC_FN(mc_simd_hg)(double g, const float *xi, float *mu, size_t n)
     memset(&p, 0, sizeof p);
     p.layer_count = 1;
     p.layers[0].g = (float)g;
+    p.layers[0].g_exact = g;
     _Alignas(64) layer_tabs tabs;
     layer_tabs *t = &tabs;
     tabs_prepare(&p, t);
