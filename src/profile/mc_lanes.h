@@ -90,6 +90,7 @@ typedef struct kctx {
     int arz;            /* A(r, z) is scored */
     int any_clear;      /* a layer is clear (its lanes go to lane_glass) */
     int any_backward;   /* a layer has g < 0 (HG's xi reversed there) */
+    int inner_bends;    /* two neighbouring layers differ in index */
     uint64_t next, end; /* the chunk's photons not yet launched */
     unsigned active;    /* lanes holding a photon */
     int32_t zlim, rlim; /* bin clamps */
@@ -389,6 +390,7 @@ static inline __attribute__((always_inline)) void lanes_run(kctx *k, lanes *S, c
     const vi lane_id = vi_iota(), stride = vi_set1(p->nz + 1), izero = vi_set1(0);
     const vi last = vi_set1(p->layer_count - 1);
     const vf zero = v_set1(0.0f), one = v_set1(1.0f), sign = v_set1(-0.0f), qscale = v_set1((float)p->scale);
+    const int any_clear = k->any_clear, any_backward = k->any_backward, inner_bends = k->inner_bends;
     vf x = v_load(S->x), y = v_load(S->y), z = v_load(S->z);
     vf ux = v_load(S->ux), uy = v_load(S->uy), uz = v_load(S->uz);
     vf w = v_load(S->w), sleft = v_load(S->sleft);
@@ -400,7 +402,7 @@ static inline __attribute__((always_inline)) void lanes_run(kctx *k, lanes *S, c
 
         /* hop (MCML manual eq. 3.19; the rest of a step after a boundary) */
         vm live = act;
-        if (MULTI && k->any_clear) live = m_andnot(live, v_gt(LAYER_GET(T->clear, layer), zero)); /* lane_glass */
+        if (MULTI && any_clear) live = m_andnot(live, v_gt(LAYER_GET(T->clear, layer), zero)); /* lane_glass */
         vf s = v_mul(v_blend(v_gt(sleft, zero), step, sleft), LAYER_GET(T->inv_mut, layer));
         vf zn = v_fma(s, uz, z);
         vf z0 = LAYER_GET(T->z0, layer), z1 = LAYER_GET(T->z1, layer);
@@ -434,8 +436,8 @@ static inline __attribute__((always_inline)) void lanes_run(kctx *k, lanes *S, c
             if (MULTI) {
                 c = v_hg(xi, LAYER_GET(T->k0, layer), LAYER_GET(T->k1, layer), LAYER_GET(T->k2, layer),
                          LAYER_GET(T->m0, layer), LAYER_GET(T->g, layer),
-                         k->any_backward ? LAYER_GET(T->pv, layer) : v_set1(2.0f),
-                         k->any_backward ? LAYER_GET(T->po, layer) : zero);
+                         any_backward ? LAYER_GET(T->pv, layer) : v_set1(2.0f),
+                         any_backward ? LAYER_GET(T->po, layer) : zero);
                 st = v_sqrt(v_max(v_fnma(c, c, one), zero));
             } else {
                 c = v_load(k->d_c + row), st = v_load(k->d_st + row);
@@ -494,10 +496,12 @@ static inline __attribute__((always_inline)) void lanes_run(kctx *k, lanes *S, c
             esc = m_and(trans, m_or(m_and(up, vi_eq(layer, izero)), m_andnot(vi_eq(layer, last), up)));
             if (MULTI) {
                 vm inner = m_andnot(trans, esc);
-                vf kn = v_blend(up, LAYER_GET(T->ie_d, layer), LAYER_GET(T->ie_u, layer)); /* n_i / n_t */
-                ux = v_blend(inner, ux, v_mul(ux, kn));
-                uy = v_blend(inner, uy, v_mul(uy, kn));
-                uz = v_blend(inner, uz, v_xor(ca2, v_and(uz, sign)));
+                if (inner_bends) { /* layers of different indices meet: bend (matched: no change) */
+                    vf kn = v_blend(up, LAYER_GET(T->ie_d, layer), LAYER_GET(T->ie_u, layer)); /* n_i / n_t */
+                    ux = v_blend(inner, ux, v_mul(ux, kn));
+                    uy = v_blend(inner, uy, v_mul(uy, kn));
+                    uz = v_blend(inner, uz, v_xor(ca2, v_and(uz, sign)));
+                }
                 layer = vi_blend(inner, layer, vi_add(layer, vi_blend(up, vi_set1(1), vi_set1(-1))));
             }
         }
@@ -505,7 +509,7 @@ static inline __attribute__((always_inline)) void lanes_run(kctx *k, lanes *S, c
         steps = vi_add(steps, vi_set1(1));
         vm roul = m_and(inter, v_lt(w, v_set1(MC_WEIGHT_L)));
         vm rare = m_or(m_or(esc, roul), m_and(act, vi_gt(steps, vi_set1(LUCENT_MC_MAX_STEPS - 1))));
-        if (MULTI && k->any_clear) rare = m_or(rare, m_andnot(act, live));
+        if (MULTI && any_clear) rare = m_or(rare, m_andnot(act, live));
         unsigned rbits = m_bits(rare);
         if (rbits) {
             v_store(S->x, x), v_store(S->y, y), v_store(S->z, z);
@@ -566,9 +570,11 @@ void MC_FN(mc_trace)(const mc_plan *plan, lucent_rng *rng, uint64_t begin, uint6
     lanes *S = &ls;
     k->plan = plan, k->batch = batch, k->grid = grid, k->zl = scratch, k->arz = plan->score_a_rz;
     for (int i = 0; i < W; i++) k->bacc[i] = -1;
-    k->any_clear = k->any_backward = 0;
-    for (int i = 0; i < plan->layer_count; i++)
+    k->any_clear = k->any_backward = k->inner_bends = 0;
+    for (int i = 0; i < plan->layer_count; i++) {
         k->any_clear |= plan->layers[i].clear, k->any_backward |= plan->layers[i].g_exact < 0;
+        k->inner_bends |= i > 0 && plan->layers[i].n != plan->layers[i - 1].n;
+    }
     k->next = begin, k->end = end, k->n_log = 0;
     k->zlim = plan->z_lim, k->rlim = plan->r_lim;
     k->prefetch = plan->score_a_rz && (plan->lay.grid_size - plan->lay.a_rz) * sizeof(int64_t) > LOG_PREFETCH_BYTES;
