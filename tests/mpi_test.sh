@@ -104,7 +104,7 @@ expect_fail 1 "rank 1 of 2 failed: $BADMCI: line 15: layer 1: g must be in [-1, 
 expect_no_file "$M/bad/three_layers.mco"
 # rank 1 is killed mid-run: mpirun ends the other ranks; nothing is written. (mpirun's exit status
 # is then the killed rank's, 137, and the message is mpirun's.)
-sed 's/^20000 /4000000 /' "$MCI3" >"$M/bad/long.mci"
+sed 's/^20000 /100000000 /' "$MCI3" >"$M/bad/long.mci"
 killed_rank1() {
   "${MPIRUN[@]}" -np 2 sh -c 'if [ "${OMPI_COMM_WORLD_RANK:-0}" = 1 ]; then
       "$0" mcml "$1" --out-dir "$2" --threads 1 & p=$!; sleep 1; kill -9 $p; wait $p; exit $?

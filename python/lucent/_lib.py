@@ -250,6 +250,10 @@ def declare(lib):
         "lucent_trace_result_free": (None, [P(TraceResult)]),
         "lucent_trace_embree_version": (c_char_p, []),
         "lucent_image_openexr_version": (c_char_p, []),
+        "lucent_isa_parse": (st, [c_char_p, P(ctypes.c_int)]),
+        "lucent_isa_set": (st, [ctypes.c_int]),
+        "lucent_isa_active": (ctypes.c_int, []),
+        "lucent_isa_name": (c_char_p, [ctypes.c_int]),
     }
     for name, (res, args) in sigs.items():
         f = getattr(lib, name)
