@@ -98,11 +98,13 @@ typedef struct kctx {
     unsigned active;    /* lanes holding a photon */
     int32_t zlim, rlim; /* bin clamps */
     int n_log;
-    int32_t log_z[LOG_N]; /* the lane's counter of the depth-and-layer bin, in zl */
-    int32_t log_c[LOG_N]; /* cell of A(r, z) */
-    int64_t log_q[LOG_N]; /* absorbed weight, fixed point (weight x plan->scale) */
+    /* the arrays the vectors load and store whole: aligned to the widest vector (aligned loads of
+     * misaligned fields are undefined; UBSan caught it when the fields before them ended at 16 mod 32) */
+    _Alignas(64) int32_t log_z[LOG_N]; /* the lane's counter of the depth-and-layer bin, in zl */
+    _Alignas(64) int32_t log_c[LOG_N]; /* cell of A(r, z) */
+    _Alignas(64) int64_t log_q[LOG_N]; /* absorbed weight, fixed point (weight x plan->scale) */
     /* the next DRAW_ROWS steps' random numbers, every lane's in a row (draws_fill) */
-    float d_step[DRAW_N], d_xi[DRAW_N], d_cp[DRAW_N], d_sp[DRAW_N], d_c[DRAW_N], d_st[DRAW_N];
+    _Alignas(64) float d_step[DRAW_N], d_xi[DRAW_N], d_cp[DRAW_N], d_sp[DRAW_N], d_c[DRAW_N], d_st[DRAW_N];
     int prefetch; /* the A(r, z) grid is larger than the caches */
     layer_tabs t;
 } kctx;
