@@ -29,7 +29,7 @@ expect_true "an OBJ's mtllib /etc/passwd echoes nothing of it" -- \
   bash -c "! \"$LUCENT\" curvature \"$TMP/mtl.obj\" --out \"$TMP/x.csv\" 2>&1 | grep -q 'root:'"
 
 # Monte Carlo: media outside what doubles can step are refused, naming the file and the field.
-expect_fail 1 "dense-1e300.json: layers[0].sigma_s: sigma_t" -- \
+expect_fail 1 "dense-1e300.json: sigma_s[0]: sigma_t = sigma_a + sigma_s = 1e+300 mm^-1 is above" -- \
   "$LUCENT" profile "$FIXTURES/materials/dense-1e300.json" --model mc --out "$TMP/dense"
 expect_no_file "$TMP/dense.json" "$TMP/dense.csv"
 cp "$FIXTURES/mcml/drtiny.mci" "$TMP/"
@@ -236,9 +236,9 @@ expect_fail 2 "--object-height and --distance: give one" -- \
 expect_no_file "$TMP/pk" "$TMP/cf.json"
 
 # 16-18. Messages that name the file, the field and the true cause.
-expect_fail 1 "dense-1e300.json: layers[0].sigma_s: sigma_t" -- \
+expect_fail 1 "dense-1e300.json: sigma_s[0]: sigma_t = sigma_a + sigma_s = 1e+300 mm^-1 is above" -- \
   "$LUCENT" kernel "$FIXTURES/materials/dense-1e300.json" --profile mc --export json --out "$TMP/k.json"
-expect_fail 1 "dense-1e300.json: layers[0].sigma_s: sigma_t" -- \
+expect_fail 1 "dense-1e300.json: sigma_s[0]: sigma_t = sigma_a + sigma_s = 1e+300 mm^-1 is above" -- \
   "$LUCENT" kernel-eval "$FIXTURES/materials/dense-1e300.json" --profile mc --out "$TMP/ke"
 expect_fail 1 "objects[0].material: /proc/self/mem: read failed: Input/output error" -- \
   "$LUCENT" trace "$SM" --spp 1 --set 'objects[0].material=/proc/self/mem' --out "$TMP/t.png"
@@ -249,6 +249,17 @@ printf '{"rend\300\200er": 1}' >"$TMP/utf8-key.json"
 expect_fail 1 "utf8-key.json: rend\\xC0\\x80er: unknown field" -- "$LUCENT" trace "$TMP/utf8-key.json" --out "$TMP/t.png"
 expect_fail 1 "override 'render.w\\x1B[31midth=3': no such member" -- \
   "$LUCENT" trace "$SM" --set $'render.w\x1b[31midth=3' --out "$TMP/t.png"
+# Profile grids beyond the Monte Carlo's bounds, found by this audit: every model wrote NaN or inf bins
+# (--dr 1e-300; the default grid of sigma_s = 1e300, dr 5e-302 mm) or zeros (--dr 1e300) with exit 0.
+expect_fail 2 "--dr needs a length from 1e-15 to 1e+12 mm" -- \
+  "$LUCENT" profile skin1 --model dipole --dr 1e-300 --out "$TMP/pdr"
+expect_fail 1 "skin1: profile grid: dr = 1e+09 mm x 10000 bins spans more than 1e+12 mm" -- \
+  "$LUCENT" profile skin1 --model dipole --dr 1e9 --bins 10000 --out "$TMP/pdr"
+for m in dipole burley; do
+  expect_fail 1 "dense-1e300.json: sigma_s[0]: sigma_t = sigma_a + sigma_s = 1e+300 mm^-1 is above" -- \
+    "$LUCENT" profile "$FIXTURES/materials/dense-1e300.json" --model $m --out "$TMP/pdr"
+done
+expect_no_file "$TMP/pdr.json" "$TMP/pdr.csv"
 # curvature --size 16384x16384: the .png with its colour bar is above the image limit; said as usage, naming
 # --size, before any work (main said "out of memory for 49152 x 49152"; then the PNG writer refused 16512x16384
 # after a 16 s, 4.7 GB paint, naming neither).

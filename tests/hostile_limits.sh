@@ -119,7 +119,7 @@ run "negative.part-1-of-2" 1 "tally 1: value 0 is negative (-1): a damaged part 
 run "keep-crc.part-1-of-2" 1 "the part's checksum does not match its contents" -- \
   "$LUCENT" merge "$TMP/parts/keep-crc.part-1-of-2" "$TMP/parts/keep-crc.part-2-of-2" -- --out-dir "$TMP/merged"
 # ../shared/repro: hand-material-dense.json is, byte for byte, tests/fixtures/materials/dense-1e300.json.
-run dense-1e300.json 1 "layers[0].sigma_s: sigma_t" -- \
+run dense-1e300.json 1 "sigma_s[0]: sigma_t = sigma_a + sigma_s = 1e+300 mm^-1 is above" -- \
   "$LUCENT" profile "$FIXTURES/materials/dense-1e300.json" --model mc --out "$TMP/p"
 cp "$FIXTURES/mcml/drtiny.mci" "$TMP/"
 run drtiny.mci 1 "line 5 (the run of line 3): grid.dr" -- bash -c "cd '$TMP' && exec '$LUCENT' mcml drtiny.mci"
@@ -141,7 +141,7 @@ run "--object-height" 2 "from 0.001 mm to 1e12 mm" -- \
   "$LUCENT" pack skin1 --engine glsl --object-height 1e-300mm --out "$TMP/pk"
 run "--size 16384x16384" 2 "the picture with its colour bar is 16512 x 16384 pixels" -- \
   "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --out "$TMP/c.png" --size 16384x16384 # INDEX 16f
-run "dense-1e300.json" 1 "layers[0].sigma_s: sigma_t" -- \
+run "dense-1e300.json" 1 "sigma_s[0]: sigma_t = sigma_a + sigma_s = 1e+300 mm^-1 is above" -- \
   "$LUCENT" kernel "$FIXTURES/materials/dense-1e300.json" --profile mc --export json --out "$TMP/k.json" # INDEX 16a
 run "objects[0].material: /proc/self/mem" 1 "read failed: Input/output error" -- \
   "$LUCENT" trace "$SM" --spp 1 --set 'objects[0].material=/proc/self/mem' --out "$TMP/t.png" # INDEX 16b
