@@ -29,7 +29,7 @@ expect_true "an OBJ's mtllib /etc/passwd echoes nothing of it" -- \
   bash -c "! \"$LUCENT\" curvature \"$TMP/mtl.obj\" --out \"$TMP/x.csv\" 2>&1 | grep -q 'root:'"
 
 # Monte Carlo: media outside what doubles can step are refused, naming the file and the field.
-expect_fail 1 "dense-1e300.json: layers[0].sigma_s: sigma_t" -- \
+expect_fail 1 "dense-1e300.json: sigma_s[0]: sigma_t = sigma_a + sigma_s = 1e+300 mm^-1 is above" -- \
   "$LUCENT" profile "$FIXTURES/materials/dense-1e300.json" --model mc --out "$TMP/dense"
 expect_no_file "$TMP/dense.json" "$TMP/dense.csv"
 cp "$FIXTURES/mcml/drtiny.mci" "$TMP/"
@@ -139,37 +139,14 @@ expect_fail 2 "--range needs a number > 0 and at most 1e6 (mm)" -- "$LUCENT" ker
 
 # 9. lucent merge: part files carry a CRC-32 of their body (format v2); damaged, negative or overflowing
 # tallies are refused naming the file; v1 parts (../shared/repro-3's, written before the checksum) name the
-# version. tamper MODE IN OUT: rewrites a part (recomputing the checksum unless MODE is "keep-crc").
-cat >"$TMP/tamper.py" <<'PY'
-import struct, sys, zlib
-mode, src, dst = sys.argv[1:4]
-b = bytearray(open(src, "rb").read())
-argc = struct.unpack_from("<I", b, 28)[0]  # after the magic (16), order, k and n
-at = 32
-for _ in range(argc):
-    at += 4 + struct.unpack_from("<I", b, at)[0]
-at += 4  # the tally count; tally 1 follows: u32 type, u64 count, values
-ttype, count = struct.unpack_from("<IQ", b, at)
-assert ttype == 0, "tally 1 of an mcml part is I64"
-at += 12
-if mode == "max":
-    struct.pack_into("<q", b, at, 2**63 - 1)
-elif mode == "negative":
-    for j in range(count):
-        struct.pack_into("<q", b, at + 8 * j, -1)
-elif mode == "keep-crc":
-    struct.pack_into("<q", b, at + 8, struct.unpack_from("<q", b, at + 8)[0] + 1)
-if mode != "keep-crc":
-    struct.pack_into("<I", b, len(b) - 4, zlib.crc32(bytes(b[:-4])))
-open(dst, "wb").write(b)
-PY
+# version. tests/tamper_part.py MODE IN OUT rewrites a part (recomputing the checksum unless MODE is "keep-crc").
 MP="$TMP/merge32"
 for k in 1 2; do
   expect_ok -- "$LUCENT" mcml "$FIXTURES/mcml/three_layers.mci" --out-dir "$MP" --seed 3 --part $k/2
 done
 P1="$MP/three_layers.mco.part-1-of-2" P2="$MP/three_layers.mco.part-2-of-2"
 for m in max negative keep-crc; do
-  python3 "$TMP/tamper.py" $m "$P1" "$MP/$m-1" && python3 "$TMP/tamper.py" $m "$P2" "$MP/$m-2"
+  python3 "$TESTS/tamper_part.py" $m "$P1" "$MP/$m-1" && python3 "$TESTS/tamper_part.py" $m "$P2" "$MP/$m-2"
   mv "$MP/$m-1" "$MP/$m.part-1-of-2" && mv "$MP/$m-2" "$MP/$m.part-2-of-2"
 done
 expect_fail 1 "merge: tally 1 value 0 overflows when $MP/max.part-2-of-2 is added: damaged parts" -- \
@@ -259,9 +236,9 @@ expect_fail 2 "--object-height and --distance: give one" -- \
 expect_no_file "$TMP/pk" "$TMP/cf.json"
 
 # 16-18. Messages that name the file, the field and the true cause.
-expect_fail 1 "dense-1e300.json: layers[0].sigma_s: sigma_t" -- \
+expect_fail 1 "dense-1e300.json: sigma_s[0]: sigma_t = sigma_a + sigma_s = 1e+300 mm^-1 is above" -- \
   "$LUCENT" kernel "$FIXTURES/materials/dense-1e300.json" --profile mc --export json --out "$TMP/k.json"
-expect_fail 1 "dense-1e300.json: layers[0].sigma_s: sigma_t" -- \
+expect_fail 1 "dense-1e300.json: sigma_s[0]: sigma_t = sigma_a + sigma_s = 1e+300 mm^-1 is above" -- \
   "$LUCENT" kernel-eval "$FIXTURES/materials/dense-1e300.json" --profile mc --out "$TMP/ke"
 expect_fail 1 "objects[0].material: /proc/self/mem: read failed: Input/output error" -- \
   "$LUCENT" trace "$SM" --spp 1 --set 'objects[0].material=/proc/self/mem' --out "$TMP/t.png"
@@ -272,6 +249,23 @@ printf '{"rend\300\200er": 1}' >"$TMP/utf8-key.json"
 expect_fail 1 "utf8-key.json: rend\\xC0\\x80er: unknown field" -- "$LUCENT" trace "$TMP/utf8-key.json" --out "$TMP/t.png"
 expect_fail 1 "override 'render.w\\x1B[31midth=3': no such member" -- \
   "$LUCENT" trace "$SM" --set $'render.w\x1b[31midth=3' --out "$TMP/t.png"
+# Profile grids beyond the Monte Carlo's bounds, found by this audit: every model wrote NaN or inf bins
+# (--dr 1e-300; the default grid of sigma_s = 1e300, dr 5e-302 mm) or zeros (--dr 1e300) with exit 0.
+expect_fail 2 "--dr needs a length from 1e-15 to 1e+12 mm" -- \
+  "$LUCENT" profile skin1 --model dipole --dr 1e-300 --out "$TMP/pdr"
+expect_fail 1 "skin1: profile grid: dr = 1e+09 mm x 10000 bins spans more than 1e+12 mm" -- \
+  "$LUCENT" profile skin1 --model dipole --dr 1e9 --bins 10000 --out "$TMP/pdr"
+for m in dipole burley; do
+  expect_fail 1 "dense-1e300.json: sigma_s[0]: sigma_t = sigma_a + sigma_s = 1e+300 mm^-1 is above" -- \
+    "$LUCENT" profile "$FIXTURES/materials/dense-1e300.json" --model $m --out "$TMP/pdr"
+done
+expect_no_file "$TMP/pdr.json" "$TMP/pdr.csv"
+# curvature --size 16384x16384: the .png with its colour bar is above the image limit; said as usage, naming
+# --size, before any work (main said "out of memory for 49152 x 49152"; then the PNG writer refused 16512x16384
+# after a 16 s, 4.7 GB paint, naming neither).
+expect_fail 2 "--size 16384x16384: the picture with its colour bar is 16512 x 16384 pixels, above the image limit" -- \
+  "$LUCENT" curvature "$FIXTURES/mesh/tetra.ply" --size 16384x16384 --out "$TMP/c16k.png"
+expect_no_file "$TMP/c16k.png"
 expect_fail 2 "LUCENT_THREADS='abc': needs a whole number from 1 to 256" -- env LUCENT_THREADS=abc "$LUCENT" materials
 expect_fail 2 "LUCENT_THREADS='-3': needs a whole number from 1 to 256" -- env LUCENT_THREADS=-3 "$LUCENT" materials
 expect_fail 2 "--threads needs a positive whole number, at most 256" -- "$LUCENT" materials --threads 300
@@ -279,3 +273,12 @@ expect_fail 2 "--threads needs a positive whole number, at most 256" -- "$LUCENT
 # 8. 200 small spheres: the guiding field's pre-pass costs little per object (52 s for 1 spp before; the
 # timeout is a hang guard, not a timing) and a time limit holds in it.
 expect_ok -- timeout 120 "$LUCENT" trace "$FIXTURES/scenes/hang-trace-200-spheres.json" --spp 1 --out "$TMP/s200.png"
+# The time limit holds in the pre-pass: --time 3 ends long before the hang guard, with an image of at least one
+# pass, or with exit 1 "no pass completed" where the set-up alone (a loaded machine, ASan) ate the limit. Main
+# spent 47 s in the pre-pass whatever the limit, then wrote a black image (spp 0) with exit 0.
+timeout 60 "$LUCENT" trace "$FIXTURES/scenes/hang-trace-200-spheres.json" --time 3 --out "$TMP/s200t.png" \
+  --json "$TMP/s200t.json" >/dev/null 2>"$TMP/s200t.err"
+rc=$?
+expect_true "8: --time 3 on 200 spheres ends within the 60 s hang guard with >= 1 pass, or names the cause (exit $rc)" -- \
+  eval '{ [ $rc = 0 ] && python3 -c "import json,sys; assert json.load(open(sys.argv[1]))[\"spp\"] >= 1" "$TMP/s200t.json"; } ||
+    { [ $rc = 1 ] && grep -q "no pass completed within the time limit of 3 s" "$TMP/s200t.err" && [ ! -e "$TMP/s200t.png" ]; }'

@@ -36,6 +36,28 @@ expect_true "InParm is in cm, as in the .mci" -- grep -q "^1	10	90	0.75	0.02	# l
 expect_ok -- "$LUCENT" mcml "$MCI/vanhulst.mci" --threads 2 --out-dir "$TMP/mcml2"
 expect_true "the same seed with 1 and 2 threads gives identical files" -- \
   cmp "$TMP/mcml1/vanhulst.mco" "$TMP/mcml2/vanhulst.mco"
+# ... on every SIMD path this CPU has (--isa; docs/mcml.md, "SIMD paths"): each path its own numbers,
+# the same for 1 and 2 threads
+for isa in scalar avx2 avx512; do
+  if ! "$LUCENT" --isa "$isa" mcml --help >/dev/null 2>&1; then
+    expect_fail 2 "--isa $isa: this CPU lacks it" -- "$LUCENT" --isa "$isa" mcml "$MCI/vanhulst.mci"
+    echo "note: this CPU has no $isa path: its thread check is left out"
+    continue
+  fi
+  mkdir -p "$TMP/mcml-$isa-1" "$TMP/mcml-$isa-2"
+  expect_ok -- "$LUCENT" mcml "$MCI/vanhulst.mci" --isa "$isa" --threads 1 --out-dir "$TMP/mcml-$isa-1" -q
+  expect_ok -- "$LUCENT" --isa="$isa" mcml "$MCI/vanhulst.mci" --threads 2 --out-dir "$TMP/mcml-$isa-2" -q
+  expect_true "$isa: the same seed with 1 and 2 threads gives identical files" -- \
+    cmp "$TMP/mcml-$isa-1/vanhulst.mco" "$TMP/mcml-$isa-2/vanhulst.mco"
+  expect_true "$isa: the .mco names the kernel" -- grep -q "^# Written by Lucent .*(lucent mcml, the $isa kernel)" \
+    "$TMP/mcml-$isa-1/vanhulst.mco"
+  if [ "$isa" != scalar ]; then
+    expect_true "$isa: its numbers are not the scalar kernel's" -- \
+      mcml_not cmp -s <(grep -v "^# Written" "$TMP/mcml-$isa-1/vanhulst.mco") \
+      <(grep -v "^# Written" "$TMP/mcml-scalar-1/vanhulst.mco")
+  fi
+done
+expect_fail 2 "--isa needs auto, scalar, avx2 or avx512" -- "$LUCENT" --isa sse9 mcml "$MCI/vanhulst.mci"
 expect_ok -- "$LUCENT" mcml "$MCI/vanhulst.mci" --seed 2 --out-dir "$TMP/mcml2" --quiet
 expect_true "another seed gives another file" -- mcml_not cmp -s "$TMP/mcml1/vanhulst.mco" "$TMP/mcml2/vanhulst.mco"
 expect_true "--quiet prints nothing" -- test -z "$OUT"

@@ -16,6 +16,10 @@ if mknod "$O/nul" c 1 3 2>/dev/null; then
   expect_true "several outputs may name one device (through links); it stays a device" -- \
     eval 'test -c "$O/nul" && test -L "$O/nul.png" && test -L "$O/nul.exr"'
   expect_true "the regular output beside the device landed" -- test -s "$O/t.json"
+  # repro-3 INDEX 1: an .mci whose output line names the device (as root, /dev/null became a regular file).
+  printf '1.0\n1\n%s A\n1000\n0.01 0.01\n4 10 4\n1\n1.0\n1.0 1 10 0.75 0.1\n1.0\n' "$O/nul" >"$O/nul.mci"
+  expect_ok -- "$LUCENT" mcml "$O/nul.mci"
+  expect_true "an .mci's output line naming a character device: it stays a device" -- test -c "$O/nul"
 else
   _report 0 "mknod of a character device in $O (the tests run as root: tests/CMakeLists.txt)"
 fi

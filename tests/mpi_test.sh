@@ -36,6 +36,27 @@ for np in 1 2 3; do
     --threads 1 --quiet
   expect_true "trace: mpirun -np $np gives the plain run's EXR byte for byte" -- cmp "$M/plain/t.exr" "$O/t.exr"
 done
+# every SIMD path this CPU has (--isa; docs/mcml.md, "SIMD paths"): 1 and 2 ranks give that path's plain
+# run byte for byte (the lanes of a chunk draw from the chunk's stream, whichever rank runs it)
+for isa in scalar avx2 avx512; do
+  if ! "$LUCENT" --isa "$isa" mcml --help >/dev/null 2>&1; then
+    echo "note: this CPU has no $isa path: its rank checks are left out"
+    continue
+  fi
+  I="$M/isa-$isa"
+  mkdir -p "$I/plain" "$I/np1" "$I/np2"
+  expect_ok -- "$LUCENT" --isa "$isa" mcml "$MCI3" --out-dir "$I/plain" --quiet
+  expect_ok -- "$LUCENT" --isa "$isa" profile skin1 --model mc --photons 8000 --bins 40 --out "$I/plain/p" --quiet
+  for np in 1 2; do
+    expect_ok -- "${MPIRUN[@]}" -np "$np" "$LUCENT" --isa "$isa" mcml "$MCI3" --out-dir "$I/np$np" --threads 1 --quiet
+    expect_true "mcml, $isa: mpirun -np $np gives the plain run's .mco byte for byte" -- \
+      cmp "$I/plain/three_layers.mco" "$I/np$np/three_layers.mco"
+    expect_ok -- "${MPIRUN[@]}" -np "$np" "$LUCENT" --isa "$isa" profile skin1 --model mc --photons 8000 --bins 40 \
+      --out "$I/np$np/p" --threads 1 --quiet
+    expect_true "profile --model mc, $isa: mpirun -np $np gives the plain run's CSV byte for byte" -- \
+      cmp "$I/plain/p.csv" "$I/np$np/p.csv"
+  done
+done
 expect_ok -- "${MPIRUN[@]}" -np 2 "$LUCENT" trace "$SC" --spp 6 --adaptive --out "$M/np2/a.png" \
   --exr "$M/np2/a.exr" --threads 1 --quiet
 expect_true "trace --adaptive: 2 ranks (sharing the pilot after every pass) give the plain run's EXR" -- \
@@ -83,7 +104,7 @@ expect_fail 1 "rank 1 of 2 failed: $BADMCI: line 15: layer 1: g must be in [-1, 
 expect_no_file "$M/bad/three_layers.mco"
 # rank 1 is killed mid-run: mpirun ends the other ranks; nothing is written. (mpirun's exit status
 # is then the killed rank's, 137, and the message is mpirun's.)
-sed 's/^20000 /4000000 /' "$MCI3" >"$M/bad/long.mci"
+sed 's/^20000 /100000000 /' "$MCI3" >"$M/bad/long.mci"
 killed_rank1() {
   "${MPIRUN[@]}" -np 2 sh -c 'if [ "${OMPI_COMM_WORLD_RANK:-0}" = 1 ]; then
       "$0" mcml "$1" --out-dir "$2" --threads 1 & p=$!; sleep 1; kill -9 $p; wait $p; exit $?

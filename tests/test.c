@@ -4,6 +4,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "lucent/base.h"
+
 int test_failures_;
 
 static char tmpdir_[512];
@@ -33,6 +35,21 @@ const char *test_path(const char *name)
 int test_run(const test_case *cases, int count, int argc, char **argv)
 {
     int passed = 0, failed = 0;
+    /* CTest runs the Monte Carlo's tests once per SIMD path (LUCENT_ISA): a path this CPU lacks is
+     * reported as skipped (exit 77), not silently replaced by another */
+    const char *isa_name = getenv("LUCENT_ISA");
+    lucent_isa isa;
+    if (isa_name && *isa_name) {
+        if (lucent_isa_parse(isa_name, &isa) != LUCENT_OK) {
+            fprintf(stderr, "LUCENT_ISA: %s\n", lucent_last_error());
+            return 1;
+        }
+        if (!lucent_isa_supported(isa)) {
+            printf("skipped: this CPU has no %s path (LUCENT_ISA=%s)\n", isa_name, isa_name);
+            return 77;
+        }
+        lucent_isa_set(isa);
+    }
     for (int i = 0; i < count; i++) {
         if (argc > 1 && !strstr(cases[i].name, argv[1])) continue;
         test_failures_ = 0;

@@ -858,6 +858,39 @@ TEST(radix_sort_matches_qsort_on_random_and_adversarial_keys)
     free(k);
 }
 
+/* The SIMD paths' names, parsing and choice (lucent/base.h, "SIMD paths"). */
+TEST(isa_names_parse_and_choice)
+{
+    for (int i = 0; i < LUCENT_ISA_COUNT; i++) {
+        lucent_isa back;
+        CHECK_OK(lucent_isa_parse(lucent_isa_name((lucent_isa)i), &back));
+        CHECK(back == (lucent_isa)i);
+    }
+    lucent_isa isa;
+    CHECK_ERR(lucent_isa_parse("sse9", &isa), LUCENT_ERR_INVALID_ARGUMENT, "sse9", "scalar, avx2, avx512");
+    CHECK(lucent_isa_name(LUCENT_ISA_COUNT) == NULL);
+    CHECK(lucent_isa_supported(LUCENT_ISA_SCALAR) && lucent_isa_supported(LUCENT_ISA_AUTO));
+    /* a CPU with AVX-512 has AVX2 */
+    CHECK(!lucent_isa_supported(LUCENT_ISA_AVX512) || lucent_isa_supported(LUCENT_ISA_AVX2));
+    lucent_isa was = lucent_isa_active();
+    CHECK(was != LUCENT_ISA_AUTO);
+    for (int i = LUCENT_ISA_SCALAR; i < LUCENT_ISA_COUNT; i++) {
+        if (lucent_isa_supported((lucent_isa)i)) {
+            CHECK_OK(lucent_isa_set((lucent_isa)i));
+            CHECK(lucent_isa_active() == (lucent_isa)i);
+        } else {
+            CHECK_ERR(lucent_isa_set((lucent_isa)i), LUCENT_ERR_UNSUPPORTED, lucent_isa_name((lucent_isa)i), "lacks");
+            CHECK(lucent_isa_active() != (lucent_isa)i);
+        }
+    }
+    CHECK_ERR(lucent_isa_set(LUCENT_ISA_COUNT), LUCENT_ERR_INVALID_ARGUMENT, "no such path");
+    CHECK_OK(lucent_isa_set(was));
+    printf("  SIMD paths on this CPU:");
+    for (int i = LUCENT_ISA_SCALAR; i < LUCENT_ISA_COUNT; i++)
+        if (lucent_isa_supported((lucent_isa)i)) printf(" %s", lucent_isa_name((lucent_isa)i));
+    printf("\n");
+}
+
 TEST_MAIN(TEST_ENTRY(error_message_and_context), TEST_ENTRY(error_is_per_thread), TEST_ENTRY(log_filters_by_level),
           TEST_ENTRY(progress_silent_by_default_and_draws_when_asked), TEST_ENTRY(parallel_for_visits_every_item_once),
           TEST_ENTRY(parallel_for_reports_lowest_failing_chunk), TEST_ENTRY(parallel_for_share_splits_the_same_chunks),
@@ -865,7 +898,7 @@ TEST_MAIN(TEST_ENTRY(error_message_and_context), TEST_ENTRY(error_is_per_thread)
           TEST_ENTRY(pool_size_from_environment), TEST_ENTRY(rng_matches_xoshiro256starstar_reference),
           TEST_ENTRY(rng_streams_are_uniform), TEST_ENTRY(rng_neighbouring_streams_are_independent),
           TEST_ENTRY(rng_same_seed_same_numbers_other_seed_differs),
-          TEST_ENTRY(rng_per_chunk_streams_independent_of_thread_count),
+          TEST_ENTRY(rng_per_chunk_streams_independent_of_thread_count), TEST_ENTRY(isa_names_parse_and_choice),
           TEST_ENTRY(atomic_write_replaces_only_when_complete), TEST_ENTRY(atomic_write_errors_name_the_path),
           TEST_ENTRY(atomic_write_into_read_only_directory),
           TEST_ENTRY(mkdir_p_creates_parents_and_names_what_blocks_it), TEST_ENTRY(json_errors_carry_file_and_path),

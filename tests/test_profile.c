@@ -671,6 +671,23 @@ TEST(invalid_arguments)
     CHECK_ERR(lucent_profile_dipole(&m, &(lucent_profile_grid){.dr = -1.0, .count = 3}, &p),
               LUCENT_ERR_INVALID_ARGUMENT, "dr");
     CHECK_ERR(lucent_profile_create(&(lucent_profile_grid){.dr = 0.1}, NULL, &p), LUCENT_ERR_INVALID_ARGUMENT, "count");
+    /* Issue 32: grids beyond the Monte Carlo's bounds (a bin below 1e-15 mm, a span past 1e12 mm, the default
+     * grid of a material above 1e12 mm^-1) are refused; dr = 1e-300 and sigma_s = 1e300 gave NaN and inf bins,
+     * dr = 1e300 zeros, all returned as LUCENT_OK before. */
+    CHECK_ERR(lucent_profile_dipole(&m, &(lucent_profile_grid){.dr = 1e-300, .count = 10}, &p),
+              LUCENT_ERR_INVALID_ARGUMENT, "profile grid: dr = 1e-300 mm is below 1e-15 mm");
+    CHECK_ERR(lucent_profile_dipole(&m, &(lucent_profile_grid){.dr = 1e300, .count = 10}, &p),
+              LUCENT_ERR_INVALID_ARGUMENT, "spans more than 1e+12 mm");
+    lucent_material dense = grey(0.01, 1e300, 1.3);
+    CHECK_ERR(lucent_profile_dipole(&dense, NULL, &p), LUCENT_ERR_INVALID_ARGUMENT,
+              "sigma_s[0]: sigma_t = sigma_a + sigma_s = 1e+300 mm^-1 is above 1e+12 mm^-1");
+    CHECK_ERR(lucent_profile_better_dipole(&dense, NULL, &p), LUCENT_ERR_INVALID_ARGUMENT, "sigma_s[0]");
+    CHECK(p == NULL);
+    CHECK_OK(lucent_profile_dipole(&m, &(lucent_profile_grid){.dr = 1e-15, .count = 10}, &p)); /* the bounds hold */
+    for (int c = 0; c < 3; c++)
+        for (int j = 0; j < p->count; j++) CHECK(isfinite(p->value[c][j]));
+    lucent_profile_destroy(p);
+    p = NULL;
     lucent_profile *pair[2];
     CHECK_ERR(lucent_profile_multipole(&m, &(lucent_slab_desc){.thickness = 0.0}, NULL, pair),
               LUCENT_ERR_INVALID_ARGUMENT, "thickness");

@@ -146,6 +146,22 @@ check("van de Hulst Tt 0.66096 within 4 SE", abs(r["tt"] - 0.66096) < 4 * r["tt_
 check("no specular at entry (matched index)", r["rsp"] == 0.0, r["rsp"])
 check("the .mco is written", os.path.getsize(r["mco"]) > 1000)
 
+# The SIMD path (docs/mcml.md, "SIMD paths"): by default the one `lucent --version` names; the scalar
+# reference kernel on request, van de Hulst's slab again within 4 SE (other random numbers than the
+# default path's when that is a SIMD one); an unknown name raises, listing the names.
+ver = subprocess.run([lucent_bin, "--version"], capture_output=True, text=True).stdout
+simd = [ln.split()[1] for ln in ver.splitlines() if ln.startswith("simd")]
+check("lucent.isa() is the path lucent --version names", simd and lucent.isa() == simd[0], (lucent.isa(), simd))
+default_path = lucent.isa()
+check("lucent.isa('scalar') chooses the scalar kernel", lucent.isa("scalar") == "scalar")
+rs = lucent.mcml(os.path.join(source, "tests/fixtures/mcml/vanhulst.mci"), write=False)[0]
+check("scalar: van de Hulst Rd 0.09739 within 4 SE", abs(rs["rd"] - 0.09739) < 4 * rs["rd_se"] + 2e-4,
+      (rs["rd"], rs["rd_se"]))
+if default_path != "scalar":
+    check("scalar and %s draw other random numbers" % default_path, rs["rd"] != r["rd"], (rs["rd"], r["rd"]))
+check("an unknown path raises, listing the names", *raises(lambda: lucent.isa("sse9"), "sse9", "avx512"))
+check("lucent.isa('auto') goes back to the default", lucent.isa("auto") == default_path)
+
 # Rendering and tracing into arrays: the image equals the CLI's EXR of the same scene (same library,
 # deterministic rasteriser); the path tracer's mean is positive over the object.
 scene = os.path.join(source, "tests/fixtures/scenes/sphere.json")

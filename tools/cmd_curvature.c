@@ -56,6 +56,11 @@ typedef struct options {
     char default_out[1024];
 } options;
 
+/* The colour bar beside a .png's picture: its text scale and its width in pixels, from the picture's height. */
+static int bar_scale(int height) { return height >= 600 ? 2 : 1; }
+
+static int colour_bar_margin(int height) { return 64 * bar_scale(height); }
+
 static int parse_value_option(int argc, char **argv, int *i, options *o)
 {
     const char *v;
@@ -77,6 +82,16 @@ static int parse_value_option(int argc, char **argv, int *i, options *o)
         if (!v || sscanf(v, "%dx%d%c", &o->size[0], &o->size[1], &tail) != 2 || o->size[0] < 1 || o->size[1] < 1 ||
             o->size[0] > 16384 || o->size[1] > 16384)
             return cli_usage_error("curvature", "--size needs WIDTHxHEIGHT, 1 to 16384 pixels each (e.g. 800x600)");
+        /* the .png holds the colour bar beside the picture: both must fit an image (issue 32: 16384x16384 was
+         * refused by the PNG writer after the whole paint, 16 s and 4.7 GB later) */
+        int64_t w = (int64_t)o->size[0] + colour_bar_margin(o->size[1]), h = o->size[1];
+        if ((uint64_t)(w * h) > LUCENT_IMAGE_MAX_PIXELS)
+            return cli_usage_error(
+                "curvature",
+                "--size %dx%d: the picture with its colour bar is %lld x %lld pixels, above the "
+                "image limit of %llu (2^28) pixels; at most %lldx%d at this height",
+                o->size[0], o->size[1], (long long)w, (long long)h, (unsigned long long)LUCENT_IMAGE_MAX_PIXELS,
+                (long long)(LUCENT_IMAGE_MAX_PIXELS / (uint64_t)h) - colour_bar_margin(o->size[1]), o->size[1]);
     } else if (cli_option(argc, argv, i, "--view", &v)) {
         char tail;
         if (!v || sscanf(v, "%lf,%lf%c", &o->view[0], &o->view[1], &tail) != 2 || !isfinite(o->view[0]) ||
@@ -183,7 +198,7 @@ static void colour(double h, double range, int invalid, uint8_t *rgb)
 static lucent_status add_colour_bar(lucent_image **img, double range, bool mm)
 {
     lucent_image *src = *img, *dst = NULL;
-    int s = src->height >= 600 ? 2 : 1, margin = 64 * s, w = src->width + margin, h = src->height;
+    int s = bar_scale(src->height), margin = colour_bar_margin(src->height), w = src->width + margin, h = src->height;
     lucent_status st = lucent_image_create(w, h, 3, &dst);
     if (st != LUCENT_OK) return st;
     for (int c = 0; c < 3; c++) lucent_image_fill(dst, c, 0.05f); /* the painter's background */
@@ -230,7 +245,8 @@ static lucent_status write_colours(const char *path, const options *o, const luc
                                     .background = {0.05f, 0.05f, 0.05f}};
         s = lucent_mesh_paint(m, &d, &img);
         if (s != LUCENT_OK) s = lucent_error_context(s, "%s: --size %dx%d", path, o->size[0], o->size[1]);
-        if (s == LUCENT_OK) s = add_colour_bar(&img, range, o->scale_given);
+        if (s == LUCENT_OK && (s = add_colour_bar(&img, range, o->scale_given)) != LUCENT_OK)
+            s = lucent_error_context(s, "%s: --size %dx%d with the colour bar", path, o->size[0], o->size[1]);
         if (s == LUCENT_OK) s = lucent_image_write(path, img, NULL);
         lucent_image_destroy(img);
     } else {

@@ -189,7 +189,9 @@ int cmd_kernel_eval(int argc, char **argv)
     if (rc == CLI_OK) rc = choose_models(&o);
     if (rc != CLI_OK) return rc;
     lucent_status s = run(&o);
-    if (s != LUCENT_OK && strncmp(lucent_last_error(), "layers[", 7) == 0)
-        lucent_error_context(s, "%s", o.spec); /* the Monte Carlo's check of the material's fields: name its file */
+    const char *e = lucent_last_error();
+    if (s != LUCENT_OK && (strncmp(e, "layers[", 7) == 0 || strncmp(e, "sigma_", 6) == 0))
+        lucent_error_context(s, "%s", o.spec); /* a check of the material's fields (the Monte Carlo's, the profile
+                                                  grid's): name its file */
     return s == LUCENT_OK ? CLI_OK : cli_fail();
 }

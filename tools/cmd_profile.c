@@ -146,8 +146,10 @@ static int parse_number_option(int argc, char **argv, int *i, options *o)
                    ? CLI_OK
                    : cli_usage_error("profile", "--thickness needs a length > 0 (mm)");
     if (cli_option(argc, argv, i, "--dr", &v))
-        return cli_parse_double(v, &d) && d > 0 ? (o->grid.dr = d, CLI_OK)
-                                                : cli_usage_error("profile", "--dr needs a length > 0 (mm)");
+        return cli_parse_double(v, &d) && d >= LUCENT_MC_MIN_BIN && d <= LUCENT_MC_MAX_EXTENT
+                   ? (o->grid.dr = d, CLI_OK)
+                   : cli_usage_error("profile", "--dr needs a length from %g to %g mm", LUCENT_MC_MIN_BIN,
+                                     LUCENT_MC_MAX_EXTENT);
     if (cli_option(argc, argv, i, "--bins", &v))
         return cli_parse_int(v, &n) && n > 0 ? (o->grid.count = n, CLI_OK)
                                              : cli_usage_error("profile", "--bins needs a whole number > 0");
@@ -329,6 +331,14 @@ static void layers_stem(const options *o, char *dest, size_t size)
     }
 }
 
+/* The grid, from --dr and --bins or the material's default; a refusal names the material (issue 32: the
+ * default grid of a too-dense one). */
+static lucent_status grid_resolve(options *o)
+{
+    lucent_status s = lucent_profile_grid_resolve(&o->grid, &o->material, &o->grid);
+    return s != LUCENT_OK && o->spec ? lucent_error_context(s, "%s", o->spec) : s;
+}
+
 /* Sets up the material and its layers once the arguments are read. */
 static lucent_status prepare(options *o, const char *layers)
 {
@@ -343,7 +353,7 @@ static lucent_status prepare(options *o, const char *layers)
         if (layers)
             return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
                                 "%s is a spectral skin, already layered: --layers takes RGB materials", o->spec);
-        return lucent_profile_grid_resolve(&o->grid, &o->material, &o->grid);
+        return grid_resolve(o);
     }
     if (!layers) {
         double d = o->thickness > 0 ? o->thickness : INFINITY;
@@ -357,7 +367,7 @@ static lucent_status prepare(options *o, const char *layers)
     for (int m = 0; m < o->model_count; m++) multipole |= o->models[m] == MODEL_MULTIPOLE;
     if (multipole && !layers && !(o->thickness > 0))
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "multipole: give the slab --thickness in mm");
-    return lucent_profile_grid_resolve(&o->grid, &o->material, &o->grid);
+    return grid_resolve(o);
 }
 
 static void default_prefix(const options *o, char *dest, size_t size)

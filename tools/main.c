@@ -46,6 +46,8 @@ static void print_help(FILE *out)
             "\noptions every command accepts:\n"
             "  -q, --quiet      no progress bars or informational lines\n"
             "  --threads N      worker threads (default: LUCENT_THREADS, else all cores)\n"
+            "  --isa I          the Monte Carlo's SIMD path: auto, scalar, avx2, avx512 (default:\n"
+            "                   LUCENT_ISA, else the best this CPU has; results differ between paths)\n"
             "  --part K/N       mcml, profile --model mc, cdrf-fit, trace: run part K of N of the\n"
             "                   Monte Carlo and write OUTPUT.part-K-of-N instead of the outputs\n"
             "                   (lucent merge combines them; docs/scale.md)\n\n"
@@ -277,6 +279,13 @@ int cli_common_options(int *argc, char **argv)
                 return cli_usage_error(NULL, "--threads needs a positive whole number, at most %d",
                                        LUCENT_POOL_MAX_THREADS);
             remove_args(argc, argv, i, a[9] == '=' ? 1 : 2);
+        } else if (strcmp(a, "--isa") == 0 || strncmp(a, "--isa=", 6) == 0) {
+            const char *v = a[5] == '=' ? a + 6 : (i + 1 < *argc ? argv[i + 1] : NULL);
+            lucent_isa isa;
+            if (!v || lucent_isa_parse(v, &isa) != LUCENT_OK)
+                return cli_usage_error(NULL, "--isa needs auto, scalar, avx2 or avx512");
+            if (lucent_isa_set(isa) != LUCENT_OK) return cli_usage_error(NULL, "--isa %s: this CPU lacks it", v);
+            remove_args(argc, argv, i, a[5] == '=' ? 1 : 2);
         } else if (strcmp(a, "--part") == 0 || strncmp(a, "--part=", 7) == 0) {
             const char *v = a[6] == '=' ? a + 7 : (i + 1 < *argc ? argv[i + 1] : NULL);
             char *slash = v ? strchr(v, '/') : NULL, k[16];
@@ -335,6 +344,10 @@ static int print_version(void)
     printf("revision  %s\n", lucent_cli_revision);
     printf("embree    %s\n", lucent_trace_embree_version());
     printf("openexr   %s\n", lucent_image_openexr_version());
+    printf("simd      %s (this CPU:", lucent_isa_name(lucent_isa_active()));
+    for (int i = LUCENT_ISA_SCALAR; i < LUCENT_ISA_COUNT; i++)
+        if (lucent_isa_supported((lucent_isa)i)) printf(" %s", lucent_isa_name((lucent_isa)i));
+    printf(")\n");
     lucent_log_set_sink(NULL, NULL, LUCENT_LOG_ERROR);
     lucent_gl_context *gl = NULL;
     if (lucent_gl_create(NULL, &gl) == LUCENT_OK) {

@@ -148,6 +148,36 @@ typedef lucent_status (*lucent_chunk_fn)(void *ctx, uint64_t chunk, uint64_t beg
 lucent_status lucent_parallel_for(lucent_pool *pool, uint64_t count, uint64_t chunk_size, lucent_chunk_fn fn,
                                   void *ctx);
 
+/* ---- SIMD paths -----------------------------------------------------------------
+ * Hot kernels (the photon Monte Carlo) have a path per instruction set, chosen at run time from
+ * the CPU's features; the scalar path is the reference. Results are identical for any thread or
+ * process count on each path, and agree statistically (not bit for bit) between paths. */
+typedef enum lucent_isa {
+    LUCENT_ISA_AUTO = 0, /* the best path this CPU supports */
+    LUCENT_ISA_SCALAR,   /* portable C, the reference */
+    LUCENT_ISA_AVX2,     /* x86-64 AVX2 + FMA: 8 lanes */
+    LUCENT_ISA_AVX512,   /* x86-64 AVX-512 F/DQ/BW/VL: 16 lanes */
+    LUCENT_ISA_COUNT
+} lucent_isa;
+
+/* Whether this CPU (and this build) can run the path; AUTO and SCALAR always can. */
+bool lucent_isa_supported(lucent_isa isa);
+
+/* Chooses the path for the whole process (AUTO: the best supported, or LUCENT_ISA from the
+ * environment when it is set); fails, naming the path, when the CPU lacks it. */
+lucent_status lucent_isa_set(lucent_isa isa);
+
+/* The path in use, never AUTO: the one set, else LUCENT_ISA (scalar, avx2, avx512, auto) from the
+ * environment, else the best supported. An unknown or unsupported LUCENT_ISA is logged once as a
+ * warning and the best supported path is used. */
+lucent_isa lucent_isa_active(void);
+
+/* "auto", "scalar", "avx2", "avx512" (NULL for other values). */
+const char *lucent_isa_name(lucent_isa isa);
+
+/* Parses one of lucent_isa_name's names; the message lists them. */
+lucent_status lucent_isa_parse(const char *name, lucent_isa *dest);
+
 /* ---- Random numbers -------------------------------------------------------
  * xoshiro256** (Blackman & Vigna 2018). Each (seed, stream) pair gives an independent,
  * reproducible sequence: the state is derived by hashing seed and stream with SplitMix64,

@@ -9,7 +9,9 @@
  * Also reads MCML input files (.mci) and writes MCML output files (.mco): see docs/mcml.md.
  *
  * Units: lengths in mm, coefficients in mm^-1 (MCML files speak cm; they are converted when
- * read and written). Results are identical for a given seed whatever the thread count. */
+ * read and written). Results are identical for a given seed whatever the thread count; the kernel
+ * runs on the SIMD path lucent_isa_active() names (lucent/base.h), whose results agree with the
+ * scalar path's statistically, not bit for bit. */
 #ifndef LUCENT_MC_H
 #define LUCENT_MC_H
 
@@ -153,7 +155,8 @@ lucent_status lucent_mcml_load(const char *path, lucent_mcml_file *dest);
 void lucent_mcml_file_free(lucent_mcml_file *f);
 
 /* Writes an MCML .mco file (format A1, cm units, MCML's sections and normalisations; the last
- * radial and depth bins collect everything beyond the grid when the run did so) atomically.
+ * radial and depth bins collect everything beyond the grid when the run did so) atomically. Its
+ * header names the SIMD path in use (lucent_isa_active(): the one the run took unless it changed).
  * The run's result must come from run->desc (A_rz is written as zeros when not scored). */
 lucent_status lucent_mcml_write(const char *path, const lucent_mcml_run *run, const lucent_mc_result *result);
 

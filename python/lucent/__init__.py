@@ -609,5 +609,16 @@ def versions():
             "openexr": _L.lucent_image_openexr_version().decode(), "library": library_path}
 
 
+def isa(name=None):
+    """The Monte Carlo's SIMD path (docs/mcml.md, "SIMD paths"): with a name ("auto", "scalar", "avx2",
+    "avx512") chooses it for the process, as the CLI's --isa (raises when the CPU lacks it); returns
+    the path in use."""
+    if name is not None:
+        v = ctypes.c_int()
+        _check(_L.lucent_isa_parse(_b(name), ctypes.byref(v)))
+        _check(_L.lucent_isa_set(v.value))
+    return _L.lucent_isa_name(_L.lucent_isa_active()).decode()
+
+
 __all__ = ["LucentError", "ArgumentError", "ArgumentTypeError", "Material", "material", "materials", "Profile", "profile", "skin_profile", "skin_color", "ciede2000", "mcml", "Kernel", "kernel",
-           "cdrf", "cdrf_lut", "cdrf_fit", "curvature", "render", "trace", "pack", "fit", "versions"]
+           "cdrf", "cdrf_lut", "cdrf_fit", "curvature", "render", "trace", "pack", "fit", "versions", "isa"]

@@ -326,6 +326,10 @@ def declare(lib):
         "lucent_cache_destroy": (None, [c_void_p]),
         "lucent_pack_engine_find": (st, [c_char_p, P(ctypes.c_int)]),
         "lucent_pack": (st, [P(Material), P(PackDesc), P(PackResult)]),
+        "lucent_isa_parse": (st, [c_char_p, P(ctypes.c_int)]),
+        "lucent_isa_set": (st, [ctypes.c_int]),
+        "lucent_isa_active": (ctypes.c_int, []),
+        "lucent_isa_name": (c_char_p, [ctypes.c_int]),
     }
     for name, (res, args) in sigs.items():
         f = getattr(lib, name)

@@ -95,6 +95,15 @@ static lucent_status bake_taps(const lucent_material *m, const lucent_bake_desc 
     return LUCENT_OK;
 }
 
+/* The Monte Carlo's SIMD path in a cache key (its numbers are its own: docs/mcml.md, "SIMD paths"),
+ * nothing for the scalar path, whose keys stay those of earlier versions. */
+static const char *mc_path_key(void)
+{
+    static const char *const keys[LUCENT_ISA_COUNT] = {"", "", " isa avx2", " isa avx512"};
+    lucent_isa isa = lucent_isa_active();
+    return isa < LUCENT_ISA_COUNT ? keys[isa] : "";
+}
+
 /* ---- transmittance (docs/render.md, "Translucency") ---- */
 
 /* The slab's samples, from the cache or the Monte Carlo. The key is the one of earlier versions, so
@@ -104,8 +113,8 @@ static lucent_status slab_samples(const lucent_material *m, const lucent_bake_de
 {
     char mat[512], key[640];
     material_key(m, mat, sizeof mat);
-    snprintf(key, sizeof key, "slab-transmittance v1 %s photons %llu samples %d seed 1", mat,
-             (unsigned long long)d->transmit_photons, LUCENT_SLAB_SAMPLES);
+    snprintf(key, sizeof key, "slab-transmittance v1 %s photons %llu samples %d seed 1%s", mat,
+             (unsigned long long)d->transmit_photons, LUCENT_SLAB_SAMPLES, mc_path_key());
     lucent_slab_transmittance_grid(m, t);
     if (lucent_cache_get(cache, "transmittance", key, "transmittance", 3 * LUCENT_SLAB_SAMPLES, &t->value[0][0]))
         return LUCENT_OK;
@@ -241,7 +250,7 @@ static lucent_status bake_rd(const lucent_material *m, const lucent_bake_desc *d
     }
     char mat[512], key[640];
     material_key(m, mat, sizeof mat);
-    snprintf(key, sizeof key, "%s photons %d seed 1", mat, (int)LUCENT_BAKE_RD_PHOTONS);
+    snprintf(key, sizeof key, "%s photons %d seed 1%s", mat, (int)LUCENT_BAKE_RD_PHOTONS, mc_path_key());
     b->rd_cached =
         lucent_cache_get(cache, "rd", key, "rd", 3, b->rd) && lucent_cache_get(cache, "rd", key, "rd_se", 3, b->rd_se);
     if (!b->rd_cached) {

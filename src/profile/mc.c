@@ -163,6 +163,7 @@ static void plan_layer(const lucent_mc_desc *d, int i, double z0, mc_layer_k *k)
     k->inv_mut = mut > 0.0 ? (float)(1.0 / mut) : INFINITY;
     k->absorb = mut > 0.0 ? (float)(l->sigma_a / mut) : 0.0f;
     k->g = (float)g;
+    k->g_exact = g;
     k->hg_kind = g == 0.0 ? 0 : fabs(g) == 1.0 ? 3 : fabs(g) < 0.01 ? 2 : 1;
     k->hg = lucent_hg_prepare_f(g);
     k->n = (float)n;
@@ -185,7 +186,8 @@ static void plan_layout(mc_plan *p)
     l->a_z = l->tt_a + na;
     l->a_l = l->a_z + nz1;
     l->capped = l->a_l + (size_t)p->layer_count;
-    l->batch_size = l->capped + 1;
+    l->a_zl = l->capped + 1;
+    l->batch_size = l->a_zl + (size_t)p->nz + (size_t)p->layer_count;
     l->rd_ra = 0;
     l->tt_ra = nr1 * na;
     l->a_rz = 2 * nr1 * na;
@@ -226,11 +228,54 @@ static void make_plan(const lucent_mc_desc *d, mc_plan *p)
     plan_layout(p);
 }
 
+void mc_fold_zl(const mc_plan *p, int64_t *batch)
+{
+    for (int b = 0; b < p->batches; b++) {
+        int64_t *c = batch + (size_t)b * p->lay.batch_size;
+        for (int l = 0; l < p->layer_count; l++) { /* layer l's bins: those of its top to its bottom */
+            int lo = mc_depth_bin(p, p->layers[l].z0), hi = mc_depth_bin(p, p->layers[l].z1);
+            for (int iz = lo; iz <= hi; iz++) {
+                int64_t *v = c + p->lay.a_zl + (size_t)(iz + l);
+                c[p->lay.a_z + (size_t)iz] += *v;
+                c[p->lay.a_l + (size_t)l] += *v;
+                *v = 0;
+            }
+        }
+    }
+}
+
+/* ---- the kernels ---- */
+
+static void trace_scalar(const mc_plan *plan, lucent_rng *rng, uint64_t begin, uint64_t end, int64_t *batch,
+                         int64_t *grid, int64_t *scratch)
+{
+    (void)scratch;
+    mc_trace(plan, rng, begin, end, batch, grid);
+}
+
+static const mc_kernel k_kernels[] = {
+    {LUCENT_ISA_SCALAR, 1, trace_scalar, NULL, NULL, NULL},
+#if defined(LUCENT_SIMD_X86)
+    {LUCENT_ISA_AVX2, 8, mc_trace_avx2, mc_simd_neglog_avx2, mc_simd_sincos_avx2, mc_simd_hg_avx2},
+    {LUCENT_ISA_AVX512, 16, mc_trace_avx512, mc_simd_neglog_avx512, mc_simd_sincos_avx512, mc_simd_hg_avx512},
+#endif
+};
+
+const mc_kernel *mc_kernel_get(lucent_isa isa)
+{
+    if (isa == LUCENT_ISA_AUTO) isa = lucent_isa_active();
+    if (!lucent_isa_supported(isa)) return NULL;
+    for (size_t i = 0; i < sizeof k_kernels / sizeof k_kernels[0]; i++)
+        if (k_kernels[i].isa == isa) return &k_kernels[i];
+    return NULL;
+}
+
 /* ---- the parallel run ---- */
 
 typedef struct run_ctx {
     const mc_plan *plan;
-    int64_t **batch, **grid; /* per thread */
+    const mc_kernel *kernel;
+    int64_t **batch, **grid, **scratch; /* per thread */
     lucent_progress *progress;
 } run_ctx;
 
@@ -239,7 +284,7 @@ static lucent_status run_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64
     run_ctx *c = ctx;
     lucent_rng rng;
     lucent_rng_init(c->plan->seed, chunk, &rng);
-    mc_trace(c->plan, &rng, begin, end, c->batch[thread], c->grid[thread]);
+    c->kernel->trace(c->plan, &rng, begin, end, c->batch[thread], c->grid[thread], c->scratch[thread]);
     lucent_progress_add(c->progress, end - begin);
     return LUCENT_OK;
 }
@@ -457,7 +502,10 @@ lucent_status lucent_mc_run(const lucent_mc_desc *desc, lucent_mc_result *dest)
     make_plan(&d, plan);
     int threads = d.pool ? lucent_pool_threads(d.pool) : 1;
     size_t bsize = plan->lay.batch_size * (size_t)plan->batches;
-    double per_thread = (double)(bsize + plan->lay.grid_size) * sizeof(int64_t);
+    const mc_kernel *kernel = mc_kernel_get(LUCENT_ISA_AUTO);
+    if (!kernel) kernel = mc_kernel_get(LUCENT_ISA_SCALAR);
+    size_t scratch = kernel->lanes > 1 ? mc_scratch_size(plan) : 0;
+    double per_thread = (double)(bsize + plan->lay.grid_size + scratch) * sizeof(int64_t);
     if (per_thread * threads > (double)LUCENT_MC_MAX_TALLY_BYTES) {
         free(plan);
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
@@ -466,8 +514,13 @@ lucent_status lucent_mc_run(const lucent_mc_desc *desc, lucent_mc_result *dest)
                             d.label, per_thread / 1e6, per_thread * threads / 1e6, threads,
                             (double)LUCENT_MC_MAX_TALLY_BYTES / 1e6);
     }
-    run_ctx ctx = {plan, alloc_counters(threads, bsize), alloc_counters(threads, plan->lay.grid_size), NULL};
-    if (!ctx.batch || !ctx.grid) {
+    run_ctx ctx = {plan,
+                   kernel,
+                   alloc_counters(threads, bsize),
+                   alloc_counters(threads, plan->lay.grid_size),
+                   alloc_counters(threads, scratch),
+                   NULL};
+    if (!ctx.batch || !ctx.grid || !ctx.scratch) {
         s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "Monte Carlo: out of memory for the scores");
     } else {
         ctx.progress = lucent_progress_begin(d.label, d.photons);
@@ -481,6 +534,7 @@ lucent_status lucent_mc_run(const lucent_mc_desc *desc, lucent_mc_result *dest)
     /* the other processes' counters (integers: exact in any order) */
     s = lucent_dist_sum(s, LUCENT_DIST_I64, s == LUCENT_OK ? ctx.batch[0] : NULL, bsize);
     s = lucent_dist_sum(s, LUCENT_DIST_I64, s == LUCENT_OK ? ctx.grid[0] : NULL, plan->lay.grid_size);
+    if (s == LUCENT_OK) mc_fold_zl(plan, ctx.batch[0]);
     if (s == LUCENT_OK) s = reduce(&d, plan, ctx.batch[0], ctx.grid[0], dest);
     if (s == LUCENT_OK) {
         for (int b = 0; b < plan->batches; b++)
@@ -493,6 +547,7 @@ lucent_status lucent_mc_run(const lucent_mc_desc *desc, lucent_mc_result *dest)
     }
     free_counters(ctx.batch, threads);
     free_counters(ctx.grid, threads);
+    free_counters(ctx.scratch, threads);
     free(plan);
     return s;
 }

@@ -360,10 +360,10 @@ lucent_status lucent_mcml_write(const char *path, const lucent_mcml_run *run, co
                "# InParm, RAT, \n# A_l, A_z, Rd_r, Rd_a, Tt_r, Tt_a, \n# A_rz, Rd_ra, Tt_ra \n"
                "####\n\n");
     fprintf(f,
-            "# Written by Lucent %s (lucent mcml), %d batches for the standard errors:\n"
+            "# Written by Lucent %s (lucent mcml, the %s kernel), %d batches for the standard errors:\n"
             "# Rd %.6G +- %.2G, A %.6G +- %.2G, Tt %.6G +- %.2G%s\n\n",
-            LUCENT_VERSION_STRING, r->batches, r->rd, r->rd_se, r->a, r->a_se, r->tt, r->tt_se,
-            r->a_rz ? "" : "\n# A(r,z) was not scored: A_rz holds zeros.");
+            LUCENT_VERSION_STRING, lucent_isa_name(lucent_isa_active()), r->batches, r->rd, r->rd_se, r->a, r->a_se,
+            r->tt, r->tt_se, r->a_rz ? "" : "\n# A(r,z) was not scored: A_rz holds zeros.");
     write_inparm(f, run, &run->desc);
     write_results(f, r, rd_r, tt_r, a_z, per_cos);
     free(buf);

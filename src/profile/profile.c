@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lucent/mc.h"
 #include "lucent/profile.h"
 
 #define LUCENT_PROFILE_MAX_COUNT 100000000
@@ -30,6 +31,15 @@ lucent_status lucent_profile_grid_resolve(const lucent_profile_grid *grid, const
             return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "profile grid: dr and count are required (no material)");
         lucent_status st = lucent_material_validate(m);
         if (st != LUCENT_OK) return st;
+        for (int c = 0; c < 3; c++) { /* the Monte Carlo's bound, said of the material's own field */
+            double t = m->sigma_a[c] + m->sigma_s[c];
+            if (t > LUCENT_MC_MAX_SIGMA_T)
+                return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                                    "%s[%d]: sigma_t = sigma_a + sigma_s = %g mm^-1 is above %g mm^-1: too dense for a "
+                                    "profile (its default grid, the smallest mean free path / 20, would not hold)",
+                                    m->sigma_s[c] >= m->sigma_a[c] ? "sigma_s" : "sigma_a", c, t,
+                                    LUCENT_MC_MAX_SIGMA_T);
+        }
         lucent_profile_grid def;
         lucent_profile_grid_default(m, &def);
         if (g.dr == 0.0) g.dr = def.dr;
@@ -40,6 +50,16 @@ lucent_status lucent_profile_grid_resolve(const lucent_profile_grid *grid, const
     if (g.count <= 0 || g.count > LUCENT_PROFILE_MAX_COUNT)
         return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "profile grid: count must be in [1, %d], got %d",
                             LUCENT_PROFILE_MAX_COUNT, g.count);
+    /* The Monte Carlo's bounds for every model (issue 32): a bin below 1e-15 mm gave NaN or inf in the analytic
+     * models (annulus areas of r^2 underflowing; dr = 1e-300, or the default grid of sigma_s = 1e300), a grid past
+     * 1e12 mm zeros, written with exit 0. */
+    const char *why = grid && grid->dr != 0.0 ? "" : " (the default: the smallest mean free path / 20)";
+    if (g.dr < LUCENT_MC_MIN_BIN)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "profile grid: dr = %g mm%s is below %g mm", g.dr, why,
+                            LUCENT_MC_MIN_BIN);
+    if (g.dr * g.count > LUCENT_MC_MAX_EXTENT)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "profile grid: dr = %g mm%s x %d bins spans more than %g mm",
+                            g.dr, why, g.count, LUCENT_MC_MAX_EXTENT);
     *dest = g;
     return LUCENT_OK;
 }
