@@ -217,8 +217,9 @@ TEST(sphere_pure_absorber_transmission)
 
 TEST(sphere_conserves_energy_and_fresnel_entry)
 {
-    /* No absorption: all that enters leaves (Russian roulette is unbiased: within 3 se of the
-     * batch spread, bounded here by 0.5%). The entering fraction for a smooth sphere is
+    /* No absorption: all that enters leaves (Russian roulette is unbiased; since the internal
+     * reflection plays it too, a run's exited fraction spreads by 0.2% (sd over 12 seeds x 3 channels
+     * at this photon count): bounded here by 3.5 of those, 0.7%). The entering fraction for a smooth sphere is
      * 1 - 2 Int_0^1 F(mu) mu dmu (uniform over the disk, cos i = sqrt(1 - (rho/r)^2)), integrated
      * here by the midpoint rule. */
     double eta = 1.4, refl = 0;
@@ -234,7 +235,7 @@ TEST(sphere_conserves_energy_and_fresnel_entry)
         &(lucent_cdrf_sphere_desc){.material = &m, .radius = 1, .photons = 20000, .bins = 6, .seed = 5}, &res));
     for (int c = 0; c < 3; c++) {
         CHECK_NEAR(res.entered[c], 1 - refl, 0.004);
-        CHECK_NEAR(res.exited[c] / res.entered[c], 1.0, 0.005);
+        CHECK_NEAR(res.exited[c] / res.entered[c], 1.0, 0.007);
         CHECK_NEAR(res.absorbed[c], 0, 0);
     }
     /* A rough boundary with a tiny GGX alpha behaves like the smooth one. */

@@ -79,10 +79,14 @@ static lucent_scene *plane_scene(const char *ply, const char *material, double h
     return sc;
 }
 
+enum { k_boundary_photons = 400 };
+
 static lucent_image *render(const lucent_scene *sc, lucent_pool *pool)
 {
     lucent_renderer *r = NULL;
-    lucent_renderer_desc d = {.pool = pool};
+    lucent_renderer_desc d = {.pool = pool,
+                              .boundary_photons = k_boundary_photons,
+                              .sphere_photons = 2000}; /* the tables' noise: the same in both */
     lucent_render_result res = {0};
     if (sc && context()) CHECK_OK(lucent_renderer_create(g_ctx, sc, &d, &r));
     if (r) CHECK_OK(lucent_render(r, NULL, &res));
@@ -104,11 +108,18 @@ static double plane_radius(const lucent_scene *sc, int size, int x, int y)
 
 /* The diffuse light's way out toward the eye at pixel (x, y) of the plane z = 0 (normal +z):
  * (1 - F(n.v)) / (2 int (1 - F(mu)) mu dmu), Jensen et al. 2001's F_t(w_o) normalised by its mean. */
-static double exit_factor(const lucent_scene *sc, int size, int x, int y)
+/* The boundary's exit curve E(mu_o) at pixel (x, y) in channel c: the renderer's bake (the same material,
+ * roughness and photons: the same table) read as the shader's texture does (boundary.glsl: exit bins
+ * across, linear between their centres, clamped at the ends). */
+static double exit_factor(const lucent_scene *sc, const float *table, int size, int x, int y, int c)
 {
-    double o[3], d[3], eta = sc->objects[0].material.eta;
+    enum { N = LUCENT_BOUNDARY_BINS };
+    double o[3], d[3];
     lucent_camera_ray(&sc->camera, size, size, x + 0.5, y + 0.5, o, d);
-    return (1 - lucent_fresnel_dielectric(-d[2], eta, NULL)) / lucent_fresnel_mean_transmittance(eta);
+    double u = fmin(fmax(-d[2] * N - 0.5, 0), N - 1);
+    int i = (int)floor(u), j = i + 1 < N ? i + 1 : i;
+    double t = u - i;
+    return (1 - t) * table[(N * N + i) * 3 + c] + t * table[(N * N + j) * 3 + c];
 }
 
 /* The largest difference between the radially averaged image and s^2 sum_i w_i G(v_i, r), averaged
@@ -124,6 +135,12 @@ static double impulse_error(const char *what, const lucent_scene *sc, const luce
     double wsum[3] = {0, 0, 0};
     for (int c = 0; c < 3; c++)
         for (int k = 0; k < g->count; k++) wsum[c] += g->weight[c][k];
+    lucent_baked tb = {0};
+    CHECK_OK(lucent_material_bake(&sc->objects[0].material,
+                                  &(lucent_bake_desc){.what = LUCENT_BAKE_BOUNDARY,
+                                                      .roughness = sc->objects[0].roughness,
+                                                      .boundary_photons = k_boundary_photons},
+                                  NULL, &tb));
     for (int y = 0; y < size; y++)
         for (int x = 0; x < size; x++) {
             double r = plane_radius(sc, size, x, y);
@@ -135,13 +152,15 @@ static double impulse_error(const char *what, const lucent_scene *sc, const luce
                 for (int k = 0; k < g->count; k++)
                     e += g->weight[c][k] / wsum[c] * exp(-r * r / (2 * g->variance[c][k])) /
                          (2 * M_PI * g->variance[c][k]);
-                got[b][c] += lucent_image_get(img, x, y, c), want[b][c] += s * s * e * exit_factor(sc, size, x, y);
+                got[b][c] += lucent_image_get(img, x, y, c),
+                    want[b][c] += s * s * e * exit_factor(sc, tb.boundary, size, x, y, c);
             }
         }
     for (int b = 0; b < BINS; b++)
         for (int c = 0; c < 3 && count[b]; c++) peak[c] = fmax(peak[c], want[b][c] / count[b]);
     for (int b = 0; b < BINS; b++)
         for (int c = 0; c < 3 && count[b]; c++) worst = fmax(worst, fabs(got[b][c] - want[b][c]) / count[b] / peak[c]);
+    lucent_baked_free(&tb);
     printf("     %s: radially averaged impulse response within %.2f%% of the peak (s^2 R(0) = %.4g, %.4g, %.4g)\n",
            what, 100 * worst, peak[0], peak[1], peak[2]);
     return worst;

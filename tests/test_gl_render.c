@@ -36,7 +36,16 @@ static lucent_renderer *renderer_with(const lucent_scene *sc, const lucent_rende
     return r;
 }
 
-static lucent_renderer *renderer_of(const lucent_scene *sc) { return renderer_with(sc, NULL); }
+/* The boundary's tables with few photons (about 5% per entry): no test here measures them (the
+ * reference comparisons read the table the renderer used; test_gl_boundary holds the tables to the
+ * path tracer), and every renderer of a test bakes its own. */
+enum { TEST_BOUNDARY_PHOTONS = 400, TEST_SPHERE_PHOTONS = 2000 };
+
+static lucent_renderer *renderer_of(const lucent_scene *sc)
+{
+    return renderer_with(
+        sc, &(lucent_renderer_desc){.boundary_photons = TEST_BOUNDARY_PHOTONS, .sphere_photons = TEST_SPHERE_PHOTONS});
+}
 
 /* ---- the CDRF and Lambert passes against the CPU reference ---- */
 
@@ -61,9 +70,15 @@ static double shading_error(lucent_renderer *r, const lucent_scene *sc, const lu
     CHECK_OK(gl_renderer_read_aov(r, 0, &nk));
     CHECK_OK(gl_renderer_read_aov(r, 1, &pos));
     const lucent_scene_object *o = &sc->objects[0];
-    gl_ref_material m = {.roughness = o->roughness, .eta = o->material.eta};
+    const lucent_baked *b = gl_tables_of(&r->tables, 0); /* the tables it used */
+    bool curved = s->view.method == LUCENT_METHOD_CDRF && s->cdrf.curved_parts;
+    gl_ref_material m = {.roughness = o->roughness,
+                         .eta = o->material.eta,
+                         .boundary = b->boundary,
+                         .spheres = curved ? b->spheres : NULL,
+                         .sphere_r0 = b->sphere_r0};
     lucent_render_object_info info;
-    CHECK_OK(lucent_renderer_object_info(r, 0, &info)); /* the albedo it shaded with: the material's MC Rd */
+    CHECK_OK(lucent_renderer_object_info(r, 0, &info)); /* the albedo it shaded with: the boundary's */
     for (int c = 0; c < 3; c++) m.albedo[c] = info.albedo[c], m.sigma0[c] = o->sigma0[c];
     for (size_t i = 0; res.image && nk && pos && i < (size_t)s->view.width * (size_t)s->view.height; i++) {
         if (res.mask->data[i] < 0.5f) continue;
@@ -92,24 +107,27 @@ TEST(cdrf_and_lambert_equal_cpu_reference)
     static const struct {
         lucent_render_method m;
         lucent_cdrf_variant v;
-        bool lut;
-    } cases[] = {{LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, true},
-                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_COLLOMB, true},
-                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, false},
-                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_COLLOMB, false},
-                 {LUCENT_METHOD_LAMBERT, LUCENT_CDRF_KUBO, false}};
+        bool lut, curved;
+    } cases[] = {{LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, true, false},
+                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_COLLOMB, true, false},
+                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, false, false},
+                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_COLLOMB, false, false},
+                 {LUCENT_METHOD_LAMBERT, LUCENT_CDRF_KUBO, false, false},
+                 {LUCENT_METHOD_CDRF, LUCENT_CDRF_KUBO, true, true}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         lucent_render_settings s = sc->render;
         s.view.method = cases[k].m, s.cdrf.variant = cases[k].v, s.cdrf.lut = cases[k].lut;
+        s.cdrf.curved_parts = cases[k].curved;
         lucent_cdrf_lut_desc ld = lucent_cdrf_lut_defaults();
         ld.variant = cases[k].v;
         lucent_image *lut = NULL;
         CHECK_OK(lucent_cdrf_lut_build(&ld, &lut));
         double max_sigma = 0, err = shading_error(r, sc, &s, lut, &max_sigma);
+        const char *how = s.cdrf.curved_parts ? "curved parts" : s.cdrf.lut ? "LUT" : "closed form";
         CHECK_MSG(err >= 0 && err <= 1e-3, "%s %s %s: max |GPU - CPU| = %.3g", lucent_render_method_name(s.view.method),
-                  lucent_cdrf_variant_name(s.cdrf.variant), s.cdrf.lut ? "LUT" : "closed form", err);
+                  lucent_cdrf_variant_name(s.cdrf.variant), how, err);
         printf("     %s %s %s: max |GPU - CPU| = %.3g (sigma up to %.2f)\n", lucent_render_method_name(s.view.method),
-               lucent_cdrf_variant_name(s.cdrf.variant), s.cdrf.lut ? "LUT" : "closed form", err, max_sigma);
+               lucent_cdrf_variant_name(s.cdrf.variant), how, err, max_sigma);
         if (k == 0) CHECK_MSG(max_sigma > 1.5, "the torus exercises sigma up to %.2f only", max_sigma);
         lucent_image_destroy(lut);
     }
@@ -234,12 +252,10 @@ TEST(translucency_brightens_a_backlit_disc_in_red)
 }
 
 /* Expected: with render.transmittance "slab", a point of a flat part lit from straight behind with
- * irradiance E shows E T(s) F_t(w_o) / (mean F_t pi) of transmitted radiance, T(s) the total
- * transmittance of a slab of the material s mm thick (docs/render.md), F_t = 1 - F the boundary's
- * transmittance toward the viewer over its cosine-weighted hemispherical mean: light that is nearly
- * isotropic inside leaves a dielectric boundary with radiance in proportion to 1 - F(theta), so T is
- * spread over the exit directions as F_t cos / (mean F_t pi), not as a Lambertian cos / pi (the test's
- * expectation before issue 12, which put 7% less light on the axis than the boundary lets out). T comes here from an independent Monte Carlo run
+ * irradiance E shows E T(s) E_x(mu_o) / pi of transmitted radiance, T(s) the total transmittance of a
+ * slab of the material s mm thick (docs/render.md), E_x the boundary's exit curve (the diffuse light's
+ * way out toward the viewer, the same for every method, checked against the path tracer by
+ * test_gl_boundary; read here from the renderer's table at mu_o = 1). T comes here from an independent Monte Carlo run
  * (lucent_mc_run, 400000 photons per channel, another seed) at s = 4 mm, the disc's thickness on its
  * axis; the Monte Carlo itself is checked against van de Hulst's and Giovanelli's tables in test_mc,
  * so what is tested here is the renderer's path from table to pixel: sampling and interpolating the
@@ -253,7 +269,9 @@ TEST(slab_translucency_matches_monte_carlo_transmittance)
 {
     enum { TABLE_PHOTONS = 20000 };
     lucent_scene *sc = scene_from(k_slab);
-    lucent_renderer *r = renderer_with(sc, &(lucent_renderer_desc){.transmit_photons = TABLE_PHOTONS});
+    lucent_renderer *r = renderer_with(sc, &(lucent_renderer_desc){.transmit_photons = TABLE_PHOTONS,
+                                                                   .boundary_photons = TEST_BOUNDARY_PHOTONS,
+                                                                   .sphere_photons = TEST_SPHERE_PHOTONS});
     if (r) {
         lucent_render_settings s = sc->render;
         s.view.shadow_map_size = 4096;
@@ -267,9 +285,9 @@ TEST(slab_translucency_matches_monte_carlo_transmittance)
         const lucent_material *m = &sc->objects[0].material;
         lucent_material_derived d;
         lucent_material_derive(m, &d);
-        /* the light leaves the disc's front toward the camera on its axis (normal view) */
-        double ft_axis = (1 - lucent_fresnel_dielectric(1, m->eta, NULL)) / lucent_fresnel_mean_transmittance(m->eta);
         for (int c = 0; c < 3; c++) {
+            /* the light leaves the disc's front toward the camera on its axis (normal view) */
+            double ft_axis = gl_ref_boundary(gl_tables_of(&r->tables, 0)->boundary, c, 0, 1, true);
             lucent_mc_layer layer = {
                 .n = m->eta, .sigma_a = m->sigma_a[c], .sigma_s = m->sigma_s[c], .g = m->g[c], .thickness = 4};
             lucent_mc_desc md = {.layers = &layer,
@@ -281,7 +299,7 @@ TEST(slab_translucency_matches_monte_carlo_transmittance)
             CHECK_OK(lucent_mc_run(&md, &mc));
             double t = mc.tt, expected = 3 * t * ft_axis / M_PI, got = with[c] - without[c];
             double tol = 3 * sqrt(t * (1 - t) / TABLE_PHOTONS) / t + (exp(d.sigma_tr[c] * 0.025) - 1) + 0.01;
-            printf("     channel %d: transmitted %.5f, 3 T(4 mm) F_t / (mean F_t pi) %.5f (T %.4f +- %.4f), rel. diff "
+            printf("     channel %d: transmitted %.5f, 3 T(4 mm) E_x(1) / pi %.5f (T %.4f +- %.4f), rel. diff "
                    "%.2f%%, tol "
                    "%.2f%%\n",
                    c, got, expected, t, mc.tt_se, 100 * (got / expected - 1), 100 * tol);
@@ -425,15 +443,19 @@ TEST(scene_changes_and_adopted_bakes_give_a_fresh_renderers_pixels)
         lucent_renderer_desc rd = lucent_renderer_defaults();
         lucent_baked b = {0}, copy = {0};
         unsigned what = lucent_renderer_bakes(m, &other->render);
-        /* the albedo (the material's Monte Carlo Rd) with every method */
-        CHECK(what == (LUCENT_BAKE_TAPS | LUCENT_BAKE_RD) ||
-              what == (LUCENT_BAKE_TAPS | LUCENT_BAKE_TRANSMITTANCE | LUCENT_BAKE_RD));
+        /* the boundary's tables (the albedo and the entry and exit factors) with every method; ssss's
+         * curved parts (on by default) */
+        unsigned ssss = LUCENT_BAKE_TAPS | LUCENT_BAKE_SPHERES | LUCENT_BAKE_BOUNDARY;
+        CHECK(what == ssss || what == (ssss | LUCENT_BAKE_TRANSMITTANCE));
         CHECK_OK(lucent_material_bake(&other->objects[0].material,
                                       &(lucent_bake_desc){.what = what,
                                                           .settings = &other->render,
                                                           .profile_photons = rd.profile_photons,
                                                           .transmit_photons = rd.transmit_photons,
-                                                          .sigma0_photons = rd.sigma0_photons},
+                                                          .sigma0_photons = rd.sigma0_photons,
+                                                          .roughness = other->objects[0].roughness,
+                                                          .boundary_photons = TEST_BOUNDARY_PHOTONS,
+                                                          .sphere_photons = TEST_SPHERE_PHOTONS},
                                       NULL, &b));
         CHECK_OK(lucent_baked_copy(&b, &copy));
         lucent_baked_free(&b); /* the copy stands alone */
@@ -447,17 +469,22 @@ TEST(scene_changes_and_adopted_bakes_give_a_fresh_renderers_pixels)
         lucent_material ketchup;
         lucent_material_preset_find("ketchup", &ketchup);
         CHECK_ERR(lucent_renderer_adopt_baked(m, &ketchup, &copy), LUCENT_ERR_NOT_FOUND, "Ketchup");
-        /* what each method bakes: lambert only the albedo; cdrf no sigma0 fit where the scene gives
-         * sigma0; no albedo where the scene gives its colour */
+        /* what each method bakes: lambert only the boundary's tables; cdrf no sigma0 fit where the
+         * scene gives sigma0, the spheres with curved parts (the default); the boundary's tables also
+         * where the scene gives its colour (the entry and exit factors) */
         lucent_render_settings s = other->render;
+        unsigned curved = LUCENT_BAKE_SPHERES | LUCENT_BAKE_BOUNDARY;
         s.view.method = LUCENT_METHOD_LAMBERT;
-        CHECK(lucent_renderer_bakes(m, &s) == LUCENT_BAKE_RD);
+        CHECK(lucent_renderer_bakes(m, &s) == LUCENT_BAKE_BOUNDARY);
         s.view.method = LUCENT_METHOD_CDRF, s.cdrf.sigma0 = LUCENT_SIGMA0_FIT;
-        CHECK(lucent_renderer_bakes(m, &s) == LUCENT_BAKE_RD);
+        CHECK(lucent_renderer_bakes(m, &s) == curved);
+        s.cdrf.curved_parts = false;
+        CHECK(lucent_renderer_bakes(m, &s) == LUCENT_BAKE_BOUNDARY);
+        s.cdrf.curved_parts = true;
         other->objects[0].sigma0_set = false;
-        CHECK(lucent_renderer_bakes(m, &s) == (LUCENT_BAKE_SIGMA0 | LUCENT_BAKE_RD));
+        CHECK(lucent_renderer_bakes(m, &s) == (LUCENT_BAKE_SIGMA0 | curved));
         other->objects[0].albedo_source = LUCENT_ALBEDO_COLOR;
-        CHECK(lucent_renderer_bakes(m, &s) == LUCENT_BAKE_SIGMA0);
+        CHECK(lucent_renderer_bakes(m, &s) == (LUCENT_BAKE_SIGMA0 | curved));
         lucent_baked_free(&copy);
     }
     lucent_renderer_destroy(m);

@@ -284,7 +284,10 @@ TEST(method_names)
     CHECK_OK(lucent_render_method_parse("ssss:sog4", &m, &s));
     CHECK(s.ssss.kernel == LUCENT_KERNEL_SOG && s.ssss.rank == 4);
     CHECK_ERR(lucent_render_method_parse("ssss:preint2", &m, &s), LUCENT_ERR_INVALID_ARGUMENT, "rank 1");
-    CHECK_ERR(lucent_render_method_parse("cdrf:svd", &m, &s), LUCENT_ERR_INVALID_ARGUMENT, "only ssss");
+    CHECK_ERR(lucent_render_method_parse("cdrf:svd", &m, &s), LUCENT_ERR_INVALID_ARGUMENT, "unknown cdrf variant");
+    CHECK_ERR(lucent_render_method_parse("lambert:svd", &m, &s), LUCENT_ERR_INVALID_ARGUMENT, "takes no variant");
+    CHECK_OK(lucent_render_method_parse("cdrf:kubo", &m, &s)); /* Kubo's alone: no curved parts */
+    CHECK(m == LUCENT_METHOD_CDRF && !s.cdrf.curved_parts);
     CHECK_ERR(lucent_render_method_parse("phong", &m, &s), LUCENT_ERR_INVALID_ARGUMENT, "lambert");
     for (int i = 0; i < LUCENT_METHOD_COUNT; i++) {
         CHECK_OK(lucent_render_method_parse(lucent_render_method_name((lucent_render_method)i), &m, NULL));

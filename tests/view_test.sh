@@ -151,7 +151,8 @@ e2=$(grep '^view:' "$TMP/trace.out" | sed -n '2s/.*rel_rms \([0-9.e+-]*\),.*/\1/
 check "the progressive trace is the reference, and the error falls with its samples ($e1 then $e2)" -- eval \
   'grep -q "reference progressive trace, [0-9]* spp" "$TMP/trace.out" && awk -v a="$e1" -v b="$e2" "BEGIN { exit !(b > 0 && b < a) }"'
 
-# Hot reload: the scene file changes on disk, the viewer reads it again (here: another method).
+# Hot reload: the scene file changes on disk, the viewer reads it again (here: another method). The last
+# view line is the new method's (a bake's log line, from its own thread, may come after it).
 cp "$SPHERE" "$TMP/watched.json"
 printf 'print\nwait-reload 60\nprint\nquit\n' >"$TMP/reload.txt"
 "$LUCENT" view "$TMP/watched.json" --script "$TMP/reload.txt" --headless --no-cache >"$TMP/reload.out" 2>&1 &
@@ -160,7 +161,7 @@ for _ in $(seq 600); do grep -q "^view:" "$TMP/reload.out" && break; sleep 0.1; 
 sed 's/"method": "ssss"/"method": "lambert"/' "$SPHERE" >"$TMP/watched.tmp" && mv "$TMP/watched.tmp" "$TMP/watched.json"
 wait $pid
 check "a changed scene file is read again" -- eval \
-  'grep -q "^view: ssss" "$TMP/reload.out" && grep -q "^reloaded" "$TMP/reload.out" && tail -1 "$TMP/reload.out" | grep -q "^view: lambert"'
+  'grep -q "^view: ssss" "$TMP/reload.out" && grep -q "^reloaded" "$TMP/reload.out" && grep "^view:" "$TMP/reload.out" | tail -1 | grep -q "^view: lambert"'
 
 # A spectral skin's melanin slider (docs/skin.md): more melanin bakes a darker skin whose blue falls more
 # than its red (melanin absorbs more the shorter the wavelength: Donner & Jensen 2006's lambda^-3.33), so

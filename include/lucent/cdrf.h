@@ -115,6 +115,11 @@ typedef struct lucent_cdrf_sphere_result {
     double theta[LUCENT_CDRF_MAX_BINS];          /* bin centres, radians */
     double radiance[3][LUCENT_CDRF_MAX_BINS];    /* per channel, per unit irradiance */
     double radiance_se[3][LUCENT_CDRF_MAX_BINS]; /* standard errors from the batches */
+    double exitance[3][LUCENT_CDRF_MAX_BINS];    /* the light leaving each theta band, every direction, per
+                                                    unit area and unit irradiance */
+    double flow[3][LUCENT_CDRF_MAX_BINS];        /* the mean over that light of t . f, t its direction, f the
+                                                    unit tangent away from the light: how far the exit leans
+                                                    down the surface (0: as on a half-space) */
     double entered[3];                           /* fraction of the light's power that entered the sphere */
     double exited[3];                            /* fraction that left it again (every direction) */
     double absorbed[3];                          /* fraction absorbed inside */

@@ -284,6 +284,53 @@ double lucent_slab_transmittance_eval(const lucent_slab_transmittance *t, int c,
  * piecewise-constant bins of p (lucent_profile_tail(p, c, 0) is lucent_profile_total). */
 double lucent_profile_tail(const lucent_profile *p, int c, double s);
 
+/* ---- The path tracer's boundary on a flat part (docs/render.md, "One boundary") ----------
+ * A half-space (thickness 0) or a slab of the material whose faces are the path tracer's rough
+ * dielectric boundary (GGX alpha = roughness, Walter et al. 2007 with single-scattering microfacets,
+ * from base/optics.h; roughness 0: a smooth Fresnel face), lit by collimated light at incidence
+ * cosine mu_i. Tables over incidence and exit cosine bins (uniform in cosine, LUCENT_BOUNDARY_BINS of
+ * them, light drawn cosine-weighted within its incidence bin), averaged over azimuth: the bin average
+ * of pi f(mu_i, mu_o), f the BRDF (reflect) or BTDF (transmit) of the light that entered the medium,
+ * so that a face lit by irradiance E at mu_i shows radiance E table / pi at mu_o. The light reflected
+ * where it arrives (the specular lobe) is not in the tables; its albedo is. Photons per channel and
+ * incidence bin; chunks (channel, incidence bin, batch) seeded (seed, chunk). */
+enum { LUCENT_BOUNDARY_BINS = 32, LUCENT_BOUNDARY_PHOTONS = 20000 };
+
+typedef struct lucent_boundary_desc {
+    const lucent_material *material;
+    double roughness; /* GGX alpha of both faces, [0, 1]; 0: smooth */
+    double thickness; /* mm; 0: a half-space */
+    uint64_t photons; /* per channel and incidence bin (0: LUCENT_BOUNDARY_PHOTONS) */
+    int batches;      /* for the standard errors, 2..4096 (0: 8) */
+    uint64_t seed;    /* 0: 1 */
+    lucent_pool *pool;
+    const char *label; /* the progress bar's (NULL: "boundary tables") */
+} lucent_boundary_desc;
+
+typedef struct lucent_boundary_result {
+    uint64_t photons; /* per channel and incidence bin */
+    /* [channel][incidence bin][exit bin]: pi f, and its standard error */
+    double reflect[3][LUCENT_BOUNDARY_BINS][LUCENT_BOUNDARY_BINS];
+    double reflect_se[3][LUCENT_BOUNDARY_BINS][LUCENT_BOUNDARY_BINS];
+    double transmit[3][LUCENT_BOUNDARY_BINS][LUCENT_BOUNDARY_BINS]; /* slabs only */
+    double transmit_se[3][LUCENT_BOUNDARY_BINS][LUCENT_BOUNDARY_BINS];
+    /* transmit split by scattering order: [0] unscattered, [1] scattered once, [2] more */
+    double transmit_order[3][3][LUCENT_BOUNDARY_BINS][LUCENT_BOUNDARY_BINS];
+    /* the rows integrated over exit, 2 int table mu_o dmu_o (the reflectance and transmittance of
+     * light arriving in each incidence bin), and their standard errors */
+    double reflect_total[3][LUCENT_BOUNDARY_BINS], reflect_total_se[3][LUCENT_BOUNDARY_BINS];
+    double transmit_total[3][LUCENT_BOUNDARY_BINS], transmit_total_se[3][LUCENT_BOUNDARY_BINS];
+    double specular[3][LUCENT_BOUNDARY_BINS]; /* the albedo of the reflection where the light arrives */
+    double absorbed[3][LUCENT_BOUNDARY_BINS]; /* the fraction absorbed in the medium */
+    double specular_se[3][LUCENT_BOUNDARY_BINS], absorbed_se[3][LUCENT_BOUNDARY_BINS];
+} lucent_boundary_result;
+
+/* Runs the Monte Carlo of desc into dest (about 400 kB: allocate it). Deterministic for a seed. */
+lucent_status lucent_boundary_run(const lucent_boundary_desc *desc, lucent_boundary_result *dest);
+
+/* The centre of bin b of the tables' cosines, (b + 1/2) / LUCENT_BOUNDARY_BINS. */
+double lucent_boundary_bin_cosine(int bin);
+
 #ifdef __cplusplus
 }
 #endif

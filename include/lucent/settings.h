@@ -106,6 +106,8 @@ typedef struct lucent_cdrf_settings {
     int curvature_smooth;        /* n-ring smoothing of the per-vertex curvature */
     bool tail;                   /* past the terminator, the material's profile (a sum of Gaussians)
                                     where it exceeds Kubo's one Gaussian of sigma0 */
+    bool curved_parts;           /* cdrf and ssss: the factor of the material's Monte Carlo spheres (the
+                                    spheres bake) in place of Kubo's CDRF or Lambert's max(n.l, 0) */
 } lucent_cdrf_settings;
 
 typedef struct lucent_points_settings {

@@ -1,6 +1,7 @@
 /* What a renderer needs from a material (lucent/bake.h), each part rebuilt only when the settings it
  * depends on changed, the Monte Carlo parts kept in the disk cache. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "lucent/bake.h"
@@ -22,6 +23,9 @@ static lucent_bake_desc resolve(const lucent_bake_desc *d, lucent_render_setting
     if (!r.transmit_photons) r.transmit_photons = LUCENT_BAKE_TRANSMIT_PHOTONS;
     if (!r.sigma0_photons) r.sigma0_photons = LUCENT_BAKE_SIGMA0_PHOTONS;
     if (!r.sog_count) r.sog_count = 6;
+    if (!r.boundary_photons) r.boundary_photons = LUCENT_BAKE_BOUNDARY_PHOTONS;
+    if (!r.sphere_photons) r.sphere_photons = LUCENT_BAKE_SPHERE_PHOTONS;
+    if (r.what & LUCENT_BAKE_SPHERES) r.what |= LUCENT_BAKE_BOUNDARY;
     if (r.what & (LUCENT_BAKE_TAPS | LUCENT_BAKE_SOG)) r.what |= LUCENT_BAKE_PROFILE;
     if ((r.what & LUCENT_BAKE_TRANSMITTANCE) && r.settings->translucency.transmittance == LUCENT_TRANSMIT_PROFILE)
         r.what |= LUCENT_BAKE_PROFILE;
@@ -183,7 +187,7 @@ static void sigma0_cache_key(const lucent_material *m, lucent_cdrf_variant v, ui
     material_key(m, mat, sizeof mat);
     for (int i = 0; i < LUCENT_CDRF_FIT_RADIUS_COUNT; i++)
         snprintf(list + strlen(list), sizeof list - strlen(list), "%s%g", i ? "," : "", radii[i]);
-    snprintf(dest, size, "v2 %s %s photons %llu radii %s bins %d seed 1", mat, lucent_cdrf_variant_name(v),
+    snprintf(dest, size, "v3 %s %s photons %llu radii %s bins %d seed 1", mat, lucent_cdrf_variant_name(v),
              (unsigned long long)photons, list, LUCENT_BAKE_SIGMA0_BINS);
 }
 
@@ -278,6 +282,187 @@ static lucent_status bake_sog(const lucent_material *m, const lucent_bake_desc *
     return LUCENT_OK;
 }
 
+/* ---- boundary: the path tracer's rough boundary on a half-space (docs/render.md, "One boundary") ---- */
+
+enum { BB = LUCENT_BOUNDARY_BINS };
+
+/* The methods' albedo, exit curve and entry factor (lucent/bake.h) from the table of pi f and its
+ * standard errors, made symmetric first: light and viewer both outside, the reflectance is reciprocal
+ * (Helmholtz; the boundary's BSDF keeps the generalised reciprocity of Walter et al. 2007 eq. 21,
+ * azimuth averaging keeps it), f(mu_i, mu_o) = f(mu_o, mu_i), so the table and its transpose are two
+ * estimates of the same values; their inverse-variance mean has less variance than either (the exit
+ * bins near the normal, fed by a narrow cone inside, are the noisiest: their transposes help most). */
+static void boundary_factors(const double (*reflect)[BB][BB], const double (*se)[BB][BB], lucent_baked *b)
+{
+    for (int c = 0; c < 3; c++) {
+        double exit[BB], albedo = 0; /* exit[o]: pi f under uniform light, int pi f(mu_i, mu_o) 2 mu_i dmu_i */
+        double sym[BB][BB];
+        for (int i = 0; i < BB; i++)
+            for (int o = 0; o < BB; o++) {
+                double va = se[c][i][o] * se[c][i][o], vb = se[c][o][i] * se[c][o][i];
+                sym[i][o] = va + vb > 0 ? (reflect[c][i][o] * vb + reflect[c][o][i] * va) / (va + vb)
+                                        : 0.5 * (reflect[c][i][o] + reflect[c][o][i]);
+            }
+        for (int o = 0; o < BB; o++) {
+            exit[o] = 0;
+            for (int i = 0; i < BB; i++) exit[o] += sym[i][o] * (2.0 * i + 1.0) / (BB * BB);
+            albedo += exit[o] * (2.0 * o + 1.0) / (BB * BB);
+        }
+        b->boundary_albedo[c] = albedo;
+        for (int o = 0; o < BB; o++) {
+            double e = albedo > 0 ? exit[o] / albedo : 1.0;
+            b->boundary[(BB * BB + o) * 3 + c] = (float)e;
+            for (int i = 0; i < BB; i++)
+                b->boundary[((size_t)i * BB + o) * 3 + c] = exit[o] > 0 ? (float)(sym[i][o] / exit[o]) : 1.0f;
+        }
+    }
+}
+
+static lucent_status bake_boundary(const lucent_material *m, const lucent_bake_desc *d, lucent_cache *cache,
+                                   lucent_baked *b)
+{
+    char key[LUCENT_BAKE_KEY_SIZE];
+    snprintf(key, sizeof key, "%.17g/%llu", d->roughness, (unsigned long long)d->boundary_photons);
+    if ((b->have & LUCENT_BAKE_BOUNDARY) && !strcmp(key, b->boundary_key)) return LUCENT_OK;
+    b->have &= ~(unsigned)LUCENT_BAKE_BOUNDARY, b->boundary_key[0] = '\0';
+    char mat[512], ckey[768];
+    material_key(m, mat, sizeof mat);
+    snprintf(ckey, sizeof ckey, "boundary v1 %s roughness %.17g photons %llu bins %d seed 1", mat, d->roughness,
+             (unsigned long long)d->boundary_photons, BB);
+    double(*reflect)[BB][BB] = malloc(6 * sizeof *reflect), (*se)[BB][BB] = reflect ? reflect + 3 : NULL;
+    if (!reflect) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    b->boundary_cached = lucent_cache_get(cache, "boundary", ckey, "reflect", 3 * BB * BB, &reflect[0][0][0]) &&
+                         lucent_cache_get(cache, "boundary", ckey, "reflect_se", 3 * BB * BB, &se[0][0][0]);
+    lucent_status s = LUCENT_OK;
+    if (!b->boundary_cached) {
+        lucent_boundary_result *r = malloc(sizeof *r);
+        double t0 = lucent_clock_seconds();
+        s = r ? lucent_boundary_run(&(lucent_boundary_desc){.material = m,
+                                                            .roughness = d->roughness,
+                                                            .photons = d->boundary_photons,
+                                                            .seed = 1,
+                                                            .pool = d->pool,
+                                                            .label = "the boundary's tables"},
+                                    r)
+              : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+        if (s == LUCENT_OK) {
+            memcpy(reflect, r->reflect, 3 * sizeof *reflect);
+            memcpy(se, r->reflect_se, 3 * sizeof *se);
+            lucent_log(LUCENT_LOG_INFO, "boundary tables of %s at roughness %g in %.1f s", m->name, d->roughness,
+                       lucent_clock_seconds() - t0);
+            lucent_cache_field f[2] = {{"reflect", &r->reflect[0][0][0], 3 * BB * BB},
+                                       {"reflect_se", &r->reflect_se[0][0][0], 3 * BB * BB}};
+            lucent_cache_put(cache, "boundary", ckey, f, 2);
+        }
+        free(r);
+    }
+    if (s == LUCENT_OK) {
+        boundary_factors((const double(*)[BB][BB])reflect, (const double(*)[BB][BB])se, b);
+        b->boundary_roughness = d->roughness;
+        snprintf(b->boundary_key, sizeof b->boundary_key, "%s", key);
+        b->have |= LUCENT_BAKE_BOUNDARY;
+    }
+    free(reflect);
+    return s == LUCENT_OK ? s : lucent_error_context(s, "material %s: boundary tables", m->name);
+}
+
+/* ---- spheres: the curved parts' exitance (docs/render.md, "Curved parts") ---- */
+
+enum { SR = LUCENT_BAKE_SPHERE_RADII, SB = LUCENT_BAKE_SPHERE_BINS };
+
+/* The half-space's exitance per unit irradiance at incidence cosine mu, a(mu): albedo x the entry
+ * factor's mean over exit (lucent/bake.h), linear in mu between the incidence bins' centres. */
+static double half_space_albedo(const lucent_baked *b, int c, double mu)
+{
+    double y = fmin(fmax(mu * BB - 0.5, 0), BB - 1);
+    int i0 = (int)fmin(floor(y), BB - 2);
+    double f = y - i0, a[2] = {0, 0};
+    for (int k = 0; k < 2; k++)
+        for (int o = 0; o < BB; o++)
+            a[k] += b->boundary[((size_t)(i0 + k) * BB + o) * 3 + c] * b->boundary[(BB * BB + o) * 3 + c] *
+                    (2.0 * o + 1.0) / (BB * BB);
+    return b->boundary_albedo[c] * ((1 - f) * a[0] + f * a[1]);
+}
+
+static double sphere_r0(const lucent_material *m)
+{
+    lucent_material_derived md;
+    lucent_material_derive(m, &md);
+    double tr = fmax(md.sigma_tr[0], fmax(md.sigma_tr[1], md.sigma_tr[2]));
+    return 0.25 / fmax(tr, 1e-3);
+}
+
+static void spheres_table(const double (*exitance)[SR][SB], const double (*flow)[SR][SB], lucent_baked *b)
+{
+    size_t beta = (size_t)(SR + 1) * SB * 3; /* the second half: beta */
+    for (int c = 0; c < 3; c++)
+        for (int j = 0; j < SB; j++) {
+            double ta = M_PI * j / SB, tb = M_PI * (j + 1) / SB;
+            double flat = (sin(fmin(tb, M_PI / 2)) - sin(fmin(ta, M_PI / 2))) / (tb - ta); /* mean of max(cos, 0) */
+            double a = half_space_albedo(b, c, fmax(cos(0.5 * (ta + tb)), 0));
+            for (int k = 0; k < SR; k++) {
+                b->spheres[((size_t)k * SB + j) * 3 + c] = a > 0 ? (float)(exitance[c][k][j] / a) : 0.0f;
+                b->spheres[beta + ((size_t)k * SB + j) * 3 + c] = (float)(4.0 * flow[c][k][j]);
+            }
+            b->spheres[((size_t)SR * SB + j) * 3 + c] = (float)flat;
+            b->spheres[beta + ((size_t)SR * SB + j) * 3 + c] = 0.0f;
+        }
+}
+
+static lucent_status bake_spheres(const lucent_material *m, const lucent_bake_desc *d, lucent_cache *cache,
+                                  lucent_baked *b)
+{
+    char key[LUCENT_BAKE_KEY_SIZE];
+    snprintf(key, sizeof key, "%.64s/%llu", b->boundary_key, (unsigned long long)d->sphere_photons);
+    if ((b->have & LUCENT_BAKE_SPHERES) && !strcmp(key, b->spheres_key)) return LUCENT_OK;
+    b->have &= ~(unsigned)LUCENT_BAKE_SPHERES, b->spheres_key[0] = '\0';
+    char mat[512], ckey[768];
+    material_key(m, mat, sizeof mat);
+    double r0 = sphere_r0(m);
+    snprintf(ckey, sizeof ckey, "spheres v2 %s roughness %.17g photons %llu radii %d from %.17g bins %d seed 1", mat,
+             d->roughness, (unsigned long long)d->sphere_photons, SR, r0, SB);
+    double(*exitance)[SR][SB] = malloc(6 * sizeof *exitance), (*flow)[SR][SB] = exitance ? exitance + 3 : NULL;
+    if (!exitance) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    b->spheres_cached = lucent_cache_get(cache, "spheres", ckey, "exitance", 3 * SR * SB, &exitance[0][0][0]) &&
+                        lucent_cache_get(cache, "spheres", ckey, "flow", 3 * SR * SB, &flow[0][0][0]);
+    lucent_status s = LUCENT_OK;
+    if (!b->spheres_cached) {
+        double t0 = lucent_clock_seconds();
+        for (int k = 0; k < SR && s == LUCENT_OK; k++) {
+            lucent_cdrf_sphere_result r;
+            lucent_cdrf_sphere_desc sd = {.material = m,
+                                          .radius = r0 * pow(2.0, 0.5 * k),
+                                          .roughness = d->roughness,
+                                          .photons = d->sphere_photons,
+                                          .bins = SB,
+                                          .batches = 8,
+                                          .seed = 1 + (uint64_t)k,
+                                          .pool = d->pool,
+                                          .label = "curved parts: Monte Carlo spheres"};
+            s = lucent_cdrf_sphere_run(&sd, &r);
+            for (int c = 0; s == LUCENT_OK && c < 3; c++) {
+                memcpy(exitance[c][k], r.exitance[c], sizeof exitance[c][k]);
+                memcpy(flow[c][k], r.flow[c], sizeof flow[c][k]);
+            }
+        }
+        if (s == LUCENT_OK) {
+            lucent_log(LUCENT_LOG_INFO, "spheres of %s at roughness %g: %d radii from %.3g mm in %.1f s", m->name,
+                       d->roughness, SR, r0, lucent_clock_seconds() - t0);
+            lucent_cache_field f[2] = {{"exitance", &exitance[0][0][0], 3 * SR * SB},
+                                       {"flow", &flow[0][0][0], 3 * SR * SB}};
+            lucent_cache_put(cache, "spheres", ckey, f, 2);
+        }
+    }
+    if (s == LUCENT_OK) {
+        spheres_table((const double(*)[SR][SB])exitance, (const double(*)[SR][SB])flow, b);
+        b->sphere_r0 = r0;
+        snprintf(b->spheres_key, sizeof b->spheres_key, "%s", key);
+        b->have |= LUCENT_BAKE_SPHERES;
+    }
+    free(exitance);
+    return s == LUCENT_OK ? s : lucent_error_context(s, "material %s: curved parts", m->name);
+}
+
 lucent_status lucent_material_bake(const lucent_material *material, const lucent_bake_desc *desc, lucent_cache *cache,
                                    lucent_baked *baked)
 {
@@ -298,6 +483,14 @@ lucent_status lucent_material_bake(const lucent_material *material, const lucent
     if (s == LUCENT_OK && (d.what & LUCENT_BAKE_SIGMA0)) s = bake_sigma0(material, &d, cache, baked);
     if (s == LUCENT_OK && (d.what & LUCENT_BAKE_SOG)) s = bake_sog(material, &d, baked);
     if (s == LUCENT_OK && (d.what & LUCENT_BAKE_RD)) s = bake_rd(material, &d, cache, baked);
+    if (s == LUCENT_OK && (d.what & LUCENT_BAKE_BOUNDARY)) {
+        if (!(d.roughness >= 0) || d.roughness > 1)
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT,
+                                "material %s: boundary roughness must be in [0, 1] (got %g)", material->name,
+                                d.roughness);
+        s = bake_boundary(material, &d, cache, baked);
+    }
+    if (s == LUCENT_OK && (d.what & LUCENT_BAKE_SPHERES)) s = bake_spheres(material, &d, cache, baked);
     return s;
 }
 

@@ -94,10 +94,10 @@ unsigned lucent_renderer_bakes(const lucent_renderer *r, const lucent_render_set
 {
     const gl_method *m =
         s->view.method >= 0 && s->view.method < LUCENT_METHOD_COUNT ? gl_methods[s->view.method] : NULL;
-    unsigned rd = gl_renderer_needs_rd(r) ? LUCENT_BAKE_RD : 0u;
-    if (m && m->bakes) return m->bakes(r, s) | rd;
+    (void)r;
+    if (m && m->bakes) return m->bakes(r, s) | LUCENT_BAKE_BOUNDARY;
     return LUCENT_BAKE_PROFILE | LUCENT_BAKE_TAPS | LUCENT_BAKE_TRANSMITTANCE | LUCENT_BAKE_SIGMA0 | LUCENT_BAKE_SOG |
-           rd;
+           LUCENT_BAKE_BOUNDARY;
 }
 
 /* ---- the frame ---- */
@@ -154,9 +154,10 @@ static lucent_status prepare(lucent_renderer *r, const gl_method *m, void **stat
         *state = calloc(1, m->state_size ? m->state_size : 1);
         if (!*state) st = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
     }
-    if (st == LUCENT_OK && gl_renderer_needs_rd(r)) { /* the albedo (gl_renderer_object_albedo) */
-        lucent_bake_desc d = gl_renderer_bake_desc(r, s, LUCENT_BAKE_RD);
+    if (st == LUCENT_OK) { /* the boundary's albedo and factors (gl_renderer_object_albedo, lights.glsl) */
+        lucent_bake_desc d = gl_renderer_bake_desc(r, s, LUCENT_BAKE_BOUNDARY);
         st = gl_tables_bake(&r->tables, &d, r->cache);
+        if (st == LUCENT_OK) st = gl_tables_upload_boundary(&r->tables);
     }
     if (st == LUCENT_OK && m->prepare) st = m->prepare(r, *state, s);
     return st;
@@ -173,6 +174,7 @@ lucent_status gl_frame(lucent_renderer *r, const lucent_render_settings *s, luce
     frame_block(r, &b);
     glNamedBufferSubData(r->frame_ubo, 0, sizeof b, &b);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, r->frame_ubo);
+    glBindTextureUnit(GL_BOUNDARY_UNIT, r->tables.boundary_tex); /* lights.glsl's u_boundary, every pass */
     gl_timer_begin(&r->timer);
     if (r->shadows.layers > 0) draw_shadows(r);
     gl_timer_mark(&r->timer, "shadow");

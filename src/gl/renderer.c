@@ -11,6 +11,8 @@ lucent_renderer_desc lucent_renderer_defaults(void)
 {
     return (lucent_renderer_desc){.sigma0_photons = LUCENT_BAKE_SIGMA0_PHOTONS,
                                   .transmit_photons = LUCENT_BAKE_TRANSMIT_PHOTONS,
+                                  .boundary_photons = LUCENT_BAKE_BOUNDARY_PHOTONS,
+                                  .sphere_photons = LUCENT_BAKE_SPHERE_PHOTONS,
                                   .profile_photons = LUCENT_BAKE_PROFILE_PHOTONS};
 }
 
@@ -21,6 +23,8 @@ lucent_bake_desc gl_renderer_bake_desc(const lucent_renderer *r, const lucent_re
                               .profile_photons = r->desc.profile_photons,
                               .transmit_photons = r->desc.transmit_photons,
                               .sigma0_photons = r->desc.sigma0_photons,
+                              .boundary_photons = r->desc.boundary_photons,
+                              .sphere_photons = r->desc.sphere_photons,
                               .pool = r->desc.pool};
 }
 
@@ -28,16 +32,8 @@ void gl_renderer_object_albedo(const lucent_renderer *r, int object, double dest
 {
     const lucent_scene_object *o = &r->scene->objects[object];
     const lucent_baked *b = gl_tables_of(&r->tables, object);
-    bool mc = o->albedo_source == LUCENT_ALBEDO_FROM_MATERIAL && (b->have & LUCENT_BAKE_RD);
-    memcpy(dest, mc ? b->rd : o->albedo, 3 * sizeof *dest);
-}
-
-bool gl_renderer_needs_rd(const lucent_renderer *r)
-{
-    for (int i = 0; i < r->scene->object_count; i++)
-        if (r->scene->objects[i].visible && r->scene->objects[i].albedo_source == LUCENT_ALBEDO_FROM_MATERIAL)
-            return true;
-    return false;
+    bool mc = o->albedo_source == LUCENT_ALBEDO_FROM_MATERIAL && (b->have & LUCENT_BAKE_BOUNDARY);
+    memcpy(dest, mc ? b->boundary_albedo : o->albedo, 3 * sizeof *dest);
 }
 
 void gl_renderer_draw_objects(const lucent_renderer *r)
@@ -75,6 +71,8 @@ static lucent_renderer_desc resolve(const lucent_renderer_desc *d)
     lucent_renderer_desc r = d ? *d : (lucent_renderer_desc){0}, def = lucent_renderer_defaults();
     if (!r.sigma0_photons) r.sigma0_photons = def.sigma0_photons;
     if (!r.transmit_photons) r.transmit_photons = def.transmit_photons;
+    if (!r.boundary_photons) r.boundary_photons = def.boundary_photons;
+    if (!r.sphere_photons) r.sphere_photons = def.sphere_photons;
     if (!r.profile_photons) r.profile_photons = def.profile_photons;
     return r;
 }

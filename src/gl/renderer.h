@@ -51,14 +51,11 @@ struct lucent_renderer {
 /* The bake desc of the renderer for settings s and parts `what` (lucent/bake.h). */
 lucent_bake_desc gl_renderer_bake_desc(const lucent_renderer *r, const lucent_render_settings *s, unsigned what);
 
-/* The albedo object i is shaded with: the scene's colour when it gives one, else its material's
- * Monte Carlo total diffuse reflectance (the rd bake, made by every frame that needs it: the
- * diffuse light the reference reflects, which the dipole's closed form overestimates, Skin1's blue
- * by 15%); an albedo map is applied in the shader. */
+/* The albedo object i is shaded with: the scene's colour when it gives one, else the hemispherical
+ * albedo of a half-space of its material behind the path tracer's boundary at the object's
+ * roughness (the boundary bake, made by every frame: the diffuse light the reference reflects under
+ * uniform light; docs/render.md, "One boundary"); an albedo map is applied in the shader. */
 void gl_renderer_object_albedo(const lucent_renderer *r, int object, double dest[3]);
-
-/* True when an object takes its albedo from its material (the frame bakes LUCENT_BAKE_RD). */
-bool gl_renderer_needs_rd(const lucent_renderer *r);
 
 /* Draws every visible object's triangles with the bound program (shadow casters, scene passes). */
 void gl_renderer_draw_objects(const lucent_renderer *r);

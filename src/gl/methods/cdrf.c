@@ -36,6 +36,10 @@ static const lucent_setting k_cdrf[] = {
     SETTING_BOOL("cdrf_tail", cdrf.tail, true,
                  "past the terminator the material's profile (a sum of Gaussians) where it exceeds Kubo's Gaussian "
                  "of sigma0: the tail; objects that give sigma0 keep Kubo's alone"),
+    SETTING_BOOL("curved_parts", cdrf.curved_parts, true,
+                 "cdrf and ssss: light carried round curved parts, from the material's own Monte Carlo spheres "
+                 "(exitance over theta and radius, behind the tracer's boundary), in place of Kubo's CDRF or "
+                 "Lambert's max(n.l, 0); cdrf:kubo is Kubo's alone"),
 };
 
 const lucent_settings_group gl_cdrf_settings = SETTINGS_GROUP("cdrf", "the curvature-dependent reflectance", k_cdrf);
@@ -158,9 +162,11 @@ static lucent_status prepare(lucent_renderer *r, void *state, const lucent_rende
     if (e == LUCENT_OK) e = objects_sigma0(r, st, s);
     if (e == LUCENT_OK) e = objects_sog(r, st, s);
     if (e == LUCENT_OK && translucency) e = gl_translucency_prepare(r, s);
-    char defines[96];
-    snprintf(defines, sizeof defines, "#define CDRF_LUT %d\n#define CDRF_VARIANT %d\n#define TRANSLUCENCY %d\n",
-             s->cdrf.lut ? 1 : 0, s->cdrf.variant, translucency ? 1 : 0);
+    if (e == LUCENT_OK && s->cdrf.curved_parts) e = gl_curved_prepare(r, s);
+    char defines[128];
+    snprintf(defines, sizeof defines, "#define CDRF_LUT %d\n#define CDRF_VARIANT %d\n#define TRANSLUCENCY %d\n%s",
+             s->cdrf.lut ? 1 : 0, s->cdrf.variant, translucency ? 1 : 0,
+             s->cdrf.curved_parts ? "#define CURVED 1\n" : "");
     if (e == LUCENT_OK) e = gl_surface_program(r, "cdrf.frag.glsl", defines, &st->program);
     return e;
 }
@@ -201,6 +207,7 @@ static void object_uniforms(const lucent_renderer *r, const void *state, const l
     glUniform1f(glGetUniformLocation(p, "u_lut_sigma_max"), (float)st->lut_sigma_max);
     gl_translucency_uniforms(r, s, i, p, false);
     glUniform1f(glGetUniformLocation(p, "u_convex_carried"), 1.0f); /* sigma0 is fitted to whole spheres */
+    if (s->cdrf.curved_parts) gl_curved_uniforms(r, i, p);
 }
 
 static lucent_status draw(lucent_renderer *r, void *state, const lucent_render_settings *s)
@@ -227,13 +234,28 @@ static void release(void *state)
     free(st->objects);
 }
 
-/* What objects_sigma0 bakes: the fit, when an object needs it. */
+/* What objects_sigma0 bakes: the fit, when an object needs it; the spheres when asked. */
 static unsigned bakes_plain(const lucent_renderer *r, const lucent_render_settings *s)
 {
     bool fit = false;
     for (int i = 0; i < r->scene->object_count; i++)
         fit |= r->scene->objects[i].visible && !r->scene->objects[i].sigma0_set && s->cdrf.sigma0 == LUCENT_SIGMA0_FIT;
-    return fit ? LUCENT_BAKE_SIGMA0 : 0u;
+    return (fit ? LUCENT_BAKE_SIGMA0 : 0u) | (s->cdrf.curved_parts ? LUCENT_BAKE_SPHERES : 0u);
+}
+
+/* "cdrf:kubo", "cdrf:collomb": Kubo's function or the blog's alone (no curved parts); "cdrf:spheres":
+ * the curved parts' factor (the default). */
+static lucent_status variant(const char *text, lucent_render_settings *s)
+{
+    if (!strcmp(text, "spheres")) {
+        s->cdrf.curved_parts = true;
+        return LUCENT_OK;
+    }
+    lucent_cdrf_variant v;
+    if (lucent_cdrf_variant_parse(text, &v) != LUCENT_OK)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "unknown cdrf variant '%s' (spheres, kubo, collomb)", text);
+    s->cdrf.variant = (int)v, s->cdrf.curved_parts = false;
+    return LUCENT_OK;
 }
 
 static unsigned bakes_translucent(const lucent_renderer *r, const lucent_render_settings *s)
@@ -243,7 +265,10 @@ static unsigned bakes_translucent(const lucent_renderer *r, const lucent_render_
 
 const gl_method gl_method_cdrf = {
     .name = "cdrf",
-    .settings = (const char *const[]){"cdrf_variant", "cdrf_lut", "sigma0", "curvature_smooth", "cdrf_tail", NULL},
+    .settings = (const char *const[]){"cdrf_variant", "cdrf_lut", "sigma0", "curvature_smooth", "cdrf_tail",
+                                      "curved_parts", NULL},
+    .variant = variant,
+    .variant_doc = "spheres (curved parts from the material's spheres, the default), kubo or collomb (alone)",
     .state_size = sizeof(cdrf_state),
     .bakes = bakes_plain,
     .prepare = prepare_plain,
@@ -255,7 +280,9 @@ const gl_method gl_method_cdrf = {
 const gl_method gl_method_cdrf_translucency = {
     .name = "cdrf+translucency",
     .settings = (const char *const[]){"cdrf_variant", "cdrf_lut", "sigma0", "curvature_smooth", "cdrf_tail",
-                                      "transmittance", "translucency_curvature", NULL},
+                                      "curved_parts", "transmittance", "translucency_curvature", NULL},
+    .variant = variant,
+    .variant_doc = "spheres (curved parts from the material's spheres, the default), kubo or collomb (alone)",
     .state_size = sizeof(cdrf_state),
     .bakes = bakes_translucent,
     .prepare = prepare_translucent,

@@ -480,6 +480,7 @@ static void pass_irradiance(lucent_renderer *r, points_state *st, const lucent_r
         if (!o->splat) continue;
         gl_translucency_uniforms(r, s, i, p, s->translucency.enabled);
         set1i(p, "u_first", (int)o->base);
+        set1f(p, "u_material", r->tables.object_material[i]);
         glDrawArrays(GL_POINTS, 0, (GLsizei)o->levels[0].count);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -578,13 +579,6 @@ static void pass_shade(lucent_renderer *r, points_state *st, const lucent_render
     glBindTextureUnit(7, st->g_tex[G_OBJECT]);
     set1i(p, "u_diffusion", s->points.style == LUCENT_POINTS_DIFFUSION);
     set1i(p, "u_weights_out", s->points.weights);
-    float eta[GLR_MAX_MATERIALS] = {0}, mean_ft[GLR_MAX_MATERIALS] = {0};
-    for (int m = 0; m < r->tables.count; m++) {
-        eta[m] = (float)r->tables.material[m].eta;
-        mean_ft[m] = (float)lucent_fresnel_mean_transmittance(r->tables.material[m].eta);
-    }
-    glProgramUniform1fv(p, glGetUniformLocation(p, "u_eta"), GLR_MAX_MATERIALS, eta);
-    glProgramUniform1fv(p, glGetUniformLocation(p, "u_mean_ft"), GLR_MAX_MATERIALS, mean_ft);
     set1f(p, "u_shadow_offset", 1.5);
     glProgramUniform3f(p, glGetUniformLocation(p, "u_background"), (float)(bg[0] + amb[0]), (float)(bg[1] + amb[1]),
                        (float)(bg[2] + amb[2]));

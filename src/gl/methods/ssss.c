@@ -110,9 +110,11 @@ static lucent_status prepare(lucent_renderer *r, void *state, const lucent_rende
     lucent_bake_desc d = gl_renderer_bake_desc(r, s, LUCENT_BAKE_TAPS);
     if (e == LUCENT_OK) e = gl_tables_bake(&r->tables, &d, r->cache);
     if (e == LUCENT_OK && s->translucency.enabled) e = gl_translucency_prepare(r, s);
+    if (e == LUCENT_OK && s->cdrf.curved_parts) e = gl_curved_prepare(r, s);
     if (e == LUCENT_OK) e = gl_blur_resize(&st->blur, r->targets.width, r->targets.height);
     if (e == LUCENT_OK) e = prepare_blur(r, st, s);
-    if (e == LUCENT_OK) e = gl_surface_program(r, "ssss.frag.glsl", NULL, &st->program);
+    if (e == LUCENT_OK)
+        e = gl_surface_program(r, "ssss.frag.glsl", s->cdrf.curved_parts ? "#define CURVED 1\n" : NULL, &st->program);
     return e;
 }
 
@@ -122,6 +124,7 @@ static void object_uniforms(const lucent_renderer *r, const void *state, const l
     (void)state;
     glUniform1f(glGetUniformLocation(p, "u_strength"), (float)(r->scene->objects[i].sss_strength * s->ssss.strength));
     gl_translucency_uniforms(r, s, i, p, s->translucency.enabled);
+    if (s->cdrf.curved_parts) gl_curved_uniforms(r, i, p);
 }
 
 static lucent_status draw(lucent_renderer *r, void *state, const lucent_render_settings *s)
@@ -176,13 +179,14 @@ static void release(void *state) { gl_blur_free(&((ssss_state *)state)->blur); }
 static unsigned bakes(const lucent_renderer *r, const lucent_render_settings *s)
 {
     (void)r;
-    return LUCENT_BAKE_TAPS | (s->translucency.enabled ? LUCENT_BAKE_TRANSMITTANCE : 0u);
+    return LUCENT_BAKE_TAPS | (s->translucency.enabled ? LUCENT_BAKE_TRANSMITTANCE : 0u) |
+           (s->cdrf.curved_parts ? LUCENT_BAKE_SPHERES : 0u);
 }
 
 const gl_method gl_method_ssss = {
     .name = "ssss",
     .settings = (const char *const[]){"kernel", "rank", "taps", "profile", "strength", "width_scale", "depth_filter",
-                                      "translucency", "transmittance", NULL},
+                                      "translucency", "transmittance", "curved_parts", "curvature_smooth", NULL},
     .variant = variant,
     .variant_doc = "<model>[rank] with model svd, preint, guided, manual, sog, jimenez",
     .bakes = bakes,

@@ -1,7 +1,6 @@
 /* The surface and compose passes shared by the mesh methods (surface.h). */
 #include <string.h>
 
-#include "base/optics.h"
 #include "gl/methods/surface.h"
 
 lucent_status gl_surface_program(lucent_renderer *r, const char *frag, const char *defines, GLuint *dest)
@@ -19,7 +18,6 @@ void gl_surface_material_uniforms(const lucent_renderer *r, int i, GLuint p)
     glUniform3f(glGetUniformLocation(p, "u_albedo"), (float)a[0], (float)a[1], (float)a[2]);
     glUniform1f(glGetUniformLocation(p, "u_roughness"), (float)o->roughness);
     glUniform1f(glGetUniformLocation(p, "u_eta"), (float)o->material.eta);
-    glUniform1f(glGetUniformLocation(p, "u_mean_ft"), (float)lucent_fresnel_mean_transmittance(o->material.eta));
     glUniform1f(glGetUniformLocation(p, "u_material"), (float)r->tables.object_material[i]);
     glUniform1f(glGetUniformLocation(p, "u_object"), (float)i);
     glUniform1f(glGetUniformLocation(p, "u_shadow_offset"), 1.5f);
@@ -54,6 +52,7 @@ void gl_surface_draw(lucent_renderer *r, GLuint program, GLuint lut, const lucen
     gl_shadows_bind(&r->shadows);
     glBindTextureUnit(3, lut ? lut : r->dummy_tex);
     glBindTextureUnit(4, r->tables.transmit_tex ? r->tables.transmit_tex : r->dummy_tex);
+    if (r->tables.spheres_tex) glBindTextureUnit(GL_SPHERES_UNIT, r->tables.spheres_tex);
     glVertexAttrib1f(GL_ATTR_CURVATURE, 0.0f); /* curvature and texture coordinates where a mesh has none */
     glVertexAttrib2f(GL_ATTR_UV, 0.0f, 0.0f);
     for (int i = 0; i < r->scene->object_count; i++) {

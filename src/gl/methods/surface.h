@@ -38,4 +38,11 @@ void gl_translucency_uniforms(const lucent_renderer *r, const lucent_render_sett
 /* The half-width of the transmittance table of object i's material, mm (0: not built). */
 double gl_translucency_range(const lucent_renderer *r, int i);
 
+/* Curved parts (render.curved_parts; surface.glsl, CURVED): the vertex curvature and every material's
+ * spheres, baked and uploaded (bound to GL_SPHERES_UNIT by gl_surface_draw). */
+lucent_status gl_curved_prepare(lucent_renderer *r, const lucent_render_settings *s);
+
+/* Object i's curved-parts uniforms. */
+void gl_curved_uniforms(const lucent_renderer *r, int i, GLuint program);
+
 #endif

@@ -65,3 +65,26 @@ void gl_translucency_uniforms(const lucent_renderer *r, const lucent_render_sett
 }
 
 double gl_translucency_range(const lucent_renderer *r, int i) { return gl_tables_of(&r->tables, i)->transmit_range; }
+
+/* ---- curved parts (docs/render.md, "Curved parts") ---- */
+
+lucent_status gl_curved_prepare(lucent_renderer *r, const lucent_render_settings *s)
+{
+    lucent_bake_desc d = gl_renderer_bake_desc(r, s, LUCENT_BAKE_SPHERES);
+    lucent_status st = gl_meshes_curvature(&r->meshes, r->scene, s->cdrf.curvature_smooth, r->desc.pool);
+    if (st == LUCENT_OK) st = gl_tables_bake(&r->tables, &d, r->cache);
+    return st == LUCENT_OK ? gl_tables_upload_spheres(&r->tables) : st;
+}
+
+void gl_curved_uniforms(const lucent_renderer *r, int i, GLuint p)
+{
+    const lucent_baked *b = gl_tables_of(&r->tables, i);
+    lucent_material_derived md;
+    lucent_material_derive(&r->scene->objects[i].material, &md);
+    double tr = fmin(md.sigma_tr[0], fmin(md.sigma_tr[1], md.sigma_tr[2]));
+    glUniform1f(glGetUniformLocation(p, "u_sphere_r0"), (float)b->sphere_r0);
+    /* light past the terminator enters up to three of the longest diffusion lengths toward the light */
+    glUniform1f(glGetUniformLocation(p, "u_sphere_reach"), (float)(3.0 / fmax(tr, 1e-3)));
+    /* the spheres hold the light through convex bodies: translucency's convex branch adds none */
+    glUniform1f(glGetUniformLocation(p, "u_convex_carried"), 1.0f);
+}

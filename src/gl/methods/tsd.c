@@ -329,6 +329,7 @@ static void texture_pass(lucent_renderer *r, tsd_state *st, const lucent_render_
             double a[3];
             gl_renderer_object_albedo(r, i, a);
             glUniform3f(glGetUniformLocation(program, "u_albedo"), (float)a[0], (float)a[1], (float)a[2]);
+            glUniform1f(glGetUniformLocation(program, "u_material"), (float)r->tables.object_material[i]);
         }
         glBindVertexArray(o->vao);
         glDrawElements(GL_TRIANGLES, o->index_count, GL_UNSIGNED_INT, NULL);

@@ -11,6 +11,7 @@ uniform vec3 u_sog_sd[8];       // their standard deviations, mm, per channel
 uniform vec3 u_sog_w[8];        // their weights, summing to 1 per channel
 uniform float u_tail_reach;     // mm: how far through the body the tail's light comes from
 
+
 // The CDRF spreads light over an arc of sigma0 mm: visibility is tested where light enters, up to
 // u_cdrf_reach mm toward the light past the terminator (none where the light faces the surface), one
 // lookup serving diffuse and specular as Lambert's one does. With the tail, a point past the terminator
@@ -18,6 +19,9 @@ uniform float u_tail_reach;     // mm: how far through the body the tail's light
 // point's (the shadow map's thickness along the light), as far as the tail reaches.
 float method_visibility(int i, vec3 n, vec3 l, float ndl, float offset)
 {
+#ifdef CURVED
+    return curved_visibility(i, n, l, ndl, offset);
+#endif
     float shift = u_cdrf_reach * (1.0 - max(ndl, 0.0));
     if (u_sog_count > 0 && ndl < 0.0) {
         float s = shadow_thickness(i, v_position - n * offset);
@@ -32,6 +36,9 @@ float method_visibility(int i, vec3 n, vec3 l, float ndl, float offset)
 // Kubo Eq. 5 with the profile's Gaussians (cdrf.c, objects_sog), the larger of the two.
 vec3 method_irradiance(vec3 e, float ndl, vec3 sigma0)
 {
+#ifdef CURVED
+    return e * curved_factor(ndl, v_curvature);
+#endif
     vec3 kubo = cdrf3(ndl, sigma0 * v_curvature); // Kubo Eq. 5
     if (u_sog_count == 0) return e * kubo;
     vec3 f = vec3(0.0);

@@ -1,9 +1,19 @@
 // Lights, shadow maps, shadow-map thickness and the specular lobe. Needs common.glsl.
+#include "boundary.glsl"
 layout(binding = 1) uniform sampler2DArrayShadow u_shadow_cmp; // depth compare (PCF)
 layout(binding = 2) uniform sampler2DArray u_shadow_depth;     // the same depths, read raw
 layout(binding = 4) uniform sampler2D u_transmit;              // T(s) per channel; a row per material
 uniform float u_transmit_range; // mm: thickness where the table ends
 uniform float u_transmit_v;     // the material's row, as a texture coordinate
+
+// A shading normal seen from behind (interpolated across a silhouette, or on faces wound the other way
+// round: on the dragon they reach n.v = -0.9) is bent toward the viewer until it faces it, n.v = 0.01:
+// seen from behind, the boundary passes no light toward the viewer and such pixels were black (issue 31).
+vec3 face_viewer(vec3 n, vec3 v)
+{
+    float c = dot(n, v);
+    return c >= 0.01 ? n : normalize(n + (0.01 - c) * v);
+}
 
 // The direction toward light i from p and the irradiance it gives a surface facing it
 // (directional: colour x intensity; point: intensity / d^2).
@@ -120,17 +130,6 @@ float boundary_reflection(vec3 n, vec3 v, vec3 l, float alpha, float eta)
     float a = max(alpha, 1e-3); // the tracer's smooth limit is a delta: no highlight a pixel could see
     float f = fresnel_dielectric(om, eta) * ggx_d(dot(n, m), a) * ggx_g1(ci, a) * ggx_g1(co, a) / (4.0 * ci * co);
     return f * ci;
-}
-
-// Diffuse light leaves through the boundary toward the viewer with F_t(w_o) = 1 - F(n.v), normalised
-// by its hemispherical mean mean_ft (Jensen et al. 2001, S_d's F_t(w_o) / the mean); the methods apply
-// it after any blur, where the light leaves. F_t(w_i) is left out: the rough boundary (GGX) lets in
-// more at grazing incidence than the smooth F_t says, and the equator bench's subsurface-only
-// reference agrees with F_t(w_o) alone within 5% from 25 to 65 degrees, with both within 10%
-// (docs/compare.md).
-float diffuse_exit(vec3 n, vec3 v, float eta, float mean_ft)
-{
-    return (1.0 - fresnel_dielectric(clamp(dot(n, v), 0.0, 1.0), eta)) / max(mean_ft, 1e-3);
 }
 
 // The boundary's reflection for an object described by its normal-incidence reflectance f0: the same

@@ -1,7 +1,8 @@
 // Per-surfel work, one vertex per surfel with the rasteriser off. STAGE 0: the irradiance resampled
 // onto the surfels of level 0 (Kim et al. 2.2: "the diffuse color determined as the dot-product of
-// the light direction and the surface normal", with the shadow test), made the diffuse radiance
-// albedo (E / pi + ambient) plus the light through thin parts (as ssss's surface pass). STAGE 1: a
+// the light direction and the surface normal", with the shadow test, times the boundary's entry
+// factor for the surfel's view cosine, boundary.glsl), made the diffuse radiance albedo (E / pi +
+// ambient) plus the light through thin parts (as ssss's surface pass). STAGE 1: a
 // coarser level's radiance, the area-weighted mean of its children's (area ~ radius^2).
 #include "points.glsl"
 
@@ -14,6 +15,7 @@ uniform int u_impulse;       // >= 0: only that surfel (of the object's level 0)
 uniform int u_translucency;
 uniform int u_transmit_albedo;
 uniform float u_shadow_offset; // shadow-map texels
+uniform float u_material;      // the object's row of the tables
 
 void main()
 {
@@ -23,10 +25,11 @@ void main()
     gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
 #if STAGE == 0
     vec3 p = s.p.xyz, n = s.n.xyz, e_sum = vec3(0.0), through = vec3(0.0);
+    float mu_o = abs(dot(n, normalize(u_eye.xyz - p))); // the side facing the eye (splats show both)
     for (int i = 0; i < u_counts.x; i++) {
         vec3 l, e = light_incident(i, p, l);
         float ndl = dot(n, l), offset = u_light_texel[i].x * u_shadow_offset;
-        e_sum += e * max(ndl, 0.0) * shadow_visibility(i, p + n * offset);
+        e_sum += e * max(ndl, 0.0) * shadow_visibility(i, p + n * offset) * boundary_entry(max(ndl, 0.0), mu_o, u_material);
         if (u_translucency != 0 && ndl < 0.0) through += e * -ndl * transmittance(shadow_thickness(i, p - n * offset));
     }
     vec3 l_out = s.c.rgb * (e_sum / PI + u_ambient.rgb) + through / PI * (u_transmit_albedo != 0 ? s.c.rgb : vec3(1.0));

@@ -18,7 +18,6 @@ uniform int u_use_map;          // albedo from u_albedo_map (linear RGB)
 uniform int u_sigma0_from_map;  // sigma0 = d_c^2 (Kubo Eq. 6) from the diffuse map
 uniform float u_roughness;
 uniform float u_eta;           // the material's index of refraction (the boundary's Fresnel)
-uniform float u_mean_ft;       // 2 int (1 - F(mu)) mu dmu (lucent_fresnel_mean_transmittance)
 uniform float u_strength;       // ssss: the blur's share here (object's sss_strength x settings)
 uniform float u_material;       // material index (kernel and transmittance row)
 uniform float u_object;
@@ -27,7 +26,7 @@ uniform int u_transmit_albedo;  // 1: T is the profile's T(s) / T(0), times the 
 uniform float u_shadow_offset;  // normal offset, in shadow-map texels
 
 layout(location = 0) out vec4 o_diffuse;  // rgb: diffuse radiance; a: blur strength
-layout(location = 1) out vec4 o_specular; // rgb: specular radiance; a: the diffuse light's way out
+layout(location = 1) out vec4 o_specular; // rgb: specular radiance; a: the view cosine mu_o (the exit)
 layout(location = 2) out vec2 o_depth;    // x: linear depth (mm, 0 = background); y: material
 #if AOV
 layout(location = 3) out vec4 o_aov_normal;   // xyz: shading normal; w: curvature
@@ -47,6 +46,58 @@ uniform vec3 u_tr_sog_var[6];
 uniform vec3 u_tr_sog_w[6]; // and weights summing to 1 per channel
 uniform float u_convex_carried; // 1: the method's own diffusion carries the light through convex bodies
                                 // (the CDRF, fitted to Monte Carlo spheres whose dark side holds it)
+
+#ifdef CURVED
+// Curved parts (render.curved_parts; docs/render.md, "Curved parts"): the exitance of the material's
+// Monte Carlo spheres behind the tracer's boundary (the spheres bake), over the half-space's at the
+// same incidence, per 10 degrees of theta (across) and radius r0 2^(k/2) (down; a last row for the flat
+// limit, max(cos theta, 0)), a layer per material: the factor that replaces max(n.l, 0) (or Kubo's
+// CDRF) for a point of mean curvature kappa. Past the terminator it holds the light that crosses the
+// body, so the convex-body branch of translucency adds none (u_convex_carried).
+layout(binding = 10) uniform sampler2DArray u_spheres;
+uniform float u_sphere_r0;       // mm: the first row's radius
+uniform float u_sphere_reach;    // mm: how far toward the light a point past the terminator is lit from
+const float SPHERE_RADII = 16.0; // LUCENT_BAKE_SPHERE_RADII
+
+// The row of curvature kappa: 2 log2(r / r0) for r = 1 / kappa up to the last radius, then linear in
+// kappa to the flat row at kappa 0 (concave points are flat), as a texture coordinate.
+float curved_row(float kappa)
+{
+    float last = SPHERE_RADII - 1.0, rmax = u_sphere_r0 * exp2(0.5 * last), k = max(kappa, 0.0);
+    return k * rmax >= 1.0 ? clamp(2.0 * log2(1.0 / (k * u_sphere_r0)), 0.0, last) : last + (1.0 - k * rmax);
+}
+
+// The spheres' exitance factor for light at n.l = ndl (the table's first half).
+vec3 curved_factor(float ndl, float kappa)
+{
+    float x = acos(clamp(ndl, -1.0, 1.0)) / PI;
+    return texture(u_spheres, vec3(x, (curved_row(kappa) + 0.5) / (2.0 * (SPHERE_RADII + 1.0)), u_material)).rgb;
+}
+
+// How the light from l leaves toward v: on a small body it leans down the surface, away from the light,
+// 1 + beta v . f with f the unit tangent away from the light (the table's second half).
+vec3 curved_lean(float ndl, float kappa, vec3 n, vec3 l, vec3 v)
+{
+    float x = acos(clamp(ndl, -1.0, 1.0)) / PI;
+    vec3 beta = texture(u_spheres, vec3(x, (curved_row(kappa) + SPHERE_RADII + 1.5) / (2.0 * (SPHERE_RADII + 1.0)),
+                                        u_material)).rgb;
+    vec3 f = n * ndl - l;
+    float fl = length(f), vf = fl > 1e-6 ? dot(v, f) / fl : 0.0;
+    return max(1.0 + beta * vf, vec3(0.0));
+}
+
+// Past the terminator a point is lit through its body from where the light ray enters it (the shadow
+// map's thickness, up to u_sphere_reach): that entry point's visibility.
+float curved_visibility(int i, vec3 n, vec3 l, float ndl, float offset)
+{
+    float through = 0.0;
+    if (ndl < 0.0) {
+        float s = shadow_thickness(i, v_position - n * offset);
+        if (s >= 0.0) through = min(s, u_sphere_reach) + 2.0 * offset;
+    }
+    return shadow_visibility(i, v_position + n * offset + l * through);
+}
+#endif
 
 // The profile's power outside radius s over its total, sum_k w_k exp(-s^2 / (2 v_k)) (Jimenez 2010).
 vec3 profile_tail(float s)
@@ -86,6 +137,8 @@ void main()
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;
     vec3 v = normalize(u_eye.xyz - v_position);
+    n = face_viewer(n, v);
+    float mu_o = clamp(dot(n, v), 0.0, 1.0);
     vec3 albedo = u_use_map != 0 ? texture(u_albedo_map, v_uv).rgb : u_albedo;
     vec3 sigma0 = u_sigma0_from_map != 0 ? albedo * albedo : u_sigma0;
     vec3 irradiance = vec3(0.0), transmitted_e = vec3(0.0), specular = vec3(0.0);
@@ -94,15 +147,20 @@ void main()
         vec3 l, e = light_incident(i, v_position, l);
         float ndl = dot(n, l), offset = u_light_texel[i].x * u_shadow_offset;
         float vis = method_visibility(i, n, l, ndl, offset);
-        irradiance += method_irradiance(e, ndl, sigma0) * vis;
+        vec3 entry = boundary_entry(max(ndl, 0.0), mu_o, u_material);
+#ifdef CURVED
+        entry *= curved_lean(ndl, v_curvature, n, l, v);
+#endif
+        irradiance += method_irradiance(e, ndl, sigma0) * vis * entry;
         transmitted_e += transmitted(i, n, e, ndl, offset, sigma0, albedo);
         specular += e * boundary_reflection(n, v, l, u_roughness, u_eta) * vis;
         if (i == 0) vis0 = vis;
     }
     vec3 through = transmitted_e / PI;
     o_diffuse = vec4(albedo * (irradiance / PI + u_ambient.rgb) + through, u_strength);
-    // The diffuse light's way out toward the viewer (lights.glsl), applied by the compose pass after any blur.
-    o_specular = vec4(specular, diffuse_exit(n, v, u_eta, u_mean_ft));
+    // The diffuse light's way out toward the viewer (boundary.glsl) is applied by the compose pass after
+    // any blur, from the view cosine here and the material.
+    o_specular = vec4(specular, mu_o);
     o_depth = vec2(dot(v_position - u_eye.xyz, u_forward.xyz), u_material);
 #if AOV
     o_aov_normal = vec4(n, v_curvature);

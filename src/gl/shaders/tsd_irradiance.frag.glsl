@@ -1,5 +1,6 @@
 // tsd, the irradiance texture (GPU Gems 3 14.4.1): sum over lights of E max(n.l, 0) times the shadow
-// map's visibility at the texel's surface point, plus, with translucency, the light reaching the back
+// map's visibility at the texel's surface point and the boundary's entry factor (boundary.glsl, for the
+// view cosine of the texel's point), plus, with translucency, the light reaching the back
 // of a thin part and leaving here, E max(-n.l, 0) T(s) with s the shadow map's thickness (the house's
 // translucency, Jimenez 2010, standing in for the paper's translucent shadow maps, 14.5.2), divided by
 // the albedo when T is the slab's own (the final pass multiplies by it). a = 1 marks the texels a chart
@@ -14,6 +15,7 @@ uniform float u_shadow_offset;  // normal offset, in shadow-map texels
 uniform int u_translucency;     // light through thin parts
 uniform int u_transmit_albedo;  // 1: T is the profile's T(s) / T(0), times the albedo; 0: the slab's own
 uniform vec3 u_albedo;
+uniform float u_material; // the material's row of the tables
 
 layout(location = 0) out vec4 o_irradiance;
 
@@ -25,11 +27,12 @@ void main()
         return;
     }
     vec3 n = v_normal * inversesqrt(n2), e = vec3(0.0), through = vec3(0.0);
+    float mu_o = clamp(dot(n, normalize(u_eye.xyz - v_position)), 0.0, 1.0);
     for (int i = 0; i < u_counts.x; i++) {
         vec3 l, el = light_incident(i, v_position, l);
         float ndl = dot(n, l), offset = u_light_texel[i].x * u_shadow_offset;
         if (ndl > 0.0)
-            e += el * ndl * shadow_visibility(i, v_position + n * offset);
+            e += el * ndl * shadow_visibility(i, v_position + n * offset) * boundary_entry(ndl, mu_o, u_material);
         else if (u_translucency != 0)
             through += el * -ndl * transmittance(shadow_thickness(i, v_position - n * offset));
     }
