@@ -32,11 +32,15 @@ measure() { # command...: sets rc, secs (wall), cpu, kb, msg (the first "lucent"
   cpu=$(awk -v u="$u" -v s="$s" 'BEGIN { printf "%.2f", u + s }')
   msg=$(grep "^lucent" "$TMP/err" | head -1)
 }
-# run NAME CODE EXPECT -- command...: exits CODE, its first "lucent" line holds NAME (the file) and EXPECT
+# run NAME CODE EXPECT -- command...: exits CODE, its first "lucent" line naming NAME (the file; an info line
+# of a bake, e.g. the viewer's "boundary tables of Skin1 ... in 0.7 s", may come before it) holds EXPECT
 # (the field and the cause; empty where a fixture has no entry below), peak RSS < 100 MB, CPU < 1 s.
 run() {
   local name=$1 code=$2 expect=$3; shift 4
   measure "$@"
+  local named
+  named=$(grep "^lucent" "$TMP/err" | grep -F -- "$name" | head -1)
+  [ -z "$named" ] || msg=$named
   if [ "$rc" = "$code" ] && [[ "$msg" == *"$name"* ]] && [[ "$msg" == *"$expect"* ]] && [ "${kb:-0}" -lt $MAX_KB ] &&
     awk -v c="$cpu" -v m=$MAX_CPU 'BEGIN { exit !(c < m) }'; then
     printf 'ok   %-44s exit %s, cpu %4s s (wall %5s s), %6d KB: %s\n' "$name" "$rc" "$cpu" "$secs" "$kb" "${msg:0:110}"
@@ -160,6 +164,7 @@ else
   measure bash -c 'cd "$1" && shift && exec "$@"' _ "$TMP/view" "${VIEW[@]}" "${ARGS[@]}" print.txt
   base_rc=$rc base_cpu=$cpu base_kb=$kb
   measure bash -c 'cd "$1" && shift && exec "$@"' _ "$TMP/view" "${VIEW[@]}" "${ARGS[@]}" "$FIXTURES/view/orbit-nan-save.txt"
+  msg=$(grep "^lucent" "$TMP/err" | grep -F orbit-nan-save.txt | head -1) # the bakes' info lines come first
   extra_cpu=$(awk -v a="$cpu" -v b="$base_cpu" 'BEGIN { printf "%.2f", a - b }') extra_kb=$((kb - base_kb))
   if [ "$base_rc" = 0 ] && [ "$rc" = 1 ] && [[ "$msg" == *"orbit-nan-save.txt: line 1 (orbit): orbit: the camera would not be finite"* ]] &&
     [ ! -e "$TMP/view/out/view-nan.json" ] && [ "$extra_kb" -lt $MAX_KB ] &&
