@@ -44,18 +44,24 @@ static void html_pct(lucent_strbuf *b, double v)
         lucent_strbuf_printf(b, "<td>&ndash;</td>");
 }
 
+/* A header cell per method: its name, then what its cells hold; the row's end. */
+static void html_method_headers(lucent_strbuf *b, const lucent_compare_scene *sc, const char *holds)
+{
+    for (int m = 0; m < sc->method_count; m++) {
+        lucent_strbuf_printf(b, "<th>");
+        lucent_strbuf_xml(b, sc->methods[m].name);
+        lucent_strbuf_printf(b, ": %s</th>", holds);
+    }
+    lucent_strbuf_printf(b, "</tr>\n");
+}
+
 /* One table: a row per region, per method its error and its brightness against the reference. */
 static void html_region_table(lucent_strbuf *b, const lucent_compare_scene *sc, const lucent_compare_region *regions,
                               int count)
 {
     lucent_strbuf_printf(b, "<table><tr><th>region</th><th>pixels</th><th>share of the reference</th>"
                             "<th>reference noise</th>");
-    for (int m = 0; m < sc->method_count; m++) {
-        lucent_strbuf_printf(b, "<th>");
-        lucent_strbuf_xml(b, sc->methods[m].name);
-        lucent_strbuf_printf(b, ": error, m / r, share</th>");
-    }
-    lucent_strbuf_printf(b, "</tr>\n");
+    html_method_headers(b, sc, "error, m / r, share");
     for (int r = 0; r < count; r++) {
         const lucent_compare_region *g = &regions[r];
         lucent_strbuf_printf(b, "<tr><td>");
@@ -99,12 +105,7 @@ void report_html_lights(lucent_strbuf *b, const lucent_compare_scene *sc)
                             "reference's samples and noise, per method the relative RMS error and the brightness "
                             "against the reference.</p>\n<table><tr><th>light</th><th>reference spp</th>"
                             "<th>reference noise</th>");
-    for (int m = 0; m < sc->method_count; m++) {
-        lucent_strbuf_printf(b, "<th>");
-        lucent_strbuf_xml(b, sc->methods[m].name);
-        lucent_strbuf_printf(b, ": error, m / r</th>");
-    }
-    lucent_strbuf_printf(b, "</tr>\n");
+    html_method_headers(b, sc, "error, m / r");
     for (int l = 0; l < sc->light_count; l++) {
         const lucent_compare_light *li = &sc->lights[l];
         lucent_strbuf_printf(b, "<tr><td>");
