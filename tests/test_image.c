@@ -1050,10 +1050,137 @@ TEST(heatmap_with_a_bar_and_a_fixed_scale)
     lucent_image_destroy(plain);
 }
 
+/* ---- FLIP against the reference implementation (NVlabs/flip) ----
+ * The reference's published test compares its mean over its own image pair (0.159691 for LDR-FLIP,
+ * src/tests/test.py at commit 1eb247cabcf2862c2c8207ab15314304394132b9); that pair cannot be committed
+ * or fetched here, so the expected values below are the reference's output on synthetic pairs built by
+ * flip_pair() (the same formulas in float): its C++ FLIP::evaluate (src/cpp/FLIP.h at that commit, LDR,
+ * its own float32 arithmetic, unchanged), called on linear RGB from a throwaway driver on 2026-12-07;
+ * they are not published numbers. Each row: the pixels per degree, the pair, the reference's mean (its
+ * float32 sum) and its map at the pixels (0, 0), (15, 16), (16, 16), (20, 5) and (17, 18), printed to 6
+ * decimals. Tolerance 2e-4: the same reference code rebuilt in double moves its map by up to 1.3e-4 on
+ * these pairs (float32 rounding, largest where the feature term sqrt(f) is near 0) and its means by up
+ * to 6e-5; Lucent (double) differs from that double build by at most 3.3e-5 per pixel (the last digits
+ * of the sRGB matrix: Lindbloom's against the reference's rational form); the printing adds 5e-7.
+ * Before the blue-yellow filter's weights were corrected to the paper's a sqrt(pi / b) (flip.c), pairs
+ * 3 and 4 differed by 6.7e-4 and 5.7e-4 at (15, 16), so the test separates them. */
+#define FLIP_W 32
+#define FLIP_H 32
+
+/* The pairs (linear RGB): 0 black / white; 1 a black|white step edge / grey 0.5; 2 black / one white
+ * pixel at (16, 16); 3 yellow|blue stripes 4 pixels wide / grey 0.5; 4 a smooth colour pattern / the
+ * same with red compressed and blue raised in a box; 5 red/green stripes 3 pixels high / (0.5, 0.5, 0);
+ * 7 (0.2, 0.4, 0.6) / grey 0.3; 8 red / green; 9 grey 0.5 / grey 0.25. */
+static void flip_pair(int k, int test, float *im)
+{
+    for (int y = 0; y < FLIP_H; y++)
+        for (int x = 0; x < FLIP_W; x++) {
+            float r = 0, g = 0, b = 0;
+            switch (k) {
+            case 0: r = g = b = test ? 1.f : 0.f; break;
+            case 1: r = g = b = test ? 0.5f : x < FLIP_W / 2 ? 0.f : 1.f; break;
+            case 2: r = g = b = (test && x == 16 && y == 16) ? 1.f : 0.f; break;
+            case 3:
+                if (test)
+                    r = g = b = 0.5f;
+                else
+                    r = g = (x / 4) % 2 == 0 ? 1.f : 0.f, b = 1.f - r;
+                break;
+            case 4:
+                r = 0.5f + 0.4f * sinf(0.7f * (float)x + 0.3f * (float)y);
+                g = 0.5f + 0.4f * sinf(0.2f * (float)x - 0.5f * (float)y + 1.f);
+                b = 0.5f + 0.4f * cosf(0.4f * (float)x + 0.45f * (float)y);
+                if (test) {
+                    r = r * 0.8f + 0.1f;
+                    if (x > 10 && x < 20 && y > 8 && y < 24) b = fminf(b + 0.15f, 1.f);
+                }
+                break;
+            case 5:
+                if (test)
+                    r = g = 0.5f;
+                else
+                    r = (y / 3) % 2 == 0 ? 1.f : 0.f, g = 1.f - r;
+                break;
+            case 7:
+                if (test)
+                    r = g = b = 0.3f;
+                else
+                    r = 0.2f, g = 0.4f, b = 0.6f;
+                break;
+            case 8:
+                if (test)
+                    g = 1.f;
+                else
+                    r = 1.f;
+                break;
+            case 9: r = g = b = test ? 0.25f : 0.5f; break;
+            }
+            float *p = im + 3 * (y * FLIP_W + x);
+            p[0] = r, p[1] = g, p[2] = b;
+        }
+}
+
+TEST(flip_matches_the_reference_implementation_on_synthetic_pairs)
+{
+    /* The paper's observer: 0.7 m from a 0.7 m wide screen of 3840 pixels, ppd = d (N / w) pi / 180
+     * (NVlabs/flip src/cpp/FLIP.h lines 110-118: calculatePPD(0.7, 3840, 0.7)); the paper rounds it to
+     * 67 (LUCENT_FLIP_PPD). */
+    const double ppd_paper = 0.7 * (3840 / 0.7) * M_PI / 180;
+    CHECK_NEAR(ppd_paper, 67.0206, 1e-4);
+    CHECK_NEAR(LUCENT_FLIP_PPD, ppd_paper, 0.05);
+    static const struct {
+        double ppd;
+        int pair;
+        double mean, px[5];
+    } rows[] = {
+        {0, 0, 0.967395, {0.967388, 0.967388, 0.967388, 0.967388, 0.967388}},
+        {0, 1, 0.797866, {0.958551, 0.850504, 0.825644, 0.727782, 0.858716}},
+        {0, 2, 0.013974, {0.000000, 0.763491, 0.864906, 0.000000, 0.390681}},
+        {0, 3, 0.832804, {0.980888, 0.668102, 0.623844, 0.668102, 0.873061}},
+        {0, 4, 0.138352, {0.084965, 0.248746, 0.280241, 0.059226, 0.340384}},
+        {0, 5, 0.796084, {0.977045, 0.962478, 0.962478, 0.724996, 0.672590}},
+        {0, 7, 0.490507, {0.490503, 0.490503, 0.490503, 0.490503, 0.490503}},
+        {0, 8, 0.986679, {0.986665, 0.986665, 0.986665, 0.986665, 0.986665}},
+        {0, 9, 0.451902, {0.451898, 0.451898, 0.451898, 0.451898, 0.451898}},
+        {20, 1, 0.764690, {0.958553, 0.992985, 0.903390, 0.531256, 0.699689}},
+        {20, 2, 0.002839, {0.000000, 0.433408, 0.989930, 0.000000, 0.000000}},
+        {20, 3, 0.982641, {0.972666, 0.990522, 0.988799, 0.990522, 0.981403}},
+        {20, 4, 0.168962, {0.027442, 0.281063, 0.318945, 0.069854, 0.426657}},
+        {20, 5, 0.979892, {0.962657, 0.976625, 0.976625, 0.982427, 0.983401}},
+    };
+    static const int px[5][2] = {{0, 0}, {15, 16}, {16, 16}, {20, 5}, {17, 18}};
+    for (size_t r = 0; r < sizeof rows / sizeof rows[0]; r++) {
+        lucent_image *a = NULL, *b = NULL, *map = NULL;
+        CHECK_OK(lucent_image_create(FLIP_W, FLIP_H, 3, &a));
+        CHECK_OK(lucent_image_create(FLIP_W, FLIP_H, 3, &b));
+        if (!a || !b) break;
+        flip_pair(rows[r].pair, 0, a->data), flip_pair(rows[r].pair, 1, b->data);
+        double ppd = rows[r].ppd > 0 ? rows[r].ppd : ppd_paper, mean = NAN;
+        CHECK_OK(lucent_image_flip(a, b, ppd, NULL, &map, &mean));
+        CHECK_MSG(fabs(mean - rows[r].mean) < 2e-4, "ppd %g pair %d: mean %.6f, reference %.6f", ppd, rows[r].pair,
+                  mean, rows[r].mean);
+        for (int i = 0; map && i < 5; i++) {
+            double v = map->data[px[i][1] * FLIP_W + px[i][0]];
+            CHECK_MSG(fabs(v - rows[r].px[i]) < 2e-4, "ppd %g pair %d at (%d, %d): %.6f, reference %.6f", ppd,
+                      rows[r].pair, px[i][0], px[i][1], v, rows[r].px[i]);
+        }
+        /* Uniform pairs: no edge, no point, filters that change nothing, so the map is the colour error
+         * of the two colours' HyAB distance (the public stages). */
+        if (rows[r].pair == 0 || rows[r].pair >= 7) {
+            float ca[3] = {a->data[0], a->data[1], a->data[2]}, cb[3] = {b->data[0], b->data[1], b->data[2]};
+            double c = lucent_flip_color_error(lucent_flip_hyab(ca, cb));
+            CHECK_MSG(fabs(c - rows[r].px[0]) < 2e-4, "pair %d: colour error %.6f, reference %.6f", rows[r].pair, c,
+                      rows[r].px[0]);
+        }
+        lucent_image_destroy(map), lucent_image_destroy(a), lucent_image_destroy(b);
+    }
+}
+
 TEST_MAIN(TEST_ENTRY(draw_text), TEST_ENTRY(flip_of_uniform_fields_follows_the_papers_colour_pipeline),
-          TEST_ENTRY(flip_sees_fine_patterns_only_from_near), TEST_ENTRY(heatmap_with_a_bar_and_a_fixed_scale),
-          TEST_ENTRY(png_bomb_refused_from_the_header), TEST_ENTRY(exr_short_chunks_refused),
-          TEST_ENTRY(exr_tiled_bomb_refused_from_the_chunk_table),
+          TEST_ENTRY(flip_sees_fine_patterns_only_from_near),
+          TEST_ENTRY(flip_matches_the_reference_implementation_on_synthetic_pairs),
+          TEST_ENTRY(heatmap_with_a_bar_and_a_fixed_scale), TEST_ENTRY(png_bomb_refused_from_the_header),
+          TEST_ENTRY(exr_short_chunks_refused), TEST_ENTRY(exr_tiled_bomb_refused_from_the_chunk_table),
           TEST_ENTRY(exr_tiled_fixtures_read_and_truncations_refused),
           TEST_ENTRY(exr_chunk_table_checked_before_allocating), TEST_ENTRY(create_access_and_limits),
           TEST_ENTRY(convert_channels), TEST_ENTRY(srgb_curve_known_values), TEST_ENTRY(tonemap_operators),

@@ -136,9 +136,14 @@ static int csf_radius(double ppd)
     return r < 63 ? r : 63;
 }
 
-/* The CSF of channel c applied to plane: the inverse Fourier transform of a radial a exp(-b rho^2) is
- * a (pi / b) exp(-pi^2 r^2 / b), r in degrees; each Gaussian is separable, and the sum of the terms
- * is normalised to 1 over the kernel's square. */
+/* The CSF of channel c applied to plane: each term a exp(-b rho^2) becomes the spatial Gaussian
+ * a sqrt(pi / b) exp(-pi^2 r^2 / b), r in degrees: the paper's spatial filter (the one-dimensional
+ * inverse Fourier transform, used as the radial profile of the 2-D filter), as the reference
+ * implementation weighs its terms (NVlabs/flip src/cpp/FLIP.h at commit 1eb247c, lines 581-595 and
+ * 1741-1776, "alternative form (see FLIP paper)"), not the 2-D transform's a pi / b. Only the
+ * blue-yellow channel has two terms, so only its shape depends on this weight (tested against the
+ * reference's output in tests/test_image.c). Each Gaussian is separable, and the sum of the terms is
+ * normalised to 1 over the kernel's square. */
 static void csf_filter(int c, double ppd, const double *plane, int w, int h, double *tmp, double *acc, double *dest)
 {
     int r = csf_radius(ppd);
@@ -150,7 +155,7 @@ static void csf_filter(int c, double ppd, const double *plane, int w, int h, dou
         taps t = {.radius = r};
         double sum = 0;
         for (int i = -r; i <= r; i++) sum += t.w[i + r] = exp(-M_PI * M_PI * (i / ppd) * (i / ppd) / b);
-        double weight = a * M_PI / b;
+        double weight = a * sqrt(M_PI / b);
         total += weight * sum * sum;
         separable(plane, w, h, &t, &t, tmp, acc);
         for (size_t i = 0; i < (size_t)w * (size_t)h; i++) dest[i] += weight * acc[i];
