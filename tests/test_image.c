@@ -1176,9 +1176,37 @@ TEST(flip_matches_the_reference_implementation_on_synthetic_pairs)
     }
 }
 
+/* The reach of the contrast sensitivity filters: the reference's radius, ceil(3 sqrt(b_max / (2 pi^2)) ppd)
+ * pixels with b_max = 0.04 the widest Gaussian's (NVlabs/flip src/cpp/FLIP.h at commit 1eb247c, lines
+ * 612-620): 10 at the paper's 67.02 ppd (3 x 0.04502 x 67.02 = 9.05), 3 at 20 ppd (2.70). One blue
+ * pixel on black: the colour error, and so FLIP (0^x = 0), is non-zero exactly within that reach of it
+ * along its row (the blue-yellow filter's tap at 10 pixels is exp(-pi^2 (10 / 67.02)^2 / 0.04) = 0.004
+ * of its centre, far above rounding). */
+TEST(flip_filters_reach_as_far_as_the_reference_radius)
+{
+    const double ppds[2] = {0.7 * (3840 / 0.7) * M_PI / 180, 20};
+    const int reach[2] = {10, 3};
+    for (int k = 0; k < 2; k++) {
+        lucent_image *a = NULL, *b = NULL, *map = NULL;
+        CHECK_OK(lucent_image_create(48, 5, 3, &a));
+        CHECK_OK(lucent_image_create(48, 5, 3, &b));
+        if (!a || !b) break;
+        b->data[3 * (2 * 48 + 24) + 2] = 1; /* blue at (24, 2) */
+        double mean;
+        CHECK_OK(lucent_image_flip(a, b, ppds[k], NULL, &map, &mean));
+        for (int x = 0; map && x < 48; x++) {
+            int inside = abs(x - 24) <= reach[k];
+            CHECK_MSG((map->data[2 * 48 + x] > 0) == inside, "ppd %g: FLIP %g at %d pixels from the point", ppds[k],
+                      map->data[2 * 48 + x], x - 24);
+        }
+        lucent_image_destroy(map), lucent_image_destroy(a), lucent_image_destroy(b);
+    }
+}
+
 TEST_MAIN(TEST_ENTRY(draw_text), TEST_ENTRY(flip_of_uniform_fields_follows_the_papers_colour_pipeline),
           TEST_ENTRY(flip_sees_fine_patterns_only_from_near),
           TEST_ENTRY(flip_matches_the_reference_implementation_on_synthetic_pairs),
+          TEST_ENTRY(flip_filters_reach_as_far_as_the_reference_radius),
           TEST_ENTRY(heatmap_with_a_bar_and_a_fixed_scale), TEST_ENTRY(png_bomb_refused_from_the_header),
           TEST_ENTRY(exr_short_chunks_refused), TEST_ENTRY(exr_tiled_bomb_refused_from_the_chunk_table),
           TEST_ENTRY(exr_tiled_fixtures_read_and_truncations_refused),
