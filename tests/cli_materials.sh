@@ -34,8 +34,8 @@ expect_true "preset names are case-insensitive" -- \
 expect_ok -- "$LUCENT" materials --json
 printf '%s\n' "$OUT" >"$TMP/materials.json"
 if command -v python3 >/dev/null 2>&1; then
-  expect_true "materials --json is valid JSON with 19 materials (11 RGB, 8 spectral skins)" -- python3 -c \
-    'import json,sys; d=json.load(open(sys.argv[1])); assert len(d["materials"]) == 19' "$TMP/materials.json"
+  expect_true "materials --json is valid JSON with 21 materials (11 RGB, 8 spectral skins, 2 g 0.9 skins)" -- python3 -c \
+    'import json,sys; d=json.load(open(sys.argv[1])); assert len(d["materials"]) == 21' "$TMP/materials.json"
 fi
 expect_true "materials --json states its units" -- grep -q '"units":[[:space:]]*"mm^-1"' "$TMP/materials.json"
 expect_ok -- "$LUCENT" materials "$TMP/materials.json"
@@ -96,7 +96,7 @@ px=$(od -A n -t f4 -j $((hdr + ((126 - 1 - 56) * 112 + 56) * 12)) -N 12 "$TMP/sk
 expect_true "the Skin1 swatch shows Rd (0.436, 0.227, 0.131)" -- near3 "$px" "0.436 0.227 0.131" 0.001
 expect_ok -- "$LUCENT" materials --swatches "$TMP/all.png" --photons 500
 expect_ok -- "$LUCENT" image info "$TMP/all.png"
-expect_true "19 swatches (11 RGB presets, 8 skins) make a 1984x126 image" -- grep -q "1984x126" <<<"$OUT"
+expect_true "21 swatches (11 RGB presets, 8 skins, 2 g 0.9 skins) make a 2192x126 image" -- grep -q "2192x126" <<<"$OUT"
 expect_ok -- "$LUCENT" materials --swatches "$TMP/newdir/mat/s.png" --photons 500
 expect_true "materials creates the folder of --swatches" -- test -s "$TMP/newdir/mat/s.png"
 expect_fail 2 "--swatches needs an image file name" -- "$LUCENT" materials --swatches

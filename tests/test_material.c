@@ -119,7 +119,7 @@ TEST(presets)
 {
     static const char *const names[] = {"Apple",  "Chicken1", "Chicken2", "Cream", "Ketchup",  "Marble",
                                         "Potato", "Skimmilk", "Skin1",    "Skin2", "Wholemilk"};
-    CHECK(lucent_material_preset_count() == 19); /* the 11 of Jensen et al. 2001, then 8 spectral skins */
+    CHECK(lucent_material_preset_count() == 21); /* the 11 of Jensen et al. 2001, 8 spectral skins, 2 g 0.9 skins */
     for (int i = 0; i < 11; i++) {
         lucent_material m;
         CHECK_OK(lucent_material_preset(i, &m));
@@ -132,7 +132,7 @@ TEST(presets)
     CHECK_NEAR(m.sigma_a[2], 0.014, 1e-15); /* mm^-1: the seed's 0.14 cm^-1 / 10 */
     CHECK_NEAR(m.sigma_s[0], 2.55, 1e-15);
     CHECK_ERR(lucent_material_preset_find("jade", &m), LUCENT_ERR_NOT_FOUND, "jade", "Skin1");
-    CHECK_ERR(lucent_material_preset(19, &m), LUCENT_ERR_INVALID_ARGUMENT, "19");
+    CHECK_ERR(lucent_material_preset(21, &m), LUCENT_ERR_INVALID_ARGUMENT, "21");
 }
 
 static void *count_presets(void *arg)
@@ -147,7 +147,7 @@ TEST(presets_thread_safe)
     int n[4] = {0};
     for (int i = 0; i < 4; i++) pthread_create(&t[i], NULL, count_presets, &n[i]);
     for (int i = 0; i < 4; i++) pthread_join(t[i], NULL);
-    for (int i = 0; i < 4; i++) CHECK(n[i] == 19);
+    for (int i = 0; i < 4; i++) CHECK(n[i] == 21);
 }
 
 static lucent_material parse_one(const char *text)

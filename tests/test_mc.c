@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lucent/material.h"
 #include "lucent/mc.h"
 #include "test.h"
 
@@ -385,9 +386,68 @@ TEST(non_absorbing_medium_is_bounded)
     lucent_mc_result_free(&r);
 }
 
+/* The g 0.9 skin presets (data/materials.json): the table's sigma_a and sigma_s' (Jensen et al. 2001,
+ * Figure 5) with g 0.9, sigma_s = sigma_s' / (1 - g). By the similarity relation (a medium of sigma_a,
+ * sigma_s, g transports light as one of sigma_a, sigma_s (1 - g), g = 0 once the light is about one
+ * transport mean free path l' deep: Wang & Jacques 1993, "Analysis of diffusion theory and similarity
+ * relations for light reflectance by turbid media", Proc. SPIE 1888) their total diffuse reflectance
+ * under normal light is close to the g = 0 preset's. Above that depth the two differ: the forward-
+ * scattering medium carries the light about l' deeper before turning it, and so absorbs up to a
+ * further fraction sigma_a l' = 1 - a' of it (a' = sigma_s' / sigma_t', the reduced albedo). Bound:
+ * Rd(g 0.9) no higher than Rd(g 0) and no lower than (1 - (1 - a')) Rd(g 0) = a' Rd(g 0), each within 3
+ * standard errors of the difference (Monte Carlo, 50000 photons each). Measured ratios
+ * Rd(0.9) / Rd(0): 0.77 at a' 0.68, 0.89 at 0.84, 0.96-1.00 at 0.93-0.99, so the bound's lower side is
+ * 0.7 (1 - a') from the data; an MC that ignored g (sigma_s = 10 sigma_s' isotropic: Rd ~0.8) or a
+ * preset with sigma_s = sigma_s' at g 0.9 (Rd a few %) falls far outside. */
+TEST(g09_skin_presets_keep_the_tables_reduced_coefficients)
+{
+    static const char *const pairs[2][2] = {{"Skin1", "Skin1-g0.9"}, {"Skin2", "Skin2-g0.9"}};
+    static const double table[2][2][3] = {{{0.032, 0.17, 0.48}, {0.74, 0.88, 1.01}},
+                                          {{0.013, 0.070, 0.145}, {1.09, 1.59, 1.79}}}; /* sigma_a, sigma_s' */
+    lucent_pool *pool = lucent_pool_create(2);
+    for (int k = 0; k < 2; k++) {
+        lucent_material m0, m9;
+        lucent_material_derived d0, d9;
+        CHECK_OK(lucent_material_preset_find(pairs[k][0], &m0));
+        CHECK_OK(lucent_material_preset_find(pairs[k][1], &m9));
+        lucent_material_derive(&m0, &d0), lucent_material_derive(&m9, &d9);
+        for (int c = 0; c < 3; c++) {
+            CHECK(m0.g[c] == 0 && m9.g[c] == 0.9);
+            CHECK_NEAR(m9.sigma_a[c], table[k][0][c], 1e-15);
+            CHECK_NEAR(d9.sigma_s_prime[c], table[k][1][c], 1e-12);
+            CHECK_NEAR(d0.sigma_s_prime[c], table[k][1][c], 1e-12);
+            CHECK_NEAR(m9.sigma_s[c], 10 * table[k][1][c], 1e-12);
+            CHECK_NEAR(d9.rd[c], d0.rd[c], 1e-12); /* the dipole sees only the reduced coefficients */
+            double rd[2], se[2];
+            for (int v = 0; v < 2; v++) {
+                const lucent_material *m = v ? &m9 : &m0;
+                lucent_mc_layer half = {m->eta, m->sigma_a[c], m->sigma_s[c], m->g[c], INFINITY};
+                lucent_mc_result r;
+                CHECK_OK(lucent_mc_run(&(lucent_mc_desc){.layers = &half,
+                                                         .layer_count = 1,
+                                                         .photons = 50000,
+                                                         .seed = (uint64_t)(100 + 10 * k + 2 * c + v),
+                                                         .pool = pool},
+                                       &r));
+                rd[v] = r.rd, se[v] = r.rd_se;
+                lucent_mc_result_free(&r);
+            }
+            double diff = rd[1] - rd[0], sd = sqrt(se[0] * se[0] + se[1] * se[1]), ap = d0.albedo_prime[c];
+            CHECK(sd > 0 && sd < 0.005);
+            CHECK_MSG(diff <= 3 * sd && diff >= -(1 - ap) * rd[0] - 3 * sd,
+                      "%s[%d] (a' %.3f): Rd %.4f with g 0.9, %.4f with g 0 (+- %.4f)", pairs[k][1], c, ap, rd[1], rd[0],
+                      sd);
+            printf("  %s[%d]: a' %.3f, Rd g 0 %.4f, g 0.9 %.4f +- %.4f, ratio %.3f\n", pairs[k][0], c, ap, rd[0], rd[1],
+                   sd, rd[1] / rd[0]);
+        }
+    }
+    lucent_pool_destroy(pool);
+}
+
 TEST_MAIN(TEST_ENTRY(vanhulst_slab), TEST_ENTRY(giovanelli_half_space),
           TEST_ENTRY(same_seed_same_result_for_any_thread_count), TEST_ENTRY(profiles_integrate_to_totals),
           TEST_ENTRY(beyond_the_grid), TEST_ENTRY(beer_lambert), TEST_ENTRY(glass_layer), TEST_ENTRY(validation),
           TEST_ENTRY(mcml_read_converts_cm_to_mm), TEST_ENTRY(mcml_errors_name_the_line),
           TEST_ENTRY(mcml_write_units_and_last_bin), TEST_ENTRY(degenerate_media_refused),
-          TEST_ENTRY(non_absorbing_medium_is_bounded))
+          TEST_ENTRY(non_absorbing_medium_is_bounded),
+          TEST_ENTRY(g09_skin_presets_keep_the_tables_reduced_coefficients))

@@ -66,8 +66,9 @@ for c in range(3):
     rd = ap / 2 * (1 + math.exp(-4 / 3 * A * s)) * math.exp(-s)
     check("dipole rd_total[%d] = Jensen's Rd %.6f" % (c, rd), abs(d.rd_total[c] - rd) < 1e-4 * rd, d.rd_total[c])
 check("material().derived() rd = the closed form", abs(m.derived()["rd"][0] - d.rd_total[0]) < 1e-4)
-check("eleven RGB presets, then the spectral skins", len(lucent.materials()) == 19 and lucent.materials()[0].name == "Apple"
-      and lucent.materials()[11].name == "Skin-VeryLight")
+check("eleven RGB presets, then the spectral skins, then the g 0.9 skins", len(lucent.materials()) == 21
+      and lucent.materials()[0].name == "Apple" and lucent.materials()[11].name == "Skin-VeryLight"
+      and lucent.materials()[19].name == "Skin1-g0.9")
 skin = lucent.material("skin-light")
 check("a spectral skin resolves to its equivalent medium", skin.sigma_a[0] > 0 and skin._c.skin.layer_count == 2)
 col = lucent.skin_color("skin-light", bands=20)
