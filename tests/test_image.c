@@ -964,7 +964,10 @@ static lucent_image *uniform_image(int w, int h, float r, float g, float b)
  * point exists, so FLIP is the colour error of the two colours' HyAB distance, worked by hand from
  * the paper's equations (section 4.1; sRGB primaries, white D65, CIELAB with a and b times L / 100):
  *   the largest distance, green (L 87.74, a -86.18, b 83.18 -> Hunt -75.61, 72.98) against blue
- *   (L 32.30, a 79.19, b -107.86 -> Hunt 25.58, -34.84): 55.44 + hypot(101.19, 107.82) = 203.30;
+ *   (L 32.30, a 79.19, b -107.86 -> Hunt 25.58, -34.84): 55.44 + hypot(101.19, 107.82) = 203.30
+ *   (203.2973 with Lindbloom's sRGB matrix, which Lucent uses; 203.3017, evaluated in double, with
+ *   the rational-form matrix of the reference implementation, NVlabs/flip src/cpp/FLIP.h at commit
+ *   1eb247c, computeMaxDistance and LinearRGBToXYZ, lines 367-386 and 482-489);
  *   black against white: |0 - 100| = 100;
  *   the colour error e = d^0.7 against cmax^0.7 = 41.28: below p_c cmax^0.7 = 16.51 it is
  *   0.95 e / 16.51, above 0.95 + 0.05 (e - 16.51) / (41.28 - 16.51); 100^0.7 = 25.12 -> 0.96738.
