@@ -61,19 +61,32 @@ float shadow_visibility(int i, vec3 p)
     return sum / 9.0;
 }
 
-// Distance light i travels inside matter to reach p: p's depth from the light minus the depth of the
-// first surface the light meets on its way (Jimenez 2010, from the shadow map). -1: no shadow map.
+// Distance light i travels inside matter to reach p, signed: p's depth from the light minus the depth of
+// the first surface the light meets on its way (Jimenez 2010, from the shadow map), in *s. false: no
+// shadow map here.
+bool shadow_chord(int i, vec3 p, out float s)
+{
+    s = 0.0;
+    float layer = u_light_shadow[i].x;
+    if (layer < 0.0) return false;
+    vec3 c = shadow_coord(i, p);
+    if (any(lessThan(c.xy, vec2(0.0))) || any(greaterThan(c.xy, vec2(1.0)))) return false;
+    float first = texture(u_shadow_depth, vec3(c.xy, layer)).r;
+    float dz = light_depth_mm(i, clamp(c.z, 0.0, 1.0)) - light_depth_mm(i, first);
+    if (u_light_vec[i].w == 0.0) {
+        s = dz;
+        return true;
+    }
+    float z = light_depth_mm(i, clamp(c.z, 0.0, 1.0)); // perspective: along the ray, not the axis
+    s = dz * length(p - u_light_vec[i].xyz) / max(z, 1e-6);
+    return true;
+}
+
+// The same, not below 0; -1: no shadow map.
 float shadow_thickness(int i, vec3 p)
 {
-    float layer = u_light_shadow[i].x;
-    if (layer < 0.0) return -1.0;
-    vec3 c = shadow_coord(i, p);
-    if (any(lessThan(c.xy, vec2(0.0))) || any(greaterThan(c.xy, vec2(1.0)))) return -1.0;
-    float first = texture(u_shadow_depth, vec3(c.xy, layer)).r;
-    float dz = max(light_depth_mm(i, clamp(c.z, 0.0, 1.0)) - light_depth_mm(i, first), 0.0);
-    if (u_light_vec[i].w == 0.0) return dz;
-    float z = light_depth_mm(i, clamp(c.z, 0.0, 1.0)); // perspective: along the ray, not the axis
-    return dz * length(p - u_light_vec[i].xyz) / max(z, 1e-6);
+    float s;
+    return shadow_chord(i, p, s) ? max(s, 0.0) : -1.0;
 }
 
 // The transmittance through thickness s (table samples on the end points).

@@ -107,6 +107,32 @@ vec3 profile_tail(float s)
     return t;
 }
 
+// Thin parts (docs/render.md, "Thin parts"; lucent/bake.h, the sheet part): sheets of the material behind
+// the tracer's boundary, lit from behind along their normal (lucent_sheet_run), pi f of the light through
+// them per exit angle (45 bins of 2 degrees across) and thickness (down: sheet_range ((j + 1) / ROWS)^2,
+// the lobe's rows, then as many of the diffuse rest), a layer per material. The lobe (unscattered and once
+// scattered: the light keeps its direction through two rough faces, Walter et al. 2007) is read at the
+// angle between the view and the light's direction of travel, the rest at the view's angle from the normal.
+layout(binding = 11) uniform sampler2DArray u_sheet_table;
+uniform int u_sheet;           // 1: thin parts read the sheet tables; 0: T(s) / pi
+uniform float u_sheet_range;   // mm: the last row's thickness
+const float SHEET_ROWS = 24.0; // LUCENT_BAKE_SHEET_ROWS
+
+// Part 0 (the lobe) or 1 (the rest) of the sheet tables at thickness s and angle theta (radians): linear
+// in theta between the bins' centres, geometric between the thickness rows (the unscattered light falls
+// as e^(-sigma_t s)), fading to 0 from one to two table ranges.
+vec3 sheet_part(float part, float s, float theta)
+{
+    float x = clamp(theta / (0.5 * PI), 0.0, 1.0), h = 2.0 * SHEET_ROWS;
+    float j = clamp(sqrt(max(s, 0.0) / u_sheet_range) * SHEET_ROWS - 1.0, 0.0, SHEET_ROWS - 1.0);
+    float j0 = min(floor(j), SHEET_ROWS - 2.0), f = j - j0, row = part * SHEET_ROWS + j0;
+    vec3 a = texture(u_sheet_table, vec3(x, (row + 0.5) / h, u_material)).rgb;
+    vec3 b = texture(u_sheet_table, vec3(x, (row + 1.5) / h, u_material)).rgb;
+    vec3 lin = mix(a, b, f), geo = exp(mix(log(max(a, vec3(1e-30))), log(max(b, vec3(1e-30))), f));
+    vec3 t = mix(lin, geo, step(vec3(1e-30), min(a, b)));
+    return t * clamp(2.0 - s / u_sheet_range, 0.0, 1.0);
+}
+
 // Light reaching the back of a thin part and leaving here: E max(-n.l, 0) T(s) (Jimenez 2010; T the
 // Monte Carlo slab transmittance or the material's own profile, docs/render.md), times the method's
 // factor (the curvature modulation of the CDRF blog for cdrf+translucency). T of a slab is the light
@@ -118,16 +144,30 @@ vec3 profile_tail(float s)
 // 2 |n.l| / kappa; a chord much shorter (a thin sheet, kappa ~ 0) is a thin part. The weight of the
 // convex case is smoothstep(0.25, 0.75, s kappa / (2 |n.l|)); a method whose diffusion already holds
 // the light through convex bodies (u_convex_carried) adds none there. Returns the radiance factor of E / pi
-// before the albedo (the profile's part carries it here).
-vec3 transmitted(int i, vec3 n, vec3 e, float ndl, float offset, vec3 sigma0, vec3 albedo)
+// before the albedo (the profile's part carries it here). With the sheet tables (u_sheet) a thin part's
+// T(s) is the sheet's: its diffuse rest, over the exit curve that the compose pass applies, is returned
+// (into the diffuse target, blurred); its lobe, which has left through the front face already, goes to
+// `lobe` (E / pi factor, added after any blur with the specular).
+vec3 transmitted(int i, vec3 n, vec3 v, vec3 l, vec3 e, float ndl, float offset, float mu_o, vec3 sigma0, vec3 albedo,
+                 out vec3 lobe)
 {
+    lobe = vec3(0.0);
     vec3 m = method_transmission(sigma0);
     if (ndl >= 0.0 || all(equal(m, vec3(0.0)))) return vec3(0.0);
-    float s = shadow_thickness(i, v_position - n * offset);
-    if (s < 0.0) return vec3(0.0);
-    vec3 thin = transmittance(s) * (u_transmit_albedo != 0 ? albedo : vec3(1.0));
+    float s;
+    if (!shadow_chord(i, v_position - n * offset, s)) return vec3(0.0);
+    // the normal offset moved the point offset |n.l| toward the lit face: the chord is that much longer
+    // (a 0.5 mm sheet 800 mm wide, with shadow texels of 0.55 mm, read 0 mm without this)
+    s = max(s + offset * -ndl, 0.0);
     float convex = u_tr_sog_count > 0 ? smoothstep(0.25, 0.75, s * max(v_curvature, 0.0) / (2.0 * max(-ndl, 1e-3)))
                                       : 0.0;
+    vec3 thin;
+    if (u_sheet != 0) {
+        lobe = e * -ndl * sheet_part(0.0, s, acos(clamp(dot(v, -l), -1.0, 1.0))) * m * (1.0 - convex);
+        thin = sheet_part(1.0, s, acos(mu_o)) / max(boundary_exit(mu_o, u_material), vec3(1e-3));
+    } else {
+        thin = transmittance(s) * (u_transmit_albedo != 0 ? albedo : vec3(1.0));
+    }
     vec3 t = mix(thin, albedo * profile_tail(s) * (1.0 - u_convex_carried), convex);
     return e * -ndl * t * m;
 }
@@ -141,7 +181,7 @@ void main()
     float mu_o = clamp(dot(n, v), 0.0, 1.0);
     vec3 albedo = u_use_map != 0 ? texture(u_albedo_map, v_uv).rgb : u_albedo;
     vec3 sigma0 = u_sigma0_from_map != 0 ? albedo * albedo : u_sigma0;
-    vec3 irradiance = vec3(0.0), transmitted_e = vec3(0.0), specular = vec3(0.0);
+    vec3 irradiance = vec3(0.0), transmitted_e = vec3(0.0), specular = vec3(0.0), lobe_e = vec3(0.0);
     float vis0 = 1.0;
     for (int i = 0; i < u_counts.x; i++) {
         vec3 l, e = light_incident(i, v_position, l);
@@ -152,7 +192,9 @@ void main()
         entry *= curved_lean(ndl, v_curvature, n, l, v);
 #endif
         irradiance += method_irradiance(e, ndl, sigma0) * vis * entry;
-        transmitted_e += transmitted(i, n, e, ndl, offset, sigma0, albedo);
+        vec3 lobe;
+        transmitted_e += transmitted(i, n, v, l, e, ndl, offset, mu_o, sigma0, albedo, lobe);
+        lobe_e += lobe;
         specular += e * boundary_reflection(n, v, l, u_roughness, u_eta) * vis;
         if (i == 0) vis0 = vis;
     }
@@ -160,7 +202,7 @@ void main()
     o_diffuse = vec4(albedo * (irradiance / PI + u_ambient.rgb) + through, u_strength);
     // The diffuse light's way out toward the viewer (boundary.glsl) is applied by the compose pass after
     // any blur, from the view cosine here and the material.
-    o_specular = vec4(specular, mu_o);
+    o_specular = vec4(specular + lobe_e / PI, mu_o);
     o_depth = vec2(dot(v_position - u_eye.xyz, u_forward.xyz), u_material);
 #if AOV
     o_aov_normal = vec4(n, v_curvature);
