@@ -75,10 +75,15 @@ static int view_bin(const lucent_scene *sc, int x, int y, double *theta)
     return k == SH_BINS ? -1 : k;
 }
 
-/* The methods rendered: ssss and cdrf+translucency with the sheet tables, and ssss without them (the
- * slab's T(s) / pi, as before issue 31's thin parts). */
-enum { SH_METHODS = 3 };
-static const char *const k_method_names[SH_METHODS] = {"ssss", "cdrf+tr", "ssss T(s)/pi"};
+/* The methods rendered: ssss, cdrf+translucency and tsd with the sheet tables (SH_SHEET of them), and
+ * ssss without them (the slab's T(s) / pi, as before issue 31's thin parts). tsd at its default
+ * tsd_size (at 256 its texture-space sampling undershot the g 0.9 0.5 mm sheet's forward peak by 10-16%:
+ * that medium's light of orders >= 2 is forward-peaked too); not under the sanitizers (its 2048^2
+ * texture passes). */
+enum { SH_METHODS = 4, SH_SHEET = 3 };
+static const char *const k_method_names[SH_METHODS] = {"ssss", "cdrf+tr", "tsd", "ssss T(s)/pi"};
+static const lucent_render_method k_methods[SH_METHODS] = {LUCENT_METHOD_SSSS, LUCENT_METHOD_CDRF_TRANSLUCENCY,
+                                                           LUCENT_METHOD_TSD, LUCENT_METHOD_SSSS};
 
 typedef struct sheet_bins {
     double tracer[SH_BINS][3], var[SH_BINS][3], gl[SH_METHODS][SH_BINS][3];
@@ -99,9 +104,10 @@ static void render_case(const lucent_scene *sc, uint64_t photons, lucent_pool *p
                 .pool = pool, .cache_dir = test_path("cache"), .sheet_photons = photons, .boundary_photons = 2000},
             &gr));
     for (int mi = 0; gr && mi < SH_METHODS; mi++) {
+        if (SLOW > 1 && k_methods[mi] == LUCENT_METHOD_TSD) continue;
         lucent_render_settings s = sc->render;
-        s.view.method = mi == 1 ? LUCENT_METHOD_CDRF_TRANSLUCENCY : LUCENT_METHOD_SSSS;
-        s.translucency.sheet = mi < 2;
+        s.view.method = k_methods[mi];
+        s.translucency.sheet = mi < SH_SHEET;
         lucent_render_result res = {0};
         CHECK_OK(lucent_render(gr, &s, &res));
         for (int y = 0; res.image && y < SH_H; y++)
@@ -144,11 +150,12 @@ static void sheet_case(int material, double s, int spp, uint64_t photons, lucent
     lucent_scene_destroy(sc);
 }
 
-/* Issue 31's thin parts: ssss and cdrf+translucency (the surface pass's thin-part term with the sheet
+/* Issue 31's thin parts: ssss, cdrf+translucency and tsd (the thin-part term with the sheet
  * tables, baked by the renderer: 4000 photons per channel and thickness) against the tracer's sheets of
- * 0.5, 2 and 5 mm, Skin1 (g 0) and g 0.9, per view bin and channel. The bound: a model error of 5% (the
- * baked table's own noise, about 1-3% per bin at 4000 photons, and its interpolation between thickness
- * rows and angle bins) plus 2.5 standard errors of the tracer's bin (printed; Skin1 at 16 spp 1.5-4%, the
+ * 0.5, 2 and 5 mm, Skin1 (g 0) and g 0.9, per view bin and channel. The bound: a model error of 5% (2%
+ * for the baked table's own noise, about 1-3% per bin at 4000 photons, scaled by the square root of the
+ * sanitizers' cut in photons; 3% for its interpolation between thickness rows and angle bins) plus 2.5
+ * standard errors of the tracer's bin (printed; Skin1 at 16 spp 1.5-4%, the
  * g 0.9 medium at 48 spp 5-30%: the tracer's walks through a forward-peaked medium are noisy). Printed
  * beside: the slab's T(s) / pi (thin_sheet off, the term before), which the same bound fails. */
 TEST(sheet_agrees_with_the_tracer)
@@ -156,7 +163,7 @@ TEST(sheet_agrees_with_the_tracer)
     static const double thick[3] = {0.5, 2, 5};
     static const int spp[2] = {16, 48};
     lucent_pool *pool = lucent_pool_create(2);
-    double worst = 0;
+    double worst = 0, model = 0.03 + 0.02 * sqrt((double)SLOW);
     for (int m = 0; m < 2; m++)
         for (int j = 0; j < 3; j++) {
             sheet_bins h;
@@ -172,11 +179,11 @@ TEST(sheet_agrees_with_the_tracer)
                     for (int c = 0; c < 3; c++) printf(" %.3f", h.gl[mi][k][c] / h.tracer[k][c]);
                 }
                 printf("\n");
-                for (int mi = 0; mi < 2; mi++)
-                    for (int c = 0; c < 3; c++) {
+                for (int mi = 0; mi < SH_SHEET; mi++)
+                    for (int c = 0; c < 3 && !(SLOW > 1 && k_methods[mi] == LUCENT_METHOD_TSD); c++) {
                         double ratio = h.gl[mi][k][c] / h.tracer[k][c], se = sqrt(h.var[k][c]) / h.tracer[k][c];
-                        worst = fmax(worst, fabs(ratio - 1) / (0.05 + 2.5 * se));
-                        CHECK_MSG(h.pixels[k] > 0 && fabs(ratio - 1) <= 0.05 + 2.5 * se,
+                        worst = fmax(worst, fabs(ratio - 1) / (model + 2.5 * se));
+                        CHECK_MSG(h.pixels[k] > 0 && fabs(ratio - 1) <= model + 2.5 * se,
                                   "%s %.1f mm, %.0f-%.0f deg, %s, channel %d: GL / tracer %.3f (se %.3f)",
                                   m ? "g 0.9" : "Skin1", thick[j], k_edges[k], k_edges[k + 1], k_method_names[mi], c,
                                   ratio, se);

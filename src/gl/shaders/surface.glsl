@@ -107,32 +107,6 @@ vec3 profile_tail(float s)
     return t;
 }
 
-// Thin parts (docs/render.md, "Thin parts"; lucent/bake.h, the sheet part): sheets of the material behind
-// the tracer's boundary, lit from behind along their normal (lucent_sheet_run), pi f of the light through
-// them per exit angle (45 bins of 2 degrees across) and thickness (down: sheet_range ((j + 1) / ROWS)^2,
-// the lobe's rows, then as many of the diffuse rest), a layer per material. The lobe (unscattered and once
-// scattered: the light keeps its direction through two rough faces, Walter et al. 2007) is read at the
-// angle between the view and the light's direction of travel, the rest at the view's angle from the normal.
-layout(binding = 11) uniform sampler2DArray u_sheet_table;
-uniform int u_sheet;           // 1: thin parts read the sheet tables; 0: T(s) / pi
-uniform float u_sheet_range;   // mm: the last row's thickness
-const float SHEET_ROWS = 24.0; // LUCENT_BAKE_SHEET_ROWS
-
-// Part 0 (the lobe) or 1 (the rest) of the sheet tables at thickness s and angle theta (radians): linear
-// in theta between the bins' centres, geometric between the thickness rows (the unscattered light falls
-// as e^(-sigma_t s)), fading to 0 from one to two table ranges.
-vec3 sheet_part(float part, float s, float theta)
-{
-    float x = clamp(theta / (0.5 * PI), 0.0, 1.0), h = 2.0 * SHEET_ROWS;
-    float j = clamp(sqrt(max(s, 0.0) / u_sheet_range) * SHEET_ROWS - 1.0, 0.0, SHEET_ROWS - 1.0);
-    float j0 = min(floor(j), SHEET_ROWS - 2.0), f = j - j0, row = part * SHEET_ROWS + j0;
-    vec3 a = texture(u_sheet_table, vec3(x, (row + 0.5) / h, u_material)).rgb;
-    vec3 b = texture(u_sheet_table, vec3(x, (row + 1.5) / h, u_material)).rgb;
-    vec3 lin = mix(a, b, f), geo = exp(mix(log(max(a, vec3(1e-30))), log(max(b, vec3(1e-30))), f));
-    vec3 t = mix(lin, geo, step(vec3(1e-30), min(a, b)));
-    return t * clamp(2.0 - s / u_sheet_range, 0.0, 1.0);
-}
-
 // Light reaching the back of a thin part and leaving here: E max(-n.l, 0) T(s) (Jimenez 2010; T the
 // Monte Carlo slab transmittance or the material's own profile, docs/render.md), times the method's
 // factor (the curvature modulation of the CDRF blog for cdrf+translucency). T of a slab is the light
@@ -155,16 +129,13 @@ vec3 transmitted(int i, vec3 n, vec3 v, vec3 l, vec3 e, float ndl, float offset,
     vec3 m = method_transmission(sigma0);
     if (ndl >= 0.0 || all(equal(m, vec3(0.0)))) return vec3(0.0);
     float s;
-    if (!shadow_chord(i, v_position - n * offset, s)) return vec3(0.0);
-    // the normal offset moved the point offset |n.l| toward the lit face: the chord is that much longer
-    // (a 0.5 mm sheet 800 mm wide, with shadow texels of 0.55 mm, read 0 mm without this)
-    s = max(s + offset * -ndl, 0.0);
+    if (!thin_chord(i, v_position, n, ndl, offset, s)) return vec3(0.0);
     float convex = u_tr_sog_count > 0 ? smoothstep(0.25, 0.75, s * max(v_curvature, 0.0) / (2.0 * max(-ndl, 1e-3)))
                                       : 0.0;
     vec3 thin;
     if (u_sheet != 0) {
-        lobe = e * -ndl * sheet_part(0.0, s, acos(clamp(dot(v, -l), -1.0, 1.0))) * m * (1.0 - convex);
-        thin = sheet_part(1.0, s, acos(mu_o)) / max(boundary_exit(mu_o, u_material), vec3(1e-3));
+        thin = sheet_through(s, v, l, mu_o, u_material, lobe);
+        lobe *= e * -ndl * m * (1.0 - convex);
     } else {
         thin = transmittance(s) * (u_transmit_albedo != 0 ? albedo : vec3(1.0));
     }
