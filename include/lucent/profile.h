@@ -364,6 +364,11 @@ typedef struct lucent_sheet_result {
 /* Runs the sheet's Monte Carlo into dest. Deterministic for a seed. */
 lucent_status lucent_sheet_run(const lucent_sheet_desc *desc, lucent_sheet_result *dest);
 
+/* The same for count thicknesses (desc->thickness unread) into dest[0..count-1], thickness k seeded
+ * seed + k; the faces' exit kernels, which most of a single run's time builds, are built once. */
+lucent_status lucent_sheet_run_many(const lucent_sheet_desc *desc, const double *thickness, int count,
+                                    lucent_sheet_result *dest);
+
 /* The centre of exit bin b of the sheet's tables, in radians from the normal. */
 double lucent_sheet_bin_angle(int bin);
 

@@ -384,32 +384,30 @@ static lucent_status bake_sheet(const lucent_material *m, const lucent_bake_desc
     double range = 5.0 / fmax(tr, 1e-3);
     char mat[512], ckey[768];
     material_key(m, mat, sizeof mat);
-    snprintf(ckey, sizeof ckey, "sheet v1 %s roughness %.17g photons %llu rows %d to %.17g bins %d seed 1", mat,
+    snprintf(ckey, sizeof ckey, "sheet v2 %s roughness %.17g photons %llu rows %d to %.17g bins %d seed 1", mat,
              d->roughness, (unsigned long long)d->sheet_photons, SHR, range, SHB);
     double *tab = malloc(2 * SHR * SHB * 3 * sizeof *tab);
     if (!tab) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
     b->sheet_cached = lucent_cache_get(cache, "sheet", ckey, "sheet", 2 * SHR * SHB * 3, tab);
     lucent_status s = LUCENT_OK;
     if (!b->sheet_cached) {
-        lucent_sheet_result *r = malloc(sizeof *r);
-        double t0 = lucent_clock_seconds();
-        if (!r) s = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
-        for (int j = 0; s == LUCENT_OK && j < SHR; j++) {
-            double t = range * ((j + 1.0) / SHR) * ((j + 1.0) / SHR);
-            s = lucent_sheet_run(&(lucent_sheet_desc){.material = m,
-                                                      .roughness = d->roughness,
-                                                      .thickness = t,
-                                                      .photons = d->sheet_photons,
-                                                      .seed = 1 + (uint64_t)j,
-                                                      .pool = d->pool,
-                                                      .label = "the thin parts' sheets"},
-                                 r);
-            for (int o = 0; s == LUCENT_OK && o < SHB; o++)
+        lucent_sheet_result *r = malloc(SHR * sizeof *r);
+        double t0 = lucent_clock_seconds(), thick[SHR];
+        for (int j = 0; j < SHR; j++) thick[j] = range * ((j + 1.0) / SHR) * ((j + 1.0) / SHR);
+        s = r ? lucent_sheet_run_many(&(lucent_sheet_desc){.material = m,
+                                                           .roughness = d->roughness,
+                                                           .photons = d->sheet_photons,
+                                                           .seed = 1,
+                                                           .pool = d->pool,
+                                                           .label = "the thin parts' sheets"},
+                                      thick, SHR, r)
+              : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+        for (int j = 0; s == LUCENT_OK && j < SHR; j++)
+            for (int o = 0; o < SHB; o++)
                 for (int c = 0; c < 3; c++) {
-                    tab[((size_t)j * SHB + o) * 3 + c] = r->lobe[c][o];
-                    tab[((size_t)(SHR + j) * SHB + o) * 3 + c] = r->diffuse[c][o];
+                    tab[((size_t)j * SHB + o) * 3 + c] = r[j].lobe[c][o];
+                    tab[((size_t)(SHR + j) * SHB + o) * 3 + c] = r[j].diffuse[c][o];
                 }
-        }
         free(r);
         if (s == LUCENT_OK) {
             lucent_log(LUCENT_LOG_INFO, "sheet tables of %s at roughness %g: %d thicknesses to %.3g mm in %.1f s",

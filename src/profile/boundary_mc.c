@@ -22,7 +22,12 @@
  * expected value as drawing the exit, with the exit bins' noise gone. Bins are uniform in cosine; a bin's value
  * is the bin average of
  * pi f(mu_i, mu_o) (f the BRDF or BTDF of the light that entered, over azimuth): the scored weight
- * per arriving photon divided by the bin's projected solid angle over pi, hi^2 - lo^2. */
+ * per arriving photon divided by the bin's projected solid angle over pi, hi^2 - lo^2.
+ *
+ * A sheet (lucent_sheet_run; docs/render.md, "Thin parts") is the same walk on a slab lit exactly along
+ * its normal, with exit bins uniform in angle (the forward lobe of two rough faces is narrow) and the
+ * unscattered crossing scored as its expectation, w e^(-sigma_t s / mu) (Beer-Lambert) times the far
+ * face's exit kernel, at entry. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -355,9 +360,9 @@ static void reduce(const boundary_job *job, lucent_boundary_result *r)
         }
 }
 
-/* Runs job (its desc, nbo, nin and angle_bins set): the tallies of every chunk in job->tally (freed
- * by the caller, with the kernels), or an error. */
-static lucent_status run_job(boundary_job *job, const char *label)
+/* Prepares job (its desc, nbo, nin and angle_bins set): the defaults, the checks, the tallies and the
+ * face's kernels (freed by the caller, even on error). */
+static lucent_status prepare_job(boundary_job *job, const char *label)
 {
     lucent_boundary_desc *d = &job->d;
     if (!d->photons) d->photons = LUCENT_BOUNDARY_PHOTONS;
@@ -374,8 +379,17 @@ static lucent_status run_job(boundary_job *job, const char *label)
         return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "%s: out of memory", label);
     build_exit_kernel(job);
     build_direct(job);
+    return LUCENT_OK;
+}
+
+/* Runs the walks of a prepared job into job->tally (zeroed first). */
+static lucent_status tally_job(boundary_job *job, const char *label)
+{
+    lucent_boundary_desc *d = &job->d;
+    size_t chunks = (size_t)3 * (size_t)job->nin * (size_t)d->batches;
+    memset(job->tally, 0, chunks * (size_t)T_STRIDE * sizeof *job->tally);
     job->progress = lucent_progress_begin(d->label ? d->label : label, chunks * job->per_batch);
-    s = lucent_parallel_for_share(d->pool, chunks, 1, run_chunk, job, lucent_dist_share());
+    lucent_status s = lucent_parallel_for_share(d->pool, chunks, 1, run_chunk, job, lucent_dist_share());
     lucent_progress_end(job->progress);
     /* Each chunk writes its own slots, 0 in every other process: the sum over processes is exact. */
     s = lucent_dist_sum(s, LUCENT_DIST_F64, job->tally, chunks * (size_t)T_STRIDE);
@@ -392,7 +406,8 @@ static lucent_status run_job(boundary_job *job, const char *label)
 lucent_status lucent_boundary_run(const lucent_boundary_desc *desc, lucent_boundary_result *dest)
 {
     boundary_job job = {.d = *desc, .nbo = NB, .nin = NB};
-    lucent_status s = run_job(&job, "boundary tables");
+    lucent_status s = prepare_job(&job, "boundary tables");
+    if (s == LUCENT_OK) s = tally_job(&job, "boundary tables");
     if (s == LUCENT_OK) {
         memset(dest, 0, sizeof *dest);
         dest->photons = job.per_batch * (uint64_t)job.d.batches;
@@ -402,17 +417,54 @@ lucent_status lucent_boundary_run(const lucent_boundary_desc *desc, lucent_bound
     return s;
 }
 
-/* A sheet lit along its normal (lucent/profile.h, "A sheet lit from behind"): the far face's exit
- * bins, uniform in the angle from the normal, split into the lobe (orders 0 and 1) and the rest. */
-lucent_status lucent_sheet_run(const lucent_sheet_desc *desc, lucent_sheet_result *dest)
+/* A sheet's tallies into dest: the far face's exit bins, uniform in the angle from the normal, split
+ * into the lobe (orders 0 and 1) and the rest. */
+static void reduce_sheet(const boundary_job *job, lucent_sheet_result *dest)
+{
+    int B = job->d.batches, nbo = job->nbo;
+    double n = (double)job->per_batch;
+    memset(dest, 0, sizeof *dest);
+    dest->photons = job->per_batch * (uint64_t)B;
+    for (int c = 0; c < 3; c++) {
+        for (int o = 0; o < LUCENT_SHEET_BINS; o++) {
+            /* the bin's projected solid angle over pi: sin^2 hi - sin^2 lo */
+            double lo = sin(o * (0.5 * M_PI) / LUCENT_SHEET_BINS);
+            double hi = sin((o + 1) * (0.5 * M_PI) / LUCENT_SHEET_BINS);
+            double solid = hi * hi - lo * lo, m, se;
+            batch_stats_n(job, c, 0, 2 * nbo + o, 1, &m, &se);
+            dest->unscattered[c][o] = m / solid;
+            /* orders 0 and 1 together, then 2 and more: their batch means' standard errors */
+            double sum = 0, sum2 = 0, sumd = 0, sumd2 = 0;
+            for (int b = 0; b < B; b++) {
+                const double *t = job->tally + ((size_t)c * (size_t)B + (size_t)b) * (size_t)T_STRIDE;
+                double x = (t[2 * nbo + o] + t[3 * nbo + o]) / n, y = t[4 * nbo + o] / n;
+                sum += x, sum2 += x * x, sumd += y, sumd2 += y * y;
+            }
+            double ml = sum / B, md = sumd / B;
+            dest->lobe[c][o] = ml / solid;
+            dest->lobe_se[c][o] = sqrt(fmax(0.0, (sum2 / B - ml * ml) / (B - 1.0))) / solid;
+            dest->diffuse[c][o] = md / solid;
+            dest->diffuse_se[c][o] = sqrt(fmax(0.0, (sumd2 / B - md * md) / (B - 1.0))) / solid;
+        }
+        batch_stats_n(job, c, 0, nbo, nbo, &dest->total[c], &dest->total_se[c]);
+    }
+}
+
+/* A sheet lit along its normal (lucent/profile.h, "A sheet lit from behind"), at count thicknesses: the
+ * face's kernels, which do not depend on the thickness, built once. */
+lucent_status lucent_sheet_run_many(const lucent_sheet_desc *desc, const double *thickness, int count,
+                                    lucent_sheet_result *dest)
 {
     if (!desc->material) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "sheet tables: no material");
-    if (!(desc->thickness > 0))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: sheet tables: thickness must be > 0 mm (got %g)",
-                            desc->material->name, desc->thickness);
+    for (int k = 0; k < count; k++)
+        if (!(thickness[k] > 0))
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: sheet tables: thickness must be > 0 mm (got %g)",
+                                desc->material->name, thickness[k]);
+    if (count < 1)
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: sheet tables: no thickness", desc->material->name);
     boundary_job job = {.d = {.material = desc->material,
                               .roughness = desc->roughness,
-                              .thickness = desc->thickness,
+                              .thickness = thickness[0],
                               .photons = desc->photons ? desc->photons : LUCENT_SHEET_PHOTONS,
                               .batches = desc->batches,
                               .seed = desc->seed,
@@ -421,37 +473,20 @@ lucent_status lucent_sheet_run(const lucent_sheet_desc *desc, lucent_sheet_resul
                         .nbo = LUCENT_SHEET_BINS,
                         .nin = 1,
                         .angle_bins = true};
-    lucent_status s = run_job(&job, "sheet tables");
-    if (s == LUCENT_OK) {
-        memset(dest, 0, sizeof *dest);
-        dest->photons = job.per_batch * (uint64_t)job.d.batches;
-        for (int c = 0; c < 3; c++) {
-            for (int o = 0; o < LUCENT_SHEET_BINS; o++) {
-                /* the bin's projected solid angle over pi: sin^2 hi - sin^2 lo */
-                double lo = sin(o * (0.5 * M_PI) / LUCENT_SHEET_BINS),
-                       hi = sin((o + 1) * (0.5 * M_PI) / LUCENT_SHEET_BINS);
-                double solid = hi * hi - lo * lo, m, se;
-                batch_stats_n(&job, c, 0, 2 * job.nbo + o, 1, &m, &se);
-                dest->unscattered[c][o] = m / solid;
-                /* orders 0 and 1 together, then 2 and more: their batch means' standard errors */
-                double sum = 0, sum2 = 0, sumd = 0, sumd2 = 0, n = (double)job.per_batch;
-                int B = job.d.batches;
-                for (int b = 0; b < B; b++) {
-                    const double *t = job.tally + ((size_t)c * (size_t)B + (size_t)b) * (size_t)(5 * job.nbo + 3);
-                    double x = (t[2 * job.nbo + o] + t[3 * job.nbo + o]) / n, y = t[4 * job.nbo + o] / n;
-                    sum += x, sum2 += x * x, sumd += y, sumd2 += y * y;
-                }
-                double ml = sum / B, md = sumd / B;
-                dest->lobe[c][o] = ml / solid;
-                dest->lobe_se[c][o] = sqrt(fmax(0.0, (sum2 / B - ml * ml) / (B - 1.0))) / solid;
-                dest->diffuse[c][o] = md / solid;
-                dest->diffuse_se[c][o] = sqrt(fmax(0.0, (sumd2 / B - md * md) / (B - 1.0))) / solid;
-            }
-            batch_stats_n(&job, c, 0, job.nbo, job.nbo, &dest->total[c], &dest->total_se[c]);
-        }
+    lucent_status s = prepare_job(&job, "sheet tables");
+    uint64_t seed = job.d.seed;
+    for (int k = 0; s == LUCENT_OK && k < count; k++) {
+        job.d.thickness = thickness[k], job.d.seed = seed + (uint64_t)k; /* each thickness its own streams */
+        s = tally_job(&job, "sheet tables");
+        if (s == LUCENT_OK) reduce_sheet(&job, &dest[k]);
     }
     free(job.tally), free(job.exit), free(job.direct);
     return s;
+}
+
+lucent_status lucent_sheet_run(const lucent_sheet_desc *desc, lucent_sheet_result *dest)
+{
+    return lucent_sheet_run_many(desc, &desc->thickness, 1, dest);
 }
 
 double lucent_sheet_bin_angle(int bin) { return (bin + 0.5) * (0.5 * M_PI) / LUCENT_SHEET_BINS; }
