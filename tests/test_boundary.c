@@ -438,6 +438,14 @@ TEST(bad_input_is_named)
     CHECK_ERR(lucent_boundary_run(&(lucent_boundary_desc){.material = NULL}, r), LUCENT_ERR_INVALID_ARGUMENT,
               "no material");
     free(r);
+    lucent_sheet_result *t = malloc(sizeof *t);
+    CHECK_ERR(lucent_sheet_run(&(lucent_sheet_desc){.material = &m, .thickness = 0}, t), LUCENT_ERR_INVALID_ARGUMENT,
+              "grey", "thickness");
+    CHECK_ERR(lucent_sheet_run(&(lucent_sheet_desc){.material = &m, .thickness = 1, .roughness = -0.1}, t),
+              LUCENT_ERR_INVALID_ARGUMENT, "grey", "roughness");
+    CHECK_ERR(lucent_sheet_run(&(lucent_sheet_desc){.material = NULL, .thickness = 1}, t), LUCENT_ERR_INVALID_ARGUMENT,
+              "no material");
+    free(t);
 }
 
 TEST_MAIN(TEST_ENTRY(smooth_half_space_matches_giovanelli), TEST_ENTRY(half_space_keeps_energy),

@@ -220,7 +220,10 @@ static void centre_mean(lucent_renderer *r, const lucent_render_settings *s, dou
 
 /* Expected: light through a thin part adds to what the visible side shows (physics: the disc is lit
  * only from behind), and skin passes red far better than blue (Skin1's absorption rises from red to
- * blue, so its diffusion length 1 / sigma_tr is longest in red: 3.7, 1.4, 0.7 mm). */
+ * blue, so its diffusion length 1 / sigma_tr is longest in red: 3.7, 1.4, 0.7 mm). Seen along the
+ * light, through the thin parts' forward lobe (render.thin_sheet), red over green is what the path
+ * tracer's Skin1 sheets show on their axis (test_gl_sheet: 1.7 at 2 mm, 4.4 at 5 mm): more than 2 at
+ * the disc's 4 mm. */
 TEST(translucency_brightens_a_backlit_disc_in_red)
 {
     lucent_scene *sc = scene_from(k_slab);
@@ -243,7 +246,7 @@ TEST(translucency_brightens_a_backlit_disc_in_red)
         printf("     cdrf %.4f %.4f %.4f, cdrf+translucency %.4f %.4f %.4f\n", cdrf[0], cdrf[1], cdrf[2], cdrft[0],
                cdrft[1], cdrft[2]);
         CHECK_MSG(on[0] + on[1] + on[2] > 1.5 * (off[0] + off[1] + off[2]), "translucency on is not brighter");
-        CHECK_MSG(t[0] > 3 * t[1] && t[1] > t[2] && t[2] >= 0, "transmitted light is not red: %g %g %g", t[0], t[1],
+        CHECK_MSG(t[0] > 2 * t[1] && t[1] > t[2] && t[2] >= 0, "transmitted light is not red: %g %g %g", t[0], t[1],
                   t[2]);
         CHECK_MSG(cdrft[0] > cdrf[0] + 0.5 * t[0], "cdrf+translucency adds no red through the disc");
     }
@@ -251,8 +254,8 @@ TEST(translucency_brightens_a_backlit_disc_in_red)
     lucent_scene_destroy(sc);
 }
 
-/* Expected: with render.transmittance "slab", a point of a flat part lit from straight behind with
- * irradiance E shows E T(s) E_x(mu_o) / pi of transmitted radiance, T(s) the total transmittance of a
+/* Expected: with render.transmittance "slab" and thin_sheet off, a point of a flat part lit from straight
+ * behind with irradiance E shows E T(s) E_x(mu_o) / pi of transmitted radiance, T(s) the total transmittance of a
  * slab of the material s mm thick (docs/render.md), E_x the boundary's exit curve (the diffuse light's
  * way out toward the viewer, the same for every method, checked against the path tracer by
  * test_gl_boundary; read here from the renderer's table at mu_o = 1). T comes here from an independent Monte Carlo run
@@ -277,6 +280,7 @@ TEST(slab_translucency_matches_monte_carlo_transmittance)
         s.view.shadow_map_size = 4096;
         s.translucency.curvature = 0;
         s.translucency.transmittance = LUCENT_TRANSMIT_SLAB;
+        s.translucency.sheet = false; /* the slab's T(s) / pi (the sheet tables: test_gl_sheet) */
         double with[3], without[3];
         s.view.method = LUCENT_METHOD_CDRF_TRANSLUCENCY;
         square_mean(r, &s, 31, 33, with); /* the 2 x 2 pixels on the axis: 4 mm to 0.1% */
@@ -446,7 +450,7 @@ TEST(scene_changes_and_adopted_bakes_give_a_fresh_renderers_pixels)
         /* the boundary's tables (the albedo and the entry and exit factors) with every method; ssss's
          * curved parts (on by default) */
         unsigned ssss = LUCENT_BAKE_TAPS | LUCENT_BAKE_SPHERES | LUCENT_BAKE_BOUNDARY;
-        CHECK(what == ssss || what == (ssss | LUCENT_BAKE_TRANSMITTANCE));
+        CHECK(what == ssss || what == (ssss | LUCENT_BAKE_TRANSMITTANCE | LUCENT_BAKE_SHEET));
         CHECK_OK(lucent_material_bake(&other->objects[0].material,
                                       &(lucent_bake_desc){.what = what,
                                                           .settings = &other->render,

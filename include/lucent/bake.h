@@ -25,7 +25,12 @@
  *                  desc.sphere_photons                         exitance of Monte Carlo spheres of the
  *                                                              material behind the same boundary over
  *                                                              theta and radius (docs/render.md,
- *                                                              "Curved parts") */
+ *                                                              "Curved parts")
+ *   sheet          the boundary's roughness,                   lucent_sheet_run (cached): sheets of the
+ *                  desc.sheet_photons                          material behind the same boundary lit
+ *                                                              from behind, per thickness: the thin
+ *                                                              parts' lobe and diffuse light
+ *                                                              (docs/render.md, "Thin parts") */
 #ifndef LUCENT_BAKE_H
 #define LUCENT_BAKE_H
 
@@ -50,7 +55,8 @@ enum {
     LUCENT_BAKE_SOG = 1u << 4, /* bakes the profile too */
     LUCENT_BAKE_RD = 1u << 5,
     LUCENT_BAKE_BOUNDARY = 1u << 6,
-    LUCENT_BAKE_SPHERES = 1u << 7 /* bakes the boundary too */
+    LUCENT_BAKE_SPHERES = 1u << 7, /* bakes the boundary too */
+    LUCENT_BAKE_SHEET = 1u << 8
 };
 
 /* The defaults of lucent_bake_desc's photon counts, stated once. */
@@ -64,13 +70,17 @@ enum {
     LUCENT_BAKE_SKIN_RD_PHOTONS = 10000,  /* a spectral skin's: per band (lucent/skin.h) */
     LUCENT_BAKE_BOUNDARY_PHOTONS = 2000,  /* boundary: per channel and incidence bin (about 1% per table
                                              entry for Skin1, 2% for marble; 0.8 s and 6 s of CPU) */
-    LUCENT_BAKE_SPHERE_PHOTONS = 20000    /* spheres: per channel and radius */
+    LUCENT_BAKE_SPHERE_PHOTONS = 20000,   /* spheres: per channel and radius */
+    LUCENT_BAKE_SHEET_PHOTONS = 4000      /* sheet: per channel and thickness */
 };
 
 /* The spheres part's table: radii r0 2^(k/2), k < LUCENT_BAKE_SPHERE_RADII, and theta bins of pi / BINS. */
 enum { LUCENT_BAKE_SPHERE_RADII = 16, LUCENT_BAKE_SPHERE_BINS = 36 };
 
 enum { LUCENT_BAKE_TRANSMIT_SIZE = 256 }; /* samples of the transmittance table */
+
+/* The sheet part's thicknesses: sheet_range ((j + 1) / ROWS)^2, j < ROWS. */
+enum { LUCENT_BAKE_SHEET_ROWS = 24 };
 
 /* What to bake and how; a zero field means the default. */
 typedef struct lucent_bake_desc {
@@ -84,6 +94,7 @@ typedef struct lucent_bake_desc {
                                                (0: smooth, Fresnel's) */
     uint64_t boundary_photons;              /* 0: LUCENT_BAKE_BOUNDARY_PHOTONS */
     uint64_t sphere_photons;                /* 0: LUCENT_BAKE_SPHERE_PHOTONS */
+    uint64_t sheet_photons;                 /* 0: LUCENT_BAKE_SHEET_PHOTONS */
     lucent_pool *pool;                      /* NULL: serial */
 } lucent_bake_desc;
 
@@ -128,11 +139,20 @@ typedef struct lucent_baked {
     double sphere_r0;
     float spheres[2 * (LUCENT_BAKE_SPHERE_RADII + 1) * LUCENT_BAKE_SPHERE_BINS * 3];
     bool spheres_cached;
+    /* Thin parts (LUCENT_BAKE_SHEET; docs/render.md, "Thin parts"): sheets of the material behind the
+     * boundary at `roughness`, thickness sheet_range ((j + 1) / ROWS)^2 (sheet_range five of the longest
+     * diffusion lengths 1 / sigma_tr), lit from behind along the normal (lucent_sheet_run): pi f of the
+     * light through them per exit angle bin (LUCENT_SHEET_BINS uniform in [0, 90] degrees), rows j < ROWS
+     * the lobe (scattering orders 0 and 1, read at the angle from the light's direction of travel), rows
+     * ROWS + j the rest (read at the angle from the normal). sheet[((row x BINS) + b) x 3 + c]. */
+    double sheet_range;
+    float sheet[2 * LUCENT_BAKE_SHEET_ROWS * LUCENT_SHEET_BINS * 3];
+    bool sheet_cached;
     /* What each part was built from ("dipole", "dipole/preint/1/17", ...): a part is rebuilt when its
      * key changes. */
     char profile_key[LUCENT_BAKE_KEY_SIZE], taps_key[LUCENT_BAKE_KEY_SIZE];
     char transmit_key[LUCENT_BAKE_KEY_SIZE], sigma0_key[LUCENT_BAKE_KEY_SIZE], sog_key[LUCENT_BAKE_KEY_SIZE];
-    char boundary_key[LUCENT_BAKE_KEY_SIZE], spheres_key[LUCENT_BAKE_KEY_SIZE];
+    char boundary_key[LUCENT_BAKE_KEY_SIZE], spheres_key[LUCENT_BAKE_KEY_SIZE], sheet_key[LUCENT_BAKE_KEY_SIZE];
 } lucent_baked;
 
 /* Bakes what desc asks for into baked, reusing the parts whose settings did not change. cache may

@@ -331,6 +331,47 @@ lucent_status lucent_boundary_run(const lucent_boundary_desc *desc, lucent_bound
 /* The centre of bin b of the tables' cosines, (b + 1/2) / LUCENT_BOUNDARY_BINS. */
 double lucent_boundary_bin_cosine(int bin);
 
+/* ---- A sheet lit from behind (docs/render.md, "Thin parts") -------------------------------------
+ * A slab of the material `thickness` mm thick behind the same rough faces as lucent_boundary_run (the
+ * same walk), lit by collimated light exactly along its normal: the light leaving the far face, the bin
+ * average of pi f(theta_o) (f the BTDF of the sheet, so that a back face lit by irradiance E shows
+ * radiance E table / pi on the front at theta_o from the normal), exit bins uniform in theta_o
+ * (LUCENT_SHEET_BINS over [0, 90] degrees: fine enough for the forward lobe of two rough faces), split by
+ * scattering order into the lobe (unscattered and once scattered: the light that keeps the direction of
+ * the light) and the diffuse rest (scattered twice or more). Chunks (channel, batch) seeded (seed, chunk). */
+enum { LUCENT_SHEET_BINS = 45, LUCENT_SHEET_PHOTONS = 20000 };
+
+typedef struct lucent_sheet_desc {
+    const lucent_material *material;
+    double roughness; /* GGX alpha of both faces, [0, 1]; 0: smooth */
+    double thickness; /* mm, > 0 */
+    uint64_t photons; /* per channel (0: LUCENT_SHEET_PHOTONS) */
+    int batches;      /* for the standard errors, 2..4096 (0: 8) */
+    uint64_t seed;    /* 0: 1 */
+    lucent_pool *pool;
+    const char *label; /* the progress bar's (NULL: "sheet tables") */
+} lucent_sheet_desc;
+
+typedef struct lucent_sheet_result {
+    uint64_t photons; /* per channel */
+    /* [channel][exit bin]: pi f of orders 0 and 1, of orders >= 2, and their standard errors */
+    double lobe[3][LUCENT_SHEET_BINS], lobe_se[3][LUCENT_SHEET_BINS];
+    double diffuse[3][LUCENT_SHEET_BINS], diffuse_se[3][LUCENT_SHEET_BINS];
+    double unscattered[3][LUCENT_SHEET_BINS]; /* order 0 alone (a part of lobe) */
+    double total[3], total_se[3];             /* the transmittance, 2 int (lobe + diffuse) mu dmu */
+} lucent_sheet_result;
+
+/* Runs the sheet's Monte Carlo into dest. Deterministic for a seed. */
+lucent_status lucent_sheet_run(const lucent_sheet_desc *desc, lucent_sheet_result *dest);
+
+/* The same for count thicknesses (desc->thickness unread) into dest[0..count-1], thickness k seeded
+ * seed + k; the faces' exit kernels, which most of a single run's time builds, are built once. */
+lucent_status lucent_sheet_run_many(const lucent_sheet_desc *desc, const double *thickness, int count,
+                                    lucent_sheet_result *dest);
+
+/* The centre of exit bin b of the sheet's tables, in radians from the normal. */
+double lucent_sheet_bin_angle(int bin);
+
 #ifdef __cplusplus
 }
 #endif

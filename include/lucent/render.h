@@ -110,6 +110,7 @@ typedef struct lucent_renderer_desc {
     uint64_t profile_photons;  /* render.profile "mc": photons per channel (0: 200000) */
     uint64_t boundary_photons; /* the boundary's tables: photons per channel and incidence bin (0: 2000) */
     uint64_t sphere_photons;   /* curved parts: photons per channel and sphere (0: 20000) */
+    uint64_t sheet_photons;    /* thin parts' sheets: photons per channel and thickness (0: 4000) */
 } lucent_renderer_desc;
 
 /* Returns the defaults a zero lucent_renderer_desc stands for. */

@@ -97,6 +97,8 @@ typedef struct lucent_translucency_settings {
     lucent_transmittance_model transmittance; /* how much passes a thickness */
     double curvature;                         /* cdrf+translucency: transmitted light times
                                                  1 + this x sigma0 x curvature (the CDRF blog) */
+    bool sheet; /* thin parts (with the slab model): the sheet tables behind the tracer's boundary, the
+                   forward lobe and the diffuse rest (docs/render.md, "Thin parts"), in place of T(s) / pi */
 } lucent_translucency_settings;
 
 typedef struct lucent_cdrf_settings {

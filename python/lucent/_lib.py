@@ -189,7 +189,8 @@ class SceneLoadDesc(ctypes.Structure):  # lucent_scene_load_desc (scene.h)
 class RendererDesc(ctypes.Structure):  # lucent_renderer_desc (render.h)
     _fields_ = [("pool", c_void_p), ("cache_dir", c_char_p), ("sigma0_photons", ctypes.c_uint64),
                 ("transmit_photons", ctypes.c_uint64), ("profile_photons", ctypes.c_uint64),
-                ("boundary_photons", ctypes.c_uint64), ("sphere_photons", ctypes.c_uint64)]
+                ("boundary_photons", ctypes.c_uint64), ("sphere_photons", ctypes.c_uint64),
+                ("sheet_photons", ctypes.c_uint64)]
 
 
 class RenderResult(ctypes.Structure):  # lucent_render_result: the images, then what Python does not read

@@ -25,6 +25,7 @@ static lucent_bake_desc resolve(const lucent_bake_desc *d, lucent_render_setting
     if (!r.sog_count) r.sog_count = 6;
     if (!r.boundary_photons) r.boundary_photons = LUCENT_BAKE_BOUNDARY_PHOTONS;
     if (!r.sphere_photons) r.sphere_photons = LUCENT_BAKE_SPHERE_PHOTONS;
+    if (!r.sheet_photons) r.sheet_photons = LUCENT_BAKE_SHEET_PHOTONS;
     if (r.what & LUCENT_BAKE_SPHERES) r.what |= LUCENT_BAKE_BOUNDARY;
     if (r.what & (LUCENT_BAKE_TAPS | LUCENT_BAKE_SOG)) r.what |= LUCENT_BAKE_PROFILE;
     if ((r.what & LUCENT_BAKE_TRANSMITTANCE) && r.settings->translucency.transmittance == LUCENT_TRANSMIT_PROFILE)
@@ -366,6 +367,65 @@ static lucent_status bake_boundary(const lucent_material *m, const lucent_bake_d
     return s == LUCENT_OK ? s : lucent_error_context(s, "material %s: boundary tables", m->name);
 }
 
+/* ---- sheet: the thin parts' light (docs/render.md, "Thin parts") ---- */
+
+enum { SHR = LUCENT_BAKE_SHEET_ROWS, SHB = LUCENT_SHEET_BINS };
+
+static lucent_status bake_sheet(const lucent_material *m, const lucent_bake_desc *d, lucent_cache *cache,
+                                lucent_baked *b)
+{
+    char key[LUCENT_BAKE_KEY_SIZE];
+    snprintf(key, sizeof key, "%.17g/%llu", d->roughness, (unsigned long long)d->sheet_photons);
+    if ((b->have & LUCENT_BAKE_SHEET) && !strcmp(key, b->sheet_key)) return LUCENT_OK;
+    b->have &= ~(unsigned)LUCENT_BAKE_SHEET, b->sheet_key[0] = '\0';
+    lucent_material_derived md;
+    lucent_material_derive(m, &md);
+    double tr = fmin(md.sigma_tr[0], fmin(md.sigma_tr[1], md.sigma_tr[2]));
+    double range = 5.0 / fmax(tr, 1e-3);
+    char mat[512], ckey[768];
+    material_key(m, mat, sizeof mat);
+    snprintf(ckey, sizeof ckey, "sheet v2 %s roughness %.17g photons %llu rows %d to %.17g bins %d seed 1", mat,
+             d->roughness, (unsigned long long)d->sheet_photons, SHR, range, SHB);
+    double *tab = malloc(2 * SHR * SHB * 3 * sizeof *tab);
+    if (!tab) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+    b->sheet_cached = lucent_cache_get(cache, "sheet", ckey, "sheet", 2 * SHR * SHB * 3, tab);
+    lucent_status s = LUCENT_OK;
+    if (!b->sheet_cached) {
+        lucent_sheet_result *r = malloc(SHR * sizeof *r);
+        double t0 = lucent_clock_seconds(), thick[SHR];
+        for (int j = 0; j < SHR; j++) thick[j] = range * ((j + 1.0) / SHR) * ((j + 1.0) / SHR);
+        s = r ? lucent_sheet_run_many(&(lucent_sheet_desc){.material = m,
+                                                           .roughness = d->roughness,
+                                                           .photons = d->sheet_photons,
+                                                           .seed = 1,
+                                                           .pool = d->pool,
+                                                           .label = "the thin parts' sheets"},
+                                      thick, SHR, r)
+              : lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
+        for (int j = 0; s == LUCENT_OK && j < SHR; j++)
+            for (int o = 0; o < SHB; o++)
+                for (int c = 0; c < 3; c++) {
+                    tab[((size_t)j * SHB + o) * 3 + c] = r[j].lobe[c][o];
+                    tab[((size_t)(SHR + j) * SHB + o) * 3 + c] = r[j].diffuse[c][o];
+                }
+        free(r);
+        if (s == LUCENT_OK) {
+            lucent_log(LUCENT_LOG_INFO, "sheet tables of %s at roughness %g: %d thicknesses to %.3g mm in %.1f s",
+                       m->name, d->roughness, SHR, range, lucent_clock_seconds() - t0);
+            lucent_cache_field f[1] = {{"sheet", tab, 2 * SHR * SHB * 3}};
+            lucent_cache_put(cache, "sheet", ckey, f, 1);
+        }
+    }
+    if (s == LUCENT_OK) {
+        for (size_t k = 0; k < (size_t)2 * SHR * SHB * 3; k++) b->sheet[k] = (float)fmax(tab[k], 0.0);
+        b->sheet_range = range;
+        snprintf(b->sheet_key, sizeof b->sheet_key, "%s", key);
+        b->have |= LUCENT_BAKE_SHEET;
+    }
+    free(tab);
+    return s == LUCENT_OK ? s : lucent_error_context(s, "material %s: sheet tables", m->name);
+}
+
 /* ---- spheres: the curved parts' exitance (docs/render.md, "Curved parts") ---- */
 
 enum { SR = LUCENT_BAKE_SPHERE_RADII, SB = LUCENT_BAKE_SPHERE_BINS };
@@ -491,6 +551,12 @@ lucent_status lucent_material_bake(const lucent_material *material, const lucent
         s = bake_boundary(material, &d, cache, baked);
     }
     if (s == LUCENT_OK && (d.what & LUCENT_BAKE_SPHERES)) s = bake_spheres(material, &d, cache, baked);
+    if (s == LUCENT_OK && (d.what & LUCENT_BAKE_SHEET)) {
+        if (!(d.roughness >= 0) || d.roughness > 1)
+            return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "material %s: sheet roughness must be in [0, 1] (got %g)",
+                                material->name, d.roughness);
+        s = bake_sheet(material, &d, cache, baked);
+    }
     return s;
 }
 

@@ -13,6 +13,7 @@ lucent_renderer_desc lucent_renderer_defaults(void)
                                   .transmit_photons = LUCENT_BAKE_TRANSMIT_PHOTONS,
                                   .boundary_photons = LUCENT_BAKE_BOUNDARY_PHOTONS,
                                   .sphere_photons = LUCENT_BAKE_SPHERE_PHOTONS,
+                                  .sheet_photons = LUCENT_BAKE_SHEET_PHOTONS,
                                   .profile_photons = LUCENT_BAKE_PROFILE_PHOTONS};
 }
 
@@ -25,6 +26,7 @@ lucent_bake_desc gl_renderer_bake_desc(const lucent_renderer *r, const lucent_re
                               .sigma0_photons = r->desc.sigma0_photons,
                               .boundary_photons = r->desc.boundary_photons,
                               .sphere_photons = r->desc.sphere_photons,
+                              .sheet_photons = r->desc.sheet_photons,
                               .pool = r->desc.pool};
 }
 
@@ -73,6 +75,7 @@ static lucent_renderer_desc resolve(const lucent_renderer_desc *d)
     if (!r.transmit_photons) r.transmit_photons = def.transmit_photons;
     if (!r.boundary_photons) r.boundary_photons = def.boundary_photons;
     if (!r.sphere_photons) r.sphere_photons = def.sphere_photons;
+    if (!r.sheet_photons) r.sheet_photons = def.sheet_photons;
     if (!r.profile_photons) r.profile_photons = def.profile_photons;
     return r;
 }

@@ -54,6 +54,7 @@ lucent_status gl_tables_recollect(gl_tables *t, const lucent_scene *scene)
     if (old.transmit_tex) glDeleteTextures(1, &old.transmit_tex);
     if (old.boundary_tex) glDeleteTextures(1, &old.boundary_tex);
     if (old.spheres_tex) glDeleteTextures(1, &old.spheres_tex);
+    if (old.sheet_tex) glDeleteTextures(1, &old.sheet_tex);
     free(old.object_material);
     return s;
 }
@@ -63,7 +64,8 @@ lucent_status gl_tables_adopt(gl_tables *t, const lucent_material *m, const luce
     bool found = false;
     for (int k = 0; k < t->count; k++)
         if (same_material(&t->material[k], m)) {
-            t->transmit_key[0] = t->boundary_key[0] = t->spheres_key[0] = '\0'; /* rows may change under a key */
+            t->transmit_key[0] = t->boundary_key[0] = t->spheres_key[0] = t->sheet_key[0] = '\0'; /* rows may
+                                                                                                change under a key */
             lucent_status s = lucent_baked_copy(baked, &t->baked[k]);
             if (s != LUCENT_OK) return s;
             found = true;
@@ -138,6 +140,26 @@ lucent_status gl_tables_upload_spheres(gl_tables *t)
     return gl_check("uploading the curved parts' tables");
 }
 
+lucent_status gl_tables_upload_sheet(gl_tables *t)
+{
+    char key[sizeof t->sheet_key] = "";
+    for (int m = 0; m < t->count; m++)
+        snprintf(key + strlen(key), sizeof key - strlen(key), "%s|", t->baked[m].sheet_key);
+    if (t->sheet_tex && !strcmp(t->sheet_key, key)) return LUCENT_OK;
+    enum { W = LUCENT_SHEET_BINS, H = 2 * LUCENT_BAKE_SHEET_ROWS };
+    if (t->sheet_tex) glDeleteTextures(1, &t->sheet_tex);
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t->sheet_tex);
+    glTextureStorage3D(t->sheet_tex, 1, GL_RGB32F, W, H, t->count > 0 ? t->count : 1);
+    for (int m = 0; m < t->count; m++)
+        glTextureSubImage3D(t->sheet_tex, 0, 0, 0, m, W, H, 1, GL_RGB, GL_FLOAT, t->baked[m].sheet);
+    glTextureParameteri(t->sheet_tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(t->sheet_tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(t->sheet_tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(t->sheet_tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    snprintf(t->sheet_key, sizeof t->sheet_key, "%s", key);
+    return gl_check("uploading the thin parts' sheet tables");
+}
+
 const lucent_baked *gl_tables_of(const gl_tables *t, int object) { return &t->baked[t->object_material[object]]; }
 
 void gl_tables_free(gl_tables *t)
@@ -146,6 +168,7 @@ void gl_tables_free(gl_tables *t)
     if (t->transmit_tex) glDeleteTextures(1, &t->transmit_tex);
     if (t->boundary_tex) glDeleteTextures(1, &t->boundary_tex);
     if (t->spheres_tex) glDeleteTextures(1, &t->spheres_tex);
+    if (t->sheet_tex) glDeleteTextures(1, &t->sheet_tex);
     free(t->object_material);
     memset(t, 0, sizeof *t);
 }

@@ -13,6 +13,7 @@
 enum { GLR_MAX_MATERIALS = 8 }; /* distinct materials in one scene (kernel rows, transmittance rows) */
 enum { GL_BOUNDARY_UNIT = 9 };  /* the texture unit of the boundary's tables in every pass (lights.glsl) */
 enum { GL_SPHERES_UNIT = 10 };  /* the curved parts' tables (cdrf with cdrf_spheres) */
+enum { GL_SHEET_UNIT = 11 };    /* the thin parts' sheet tables (surface.glsl) */
 
 typedef struct gl_tables {
     int count;
@@ -26,6 +27,8 @@ typedef struct gl_tables {
     GLuint spheres_tex;  /* RGB32F array: SPHERE_BINS x 2 (SPHERE_RADII + 1), a layer per material */
     char spheres_key[GLR_MAX_MATERIALS * LUCENT_BAKE_KEY_SIZE];
     char boundary_key[GLR_MAX_MATERIALS * LUCENT_BAKE_KEY_SIZE];
+    GLuint sheet_tex; /* RGB32F array: LUCENT_SHEET_BINS x 2 SHEET_ROWS, a layer per material (bake.h) */
+    char sheet_key[GLR_MAX_MATERIALS * LUCENT_BAKE_KEY_SIZE];
 } gl_tables;
 
 /* Finds the scene's distinct materials and roughnesses (at most GLR_MAX_MATERIALS). */
@@ -55,6 +58,10 @@ lucent_status gl_tables_upload_boundary(gl_tables *t);
 /* Uploads the curved parts' tables (after a bake with LUCENT_BAKE_SPHERES) unless they are on the GPU
  * already. */
 lucent_status gl_tables_upload_spheres(gl_tables *t);
+
+/* Uploads the thin parts' sheet tables (after a bake with LUCENT_BAKE_SHEET) unless they are on the
+ * GPU already. */
+lucent_status gl_tables_upload_sheet(gl_tables *t);
 
 /* The baked parts of object i's material. */
 const lucent_baked *gl_tables_of(const gl_tables *t, int object);

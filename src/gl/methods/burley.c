@@ -174,7 +174,7 @@ static void release(void *state)
 static unsigned bakes(const lucent_renderer *r, const lucent_render_settings *s)
 {
     (void)r;
-    return s->translucency.enabled ? LUCENT_BAKE_TRANSMITTANCE : 0u;
+    return gl_translucency_bakes(s, s->translucency.enabled);
 }
 
 const gl_method gl_method_burley = {

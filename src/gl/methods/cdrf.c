@@ -260,7 +260,7 @@ static lucent_status variant(const char *text, lucent_render_settings *s)
 
 static unsigned bakes_translucent(const lucent_renderer *r, const lucent_render_settings *s)
 {
-    return bakes_plain(r, s) | LUCENT_BAKE_TRANSMITTANCE;
+    return bakes_plain(r, s) | gl_translucency_bakes(s, true);
 }
 
 const gl_method gl_method_cdrf = {

@@ -471,6 +471,7 @@ static void pass_irradiance(lucent_renderer *r, points_state *st, const lucent_r
     glBindVertexArray(r->empty_vao);
     gl_shadows_bind(&r->shadows);
     glBindTextureUnit(4, r->tables.transmit_tex ? r->tables.transmit_tex : r->dummy_tex);
+    if (r->tables.sheet_tex) glBindTextureUnit(GL_SHEET_UNIT, r->tables.sheet_tex);
     GLuint p = st->irradiance;
     glUseProgram(p);
     set1i(p, "u_impulse", s->points.impulse);
@@ -655,7 +656,7 @@ static unsigned bakes(const lucent_renderer *r, const lucent_render_settings *s)
     (void)r;
     if (s->points.style != LUCENT_POINTS_DIFFUSION) return 0;
     return (s->points.sog_source == LUCENT_SOG_FIT ? LUCENT_BAKE_SOG : 0u) |
-           (s->translucency.enabled ? LUCENT_BAKE_TRANSMITTANCE : 0u);
+           gl_translucency_bakes(s, s->translucency.enabled);
 }
 
 const gl_method gl_method_points = {

@@ -179,7 +179,7 @@ static void release(void *state) { gl_blur_free(&((ssss_state *)state)->blur); }
 static unsigned bakes(const lucent_renderer *r, const lucent_render_settings *s)
 {
     (void)r;
-    return LUCENT_BAKE_TAPS | (s->translucency.enabled ? LUCENT_BAKE_TRANSMITTANCE : 0u) |
+    return LUCENT_BAKE_TAPS | gl_translucency_bakes(s, s->translucency.enabled) |
            (s->cdrf.curved_parts ? LUCENT_BAKE_SPHERES : 0u);
 }
 

@@ -53,6 +53,7 @@ void gl_surface_draw(lucent_renderer *r, GLuint program, GLuint lut, const lucen
     glBindTextureUnit(3, lut ? lut : r->dummy_tex);
     glBindTextureUnit(4, r->tables.transmit_tex ? r->tables.transmit_tex : r->dummy_tex);
     if (r->tables.spheres_tex) glBindTextureUnit(GL_SPHERES_UNIT, r->tables.spheres_tex);
+    if (r->tables.sheet_tex) glBindTextureUnit(GL_SHEET_UNIT, r->tables.sheet_tex);
     glVertexAttrib1f(GL_ATTR_CURVATURE, 0.0f); /* curvature and texture coordinates where a mesh has none */
     glVertexAttrib2f(GL_ATTR_UV, 0.0f, 0.0f);
     for (int i = 0; i < r->scene->object_count; i++) {

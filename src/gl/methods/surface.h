@@ -31,6 +31,10 @@ void gl_compose(lucent_renderer *r, const lucent_render_settings *s, GLuint blur
 /* Bakes and uploads the transmittance tables of every material. */
 lucent_status gl_translucency_prepare(lucent_renderer *r, const lucent_render_settings *s);
 
+/* What translucency bakes with settings s when enabled (the transmittance, and the sheet tables for thin
+ * parts). */
+unsigned gl_translucency_bakes(const lucent_render_settings *s, bool enabled);
+
 /* Object i's translucency uniforms; curvature_gain: cdrf+translucency's modulation (0: none). */
 void gl_translucency_uniforms(const lucent_renderer *r, const lucent_render_settings *s, int i, GLuint program,
                               bool enabled);

@@ -18,6 +18,10 @@ static const lucent_setting k_translucency[] = {
     SETTING_CHOICE("transmittance", translucency.transmittance, "slab", transmittance_names,
                    "how much light passes a thickness of a thin part: the Monte Carlo slab, or the profile's tail "
                    "(Jimenez); through a convex body always the profile's tail"),
+    SETTING_BOOL("thin_sheet", translucency.sheet, true,
+                 "thin parts (transmittance slab; ssss, cdrf+translucency, burley, tsd, points): the light of sheets "
+                 "of the material behind the tracer's boundary lit from behind, the forward lobe through both faces "
+                 "and the diffuse rest, in place of T(s) / pi"),
     SETTING_REAL("translucency_curvature", translucency.curvature, 1, -100, 100,
                  "cdrf+translucency: transmitted light times 1 + this x sigma0 x curvature (the CDRF blog)"),
 };
@@ -31,12 +35,25 @@ const lucent_settings_group gl_translucency_settings =
  * curvature and the material's Gaussians. */
 enum { TRANSLUCENCY_SOG = 6 };
 
+/* The sheet tables replace T(s) / pi on thin parts (docs/render.md, "Thin parts"). */
+static bool uses_sheet(const lucent_render_settings *s)
+{
+    return s->translucency.sheet && s->translucency.transmittance == LUCENT_TRANSMIT_SLAB;
+}
+
+unsigned gl_translucency_bakes(const lucent_render_settings *s, bool enabled)
+{
+    return enabled ? LUCENT_BAKE_TRANSMITTANCE | (uses_sheet(s) ? LUCENT_BAKE_SHEET : 0u) : 0u;
+}
+
 lucent_status gl_translucency_prepare(lucent_renderer *r, const lucent_render_settings *s)
 {
-    lucent_bake_desc d = gl_renderer_bake_desc(r, s, LUCENT_BAKE_TRANSMITTANCE | LUCENT_BAKE_SOG);
+    lucent_bake_desc d = gl_renderer_bake_desc(
+        r, s, LUCENT_BAKE_TRANSMITTANCE | LUCENT_BAKE_SOG | (uses_sheet(s) ? LUCENT_BAKE_SHEET : 0u));
     d.sog_count = TRANSLUCENCY_SOG;
     lucent_status st = gl_meshes_curvature(&r->meshes, r->scene, s->cdrf.curvature_smooth, r->desc.pool);
     if (st == LUCENT_OK) st = gl_tables_bake(&r->tables, &d, r->cache);
+    if (st == LUCENT_OK && uses_sheet(s)) st = gl_tables_upload_sheet(&r->tables);
     return st == LUCENT_OK ? gl_tables_upload_transmittance(&r->tables) : st;
 }
 
@@ -48,6 +65,8 @@ void gl_translucency_uniforms(const lucent_renderer *r, const lucent_render_sett
     glUniform1f(glGetUniformLocation(p, "u_transmit_v"),
                 (float)((r->tables.object_material[i] + 0.5) / r->tables.count));
     glUniform1i(glGetUniformLocation(p, "u_transmit_albedo"), s->translucency.transmittance == LUCENT_TRANSMIT_PROFILE);
+    glUniform1i(glGetUniformLocation(p, "u_sheet"), uses_sheet(s) && (b->have & LUCENT_BAKE_SHEET));
+    glUniform1f(glGetUniformLocation(p, "u_sheet_range"), (float)fmax(b->sheet_range, 1e-6));
     glUniform1f(glGetUniformLocation(p, "u_curvature_gain"), (float)s->translucency.curvature);
     float var[TRANSLUCENCY_SOG][3] = {{0}}, w[TRANSLUCENCY_SOG][3] = {{0}};
     int n = b->sog.count < TRANSLUCENCY_SOG ? b->sog.count : TRANSLUCENCY_SOG;

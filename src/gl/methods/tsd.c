@@ -298,7 +298,7 @@ static lucent_status prepare(lucent_renderer *r, void *state, const lucent_rende
 static unsigned bakes(const lucent_renderer *r, const lucent_render_settings *s)
 {
     (void)r;
-    return (s->tsd.sog != 1 ? LUCENT_BAKE_SOG : 0u) | (s->translucency.enabled ? LUCENT_BAKE_TRANSMITTANCE : 0u);
+    return (s->tsd.sog != 1 ? LUCENT_BAKE_SOG : 0u) | gl_translucency_bakes(s, s->translucency.enabled);
 }
 
 /* ---- the passes ---- */
@@ -317,6 +317,7 @@ static void texture_pass(lucent_renderer *r, tsd_state *st, const lucent_render_
     glDisable(GL_CULL_FACE);
     if (irradiance) gl_shadows_bind(&r->shadows);
     glBindTextureUnit(4, r->tables.transmit_tex ? r->tables.transmit_tex : r->dummy_tex);
+    if (r->tables.sheet_tex) glBindTextureUnit(GL_SHEET_UNIT, r->tables.sheet_tex);
     for (int i = 0; i < st->object_count; i++) {
         tsd_object *o = &st->objects[i];
         const lucent_scene_object *so = &r->scene->objects[i];
@@ -392,7 +393,7 @@ static void blur_passes(lucent_renderer *r, tsd_state *st, int k)
 }
 
 /* The mesh from the camera into the scene targets, reading each object's sum. */
-static void final_pass(lucent_renderer *r, tsd_state *st)
+static void final_pass(lucent_renderer *r, tsd_state *st, const lucent_render_settings *s)
 {
     const gl_targets *t = &r->targets;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, t->fbo_scene);
@@ -404,11 +405,13 @@ static void final_pass(lucent_renderer *r, tsd_state *st)
     glDepthFunc(GL_LESS);
     glUseProgram(st->final);
     gl_shadows_bind(&r->shadows);
+    if (r->tables.sheet_tex) glBindTextureUnit(GL_SHEET_UNIT, r->tables.sheet_tex);
     glVertexAttrib1f(GL_ATTR_CURVATURE, 0.0f);
     for (int i = 0; i < st->object_count; i++) {
         tsd_object *o = &st->objects[i];
         if (!r->scene->objects[i].visible) continue;
         gl_surface_material_uniforms(r, i, st->final);
+        gl_translucency_uniforms(r, s, i, st->final, s->translucency.enabled); /* the thin parts' lobe */
         glUniform1f(glGetUniformLocation(st->final, "u_gaussians"), (float)o->sog.count);
         glBindTextureUnit(3, o->sum);
         glBindVertexArray(o->vao);
@@ -429,7 +432,7 @@ static lucent_status draw(lucent_renderer *r, void *state, const lucent_render_s
     for (int i = 0; i < st->object_count; i++)
         if (r->scene->objects[i].visible && st->objects[i].sog.count > n) n = st->objects[i].sog.count;
     for (int k = 0; k < n; k++) blur_passes(r, st, k);
-    final_pass(r, st);
+    final_pass(r, st, s);
     gl_compose(r, s, 0);
     return LUCENT_OK;
 }

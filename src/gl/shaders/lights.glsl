@@ -61,19 +61,32 @@ float shadow_visibility(int i, vec3 p)
     return sum / 9.0;
 }
 
-// Distance light i travels inside matter to reach p: p's depth from the light minus the depth of the
-// first surface the light meets on its way (Jimenez 2010, from the shadow map). -1: no shadow map.
+// Distance light i travels inside matter to reach p, signed: p's depth from the light minus the depth of
+// the first surface the light meets on its way (Jimenez 2010, from the shadow map), in *s. false: no
+// shadow map here.
+bool shadow_chord(int i, vec3 p, out float s)
+{
+    s = 0.0;
+    float layer = u_light_shadow[i].x;
+    if (layer < 0.0) return false;
+    vec3 c = shadow_coord(i, p);
+    if (any(lessThan(c.xy, vec2(0.0))) || any(greaterThan(c.xy, vec2(1.0)))) return false;
+    float first = texture(u_shadow_depth, vec3(c.xy, layer)).r;
+    float dz = light_depth_mm(i, clamp(c.z, 0.0, 1.0)) - light_depth_mm(i, first);
+    if (u_light_vec[i].w == 0.0) {
+        s = dz;
+        return true;
+    }
+    float z = light_depth_mm(i, clamp(c.z, 0.0, 1.0)); // perspective: along the ray, not the axis
+    s = dz * length(p - u_light_vec[i].xyz) / max(z, 1e-6);
+    return true;
+}
+
+// The same, not below 0; -1: no shadow map.
 float shadow_thickness(int i, vec3 p)
 {
-    float layer = u_light_shadow[i].x;
-    if (layer < 0.0) return -1.0;
-    vec3 c = shadow_coord(i, p);
-    if (any(lessThan(c.xy, vec2(0.0))) || any(greaterThan(c.xy, vec2(1.0)))) return -1.0;
-    float first = texture(u_shadow_depth, vec3(c.xy, layer)).r;
-    float dz = max(light_depth_mm(i, clamp(c.z, 0.0, 1.0)) - light_depth_mm(i, first), 0.0);
-    if (u_light_vec[i].w == 0.0) return dz;
-    float z = light_depth_mm(i, clamp(c.z, 0.0, 1.0)); // perspective: along the ray, not the axis
-    return dz * length(p - u_light_vec[i].xyz) / max(z, 1e-6);
+    float s;
+    return shadow_chord(i, p, s) ? max(s, 0.0) : -1.0;
 }
 
 // The transmittance through thickness s (table samples on the end points).
@@ -83,6 +96,52 @@ vec3 transmittance(float s)
     float size = float(textureSize(u_transmit, 0).x);
     float u = (0.5 + clamp(s / u_transmit_range, 0.0, 1.0) * (size - 1.0)) / size;
     return texture(u_transmit, vec2(u, u_transmit_v)).rgb;
+}
+
+// Thin parts (docs/render.md, "Thin parts"; lucent/bake.h, the sheet part): sheets of the material behind
+// the tracer's boundary, lit from behind along their normal (lucent_sheet_run), pi f of the light through
+// them per exit angle (45 bins of 2 degrees across) and thickness (down: sheet_range ((j + 1) / ROWS)^2,
+// the lobe's rows, then as many of the diffuse rest), a layer per material. The lobe (unscattered and once
+// scattered: the light keeps its direction through two rough faces, Walter et al. 2007) is read at the
+// angle between the view and the light's direction of travel, the rest at the view's angle from the normal.
+layout(binding = 11) uniform sampler2DArray u_sheet_table;
+uniform int u_sheet;           // 1: thin parts read the sheet tables; 0: T(s) / pi
+uniform float u_sheet_range;   // mm: the last row's thickness
+const float SHEET_ROWS = 24.0; // LUCENT_BAKE_SHEET_ROWS
+
+// Part 0 (the lobe) or 1 (the rest) of the sheet tables of material `layer` at thickness s and angle theta
+// (radians): linear
+// in theta between the bins' centres, geometric between the thickness rows (the unscattered light falls
+// as e^(-sigma_t s)), fading to 0 from one to two table ranges.
+vec3 sheet_part(float part, float s, float theta, float layer)
+{
+    float x = clamp(theta / (0.5 * PI), 0.0, 1.0), h = 2.0 * SHEET_ROWS;
+    float j = clamp(sqrt(max(s, 0.0) / u_sheet_range) * SHEET_ROWS - 1.0, 0.0, SHEET_ROWS - 1.0);
+    float j0 = min(floor(j), SHEET_ROWS - 2.0), f = j - j0, row = part * SHEET_ROWS + j0;
+    vec3 a = texture(u_sheet_table, vec3(x, (row + 0.5) / h, layer)).rgb;
+    vec3 b = texture(u_sheet_table, vec3(x, (row + 1.5) / h, layer)).rgb;
+    vec3 lin = mix(a, b, f), geo = exp(mix(log(max(a, vec3(1e-30))), log(max(b, vec3(1e-30))), f));
+    vec3 t = mix(lin, geo, step(vec3(1e-30), min(a, b)));
+    return t * clamp(2.0 - s / u_sheet_range, 0.0, 1.0);
+}
+
+// The light through a thin part lit from behind (E max(-n.l, 0) / pi factors; docs/render.md, "Thin
+// parts"): the sheet's diffuse rest toward the viewer over the exit curve E(mu_o) that the compose pass
+// applies (returned), and its lobe toward v from light direction l (in *lobe). s: the shadow chord.
+vec3 sheet_through(float s, vec3 v, vec3 l, float mu_o, float layer, out vec3 lobe)
+{
+    lobe = sheet_part(0.0, s, acos(clamp(dot(v, -l), -1.0, 1.0)), layer);
+    return sheet_part(1.0, s, acos(mu_o), layer) / max(boundary_exit(mu_o, layer), vec3(1e-3));
+}
+
+// The chord through a thin part for light i at a point p with normal n (ndl = n.l < 0): the shadow map's,
+// read offset mm inside along -n, plus what that offset took off it (offset |n.l|: a 0.5 mm sheet 800 mm
+// wide, with shadow texels of 0.55 mm, read 0 mm without it). false: no shadow map.
+bool thin_chord(int i, vec3 p, vec3 n, float ndl, float offset, out float s)
+{
+    bool ok = shadow_chord(i, p - n * offset, s);
+    s = max(s + offset * -ndl, 0.0);
+    return ok;
 }
 
 // The boundary's optics, as the path tracer has them (src/base/optics.h, src/trace/bsdf.c): the one

@@ -2,7 +2,9 @@
 // onto the surfels of level 0 (Kim et al. 2.2: "the diffuse color determined as the dot-product of
 // the light direction and the surface normal", with the shadow test, times the boundary's entry
 // factor for the surfel's view cosine, boundary.glsl), made the diffuse radiance albedo (E / pi +
-// ambient) plus the light through thin parts (as ssss's surface pass). STAGE 1: a
+// ambient) plus the light through thin parts (as ssss's surface pass; with the sheet tables the lobe
+// toward the eye joins the diffuse rest here, both over the exit curve the compose pass applies, and
+// is diffused with it). STAGE 1: a
 // coarser level's radiance, the area-weighted mean of its children's (area ~ radius^2).
 #include "points.glsl"
 
@@ -25,12 +27,22 @@ void main()
     gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
 #if STAGE == 0
     vec3 p = s.p.xyz, n = s.n.xyz, e_sum = vec3(0.0), through = vec3(0.0);
-    float mu_o = abs(dot(n, normalize(u_eye.xyz - p))); // the side facing the eye (splats show both)
+    vec3 v = normalize(u_eye.xyz - p);
+    float mu_o = abs(dot(n, v)); // the side facing the eye (splats show both)
     for (int i = 0; i < u_counts.x; i++) {
         vec3 l, e = light_incident(i, p, l);
         float ndl = dot(n, l), offset = u_light_texel[i].x * u_shadow_offset;
         e_sum += e * max(ndl, 0.0) * shadow_visibility(i, p + n * offset) * boundary_entry(max(ndl, 0.0), mu_o, u_material);
-        if (u_translucency != 0 && ndl < 0.0) through += e * -ndl * transmittance(shadow_thickness(i, p - n * offset));
+        float c;
+        vec3 lobe;
+        if (u_translucency != 0 && ndl < 0.0 && thin_chord(i, p, n, ndl, offset, c)) {
+            vec3 t = transmittance(c);
+            if (u_sheet != 0) {
+                t = sheet_through(c, v, l, mu_o, u_material, lobe);
+                t += lobe / max(boundary_exit(mu_o, u_material), vec3(1e-3));
+            }
+            through += e * -ndl * t;
+        }
     }
     vec3 l_out = s.c.rgb * (e_sum / PI + u_ambient.rgb) + through / PI * (u_transmit_albedo != 0 ? s.c.rgb : vec3(1.0));
     if (u_impulse >= 0) l_out = vec3(gl_VertexID == u_impulse ? 1.0 : 0.0);

@@ -118,16 +118,27 @@ vec3 profile_tail(float s)
 // 2 |n.l| / kappa; a chord much shorter (a thin sheet, kappa ~ 0) is a thin part. The weight of the
 // convex case is smoothstep(0.25, 0.75, s kappa / (2 |n.l|)); a method whose diffusion already holds
 // the light through convex bodies (u_convex_carried) adds none there. Returns the radiance factor of E / pi
-// before the albedo (the profile's part carries it here).
-vec3 transmitted(int i, vec3 n, vec3 e, float ndl, float offset, vec3 sigma0, vec3 albedo)
+// before the albedo (the profile's part carries it here). With the sheet tables (u_sheet) a thin part's
+// T(s) is the sheet's: its diffuse rest, over the exit curve that the compose pass applies, is returned
+// (into the diffuse target, blurred); its lobe, which has left through the front face already, goes to
+// `lobe` (E / pi factor, added after any blur with the specular).
+vec3 transmitted(int i, vec3 n, vec3 v, vec3 l, vec3 e, float ndl, float offset, float mu_o, vec3 sigma0, vec3 albedo,
+                 out vec3 lobe)
 {
+    lobe = vec3(0.0);
     vec3 m = method_transmission(sigma0);
     if (ndl >= 0.0 || all(equal(m, vec3(0.0)))) return vec3(0.0);
-    float s = shadow_thickness(i, v_position - n * offset);
-    if (s < 0.0) return vec3(0.0);
-    vec3 thin = transmittance(s) * (u_transmit_albedo != 0 ? albedo : vec3(1.0));
+    float s;
+    if (!thin_chord(i, v_position, n, ndl, offset, s)) return vec3(0.0);
     float convex = u_tr_sog_count > 0 ? smoothstep(0.25, 0.75, s * max(v_curvature, 0.0) / (2.0 * max(-ndl, 1e-3)))
                                       : 0.0;
+    vec3 thin;
+    if (u_sheet != 0) {
+        thin = sheet_through(s, v, l, mu_o, u_material, lobe);
+        lobe *= e * -ndl * m * (1.0 - convex);
+    } else {
+        thin = transmittance(s) * (u_transmit_albedo != 0 ? albedo : vec3(1.0));
+    }
     vec3 t = mix(thin, albedo * profile_tail(s) * (1.0 - u_convex_carried), convex);
     return e * -ndl * t * m;
 }
@@ -141,7 +152,7 @@ void main()
     float mu_o = clamp(dot(n, v), 0.0, 1.0);
     vec3 albedo = u_use_map != 0 ? texture(u_albedo_map, v_uv).rgb : u_albedo;
     vec3 sigma0 = u_sigma0_from_map != 0 ? albedo * albedo : u_sigma0;
-    vec3 irradiance = vec3(0.0), transmitted_e = vec3(0.0), specular = vec3(0.0);
+    vec3 irradiance = vec3(0.0), transmitted_e = vec3(0.0), specular = vec3(0.0), lobe_e = vec3(0.0);
     float vis0 = 1.0;
     for (int i = 0; i < u_counts.x; i++) {
         vec3 l, e = light_incident(i, v_position, l);
@@ -152,7 +163,9 @@ void main()
         entry *= curved_lean(ndl, v_curvature, n, l, v);
 #endif
         irradiance += method_irradiance(e, ndl, sigma0) * vis * entry;
-        transmitted_e += transmitted(i, n, e, ndl, offset, sigma0, albedo);
+        vec3 lobe;
+        transmitted_e += transmitted(i, n, v, l, e, ndl, offset, mu_o, sigma0, albedo, lobe);
+        lobe_e += lobe;
         specular += e * boundary_reflection(n, v, l, u_roughness, u_eta) * vis;
         if (i == 0) vis0 = vis;
     }
@@ -160,7 +173,7 @@ void main()
     o_diffuse = vec4(albedo * (irradiance / PI + u_ambient.rgb) + through, u_strength);
     // The diffuse light's way out toward the viewer (boundary.glsl) is applied by the compose pass after
     // any blur, from the view cosine here and the material.
-    o_specular = vec4(specular, mu_o);
+    o_specular = vec4(specular + lobe_e / PI, mu_o);
     o_depth = vec2(dot(v_position - u_eye.xyz, u_forward.xyz), u_material);
 #if AOV
     o_aov_normal = vec4(n, v_curvature);

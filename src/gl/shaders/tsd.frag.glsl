@@ -1,7 +1,9 @@
 // tsd, the final shading (GPU Gems 3 14.4.4): the diffuse from the sum of Gaussians at the
 // fragment's texture coordinates, albedo (sum / pi + ambient), the boundary's GGX reflection of the
 // other methods with the shadow map's visibility, and in the specular target's alpha the view cosine
-// for the compose pass's exit curve (boundary.glsl); the same targets as surface.glsl.
+// for the compose pass's exit curve (boundary.glsl); the same targets as surface.glsl. With the sheet
+// tables (render.thin_sheet) the thin parts' forward lobe is added here, after the texture-space blur,
+// as ssss adds it (surface.glsl; docs/render.md, "Thin parts").
 #include "common.glsl"
 #include "lights.glsl"
 
@@ -19,6 +21,7 @@ uniform float u_material;
 uniform float u_object;
 uniform float u_shadow_offset;
 uniform float u_gaussians; // of this object's sum
+uniform int u_translucency; // light through thin parts
 
 layout(location = 0) out vec4 o_diffuse;
 layout(location = 1) out vec4 o_specular;
@@ -43,6 +46,13 @@ void main()
         float vis = shadow_visibility(i, v_position + n * u_light_texel[i].x * u_shadow_offset);
         specular += e * boundary_reflection(n, v, l, u_roughness, u_eta) * vis;
         local += e * max(dot(n, l), 0.0) * vis * boundary_entry(max(dot(n, l), 0.0), mu_o, u_material);
+        float ndl = dot(n, l), s;
+        vec3 lobe;
+        if (u_translucency != 0 && u_sheet != 0 && ndl < 0.0 &&
+            thin_chord(i, v_position, n, ndl, u_light_texel[i].x * u_shadow_offset, s)) {
+            sheet_through(s, v, l, mu_o, u_material, lobe);
+            specular += e * -ndl * lobe / PI;
+        }
         if (i == 0) vis0 = vis;
     }
     // The sum's alpha counts the Gaussians summed at a texel: over u_gaussians it is the share of the

@@ -3,8 +3,9 @@
 // view cosine of the texel's point), plus, with translucency, the light reaching the back
 // of a thin part and leaving here, E max(-n.l, 0) T(s) with s the shadow map's thickness (the house's
 // translucency, Jimenez 2010, standing in for the paper's translucent shadow maps, 14.5.2), divided by
-// the albedo when T is the slab's own (the final pass multiplies by it). a = 1 marks the texels a chart
-// covers.
+// the albedo when T is the slab's own (the final pass multiplies by it); with the sheet tables
+// (render.thin_sheet) the sheet's diffuse rest in place of T(s), its lobe added by the final pass. a = 1
+// marks the texels a chart covers.
 #include "common.glsl"
 #include "lights.glsl"
 
@@ -27,14 +28,19 @@ void main()
         return;
     }
     vec3 n = v_normal * inversesqrt(n2), e = vec3(0.0), through = vec3(0.0);
-    float mu_o = clamp(dot(n, normalize(u_eye.xyz - v_position)), 0.0, 1.0);
+    vec3 v = normalize(u_eye.xyz - v_position);
+    float mu_o = clamp(dot(n, v), 0.0, 1.0);
     for (int i = 0; i < u_counts.x; i++) {
         vec3 l, el = light_incident(i, v_position, l);
         float ndl = dot(n, l), offset = u_light_texel[i].x * u_shadow_offset;
         if (ndl > 0.0)
             e += el * ndl * shadow_visibility(i, v_position + n * offset) * boundary_entry(ndl, mu_o, u_material);
-        else if (u_translucency != 0)
-            through += el * -ndl * transmittance(shadow_thickness(i, v_position - n * offset));
+        else if (u_translucency != 0) {
+            float s;
+            vec3 lobe;
+            if (thin_chord(i, v_position, n, ndl, offset, s))
+                through += el * -ndl * (u_sheet != 0 ? sheet_through(s, v, l, mu_o, u_material, lobe) : transmittance(s));
+        }
     }
     e += u_transmit_albedo != 0 ? through : through / max(u_albedo, vec3(1e-3));
     o_irradiance = vec4(e, 1.0);
