@@ -69,7 +69,7 @@ as_nobody() {
   fi
 }
 
-# ---- the command itself ----
+# ---- the command itself ---- (mpi_test.sh cuts its harness at this line)
 expect_ok -- "${GLRUN[@]}" --version # it opens a GL context to name the renderer
 expect_true "--version prints the version" -- grep -q "^lucent [0-9]\+\.[0-9]\+\.[0-9]\+$" <<<"$OUT"
 expect_ok -- "$LUCENT" --help

@@ -6,7 +6,11 @@
 # usage: mpi_test.sh LUCENT FIXTURES MPIEXEC   (registered by tests/CMakeLists.txt when LUCENT_MPI)
 set -u
 TESTS=$(cd "$(dirname "$0")" && pwd)
-awk '/^expect_ok -- "\$LUCENT" --version/{exit} {print}' "$TESTS/cli_test.sh" >"${TMPDIR:-/tmp}/lucent-mpi-harness.$$"
+# The harness is cli_test.sh up to its first check, which a marker line starts; without the marker the
+# whole CLI suite would run here first (it did for a while: 300-500 s instead of about 60).
+MARK='^# ---- the command itself ----'
+grep -q "$MARK" "$TESTS/cli_test.sh" || { echo "mpi_test: no line '$MARK' in cli_test.sh to cut its harness at" >&2; exit 1; }
+awk -v mark="$MARK" '$0 ~ mark {exit} {print}' "$TESTS/cli_test.sh" >"${TMPDIR:-/tmp}/lucent-mpi-harness.$$"
 # shellcheck disable=SC1090
 . "${TMPDIR:-/tmp}/lucent-mpi-harness.$$" # $LUCENT, $FIXTURES, $TMP, expect_*, _report
 rm -f "${TMPDIR:-/tmp}/lucent-mpi-harness.$$"
