@@ -427,6 +427,39 @@ TEST(sphere_agrees_with_the_tracer)
     lucent_pool_destroy(pool);
 }
 
+/* The sheet tables' unscattered light against the textbook slab: a non-scattering sheet with smooth faces
+ * lit along its normal passes T^2 e^(-sigma s) / (1 - R^2 e^(-2 sigma s)) (Beer-Lambert through the slab,
+ * Fresnel's normal-incidence R = ((eta - 1) / (eta + 1))^2 and T = 1 - R at both faces, the beam's internal
+ * reflections summed as a geometric series), all of it along the normal (exit bin 0) and of order 0: no
+ * diffuse rest. Matched faces (eta 1) give e^(-sigma s) exactly. Tolerance: 3 binomial standard errors of
+ * the photon count (the entry face's reflect-or-refract choice is the only random step) and 1e-9. */
+TEST(smooth_sheet_follows_fresnel_and_beer_lambert)
+{
+    enum { PHOTONS = 20000 };
+    static const double etas[2] = {1.0, 1.4};
+    lucent_sheet_result *r = malloc(sizeof *r);
+    for (int e = 0; r && e < 2; e++) {
+        lucent_material m = grey(0.5, 0, etas[e]);
+        CHECK_OK(lucent_sheet_run(&(lucent_sheet_desc){.material = &m, .thickness = 1.0, .photons = PHOTONS}, r));
+        double R = pow((etas[e] - 1) / (etas[e] + 1), 2), a = exp(-0.5 * 1.0);
+        double expect = (1 - R) * (1 - R) * a / (1 - R * R * a * a);
+        double tol = 3 * sqrt(expect * (1 - expect) / PHOTONS) + 1e-9, off_axis = 0, rest = 0;
+        for (int c = 0; c < 3; c++) {
+            for (int b = 1; b < LUCENT_SHEET_BINS; b++) off_axis += r->lobe[c][b];
+            for (int b = 0; b < LUCENT_SHEET_BINS; b++) rest += r->diffuse[c][b];
+            CHECK_MSG(fabs(r->total[c] - expect) <= tol, "eta %g channel %d: %.5f, expected %.5f (tolerance %.5f)",
+                      etas[e], c, r->total[c], expect, tol);
+            CHECK_MSG(r->lobe[c][0] > 0 && fabs(r->unscattered[c][0] - r->lobe[c][0]) <= 1e-12 * r->lobe[c][0],
+                      "eta %g channel %d: bin 0 holds %g, unscattered %g", etas[e], c, r->lobe[c][0],
+                      r->unscattered[c][0]);
+        }
+        CHECK_MSG(off_axis == 0 && rest == 0, "eta %g: %g off the normal, %g scattered", etas[e], off_axis, rest);
+        printf("     eta %.1f: transmitted %.5f %.5f %.5f, expected %.5f\n", etas[e], r->total[0], r->total[1],
+               r->total[2], expect);
+    }
+    free(r);
+}
+
 TEST(bad_input_is_named)
 {
     lucent_material m = grey(0.1, 1, 1.4);
@@ -451,4 +484,5 @@ TEST(bad_input_is_named)
 TEST_MAIN(TEST_ENTRY(smooth_half_space_matches_giovanelli), TEST_ENTRY(half_space_keeps_energy),
           TEST_ENTRY(matched_slab_follows_beer_lambert), TEST_ENTRY(rough_half_space_is_reciprocal),
           TEST_ENTRY(bake_part_factors_the_table), TEST_ENTRY(halfspace_agrees_with_the_tracer),
-          TEST_ENTRY(sphere_agrees_with_the_tracer), TEST_ENTRY(bad_input_is_named))
+          TEST_ENTRY(sphere_agrees_with_the_tracer), TEST_ENTRY(smooth_sheet_follows_fresnel_and_beer_lambert),
+          TEST_ENTRY(bad_input_is_named))

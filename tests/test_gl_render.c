@@ -454,7 +454,10 @@ TEST(scene_changes_and_adopted_bakes_give_a_fresh_renderers_pixels)
         /* and the slab's transmittance where translucency is on, the sheet tables where thin_sheet is too */
         const lucent_render_settings *os = &other->render;
         unsigned thin = os->translucency.enabled
-                            ? LUCENT_BAKE_TRANSMITTANCE | (os->translucency.sheet && os->translucency.transmittance == LUCENT_TRANSMIT_SLAB ? LUCENT_BAKE_SHEET : 0u)
+                            ? LUCENT_BAKE_TRANSMITTANCE |
+                                  (os->translucency.sheet && os->translucency.transmittance == LUCENT_TRANSMIT_SLAB
+                                       ? LUCENT_BAKE_SHEET
+                                       : 0u)
                             : 0u;
         CHECK_MSG(what == (ssss | thin), "bakes %#x, expected %#x", what, ssss | thin);
         CHECK_OK(lucent_material_bake(&other->objects[0].material,
