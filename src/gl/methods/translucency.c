@@ -18,10 +18,11 @@ static const lucent_setting k_translucency[] = {
     SETTING_CHOICE("transmittance", translucency.transmittance, "slab", transmittance_names,
                    "how much light passes a thickness of a thin part: the Monte Carlo slab, or the profile's tail "
                    "(Jimenez); through a convex body always the profile's tail"),
-    SETTING_BOOL("thin_sheet", translucency.sheet, false,
-                 "thin parts (transmittance slab; ssss, cdrf+translucency, burley, tsd, points): the light of sheets "
-                 "of the material behind the tracer's boundary lit from behind, the forward lobe through both faces "
-                 "and the diffuse rest, in place of T(s) / pi (off by default: worse on the default scenes, docs/render.md)"),
+    SETTING_BOOL(
+        "thin_sheet", translucency.sheet, false,
+        "thin parts (transmittance slab; ssss, cdrf+translucency, burley, tsd, points): the light of sheets "
+        "of the material behind the tracer's boundary lit from behind, the forward lobe through both faces "
+        "and the diffuse rest, in place of T(s) / pi (off by default: worse on the default scenes, docs/render.md)"),
     SETTING_REAL("translucency_curvature", translucency.curvature, 1, -100, 100,
                  "cdrf+translucency: transmitted light times 1 + this x sigma0 x curvature (the CDRF blog)"),
 };
