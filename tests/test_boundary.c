@@ -475,7 +475,7 @@ TEST(bad_input_is_named)
     CHECK_ERR(lucent_sheet_run(&(lucent_sheet_desc){.material = &m, .thickness = 0}, t), LUCENT_ERR_INVALID_ARGUMENT,
               "grey", "thickness");
     CHECK_ERR(lucent_sheet_run(&(lucent_sheet_desc){.material = &m, .thickness = 1, .roughness = -0.1}, t),
-              LUCENT_ERR_INVALID_ARGUMENT, "grey", "roughness");
+              LUCENT_ERR_INVALID_ARGUMENT, "grey", "sheet tables", "roughness");
     CHECK_ERR(lucent_sheet_run(&(lucent_sheet_desc){.material = NULL, .thickness = 1}, t), LUCENT_ERR_INVALID_ARGUMENT,
               "no material");
     free(t);

@@ -1,4 +1,5 @@
 /* The scene's distinct materials, their bakes and the transmittance texture (tables.h). */
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -120,44 +121,40 @@ lucent_status gl_tables_upload_boundary(gl_tables *t)
     return gl_check("uploading the boundary's tables");
 }
 
+/* One RGB32F array texture layer per material of a baked table (an array inside lucent_baked at data_off,
+ * w x h texels, keyed by the string at key_off), uploaded again only when a material's key changed. */
+static lucent_status upload_layers(gl_tables *t, GLuint *tex, char *cur, size_t cur_size, size_t key_off,
+                                   size_t data_off, int w, int h, const char *what)
+{
+    char key[GLR_MAX_MATERIALS * LUCENT_BAKE_KEY_SIZE] = ""; /* the size of spheres_key and sheet_key */
+    for (int m = 0; m < t->count; m++)
+        snprintf(key + strlen(key), sizeof key - strlen(key), "%s|", (const char *)&t->baked[m] + key_off);
+    if (*tex && !strcmp(cur, key)) return LUCENT_OK;
+    if (*tex) glDeleteTextures(1, tex);
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, tex);
+    glTextureStorage3D(*tex, 1, GL_RGB32F, w, h, t->count > 0 ? t->count : 1);
+    for (int m = 0; m < t->count; m++)
+        glTextureSubImage3D(*tex, 0, 0, 0, m, w, h, 1, GL_RGB, GL_FLOAT, (const char *)&t->baked[m] + data_off);
+    glTextureParameteri(*tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(*tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(*tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(*tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    snprintf(cur, cur_size, "%s", key);
+    return gl_check(what);
+}
+
 lucent_status gl_tables_upload_spheres(gl_tables *t)
 {
-    char key[sizeof t->spheres_key] = "";
-    for (int m = 0; m < t->count; m++)
-        snprintf(key + strlen(key), sizeof key - strlen(key), "%s|", t->baked[m].spheres_key);
-    if (t->spheres_tex && !strcmp(t->spheres_key, key)) return LUCENT_OK;
-    enum { W = LUCENT_BAKE_SPHERE_BINS, H = 2 * (LUCENT_BAKE_SPHERE_RADII + 1) };
-    if (t->spheres_tex) glDeleteTextures(1, &t->spheres_tex);
-    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t->spheres_tex);
-    glTextureStorage3D(t->spheres_tex, 1, GL_RGB32F, W, H, t->count > 0 ? t->count : 1);
-    for (int m = 0; m < t->count; m++)
-        glTextureSubImage3D(t->spheres_tex, 0, 0, 0, m, W, H, 1, GL_RGB, GL_FLOAT, t->baked[m].spheres);
-    glTextureParameteri(t->spheres_tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(t->spheres_tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(t->spheres_tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(t->spheres_tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    snprintf(t->spheres_key, sizeof t->spheres_key, "%s", key);
-    return gl_check("uploading the curved parts' tables");
+    return upload_layers(t, &t->spheres_tex, t->spheres_key, sizeof t->spheres_key, offsetof(lucent_baked, spheres_key),
+                         offsetof(lucent_baked, spheres), LUCENT_BAKE_SPHERE_BINS, 2 * (LUCENT_BAKE_SPHERE_RADII + 1),
+                         "uploading the curved parts' tables");
 }
 
 lucent_status gl_tables_upload_sheet(gl_tables *t)
 {
-    char key[sizeof t->sheet_key] = "";
-    for (int m = 0; m < t->count; m++)
-        snprintf(key + strlen(key), sizeof key - strlen(key), "%s|", t->baked[m].sheet_key);
-    if (t->sheet_tex && !strcmp(t->sheet_key, key)) return LUCENT_OK;
-    enum { W = LUCENT_SHEET_BINS, H = 2 * LUCENT_BAKE_SHEET_ROWS };
-    if (t->sheet_tex) glDeleteTextures(1, &t->sheet_tex);
-    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t->sheet_tex);
-    glTextureStorage3D(t->sheet_tex, 1, GL_RGB32F, W, H, t->count > 0 ? t->count : 1);
-    for (int m = 0; m < t->count; m++)
-        glTextureSubImage3D(t->sheet_tex, 0, 0, 0, m, W, H, 1, GL_RGB, GL_FLOAT, t->baked[m].sheet);
-    glTextureParameteri(t->sheet_tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(t->sheet_tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(t->sheet_tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(t->sheet_tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    snprintf(t->sheet_key, sizeof t->sheet_key, "%s", key);
-    return gl_check("uploading the thin parts' sheet tables");
+    return upload_layers(t, &t->sheet_tex, t->sheet_key, sizeof t->sheet_key, offsetof(lucent_baked, sheet_key),
+                         offsetof(lucent_baked, sheet), LUCENT_SHEET_BINS, 2 * LUCENT_BAKE_SHEET_ROWS,
+                         "uploading the thin parts' sheet tables");
 }
 
 const lucent_baked *gl_tables_of(const gl_tables *t, int object) { return &t->baked[t->object_material[object]]; }

@@ -291,20 +291,21 @@ static lucent_status run_chunk(void *ctx, uint64_t chunk, uint64_t begin, uint64
     return LUCENT_OK;
 }
 
-static lucent_status validate(const lucent_boundary_desc *d)
+/* what: the run's name in messages ("boundary tables", "sheet tables") */
+static lucent_status validate(const lucent_boundary_desc *d, const char *what)
 {
-    if (!d->material) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "boundary tables: no material");
+    if (!d->material) return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: no material", what);
     lucent_status s = lucent_material_validate(d->material);
     if (s != LUCENT_OK) return s;
     if (!(d->roughness >= 0) || d->roughness > 1)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: boundary tables: roughness must be in [0, 1] (got %g)",
-                            d->material->name, d->roughness);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: %s: roughness must be in [0, 1] (got %g)",
+                            d->material->name, what, d->roughness);
     if (!(d->thickness >= 0))
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: boundary tables: thickness must be >= 0 mm (got %g)",
-                            d->material->name, d->thickness);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: %s: thickness must be >= 0 mm (got %g)",
+                            d->material->name, what, d->thickness);
     if (d->batches < 2 || d->batches > 4096)
-        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: boundary tables: batches must be in [2, 4096]",
-                            d->material->name);
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "%s: %s: batches must be in [2, 4096]", d->material->name,
+                            what);
     for (int c = 0; c < 3; c++) {
         double st = d->material->sigma_a[c] + d->material->sigma_s[c];
         if (st > 0 && (st < LUCENT_MC_MIN_SIGMA_T || st > LUCENT_MC_MAX_SIGMA_T))
@@ -368,7 +369,7 @@ static lucent_status prepare_job(boundary_job *job, const char *label)
     if (!d->photons) d->photons = LUCENT_BOUNDARY_PHOTONS;
     if (!d->batches) d->batches = 8;
     if (!d->seed) d->seed = 1;
-    lucent_status s = validate(d);
+    lucent_status s = validate(d, label);
     if (s != LUCENT_OK) return s;
     job->per_batch = (d->photons + (uint64_t)d->batches - 1) / (uint64_t)d->batches;
     size_t chunks = (size_t)3 * (size_t)job->nin * (size_t)d->batches;
