@@ -36,10 +36,12 @@ void main()
         float c;
         vec3 lobe;
         if (u_translucency != 0 && ndl < 0.0 && thin_chord(i, p, n, ndl, offset, c)) {
-            vec3 t = transmittance(c);
+            vec3 t;
             if (u_sheet != 0) {
                 t = sheet_through(c, v, l, mu_o, u_material, lobe);
                 t += lobe / max(boundary_exit(mu_o, u_material), vec3(1e-3));
+            } else {
+                t = transmittance(c);
             }
             through += e * -ndl * t;
         }
