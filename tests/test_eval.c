@@ -101,6 +101,35 @@ TEST(worst_region_holds_the_largest_error)
     lucent_image_destroy(img);
 }
 
+/* The worst 1% of the pixels' share of the squared error, worked by hand: 200 pixels of 1, the method off
+ * by 0.5 in one pixel's three channels (0.75) and by 0.01 in every channel of the other 199 (3e-4
+ * each): the worst 2 pixels (ceil(0.01 x 200)) hold (0.75 + 3e-4) / (0.75 + 199 x 3e-4) = 0.926296.
+ * An even error: exactly the fraction. Equal images: 0. Pixels outside the mask do not count. */
+TEST(concentration_is_the_worst_pixels_share_of_the_squared_error)
+{
+    lucent_image *ref, *img;
+    CHECK_OK(lucent_image_create(20, 10, 3, &ref));
+    CHECK_OK(lucent_image_create(20, 10, 3, &img));
+    for (size_t i = 0; i < 200 * 3; i++) ref->data[i] = 1, img->data[i] = i < 3 ? 1.5f : 1.01f;
+    double share = -1;
+    CHECK_OK(lucent_compare_concentration(img, ref, NULL, 0.01, &share));
+    CHECK_NEAR(share, (0.75 + 3e-4) / (0.75 + 199 * 3e-4), 1e-5);
+    for (size_t i = 0; i < 3; i++) img->data[i] = 1.01f;
+    CHECK_OK(lucent_compare_concentration(img, ref, NULL, 0.05, &share));
+    CHECK_NEAR(share, 0.05, 1e-9);
+    CHECK_OK(lucent_compare_concentration(ref, ref, NULL, 0.01, &share));
+    CHECK(share == 0);
+    float mask[200] = {0};
+    mask[5] = mask[6] = 1;
+    img->data[0] = 100; /* outside the mask */
+    img->data[5 * 3] = 1.11f;
+    CHECK_OK(lucent_compare_concentration(img, ref, mask, 0.01, &share)); /* one of two pixels */
+    CHECK_NEAR(share, (0.0121 + 2e-4) / (0.0121 + 2e-4 + 3e-4), 1e-4);
+    CHECK(lucent_compare_concentration(img, ref, NULL, 0, &share) == LUCENT_ERR_INVALID_ARGUMENT);
+    lucent_image_destroy(ref);
+    lucent_image_destroy(img);
+}
+
 TEST(compare_refuses_a_desc_without_scenes_or_with_an_unknown_method)
 {
     lucent_compare_result r;
@@ -607,6 +636,7 @@ TEST_MAIN(TEST_ENTRY(object_mask_keeps_pixels_whose_3x3_neighbourhood_is_covered
           TEST_ENTRY(reference_noise_is_sqrt_of_summed_variance_over_summed_squares),
           TEST_ENTRY(error_map_is_signed_full_at_half_relative_error_and_black_outside_the_mask),
           TEST_ENTRY(worst_region_holds_the_largest_error),
+          TEST_ENTRY(concentration_is_the_worst_pixels_share_of_the_squared_error),
           TEST_ENTRY(compare_refuses_a_desc_without_scenes_or_with_an_unknown_method),
           TEST_ENTRY(kernel_eval_model_names), TEST_ENTRY(kernel_eval_refuses_a_bad_desc),
           TEST_ENTRY(kernel_eval_on_an_impulse),

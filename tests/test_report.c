@@ -87,7 +87,9 @@ static const lucent_compare_method k_methods[2][2] = {
       {0},
       false,
       0,
-      NULL},
+      NULL,
+      false,
+      0},
      {"ssss:preint",
       "a/ssss.png",
       "a/ssss-err.png",
@@ -100,9 +102,25 @@ static const lucent_compare_method k_methods[2][2] = {
       {8, 4, 16},
       false,
       0,
-      NULL}},
-    {{"cdrf", "b/cdrf.png", "b/cdrf-err.png", 0.125, {0.1, 0.1, 0.2}, 1.75, 900, "LUT", NULL, {0}, false, 0, NULL},
-     {"x<y&\"z\"", "b/x.png", "b/x-err.png", 0.5, {0.5, 0.5, 0.5}, 3, 1, "a, b", NULL, {0}, false, 0, NULL}}};
+      NULL,
+      true,
+      0.25}},
+    {{"cdrf",
+      "b/cdrf.png",
+      "b/cdrf-err.png",
+      0.125,
+      {0.1, 0.1, 0.2},
+      1.75,
+      900,
+      "LUT",
+      NULL,
+      {0},
+      false,
+      0,
+      NULL,
+      false,
+      0},
+     {"x<y&\"z\"", "b/x.png", "b/x-err.png", 0.5, {0.5, 0.5, 0.5}, 3, 1, "a, b", NULL, {0}, false, 0, NULL, false, 0}}};
 
 static void make_scenes(lucent_compare_scene sc[2])
 {
@@ -148,7 +166,9 @@ TEST(compare_html_has_every_scene_method_and_image)
     CHECK(count_of(html, "<img src=") == 2 * (1 + 2 + 2) + 1 + 1);
     CHECK(count_of(html, "<a href=\"a/") == 1 + 2 + 2 + 1);
     CHECK(strstr(html, "<img src=\"a/ref.png\" width=\"64\" height=\"32\"") != NULL); /* native size */
-    CHECK(strstr(html, "<td>5.00%</td><td>4.90%</td><td>6.00%</td>") != NULL);        /* net: sqrt(5^2 - 1^2) */
+    /* net: sqrt(5^2 - 1^2); the worst 1% column where a method has it (ssss:preint 0.25), a dash elsewhere */
+    CHECK(strstr(html, "<td>5.00%</td><td>4.90%</td><td>25.0%</td><td>6.00%</td>") != NULL);
+    CHECK(strstr(html, "<th>worst 1% of pixels' share</th>") != NULL && strstr(html, "<td>&ndash;</td><td>") != NULL);
     CHECK(strstr(html, "<td>1.500</td><td>1.00x</td>") != NULL && strstr(html, "<td>2.250</td><td>1.50x</td>"));
     CHECK(strstr(html, "256 samples per pixel in 12.5 s") != NULL);
     CHECK(strstr(html, "full at 50%") != NULL && strstr(html, "too dark") != NULL);
@@ -226,6 +246,9 @@ TEST(compare_markdown_and_csv_tables)
         CHECK(count_of(text, "\n## ") + (strncmp(text, "## ", 3) == 0) == 2);
         /* net of noise: sqrt(0.125^2 - 0.01^2) = 12.46%; ranked first, bold */
         CHECK(strstr(text, "| 1 | **cdrf** | 12.50% | 12.46% | 10.00% | 10.00% | 20.00% | 1.750 | - | 900 |") != NULL);
+        /* the first scene's ssss:preint has its worst 1% share (0.25), lambert a dash */
+        CHECK(strstr(text, "| 900 |\n") != NULL && strstr(text, " worst 1% |\n") != NULL &&
+              strstr(text, " 25.0% |\n") != NULL && strstr(text, " - |\n") != NULL);
         free(text);
     }
     const char *csv = test_path("report.csv");

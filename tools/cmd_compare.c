@@ -182,12 +182,12 @@ static void print_scene(const lucent_compare_scene *r)
                 "lucent: warning: %s: the reference has %d spp, fewer than the %d from which its noise can be "
                 "estimated: its noise is unknown, and no method is ranked or marked best\n",
                 r->name, r->reference_spp, LUCENT_COMPARE_MIN_SPP);
-    cli_info("  %-4s %-22s %14s %13s %12s %10s %12s %8s %7s", "rank", "method", "rel. RMS error", "net of noise",
-             "frame ms", "x Lambert", "setup ms", "z next", "FLIP");
+    cli_info("  %-4s %-22s %14s %13s %12s %10s %12s %8s %7s %9s", "rank", "method", "rel. RMS error", "net of noise",
+             "frame ms", "x Lambert", "setup ms", "z next", "FLIP", "worst 1%");
     for (int k = 0; k < r->method_count; k++) {
         int i = order[k];
         const lucent_compare_method *m = &r->methods[i];
-        char rk[16] = "-", net[24] = "unknown", ratio[24] = "-", z[24] = "-", flip[24] = "-";
+        char rk[16] = "-", net[24] = "unknown", ratio[24] = "-", z[24] = "-", flip[24] = "-", worst[24] = "-";
         if (ranked) {
             bool tie = false;
             for (int j = 0; j < r->method_count; j++) tie |= j != i && rank[j] == rank[i];
@@ -202,13 +202,16 @@ static void print_scene(const lucent_compare_scene *r)
         if (l >= 0 && r->methods[l].frame_ms > 0)
             snprintf(ratio, sizeof ratio, "%.2f", m->frame_ms / r->methods[l].frame_ms);
         if (m->has_flip) snprintf(flip, sizeof flip, "%.4f", m->flip);
-        cli_info("  %-4s %-22s %13.2f%% %13s %12.3f %10s %12.0f %8s %7s", rk, m->name, 100 * m->rel_rms, net,
-                 m->frame_ms, ratio, m->setup_ms, z, flip);
+        if (m->has_worst) snprintf(worst, sizeof worst, "%.1f%%", 100 * m->worst_share);
+        cli_info("  %-4s %-22s %13.2f%% %13s %12.3f %10s %12.0f %8s %7s %9s", rk, m->name, 100 * m->rel_rms, net,
+                 m->frame_ms, ratio, m->setup_ms, z, flip, worst);
     }
     if (ranked && r->pair_se)
-        cli_info("  (=: the paired test of the squared errors cannot tell them apart, |z| < %.0f; z next: the "
-                 "separation from the next row%s)",
-                 LUCENT_COMPARE_Z, r->se_inflation > 1 ? ", its standard error calibrated on two reference runs" : "");
+        cli_info(
+            "  (=: the paired test of the squared errors cannot tell them apart, |z| < %.0f; z next: the "
+            "separation from the next row; worst 1%%: the share of the squared error in the worst 1%% of the object's "
+            "pixels%s)",
+            LUCENT_COMPARE_Z, r->se_inflation > 1 ? ", its standard error calibrated on two reference runs" : "");
     else if (ranked)
         cli_info("  (= : tied, net errors within the reference's noise of each other)");
 }

@@ -217,6 +217,14 @@ lucent_status lucent_compare_error_scale_image(lucent_image **dest);
 lucent_status lucent_compare_worst_region(const lucent_image *image, const lucent_image *reference, const float *mask,
                                           int size, int *x, int *y);
 
+/* How concentrated a method's error is: the share of its squared error (summed over R, G, B, inside
+ * the mask, NULL: everywhere) that the worst `fraction` of those pixels hold (at least one pixel): the
+ * fraction itself where the error is spread evenly, near 1 where a few pixels hold it all (a bright
+ * rim, a seam), 0 where the images agree. The error without those pixels is rel_rms sqrt(1 - share). */
+#define LUCENT_COMPARE_WORST_FRACTION 0.01
+lucent_status lucent_compare_concentration(const lucent_image *image, const lucent_image *reference, const float *mask,
+                                           double fraction, double *share);
+
 /* Writes DIR/STEM.exr (linear) and DIR/STEM.png (tonemapped by tonemap; NULL: the defaults). */
 lucent_status lucent_compare_write_image(const char *dir, const char *stem, const lucent_image *image,
                                          const lucent_tonemap_desc *tonemap);

@@ -94,6 +94,9 @@ typedef struct lucent_compare_method {
                                 (lucent_image_flip; Andersson et al. 2020): 0 identical, 1 the largest */
     const char *kind;        /* NULL: a real-time method of Lucent's GL renderer; else what made the
                                 image ("external": an image another renderer made, e.g. an engine peer) */
+    bool has_worst;          /* worst_share holds how concentrated the method's error is */
+    double worst_share;      /* the share of its squared error in the worst 1% of the object's pixels
+                                (lucent_compare_concentration, LUCENT_COMPARE_WORST_FRACTION) */
 } lucent_compare_method;
 
 /* One region of the image (the lit side, the terminator, ...; lucent_compare_region_name) with

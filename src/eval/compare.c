@@ -239,6 +239,10 @@ static lucent_status measure(const run *r, scene_store *ss, const lucent_image *
     row->rel_rms = e.rel_rms_all;
     for (int c = 0; c < 3; c++) row->rel_rms_rgb[c] = e.rel_rms[c];
     s = measure_flip(ss, img, rs, row);
+    if (s == LUCENT_OK)
+        s = lucent_compare_concentration(img, ss->ref.result.image, ss->mask, LUCENT_COMPARE_WORST_FRACTION,
+                                         &row->worst_share);
+    row->has_worst = s == LUCENT_OK;
     char stem[EVAL_NAME_SIZE], path[EVAL_PATH_SIZE];
     eval_file_stem(ms->name, stem, sizeof stem);
     if (s == LUCENT_OK)

@@ -61,6 +61,42 @@ static lucent_status check_pair(const lucent_image *img, const lucent_image *ref
     return LUCENT_OK;
 }
 
+static int by_decreasing(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x < y) - (x > y);
+}
+
+lucent_status lucent_compare_concentration(const lucent_image *img, const lucent_image *ref, const float *mask,
+                                           double fraction, double *share)
+{
+    *share = 0;
+    lucent_status s = check_pair(img, ref);
+    if (s != LUCENT_OK) return s;
+    if (!(fraction > 0 && fraction <= 1))
+        return lucent_error(LUCENT_ERR_INVALID_ARGUMENT, "compare: the worst pixels' fraction %g is not in (0, 1]",
+                            fraction);
+    size_t n = (size_t)img->width * (size_t)img->height, count = 0;
+    double *e = malloc((n ? n : 1) * sizeof *e), total = 0, top = 0;
+    if (!e) return lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "compare: %zu pixels' errors", n);
+    for (size_t i = 0; i < n; i++) {
+        if (mask && !(mask[i] > 0.5f)) continue;
+        double d = 0;
+        for (int c = 0; c < 3; c++) {
+            double x =
+                img->data[i * (size_t)img->channels + (size_t)c] - ref->data[i * (size_t)ref->channels + (size_t)c];
+            d += x * x;
+        }
+        e[count++] = d, total += d;
+    }
+    qsort(e, count, sizeof *e, by_decreasing);
+    size_t k = (size_t)ceil(fraction * (double)count);
+    for (size_t i = 0; i < k && i < count; i++) top += e[i];
+    free(e);
+    *share = total > 0 && isfinite(total) ? top / total : 0;
+    return LUCENT_OK;
+}
+
 lucent_status lucent_compare_error_map(const lucent_image *img, const lucent_image *ref, const float *mask,
                                        lucent_image **dest)
 {

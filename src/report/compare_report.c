@@ -132,6 +132,13 @@ static void html_figure(lucent_strbuf *b, const char *image, const char *caption
     lucent_strbuf_printf(b, "</figcaption></figure>\n");
 }
 
+static bool any_worst(const lucent_compare_scene *sc)
+{
+    for (int i = 0; i < sc->method_count; i++)
+        if (sc->methods[i].has_worst) return true;
+    return false;
+}
+
 static bool any_flip(const lucent_compare_scene *sc)
 {
     for (int i = 0; i < sc->method_count; i++)
@@ -193,11 +200,12 @@ static void html_table(lucent_strbuf *b, const lucent_compare_scene *scene)
     const lucent_compare_scene *sc = &clipped;
     int order[64], rank[64], n = clipped.method_count = scene->method_count < 64 ? scene->method_count : 64;
     if (clipped.method_count < scene->method_count) clipped.pair_se = NULL; /* its rows are the scene's */
-    bool ranked = lucent_compare_rank(sc, order, rank), flip = any_flip(sc);
+    bool ranked = lucent_compare_rank(sc, order, rank), flip = any_flip(sc), worst = any_worst(sc);
     lucent_strbuf_printf(b, "<table><tr><th>rank</th><th>method</th><th>relative RMS error</th><th>net of the "
                             "reference's noise</th>");
     if (ranked && sc->pair_se) lucent_strbuf_printf(b, "<th>z against the next</th>");
     if (flip) lucent_strbuf_printf(b, "<th>FLIP (mean)</th>");
+    if (worst) lucent_strbuf_printf(b, "<th>worst 1%% of pixels' share</th>");
     lucent_strbuf_printf(b, "<th>R</th><th>G</th><th>B</th><th>frame (ms, GPU)</th><th>frame / "
                             "Lambert's</th><th>setup (ms, CPU)</th><th>settings</th></tr>\n");
     for (int k = 0; k < n; k++) {
@@ -225,6 +233,12 @@ static void html_table(lucent_strbuf *b, const lucent_compare_scene *scene)
             else
                 lucent_strbuf_printf(b, "<td>&ndash;</td>");
         }
+        if (worst) {
+            if (m->has_worst)
+                lucent_strbuf_printf(b, "<td>%.1f%%</td>", 100 * m->worst_share);
+            else
+                lucent_strbuf_printf(b, "<td>&ndash;</td>");
+        }
         lucent_strbuf_printf(b, "<td>%.2f%%</td><td>%.2f%%</td><td>%.2f%%</td><td>%.3f</td><td>",
                              100 * m->rel_rms_rgb[0], 100 * m->rel_rms_rgb[1], 100 * m->rel_rms_rgb[2], m->frame_ms);
         double ratio = lambert_ratio(sc, i);
@@ -242,6 +256,10 @@ static void html_table(lucent_strbuf *b, const lucent_compare_scene *scene)
         lucent_strbuf_printf(b, "<p class=\"note\">FLIP: the mean over the object's pixels of LDR-FLIP (Andersson "
                                 "et al. 2020) between the tonemapped images as shown, for an observer at 67 pixels "
                                 "per degree: 0 where the two look the same, 1 for the largest difference.</p>\n");
+    if (worst)
+        lucent_strbuf_printf(b, "<p class=\"note\">Worst 1%% of pixels' share: the share of the method's squared "
+                                "error that the worst 1%% of the object's pixels hold: 1%% where the error is spread "
+                                "evenly, near 100%% where a few pixels (a rim, a seam) hold it all.</p>\n");
 }
 
 static double map_scale(const lucent_compare_scene *sc) { return sc->error_scale > 0 ? sc->error_scale : 0.5; }
@@ -539,11 +557,12 @@ lucent_status lucent_compare_write_markdown(const char *path, const lucent_compa
         if (noise_warning(sc, warn, sizeof warn)) lucent_strbuf_printf(&b, "**Warning:** %s.\n\n", warn);
         int order[64], rank[64];
         bool ranked = sc->method_count <= 64 && lucent_compare_rank(sc, order, rank);
-        bool zcol = ranked && sc->pair_se, flip = any_flip(sc);
+        bool zcol = ranked && sc->pair_se, flip = any_flip(sc), worst = any_worst(sc);
         lucent_strbuf_printf(&b,
                              "| rank | method | rel. RMS error | net of noise | R | G | B | frame ms | x Lambert | "
-                             "setup ms |%s%s\n|---|---|---|---|---|---|---|---|---|---|%s%s\n",
-                             zcol ? " z next |" : "", flip ? " FLIP |" : "", zcol ? "---|" : "", flip ? "---|" : "");
+                             "setup ms |%s%s%s\n|---|---|---|---|---|---|---|---|---|---|%s%s%s\n",
+                             zcol ? " z next |" : "", flip ? " FLIP |" : "", worst ? " worst 1% |" : "",
+                             zcol ? "---|" : "", flip ? "---|" : "", worst ? "---|" : "");
         for (int j = 0; j < sc->method_count && j < 64; j++) {
             int k = ranked ? order[j] : j;
             const lucent_compare_method *m = &sc->methods[k];
@@ -569,13 +588,20 @@ lucent_status lucent_compare_write_markdown(const char *path, const lucent_compa
                 else
                     lucent_strbuf_printf(&b, " - |");
             }
+            if (worst) {
+                if (m->has_worst)
+                    lucent_strbuf_printf(&b, " %.1f%% |", 100 * m->worst_share);
+                else
+                    lucent_strbuf_printf(&b, " - |");
+            }
             lucent_strbuf_printf(&b, "\n");
         }
         if (ranked)
             lucent_strbuf_printf(&b, "\n%s\n",
                                  sc->pair_se ? "Same rank (=): the paired test of the squared errors "
                                                "cannot tell the methods apart (|z| < 3); z next: "
-                                               "the separation from the next row."
+                                               "the separation from the next row; worst 1%: the share of the squared "
+                                               "error in the worst 1% of the object's pixels."
                                              : "Same rank (=): net errors within the reference's noise.");
         report_md_regions(&b, sc);
         report_md_lights(&b, sc);

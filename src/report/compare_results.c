@@ -30,6 +30,10 @@ static cJSON *method_json(const lucent_compare_method *m, const lucent_frame_tim
         cJSON_AddNumberToObject(j, "flip", m->flip);
     else
         cJSON_AddNullToObject(j, "flip");
+    if (m->has_worst)
+        cJSON_AddNumberToObject(j, "worst_share", m->worst_share);
+    else
+        cJSON_AddNullToObject(j, "worst_share");
     cJSON *passes = cJSON_AddObjectToObject(j, "passes_ms");
     for (int p = 0; passes && p < times->pass_count; p++)
         cJSON_AddNumberToObject(passes, times->pass_name[p], times->pass_ms[p]);
