@@ -18,6 +18,9 @@ void gl_surface_material_uniforms(const lucent_renderer *r, int i, GLuint p)
     glUniform3f(glGetUniformLocation(p, "u_albedo"), (float)a[0], (float)a[1], (float)a[2]);
     glUniform1f(glGetUniformLocation(p, "u_roughness"), (float)o->roughness);
     glUniform1f(glGetUniformLocation(p, "u_eta"), (float)o->material.eta);
+    const double *sa = o->material.sigma_a, *ss = o->material.sigma_s;
+    glUniform3f(glGetUniformLocation(p, "u_sigma_t"), (float)(sa[0] + ss[0]), (float)(sa[1] + ss[1]),
+                (float)(sa[2] + ss[2]));
     glUniform1f(glGetUniformLocation(p, "u_material"), (float)r->tables.object_material[i]);
     glUniform1f(glGetUniformLocation(p, "u_object"), (float)i);
     glUniform1f(glGetUniformLocation(p, "u_shadow_offset"), 1.5f);

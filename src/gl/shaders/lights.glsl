@@ -61,6 +61,39 @@ float shadow_visibility(int i, vec3 p)
     return sum / 9.0;
 }
 
+// The surface light i (directional: an orthographic shadow map) enters first on its way to p, from the
+// shadow map's depths one texel either side: its outward normal, facing the light (*ne), and what to take
+// off the depth the nearest texel holds to have the surface's own at p, in mm (*fix): the shadow pass's
+// slope-scaled offset (glPolygonOffset(1.5, 2), src/gl/shadows.c), 1.5 max(|dz/dx|, |dz/dy|) per texel,
+// taken off, and the surface's slope across p's offset from the texel's centre. A slanted face lit at 40
+// degrees, texels of 0.55 mm, stores depths 0.7 mm too deep and +-0.23 mm apart (the oblique sheets of
+// tests/test_gl_sheet.c). false (ne = l, fix 0): a perspective map, none, or a neighbour that holds nothing.
+bool shadow_entry(int i, vec3 p, vec3 l, out vec3 ne, out float fix)
+{
+    ne = l;
+    fix = 0.0;
+    float layer = u_light_shadow[i].x;
+    if (layer < 0.0 || u_light_shadow[i].w < 0.5) return false;
+    vec3 c = shadow_coord(i, p);
+    vec2 texel = 1.0 / vec2(textureSize(u_shadow_depth, 0).xy);
+    if (any(lessThan(c.xy, texel)) || any(greaterThan(c.xy, 1.0 - texel))) return false;
+    float x0 = texture(u_shadow_depth, vec3(c.xy - vec2(texel.x, 0.0), layer)).r;
+    float x1 = texture(u_shadow_depth, vec3(c.xy + vec2(texel.x, 0.0), layer)).r;
+    float y0 = texture(u_shadow_depth, vec3(c.xy - vec2(0.0, texel.y), layer)).r;
+    float y1 = texture(u_shadow_depth, vec3(c.xy + vec2(0.0, texel.y), layer)).r;
+    if (max(max(x0, x1), max(y0, y1)) >= 1.0) return false;
+    mat4 m = u_light_matrix[i];
+    vec3 rx = vec3(m[0][0], m[1][0], m[2][0]), ry = vec3(m[0][1], m[1][1], m[2][1]);
+    float mx = 2.0 * texel.x / (0.5 * length(rx)), my = 2.0 * texel.y / (0.5 * length(ry)); // mm across two texels
+    float dx = light_depth_mm(i, x1) - light_depth_mm(i, x0), dy = light_depth_mm(i, y1) - light_depth_mm(i, y0);
+    vec3 t = -l;
+    ne = normalize(cross(normalize(rx) + (dx / mx) * t, normalize(ry) + (dy / my) * t));
+    if (dot(ne, l) < 0.0) ne = -ne;
+    vec2 f = fract(c.xy / texel) - 0.5; // p's offset from its texel's centre, in texels
+    fix = 1.5 * 0.5 * max(abs(dx), abs(dy)) - 0.5 * (f.x * dx + f.y * dy);
+    return true;
+}
+
 // Distance light i travels inside matter to reach p, signed: p's depth from the light minus the depth of
 // the first surface the light meets on its way (Jimenez 2010, from the shadow map), in *s. false: no
 // shadow map here.
@@ -74,7 +107,10 @@ bool shadow_chord(int i, vec3 p, out float s)
     float first = texture(u_shadow_depth, vec3(c.xy, layer)).r;
     float dz = light_depth_mm(i, clamp(c.z, 0.0, 1.0)) - light_depth_mm(i, first);
     if (u_light_vec[i].w == 0.0) {
-        s = dz;
+        vec3 ne;
+        float fix;
+        shadow_entry(i, p, -u_light_vec[i].xyz, ne, fix);
+        s = dz + fix;
         return true;
     }
     float z = light_depth_mm(i, clamp(c.z, 0.0, 1.0)); // perspective: along the ray, not the axis
@@ -135,12 +171,14 @@ vec3 sheet_through(float s, vec3 v, vec3 l, float mu_o, float layer, out vec3 lo
 }
 
 // The chord through a thin part for light i at a point p with normal n (ndl = n.l < 0): the shadow map's,
-// read offset mm inside along -n, plus what that offset took off it (offset |n.l|: a 0.5 mm sheet 800 mm
-// wide, with shadow texels of 0.55 mm, read 0 mm without it). false: no shadow map.
+// read offset mm inside along -n, plus what that offset took off it: a sheet between parallel faces is
+// offset thinner there, its chord along l offset / |n.l| shorter (a 0.5 mm sheet 800 mm wide, with shadow
+// texels of 0.55 mm, read 0 mm without it; |n.l| taken as at least 0.25, the chord of a sheet lit at
+// grazing being no thin part's). false: no shadow map.
 bool thin_chord(int i, vec3 p, vec3 n, float ndl, float offset, out float s)
 {
     bool ok = shadow_chord(i, p - n * offset, s);
-    s = max(s + offset * -ndl, 0.0);
+    s = max(s + offset / max(-ndl, 0.25), 0.0);
     return ok;
 }
 
@@ -189,6 +227,49 @@ float boundary_reflection(vec3 n, vec3 v, vec3 l, float alpha, float eta)
     float a = max(alpha, 1e-3); // the tracer's smooth limit is a delta: no highlight a pixel could see
     float f = fresnel_dielectric(om, eta) * ggx_d(dot(n, m), a) * ggx_g1(ci, a) * ggx_g1(co, a) / (4.0 * ci * co);
     return f * ci;
+}
+
+// The rough boundary's transmission (Walter et al. 2007 eq. 21 with the transmitted half vector of
+// eq. 16, separable Smith G): f_t = |i.m| |o.m| / (|n.i| |n.o|) eta^2 (1 - F(i.m)) D(m) G / (i.m + eta
+// o.m)^2, from i outside (n.i > 0) to o inside (n.o < 0), n outward, eta the medium's index over the
+// outside's. By reciprocity (Walter's eq. 22, f_t(i, o) / eta_o^2 = f_t(o, i) / eta_i^2) the light
+// leaving the medium along o toward i has f_t / eta^2.
+float boundary_transmission(vec3 n, vec3 i, vec3 o, float alpha, float eta)
+{
+    float ci = dot(n, i), co = dot(n, o);
+    if (ci <= 0.0 || co >= 0.0) return 0.0;
+    vec3 m = -(i + eta * o);
+    float mm = dot(m, m);
+    if (mm < 1e-12) return 0.0;
+    m *= inversesqrt(mm);
+    if (dot(m, n) < 0.0) m = -m;
+    float im = dot(i, m), om = dot(o, m), den = im + eta * om;
+    if (im <= 0.0 || om >= 0.0 || abs(den) < 1e-6) return 0.0;
+    float a = max(alpha, 1e-3);
+    return im * -om / (ci * -co) * eta * eta * (1.0 - fresnel_dielectric(im, eta)) * ggx_d(dot(n, m), a) *
+           ggx_g1(ci, a) * ggx_g1(co, a) / (den * den);
+}
+
+// Thin parts, the light that crosses them unscattered (docs/render.md, "Thin parts"), toward v at a
+// point of normal n lit from behind (ndl = n.l < 0), s the chord along l, ne the normal of the face the
+// light enters (shadow_entry_normal; -n for a sheet between parallel faces): refracted there, t =
+// refract(-l, ne) with (1 - F) of it, the beam keeps its direction through the part, s (ne.l) / |ne.t|
+// mm of it (the chord along l turned to t's: a sheet's thickness over the refracted cosine), e^(-sigma_t)
+// per mm,
+// and leaves through this face's rough boundary toward v, f_t(t -> v) = f_t(v -> -t) / eta^2
+// (reciprocity), with both faces' roughness (GGX slopes add in quadrature: alpha sqrt 2). The beam's
+// irradiance on this face is E (ne.l) (1 - F) |n.t| / |ne.t|; the factor of E is returned. A sheet
+// passes it along its own direction; a wedge (a thin part's tapering edge) bends it aside, toward a
+// viewer that the light behind the part does not face.
+vec3 thin_ballistic(vec3 n, vec3 v, vec3 l, vec3 ne, float s, float alpha, float eta, vec3 sigma_t)
+{
+    float ci = dot(ne, l);
+    if (dot(n, l) >= 0.0 || ci <= 0.0) return vec3(0.0);
+    vec3 t = refract(-l, ne, 1.0 / eta);
+    float ce = -dot(ne, t), cx = dot(n, t);
+    if (ce <= 1e-4 || cx <= 0.0) return vec3(0.0);
+    float f = boundary_transmission(n, v, -t, alpha * sqrt(2.0), eta) / (eta * eta);
+    return f * (1.0 - fresnel_dielectric(ci, eta)) * ci * cx / ce * exp(-sigma_t * (s * ci / ce));
 }
 
 // The boundary's reflection for an object described by its normal-incidence reflectance f0: the same

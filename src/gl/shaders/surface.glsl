@@ -18,6 +18,7 @@ uniform int u_use_map;          // albedo from u_albedo_map (linear RGB)
 uniform int u_sigma0_from_map;  // sigma0 = d_c^2 (Kubo Eq. 6) from the diffuse map
 uniform float u_roughness;
 uniform float u_eta;           // the material's index of refraction (the boundary's Fresnel)
+uniform vec3 u_sigma_t;        // mm^-1: the material's extinction sigma_a + sigma_s (thin parts' unscattered light)
 uniform float u_strength;       // ssss: the blur's share here (object's sss_strength x settings)
 uniform float u_material;       // material index (kernel and transmittance row)
 uniform float u_object;
@@ -137,7 +138,14 @@ vec3 transmitted(int i, vec3 n, vec3 v, vec3 l, vec3 e, float ndl, float offset,
         thin = sheet_through(s, v, l, mu_o, u_material, lobe);
         lobe *= e * -ndl * m * (1.0 - convex);
     } else {
-        thin = transmittance(s) * (u_transmit_albedo != 0 ? albedo : vec3(1.0));
+        // the slab's T(s) less its unscattered part (1 - F0)^2 e^(-sigma_t s), which leaves as the lobe
+        float r0 = (u_eta - 1.0) / (u_eta + 1.0), t0 = (1.0 - r0 * r0) * (1.0 - r0 * r0);
+        vec3 direct = u_transmit_albedo != 0 ? vec3(0.0) : t0 * exp(-u_sigma_t * s);
+        thin = max(transmittance(s) - direct, vec3(0.0)) * (u_transmit_albedo != 0 ? albedo : vec3(1.0));
+        vec3 ne;
+        float bias;
+        if (!shadow_entry(i, v_position - n * offset, l, ne, bias)) ne = -n;
+        lobe = PI * e * thin_ballistic(n, v, l, ne, s, u_roughness, u_eta, u_sigma_t) * m;
     }
     vec3 t = mix(thin, albedo * profile_tail(s) * (1.0 - u_convex_carried), convex);
     return e * -ndl * t * m;
