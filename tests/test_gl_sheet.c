@@ -223,10 +223,11 @@ TEST(sheet_agrees_with_the_tracer)
  * B within 3% when the chord is right (e^(-sigma_t x) differs by channel: Skin1's sigma_t 0.77, 1.05,
  * 1.49 /mm; each 0.1 mm of path wrong tilts blue against red by 7%; before the shadow pass's slope offset
  * was taken off the chord and the normal offset's share of it was offset / |n.l|, blue / red was 1.51,
- * 1.35 with the slope offset alone taken off);
- * (2) the peak bin's level within 15% + 2.5 tracer standard errors (the two faces' lobes as one GGX of
- * alpha sqrt 2: measured 1.12-1.13). The lobe's shoulders (10-40 degrees) are printed, not checked:
- * 0.65-0.83 of the tracer's (docs/render.md, "Thin parts"). */
+ * 1.35 with the slope offset alone taken off); (2) the lobe's bins (0-40 degrees) within 10% + 2.5
+ * tracer standard errors (the lobe is the two faces' single path, without the light the faces reflect
+ * back into the sheet, and the diffuse rest shares the 20-40 bin: measured 0.89-1.07; with the two faces'
+ * roughness as one GGX of alpha sqrt 2 the shoulders were 0.65-0.83). The 40-60 bin, the diffuse rest's
+ * (the normal-incidence slab's, read at the chord: 0.84-1.62), is printed, not checked. */
 TEST(sheet_lit_obliquely_passes_its_unscattered_light_along_the_light)
 {
     static const double thick[2] = {0.5, 1};
@@ -246,15 +247,19 @@ TEST(sheet_lit_obliquely_passes_its_unscattered_light_along_the_light)
             for (int c = 0; c < 3; c++) printf(" %.3f", h.gl[SH_SLAB][k][c] / h.tracer[k][c]);
             printf("\n");
         }
-        double q[3], se[3];
-        for (int c = 0; c < 3; c++)
-            q[c] = h.gl[SH_SLAB][0][c] / h.tracer[0][c], se[c] = sqrt(h.var[0][c]) / h.tracer[0][c];
-        CHECK_MSG(h.pixels[0] > 0 && fabs(q[2] / q[0] - 1) <= 0.03 + 2.5 * hypot(se[0], se[2]),
-                  "Skin1 %.1f mm: the peak's GL / tracer blue %.3f against red %.3f (se %.3f, %.3f)", thick[j], q[2],
-                  q[0], se[2], se[0]);
-        for (int c = 0; c < 3; c++)
-            CHECK_MSG(fabs(q[c] - 1) <= 0.15 + 2.5 * se[c], "Skin1 %.1f mm, the peak, channel %d: %.3f (se %.3f)",
-                      thick[j], c, q[c], se[c]);
+        for (int k = 0; k < 3; k++) { /* 0-10, 10-20, 20-40 */
+            double q[3], se[3];
+            for (int c = 0; c < 3; c++)
+                q[c] = h.gl[SH_SLAB][k][c] / h.tracer[k][c], se[c] = sqrt(h.var[k][c]) / h.tracer[k][c];
+            if (k == 0)
+                CHECK_MSG(h.pixels[0] > 0 && fabs(q[2] / q[0] - 1) <= 0.03 + 2.5 * hypot(se[0], se[2]),
+                          "Skin1 %.1f mm: the peak's GL / tracer blue %.3f against red %.3f (se %.3f, %.3f)", thick[j],
+                          q[2], q[0], se[2], se[0]);
+            for (int c = 0; c < 3; c++)
+                CHECK_MSG(h.pixels[k] > 0 && fabs(q[c] - 1) <= 0.10 + 2.5 * se[c],
+                          "Skin1 %.1f mm, %.0f-%.0f deg, channel %d: %.3f (se %.3f)", thick[j], k_edges[k],
+                          k_edges[k + 1], c, q[c], se[c]);
+        }
     }
     lucent_pool_destroy(pool);
     lucent_gl_destroy(g_ctx);

@@ -251,25 +251,37 @@ float boundary_transmission(vec3 n, vec3 i, vec3 o, float alpha, float eta)
 }
 
 // Thin parts, the light that crosses them unscattered (docs/render.md, "Thin parts"), toward v at a
-// point of normal n lit from behind (ndl = n.l < 0), s the chord along l, ne the normal of the face the
-// light enters (shadow_entry_normal; -n for a sheet between parallel faces): refracted there, t =
-// refract(-l, ne) with (1 - F) of it, the beam keeps its direction through the part, s (ne.l) / |ne.t|
-// mm of it (the chord along l turned to t's: a sheet's thickness over the refracted cosine), e^(-sigma_t)
-// per mm,
-// and leaves through this face's rough boundary toward v, f_t(t -> v) = f_t(v -> -t) / eta^2
-// (reciprocity), with both faces' roughness (GGX slopes add in quadrature: alpha sqrt 2). The beam's
-// irradiance on this face is E (ne.l) (1 - F) |n.t| / |ne.t|; the factor of E is returned. A sheet
-// passes it along its own direction; a wedge (a thin part's tapering edge) bends it aside, toward a
-// viewer that the light behind the part does not face.
+// point of normal n lit from behind (n.l < 0), s the chord along l, ne the normal of the face the light
+// enters (shadow_entry; -n for a sheet between parallel faces). The entry face is rough: its microfacet
+// normals m, drawn from GGX's D(m) cos(m) (tan^2 theta_m = alpha^2 u / (1 - u)) on a fixed 4 x 4 grid of
+// u and phi, refract the light into directions t = refract(-l, m), each with the weight of Walter et al.
+// 2007's refraction sampled that way, (1 - F(l.m)) (l.m) G1(l) / ((ne.l) (ne.m)); each crosses s (ne.l) /
+// |ne.t| mm of medium (the chord along l turned to t's) and leaves through the visible face's rough
+// boundary toward v, f_t(v -> -t) / eta^2 (reciprocity) times the beam's cosine there, |n.t|, over its
+// cosine at entry, |ne.t|. Returns the factor of the light's irradiance E. Through a sheet the lobe is
+// about the light's own direction; through a wedge (a thin part's tapering edge) it is bent aside,
+// toward a camera that the light does not face.
 vec3 thin_ballistic(vec3 n, vec3 v, vec3 l, vec3 ne, float s, float alpha, float eta, vec3 sigma_t)
 {
     float ci = dot(ne, l);
     if (dot(n, l) >= 0.0 || ci <= 0.0) return vec3(0.0);
-    vec3 t = refract(-l, ne, 1.0 / eta);
-    float ce = -dot(ne, t), cx = dot(n, t);
-    if (ce <= 1e-4 || cx <= 0.0) return vec3(0.0);
-    float f = boundary_transmission(n, v, -t, alpha * sqrt(2.0), eta) / (eta * eta);
-    return f * (1.0 - fresnel_dielectric(ci, eta)) * ci * cx / ce * exp(-sigma_t * (s * ci / ce));
+    float a = max(alpha, 1e-3);
+    vec3 b1 = normalize(abs(ne.x) < 0.9 ? cross(ne, vec3(1.0, 0.0, 0.0)) : cross(ne, vec3(0.0, 1.0, 0.0)));
+    vec3 b2 = cross(ne, b1), sum = vec3(0.0);
+    for (int k = 0; k < 16; k++) {
+        float u = (float(k / 4) + 0.5) / 4.0, phi = 2.0 * PI * (float(k % 4) + 0.5 * float((k / 4) % 2)) / 4.0;
+        float tan_m = a * sqrt(u / (1.0 - u)), cm = inversesqrt(1.0 + tan_m * tan_m), sm = tan_m * cm;
+        vec3 m = cm * ne + sm * (cos(phi) * b1 + sin(phi) * b2);
+        float lm = dot(l, m);
+        if (lm <= 0.0) continue;
+        vec3 t = refract(-l, m, 1.0 / eta);
+        float ce = -dot(ne, t), cx = dot(n, t);
+        if (ce <= 1e-4 || cx <= 0.0 || dot(t, t) == 0.0) continue;
+        float w = (1.0 - fresnel_dielectric(lm, eta)) * lm * ggx_g1(ci, a) / (ci * cm);
+        float f = boundary_transmission(n, v, -t, a, eta) / (eta * eta);
+        sum += w * f * ci * cx / ce * exp(-sigma_t * (s * ci / ce));
+    }
+    return sum / 16.0;
 }
 
 // The boundary's reflection for an object described by its normal-incidence reflectance f0: the same
