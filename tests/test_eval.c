@@ -616,6 +616,13 @@ TEST(reference_json_reads_back_and_refuses_what_does_not_match)
               "render.width", "\"96\"", "\"48\"");
     CHECK_ERR(eval_reference_parse(edited(text, "\"intensity\":\t3", "\"power\":\t3"), "r.json", scene, &r),
               LUCENT_ERR_INVALID_ARGUMENT, "lights[0].power");
+    /* the fixture predates render.interreflection: it was traced with its default (on), which the scene
+     * holds (the parse above), and not with it off */
+    CHECK(!strstr(text, "interreflection"));
+    scene->render.trace.interreflection = false;
+    CHECK_ERR(eval_reference_parse(text, "r.json", scene, &r), LUCENT_ERR_INVALID_ARGUMENT, "render.interreflection",
+              "the reference was made with nothing", "\"false\"");
+    scene->render.trace.interreflection = true;
     char truncated[64];
     snprintf(truncated, sizeof truncated, "%.40s", text);
     CHECK(eval_reference_parse(truncated, "r.json", scene, &r) != LUCENT_OK && strstr(lucent_last_error(), "r.json"));

@@ -155,6 +155,8 @@ typedef struct lucent_trace_settings {
     int boundary_model; /* a lucent_boundary_model (lucent/trace.h) */
     int light_paths;    /* a lucent_light_paths (lucent/trace.h) */
     double photons;     /* light paths per pixel and pass */
+    bool interreflection; /* false: a path ends where it meets a surface from outside after its first
+                             (no light between surfaces: what the real-time methods model) */
 } lucent_trace_settings;
 
 typedef struct lucent_render_settings {

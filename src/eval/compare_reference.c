@@ -333,6 +333,28 @@ static lucent_status read_images(const char *dir, const char *stem, int w, int h
     return s;
 }
 
+/* A setting that the reference's identity does not name was added since it was made, which traced with
+ * that setting's default: the scene's matches it when it holds the default (its key is dropped from
+ * mine), and is named as the difference otherwise. */
+static void drop_new_defaults(const cJSON *ref, cJSON *mine)
+{
+    const cJSON *rr = cJSON_GetObjectItemCaseSensitive(ref, "render");
+    cJSON *mr = cJSON_GetObjectItemCaseSensitive(mine, "render");
+    if (!cJSON_IsObject(rr) || !cJSON_IsObject(mr)) return;
+    lucent_render_settings d = lucent_render_settings_defaults();
+    for (int g = 0; g < lucent_settings_group_count(); g++) {
+        const lucent_settings_group *grp = lucent_settings_group_get(g);
+        for (int k = 0; k < grp->count; k++) {
+            const char *key = grp->settings[k].key;
+            if (!identity_key(grp->name, key) || cJSON_GetObjectItemCaseSensitive(rr, key)) continue;
+            char text[256];
+            lucent_setting_format(&d, &grp->settings[k], text, sizeof text);
+            const cJSON *m = cJSON_GetObjectItemCaseSensitive(mr, key);
+            if (cJSON_IsString(m) && strcmp(m->valuestring, text) == 0) cJSON_DeleteItemFromObjectCaseSensitive(mr, key);
+        }
+    }
+}
+
 /* Checks that the reference in dir was made of the same scene and settings as scene. */
 static lucent_status check_identity(const lucent_json_node *root, const lucent_scene *scene, const char *file)
 {
@@ -341,6 +363,7 @@ static lucent_status check_identity(const lucent_json_node *root, const lucent_s
     cJSON *mine = NULL;
     if (s == LUCENT_OK) s = eval_reference_identity(scene, &mine);
     if (s != LUCENT_OK) return s;
+    drop_new_defaults(idn.json, mine);
     char path[512] = "";
     if (first_difference(idn.json, mine, path, sizeof path)) {
         char was[128], is[128];

@@ -104,6 +104,10 @@ static void surface(tr_path *p, const tr_hit *h)
     bool first = p->camera_ray, inside = v3_dot(p->d, n) > 0, drop_reflection = first && tr->desc.subsurface_only;
     p->camera_ray = false;
     p->safe_r = 0; /* a new stretch of medium */
+    if (!inside && p->bounces > 0 && !tr->render.trace.interreflection) { /* light between surfaces */
+        p->done = true;
+        return;
+    }
     if (++p->bounces > tr->render.trace.max_bounces || v3_dot(n, n) == 0) {
         p->stats->truncated += p->bounces > tr->render.trace.max_bounces;
         p->done = true;

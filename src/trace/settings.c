@@ -17,6 +17,10 @@ static const lucent_setting k_trace[] = {
                    "objects whose subsurface light is traced from the lights to the camera: auto (the dense "
                    "ones with a rough boundary), all (every rough one) or off (docs/trace.md)"),
     SETTING_REAL("photons", trace.photons, 1, 0, 1024, "light paths per pixel and pass (0: none)"),
+    SETTING_BOOL("interreflection", trace.interreflection, true,
+                 "light between surfaces: off ends a path where it meets a surface from outside after its first "
+                 "(a diagnosis: the share of an image that light between surfaces carries, which no real-time "
+                 "method models; docs/trace.md)"),
 };
 
 const lucent_settings_group tr_trace_settings = SETTINGS_GROUP("trace", "the path-traced reference", k_trace);
