@@ -337,6 +337,50 @@ TEST(same_seed_same_image_on_one_and_two_threads)
     lucent_scene_destroy(sc);
 }
 
+/* render.interreflection off ends a path where it meets a surface from outside after its first: on one
+ * convex sphere no path ever does, so the image is the same bit for bit (the same seed draws the same
+ * numbers); beside a second sphere, every sample keeps a subset of its contributions (all >= 0), so no
+ * pixel gains, and the light the second sphere sends onto the first is gone: the two images differ. */
+TEST(interreflection_off_removes_only_light_between_surfaces)
+{
+    lucent_pool *pool = lucent_pool_create(2);
+    lucent_scene *one = small_lit_scene();
+    lucent_trace_result on = {0}, off = {0};
+    CHECK_OK(render(one, NULL, 4, 3, pool, &on));
+    if (one) one->render.trace.interreflection = false;
+    CHECK_OK(render(one, NULL, 4, 3, pool, &off));
+    CHECK_MSG(same_image(on.image, off.image), "one convex sphere: the images differ");
+    lucent_trace_result_free(&on), lucent_trace_result_free(&off);
+    lucent_scene_destroy(one);
+    lucent_scene *two =
+        scene_from("{\"camera\": {\"position\": [0, 0, 6], \"target\": [0.5, 0, 0], \"fov_y\": 40},"
+                   " \"lights\": [{\"type\": \"directional\", \"direction\": [-1, -0.2, -0.4], \"intensity\": 2}],"
+                   " \"objects\": [{\"mesh\": {\"primitive\": \"icosphere\", \"radius\": 1, \"subdivisions\": 3},"
+                   " \"material\": \"skin1\", \"roughness\": 0.3},"
+                   " {\"mesh\": {\"primitive\": \"icosphere\", \"radius\": 1, \"subdivisions\": 3},"
+                   " \"transform\": {\"translate\": [2.05, 0, 0]}, \"material\": \"skin1\", \"roughness\": 0.3}],"
+                   " \"render\": {\"width\": 24, \"height\": 16}}");
+    CHECK(two != NULL);
+    if (two) {
+        CHECK_OK(render(two, NULL, 4, 3, pool, &on));
+        two->render.trace.interreflection = false;
+        CHECK_OK(render(two, NULL, 4, 3, pool, &off));
+        double sum_on = 0, sum_off = 0;
+        int gained = 0;
+        for (size_t i = 0; on.image && off.image && i < lucent_image_value_count(on.image); i++) {
+            sum_on += on.image->data[i], sum_off += off.image->data[i];
+            gained += off.image->data[i] > on.image->data[i] * (1 + 1e-6f) + 1e-12f;
+        }
+        CHECK_MSG(gained == 0, "%d values gained light without interreflection", gained);
+        CHECK_MSG(sum_off < sum_on * 0.999, "two spheres: %.6g without light between them, %.6g with", sum_off, sum_on);
+        printf("     two spheres side by side: the image without light between them holds %.4f of the full one\n",
+               sum_off / sum_on);
+        lucent_trace_result_free(&on), lucent_trace_result_free(&off);
+    }
+    lucent_scene_destroy(two);
+    lucent_pool_destroy(pool);
+}
+
 /* ---- distance-bounded flights and next-event roulette at deep vertices ---- */
 
 /* A dense, nearly non-absorbing sphere (16 to 20 mean free paths in radius, albedo 0.997, like marble's
@@ -1257,9 +1301,11 @@ TEST(guiding_field_inside_shares_and_deadline)
 TEST_MAIN(TEST_ENTRY(guiding_field_inside_shares_and_deadline), TEST_ENTRY(furnace_index_matched_non_absorbing),
           TEST_ENTRY(furnace_adaptive), TEST_ENTRY(furnace_smooth_dielectric_non_absorbing),
           TEST_ENTRY(furnace_absorbing_or_rough_never_more), TEST_ENTRY(agrees_with_the_light_traced_sphere),
-          TEST_ENTRY(same_seed_same_image_on_one_and_two_threads), TEST_ENTRY(error_falls_as_one_over_sqrt_spp),
-          TEST_ENTRY(framing_matches_the_camera_projection), TEST_ENTRY(refuses_delta_lights_through_smooth_boundaries),
-          TEST_ENTRY(meshes_with_holes_terminate), TEST_ENTRY(point_clouds_are_skipped), TEST_ENTRY(bad_input_is_named),
+          TEST_ENTRY(same_seed_same_image_on_one_and_two_threads),
+          TEST_ENTRY(interreflection_off_removes_only_light_between_surfaces),
+          TEST_ENTRY(error_falls_as_one_over_sqrt_spp), TEST_ENTRY(framing_matches_the_camera_projection),
+          TEST_ENTRY(refuses_delta_lights_through_smooth_boundaries), TEST_ENTRY(meshes_with_holes_terminate),
+          TEST_ENTRY(point_clouds_are_skipped), TEST_ENTRY(bad_input_is_named),
           TEST_ENTRY(distance_bounded_flights_change_nothing), TEST_ENTRY(distance_bound_is_the_distance),
           TEST_ENTRY(depth_lattice_bounds_the_distance), TEST_ENTRY(free_run_stops_before_the_first_surface),
           TEST_ENTRY(deep_nee_roulette_is_unbiased), TEST_ENTRY(light_paths_agree_with_camera_paths),

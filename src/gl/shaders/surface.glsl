@@ -143,8 +143,8 @@ vec3 transmitted(int i, vec3 n, vec3 v, vec3 l, vec3 e, float ndl, float offset,
         vec3 direct = u_transmit_albedo != 0 ? vec3(0.0) : t0 * exp(-u_sigma_t * s);
         thin = max(transmittance(s) - direct, vec3(0.0)) * (u_transmit_albedo != 0 ? albedo : vec3(1.0));
         vec3 ne;
-        float bias;
-        if (!shadow_entry(i, v_position - n * offset, l, ne, bias)) ne = -n;
+        float fix;
+        if (!shadow_entry(i, v_position - n * offset, l, ne, fix)) ne = -n;
         lobe = PI * e * thin_ballistic(n, v, l, ne, s, u_roughness, u_eta, u_sigma_t) * m;
     }
     vec3 t = mix(thin, albedo * profile_tail(s) * (1.0 - u_convex_carried), convex);
