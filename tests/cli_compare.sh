@@ -38,7 +38,8 @@ done
 expect_true "results.json's command is the one run" -- grep -q '"command":[[:space:]]*"lucent compare .*--spp 8 --frames 2' "$TMP/cmp/results.json"
 expect_true "the chart's time axis is logarithmic" -- grep -q "logarithmic" "$TMP/cmp/test-sphere/errors.svg"
 expect_true "the paired test is in results.json" -- grep -q '"paired_test"' "$TMP/cmp/results.json"
-expect_true "FLIP is beside the RMS in the terminal" -- grep -qE '^  =?[12] +lambert .* 0\.[0-9]{4}$' <<<"$OUT"
+expect_true "FLIP and the worst 1% of pixels' share are beside the RMS in the terminal" -- grep -qE '^  =?[12] +lambert .* 0\.[0-9]{4} +[0-9]+\.[0-9]%$' <<<"$OUT"
+expect_true "the worst 1% share is in results.json" -- grep -q '"worst_share"' "$TMP/cmp/results.json"
 
 # The README's default methods are the command's (issue 35).
 readme_defaults=$(awk '/^### `lucent compare`/{f=1; next} /^### /{f=0} f' "$TESTS/../README.md" | tr '\n' ' ' | \

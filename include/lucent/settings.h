@@ -149,12 +149,12 @@ typedef struct lucent_burley_settings {
 typedef struct lucent_trace_settings {
     int spp; /* samples per pixel */
     uint64_t seed;
-    int max_bounces;    /* surface events per path */
-    int max_scatter;    /* volume scattering events per path */
-    double time_limit;  /* seconds, 0: none (stops at spp) */
-    int boundary_model; /* a lucent_boundary_model (lucent/trace.h) */
-    int light_paths;    /* a lucent_light_paths (lucent/trace.h) */
-    double photons;     /* light paths per pixel and pass */
+    int max_bounces;      /* surface events per path */
+    int max_scatter;      /* volume scattering events per path */
+    double time_limit;    /* seconds, 0: none (stops at spp) */
+    int boundary_model;   /* a lucent_boundary_model (lucent/trace.h) */
+    int light_paths;      /* a lucent_light_paths (lucent/trace.h) */
+    double photons;       /* light paths per pixel and pass */
     bool interreflection; /* false: a path ends where it meets a surface from outside after its first
                              (no light between surfaces: what the real-time methods model) */
 } lucent_trace_settings;

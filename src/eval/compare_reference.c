@@ -350,7 +350,8 @@ static void drop_new_defaults(const cJSON *ref, cJSON *mine)
             char text[256];
             lucent_setting_format(&d, &grp->settings[k], text, sizeof text);
             const cJSON *m = cJSON_GetObjectItemCaseSensitive(mr, key);
-            if (cJSON_IsString(m) && strcmp(m->valuestring, text) == 0) cJSON_DeleteItemFromObjectCaseSensitive(mr, key);
+            if (cJSON_IsString(m) && strcmp(m->valuestring, text) == 0)
+                cJSON_DeleteItemFromObjectCaseSensitive(mr, key);
         }
     }
 }

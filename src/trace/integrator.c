@@ -103,7 +103,7 @@ static void surface(tr_path *p, const tr_hit *h)
     const tr_boundary *b = &tr->objects[h->object].boundary;
     bool first = p->camera_ray, inside = v3_dot(p->d, n) > 0, drop_reflection = first && tr->desc.subsurface_only;
     p->camera_ray = false;
-    p->safe_r = 0; /* a new stretch of medium */
+    p->safe_r = 0;                                                        /* a new stretch of medium */
     if (!inside && p->bounces > 0 && !tr->render.trace.interreflection) { /* light between surfaces */
         p->done = true;
         return;
