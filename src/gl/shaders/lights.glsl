@@ -95,11 +95,13 @@ bool shadow_entry(int i, vec3 p, vec3 l, out vec3 ne, out float fix)
 }
 
 // Distance light i travels inside matter to reach p, signed: p's depth from the light minus the depth of
-// the first surface the light meets on its way (Jimenez 2010, from the shadow map), in *s. false: no
-// shadow map here.
-bool shadow_chord(int i, vec3 p, out float s)
+// the first surface the light meets on its way (Jimenez 2010, from the shadow map), in *s, and that
+// surface's outward normal in *ne (shadow_entry; 0 where the map does not give it). false: no shadow map
+// here.
+bool shadow_chord(int i, vec3 p, out float s, out vec3 ne)
 {
     s = 0.0;
+    ne = vec3(0.0);
     float layer = u_light_shadow[i].x;
     if (layer < 0.0) return false;
     vec3 c = shadow_coord(i, p);
@@ -107,15 +109,20 @@ bool shadow_chord(int i, vec3 p, out float s)
     float first = texture(u_shadow_depth, vec3(c.xy, layer)).r;
     float dz = light_depth_mm(i, clamp(c.z, 0.0, 1.0)) - light_depth_mm(i, first);
     if (u_light_vec[i].w == 0.0) {
-        vec3 ne;
         float fix;
-        shadow_entry(i, p, -u_light_vec[i].xyz, ne, fix);
+        if (!shadow_entry(i, p, -u_light_vec[i].xyz, ne, fix)) ne = vec3(0.0);
         s = dz + fix;
         return true;
     }
     float z = light_depth_mm(i, clamp(c.z, 0.0, 1.0)); // perspective: along the ray, not the axis
     s = dz * length(p - u_light_vec[i].xyz) / max(z, 1e-6);
     return true;
+}
+
+bool shadow_chord(int i, vec3 p, out float s)
+{
+    vec3 ne;
+    return shadow_chord(i, p, s, ne);
 }
 
 // The same, not below 0; -1: no shadow map.
@@ -174,12 +181,20 @@ vec3 sheet_through(float s, vec3 v, vec3 l, float mu_o, float layer, out vec3 lo
 // read offset mm inside along -n, plus what that offset took off it: a sheet between parallel faces is
 // offset thinner there, its chord along l offset / |n.l| shorter (a 0.5 mm sheet 800 mm wide, with shadow
 // texels of 0.55 mm, read 0 mm without it; |n.l| taken as at least 0.25, the chord of a sheet lit at
-// grazing being no thin part's). false: no shadow map.
+// grazing being no thin part's); *ne the entry face's normal, -n (a sheet between parallel faces) where
+// the map does not give it. false: no shadow map.
+bool thin_chord(int i, vec3 p, vec3 n, float ndl, float offset, out float s, out vec3 ne)
+{
+    bool ok = shadow_chord(i, p - n * offset, s, ne);
+    s = max(s + offset / max(-ndl, 0.25), 0.0);
+    if (dot(ne, ne) == 0.0) ne = -n;
+    return ok;
+}
+
 bool thin_chord(int i, vec3 p, vec3 n, float ndl, float offset, out float s)
 {
-    bool ok = shadow_chord(i, p - n * offset, s);
-    s = max(s + offset / max(-ndl, 0.25), 0.0);
-    return ok;
+    vec3 ne;
+    return thin_chord(i, p, n, ndl, offset, s, ne);
 }
 
 // The boundary's optics, as the path tracer has them (src/base/optics.h, src/trace/bsdf.c): the one

@@ -130,7 +130,8 @@ vec3 transmitted(int i, vec3 n, vec3 v, vec3 l, vec3 e, float ndl, float offset,
     vec3 m = method_transmission(sigma0);
     if (ndl >= 0.0 || all(equal(m, vec3(0.0)))) return vec3(0.0);
     float s;
-    if (!thin_chord(i, v_position, n, ndl, offset, s)) return vec3(0.0);
+    vec3 ne;
+    if (!thin_chord(i, v_position, n, ndl, offset, s, ne)) return vec3(0.0);
     float convex = u_tr_sog_count > 0 ? smoothstep(0.25, 0.75, s * max(v_curvature, 0.0) / (2.0 * max(-ndl, 1e-3)))
                                       : 0.0;
     vec3 thin;
@@ -142,10 +143,8 @@ vec3 transmitted(int i, vec3 n, vec3 v, vec3 l, vec3 e, float ndl, float offset,
         float r0 = (u_eta - 1.0) / (u_eta + 1.0), t0 = (1.0 - r0 * r0) * (1.0 - r0 * r0);
         vec3 direct = u_transmit_albedo != 0 ? vec3(0.0) : t0 * exp(-u_sigma_t * s);
         thin = max(transmittance(s) - direct, vec3(0.0)) * (u_transmit_albedo != 0 ? albedo : vec3(1.0));
-        vec3 ne;
-        float fix;
-        if (!shadow_entry(i, v_position - n * offset, l, ne, fix)) ne = -n;
-        lobe = PI * e * thin_ballistic(n, v, l, ne, s, u_roughness, u_eta, u_sigma_t) * m;
+        // the profile's T(s) (Jimenez's model) holds no unscattered part to take out: no lobe beside it
+        if (u_transmit_albedo == 0) lobe = PI * e * thin_ballistic(n, v, l, ne, s, u_roughness, u_eta, u_sigma_t) * m;
     }
     vec3 t = mix(thin, albedo * profile_tail(s) * (1.0 - u_convex_carried), convex);
     return e * -ndl * t * m;
