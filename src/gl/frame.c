@@ -2,6 +2,7 @@
  * setup), the per-frame uniform block, the shadow maps, then the method's passes, each between two
  * timestamp queries. */
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -145,11 +146,34 @@ static void draw_shadows(lucent_renderer *r)
     gl_shadows_end();
 }
 
+/* Light between surfaces: each light's surfels, every object with the albedo it sends light back with. */
+static lucent_status draw_bounce(lucent_renderer *r)
+{
+    for (int i = 0; i < r->shadows.light_count; i++) {
+        const gl_light *g = &r->shadows.lights[i];
+        gl_bounce_light light = {.index = i,
+                                 .layer = g->layer,
+                                 .matrix = g->matrix,
+                                 .texel = g->texel,
+                                 .distance = g->ortho ? 0 : 0.5 * (g->near_plane + g->far_plane)};
+        if (!gl_bounce_begin(&r->bounce, &light)) continue;
+        for (int k = 0; k < r->scene->object_count; k++) {
+            if (!r->scene->objects[k].visible) continue;
+            double a[3];
+            gl_renderer_object_albedo(r, k, a);
+            gl_bounce_object(&r->bounce, a);
+            gl_meshes_draw(&r->meshes, k);
+        }
+    }
+    return gl_bounce_end(&r->bounce);
+}
+
 /* Everything the frame needs, rebuilt only when a setting it depends on changed. */
 static lucent_status prepare(lucent_renderer *r, const gl_method *m, void **state, const lucent_render_settings *s)
 {
     lucent_status st = gl_targets_resize(&r->targets, s->view.width, s->view.height, r->aov);
     if (st == LUCENT_OK) st = gl_shadows_resize(&r->shadows, s->view.shadow_map_size);
+    if (st == LUCENT_OK) st = gl_bounce_resize(&r->bounce, r->shadows.layers, s->view.bounce);
     if (st == LUCENT_OK && !*state) {
         *state = calloc(1, m->state_size ? m->state_size : 1);
         if (!*state) st = lucent_error(LUCENT_ERR_OUT_OF_MEMORY, "out of memory");
@@ -178,6 +202,16 @@ lucent_status gl_frame(lucent_renderer *r, const lucent_render_settings *s, luce
     gl_timer_begin(&r->timer);
     if (r->shadows.layers > 0) draw_shadows(r);
     gl_timer_mark(&r->timer, "shadow");
+    if (r->bounce.fbo && (st = draw_bounce(r)) == LUCENT_OK) { /* the block's surfel count, once they are listed */
+        b.counts[1] = r->bounce.count;
+        glNamedBufferSubData(r->frame_ubo, offsetof(gl_frame_block, counts), sizeof b.counts, b.counts);
+        gl_bounce_bind(&r->bounce); /* bounce.glsl's surfels, every pass */
+        gl_timer_mark(&r->timer, "bounce");
+    }
+    if (st != LUCENT_OK) {
+        gl_timer_end(&r->timer, times);
+        return st;
+    }
     st = m->draw(r, r->state[s->view.method], s);
     double setup = times->setup_ms;
     gl_timer_end(&r->timer, times);

@@ -116,6 +116,7 @@ void lucent_renderer_destroy(lucent_renderer *r)
     gl_programs_free(&r->programs);
     gl_targets_free(&r->targets);
     gl_shadows_free(&r->shadows);
+    gl_bounce_free(&r->bounce);
     gl_timer_free(&r->timer);
     gl_meshes_free(&r->meshes);
     gl_tables_free(&r->tables);

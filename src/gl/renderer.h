@@ -1,5 +1,5 @@
 /* The renderer core: a scene on a GL context, made of parts each owned by one file (targets.c,
- * shadows.c, meshes.c, tables.c, programs.c, blur.c) and drawn by one method of methods/ per frame.
+ * shadows.c, bounce.c, meshes.c, tables.c, programs.c, blur.c) and drawn by one method of methods/ per frame.
  * Only the core (renderer.c, frame.c, output.c) and the method files see every part.
  * Internal to src/gl. */
 #ifndef LUCENT_SRC_GL_RENDERER_H
@@ -7,6 +7,7 @@
 
 #include <stdint.h>
 
+#include "gl/bounce.h"
 #include "gl/core/gpu.h"
 #include "gl/meshes.h"
 #include "gl/programs.h"
@@ -36,6 +37,7 @@ struct lucent_renderer {
     lucent_cache *cache; /* NULL without desc.cache_dir */
     gl_targets targets;
     gl_shadows shadows;
+    gl_bounce bounce; /* light between surfaces (render.bounce) */
     gl_meshes meshes;
     gl_tables tables;
     gl_programs programs;

@@ -1,5 +1,6 @@
 // Lights, shadow maps, shadow-map thickness and the specular lobe. Needs common.glsl.
 #include "boundary.glsl"
+#include "bounce.glsl"
 layout(binding = 1) uniform sampler2DArrayShadow u_shadow_cmp; // depth compare (PCF)
 layout(binding = 2) uniform sampler2DArray u_shadow_depth;     // the same depths, read raw
 layout(binding = 4) uniform sampler2D u_transmit;              // T(s) per channel; a row per material

@@ -1,0 +1,14 @@
+// Light between surfaces: the surfels a light meets first, drawn with its shadow projection (bounce.h).
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+uniform mat4 u_light_mvp;
+
+out vec3 v_position;
+out vec3 v_normal;
+
+void main()
+{
+    v_position = a_position;
+    v_normal = a_normal;
+    gl_Position = u_light_mvp * vec4(a_position, 1.0);
+}
