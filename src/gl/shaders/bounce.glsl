@@ -6,7 +6,8 @@
 //     dE = Phi cos_r cos_s / (pi d^2 + A)
 // with cos_r, cos_s the cosines at the receiver and the surfel: the form factor of a disc of area A seen
 // on its axis, pi d^2 / (pi d^2 + A) times the point's, which keeps near surfels finite. No occlusion
-// between the two (the paper's approximation). Needs common.glsl (u_counts.y: the surfels, 0 off).
+// between the two (the paper's approximation). Needs common.glsl (u_counts.y: the surfels, 0 off) and
+// boundary.glsl.
 struct BounceSurfel {
     vec4 position; // xyz: mm; w: area on its face, mm^2
     vec4 normal;   // xyz
@@ -36,4 +37,13 @@ vec3 bounce_irradiance(vec3 p, vec3 n, out float mu)
     }
     mu = sum > 0.0 ? cos_sum / sum : 1.0;
     return e;
+}
+
+// What the methods add to their irradiance: the bounced light at p, times the boundary's entry factor at
+// its mean incidence cosine, for the view cosine mu_o and the material's table row.
+vec3 bounce_entering(vec3 p, vec3 n, float mu_o, float material)
+{
+    float mu;
+    vec3 e = bounce_irradiance(p, n, mu);
+    return e * boundary_entry(mu, mu_o, material);
 }

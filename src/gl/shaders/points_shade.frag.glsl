@@ -46,9 +46,7 @@ void main()
         irradiance += e * max(dot(n, l), 0.0) * vis * boundary_entry(max(dot(n, l), 0.0), mu_o, float(m));
         specular += e * specular_ksk(n, v, l, roughness, f0) * vis;
     }
-    float mu_b;
-    vec3 bounced = bounce_irradiance(p, n, mu_b); // light between surfaces (bounce.glsl)
-    irradiance += bounced * boundary_entry(mu_b, mu_o, float(m));
+    irradiance += bounce_entering(p, n, mu_o, float(m)); // light between surfaces
     vec3 diffuse = albedo * (irradiance / PI + u_ambient.rgb), wsum = texelFetch(u_weights, px, 0).rgb;
     if (u_diffusion != 0 && !mesh && all(greaterThan(wsum, vec3(0.0))))
         diffuse = texelFetch(u_diffused, px, 0).rgb / max(wsum, vec3(1e-6));

@@ -46,9 +46,7 @@ void main()
             through += e * -ndl * t;
         }
     }
-    float mu_b;
-    vec3 bounced = bounce_irradiance(p, n, mu_b); // light between surfaces (bounce.glsl)
-    e_sum += bounced * boundary_entry(mu_b, mu_o, u_material);
+    e_sum += bounce_entering(p, n, mu_o, u_material); // light between surfaces
     vec3 l_out = s.c.rgb * (e_sum / PI + u_ambient.rgb) + through / PI * (u_transmit_albedo != 0 ? s.c.rgb : vec3(1.0));
     if (u_impulse >= 0) l_out = vec3(gl_VertexID == u_impulse ? 1.0 : 0.0);
     radiance[j] = vec4(l_out, area);

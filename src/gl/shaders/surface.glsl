@@ -176,9 +176,7 @@ void main()
         specular += e * boundary_reflection(n, v, l, u_roughness, u_eta) * vis;
         if (i == 0) vis0 = vis;
     }
-    float mu_b;
-    vec3 bounced = bounce_irradiance(v_position, n, mu_b);
-    irradiance += bounced * boundary_entry(mu_b, mu_o, u_material);
+    irradiance += bounce_entering(v_position, n, mu_o, u_material); // light between surfaces
     vec3 through = transmitted_e / PI;
     o_diffuse = vec4(albedo * (irradiance / PI + u_ambient.rgb) + through, u_strength);
     // The diffuse light's way out toward the viewer (boundary.glsl) is applied by the compose pass after

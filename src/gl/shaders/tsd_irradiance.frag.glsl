@@ -42,9 +42,7 @@ void main()
                 through += el * -ndl * (u_sheet != 0 ? sheet_through(s, v, l, mu_o, u_material, lobe) : transmittance(s));
         }
     }
-    float mu_b;
-    vec3 bounced = bounce_irradiance(v_position, n, mu_b);
-    e += bounced * boundary_entry(mu_b, mu_o, u_material);
+    e += bounce_entering(v_position, n, mu_o, u_material); // light between surfaces
     e += u_transmit_albedo != 0 ? through : through / max(u_albedo, vec3(1e-3));
     o_irradiance = vec4(e, 1.0);
 }
