@@ -203,9 +203,9 @@ static const lucent_setting k_view[] = {
      .parse = parse_method,
      .doc = "the GL renderer's method; ssss:<kernel>[rank] chooses the kernel too (ssss:svd3)"},
     SETTING_INT("shadow_map_size", view.shadow_map_size, 2048, 16, 16384, 0, "texels per side of each shadow map"),
-    SETTING_INT("bounce", view.bounce, 32, 0, 256, 0,
+    SETTING_INT("bounce", view.bounce, 32, 0, 64, 0,
                 "light between surfaces: one bounce of each shadowed light, from a reflective shadow map of this "
-                "many surfels per side (0: none)"),
+                "many surfels per side (0: none; its cost is surfels x pixels)"),
     SETTING_COLOR("background", view.background, 0, 0, 1e30,
                   "linear RGB behind the objects (an environment light shows through)"),
     SETTING_CHOICE("tonemap", view.tonemap, "filmic", tonemap_name, "tone mapping of PNG outputs"),
