@@ -65,8 +65,10 @@ fi
 if "$LUCENT" --version 2>/dev/null | grep -q "^gl .*llvmpipe"; then
   expect_fail 1 "warning: tsd is slow on a software GL renderer" -- "${GLRUN[@]}" compare "$SC/missing-mesh.json" \
     --methods lambert,tsd --frames 2 --spp 1 --out "$TMP/c7"
-  expect_fail 1 "3 frames a scene (--frames 2 and the first)" -- "${GLRUN[@]}" compare "$SC/missing-mesh.json" \
-    --methods tsd --frames 2 --spp 1 --out "$TMP/c7"
+  expect_fail 1 "18 frames a scene (--frames 2 and the image's --samples 16)" -- "${GLRUN[@]}" compare \
+    "$SC/missing-mesh.json" --methods tsd --frames 2 --spp 1 --out "$TMP/c7"
+  expect_fail 1 "3 frames a scene (--frames 2 and the image's --samples 1)" -- "${GLRUN[@]}" compare \
+    "$SC/missing-mesh.json" --methods tsd --frames 2 --samples 1 --spp 1 --out "$TMP/c7"
 fi
 
 # A reference reused (--reference): not traced again, the same errors; refused for another scene.
@@ -107,6 +109,7 @@ expect_true "skip: the JSON lists it" -- grep -q '"method":[[:space:]]*"ssss:man
 expect_fail 2 "--methods: unknown method 'phong'" -- "${GLRUN[@]}" compare "$SC/sphere.json" --methods lambert,phong --out "$TMP/c1"
 expect_fail 2 "give at least one scene file" -- "${GLRUN[@]}" compare --out "$TMP/c2"
 expect_fail 2 "--spp needs a whole number >= 1" -- "${GLRUN[@]}" compare "$SC/sphere.json" --spp 0 --out "$TMP/c3"
+expect_fail 2 "--samples needs a whole number from 1 to 256" -- "${GLRUN[@]}" compare "$SC/sphere.json" --samples 0 --out "$TMP/c3"
 expect_fail 2 "--reference-runs needs 1 or 2" -- "${GLRUN[@]}" compare "$SC/sphere.json" --reference-runs 3 --out "$TMP/c3"
 expect_fail 1 "objects[0].mesh: cannot open" -- "${GLRUN[@]}" compare "$SC/missing-mesh.json" --spp 1 --out "$TMP/c4"
 expect_fail 1 "render.taps" -- "${GLRUN[@]}" compare "$SC/sphere.json" --set render.taps=4 --spp 1 --out "$TMP/c5"

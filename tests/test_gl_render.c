@@ -327,6 +327,57 @@ TEST(slab_translucency_matches_monte_carlo_transmittance)
 
 /* ---- timings, rebuilds, settings ---- */
 
+/* render.samples: lucent_render's image is the mean of frames jittered over the pixel, as the path
+ * tracer's pixels average their area. A sphere that gives no light (a light of intensity 0) before a white
+ * background: every pixel is 1 minus the share of its area the sphere covers, here computed apart from the
+ * GL, 32 x 32 rays per pixel (lucent_camera_ray) against the exact sphere (the mesh: 256 x 128 quads, its
+ * silhouette within 0.01 pixel of the sphere's). With one sample a pixel is its centre's, 0 or 1; with 64
+ * the Halton points' share of a nearly straight edge is within about 1/16 of the area's. */
+TEST(pixel_samples_average_the_pixel)
+{
+    enum { W = 40, H = 32, SUB = 32 };
+    const double R = 10;
+    lucent_scene *sc = scene_from(
+        "{\"camera\": {\"position\": [0, 0, 60], \"target\": [0.3, 0.2, 0], \"fov_y\": 30},"
+        " \"lights\": [{\"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": 0}],"
+        " \"objects\": [{\"mesh\": {\"primitive\": \"uv_sphere\", \"radius\": 10, \"u_count\": 256, \"v_count\": 128},"
+        " \"material\": \"skin1\", \"albedo\": [0, 0, 0]}],"
+        " \"render\": {\"width\": 40, \"height\": 32, \"method\": \"lambert\", \"background\": [1, 1, 1]}}");
+    lucent_renderer *r = renderer_of(sc);
+    double worst[2] = {0, 0};
+    int edge = 0;
+    for (int k = 0; r && k < 2; k++) {
+        lucent_render_settings s = sc->render;
+        s.view.samples = k ? 64 : 1;
+        lucent_render_result res = {0};
+        CHECK_OK(lucent_render(r, &s, &res));
+        for (int y = 0; res.image && y < H; y++)
+            for (int x = 0; x < W; x++) {
+                int hit = 0;
+                for (int j = 0; j < SUB; j++)
+                    for (int i = 0; i < SUB; i++) {
+                        double o[3], d[3];
+                        lucent_camera_ray(&sc->camera, W, H, x + (i + 0.5) / SUB, y + (j + 0.5) / SUB, o, d);
+                        double b = o[0] * d[0] + o[1] * d[1] + o[2] * d[2];
+                        double c = o[0] * o[0] + o[1] * o[1] + o[2] * o[2] - R * R;
+                        hit += b * b - c >= 0 && b < 0;
+                    }
+                double want = 1 - (double)hit / (SUB * SUB), got = res.image->data[3 * ((size_t)y * W + x)];
+                if (hit > 0 && hit < SUB * SUB) edge += k == 0;
+                worst[k] = fmax(worst[k], fabs(got - want));
+            }
+        lucent_render_result_free(&res);
+    }
+    printf("     %d silhouette pixels; largest |pixel - uncovered share|: 1 sample %.3f, 64 samples %.3f\n", edge,
+           worst[0], worst[1]);
+    CHECK(edge > 20);
+    CHECK_MSG(worst[1] <= 1.0 / 16, "64 samples: a pixel %.3f from its uncovered share", worst[1]);
+    CHECK_MSG(worst[0] >= 0.25, "1 sample: the pixels should be their centres' (0 or 1), largest difference %.3f",
+              worst[0]);
+    lucent_renderer_destroy(r);
+    lucent_scene_destroy(sc);
+}
+
 TEST(timings_name_every_pass)
 {
     lucent_scene *sc = scene_from(k_sphere);
@@ -597,6 +648,7 @@ int main(int argc, char **argv)
                                       TEST_ENTRY(sphere_lit_along_view_axis_is_symmetric),
                                       TEST_ENTRY(translucency_brightens_a_backlit_disc_in_red),
                                       TEST_ENTRY(slab_translucency_matches_monte_carlo_transmittance),
+                                      TEST_ENTRY(pixel_samples_average_the_pixel),
                                       TEST_ENTRY(timings_name_every_pass),
                                       TEST_ENTRY(settings_change_between_frames),
                                       TEST_ENTRY(scene_changes_and_adopted_bakes_give_a_fresh_renderers_pixels),

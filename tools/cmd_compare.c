@@ -31,6 +31,8 @@ static const char k_usage[] =
     "  --spp N          reference samples per pixel (default: the scene's render.spp)\n"
     "  --time S         at most S seconds per reference (default: no limit)\n"
     "  --frames N       GL frames timed per method; the median is reported (default 5)\n"
+    "  --samples N      each method's image is the mean of N frames jittered over the pixel, as the\n"
+    "                   reference averages each pixel's area (default 16; 1: the pixel's centre)\n"
     "  --scale F        multiply every scene's render.width and height by F (keeps each aspect)\n"
     "  --set KEY=VALUE  override a scene value, for every scene (repeatable; see docs/scenes.md)\n"
     "  --out DIR        output folder (default out/compare)\n"
@@ -62,7 +64,7 @@ typedef struct options {
     char methods_text[1024];
     const char *methods[MAX_METHODS];
     int method_count;
-    int spp, frames;
+    int spp, frames, samples;
     double time_limit, scale;
     const char *sets[MAX_SETS];
     int set_count;
@@ -98,6 +100,10 @@ static int parse_number_option(const char *name, const char *v, options *o)
         return cli_parse_int(v, &o->frames) && o->frames >= 1 && o->frames <= 1000
                    ? CLI_OK
                    : cli_usage_error("compare", "--frames needs a whole number from 1 to 1000");
+    if (!strcmp(name, "--samples"))
+        return cli_parse_int(v, &o->samples) && o->samples >= 1 && o->samples <= 256
+                   ? CLI_OK
+                   : cli_usage_error("compare", "--samples needs a whole number from 1 to 256");
     if (!strcmp(name, "--scale"))
         return cli_parse_double(v, &o->scale) && o->scale > 0 && o->scale <= 16
                    ? CLI_OK
@@ -109,7 +115,7 @@ static int parse_number_option(const char *name, const char *v, options *o)
 
 static int parse_args(int argc, char **argv, options *o)
 {
-    static const char *const numeric[] = {"--spp", "--frames", "--time", "--scale"};
+    static const char *const numeric[] = {"--spp", "--frames", "--samples", "--time", "--scale"};
     for (int i = 1; i < argc; i++) { /* the peers: their names are checked by lucent_compare_run */
         const char *v;
         if (cli_option(argc, argv, &i, "--peer-spp", &v) && !(cli_parse_int(v, &o->peer_spp) && o->peer_spp >= 1))
@@ -126,7 +132,7 @@ static int parse_args(int argc, char **argv, options *o)
     for (int i = 1; i < argc; i++) {
         const char *v;
         int rc = -1;
-        for (int k = 0; k < 4 && rc < 0; k++)
+        for (int k = 0; k < (int)(sizeof numeric / sizeof numeric[0]) && rc < 0; k++)
             if (cli_option(argc, argv, &i, numeric[k], &v)) rc = parse_number_option(numeric[k], v, o);
         if (rc > 0) return rc;
         if (rc == 0) continue;
@@ -266,6 +272,7 @@ int cmd_compare(int argc, char **argv)
                              .spp = o.spp,
                              .time_limit = o.time_limit,
                              .frames = o.frames,
+                             .samples = o.samples,
                              .scale = o.scale,
                              .out = o.out,
                              .title = o.title,

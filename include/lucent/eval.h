@@ -79,6 +79,9 @@ enum { LUCENT_COMPARE_MAX_SCENES = 16, LUCENT_COMPARE_MAX_METHODS = 32, LUCENT_C
 /* The relative error drawn in full colour in the error maps (50%). */
 #define LUCENT_COMPARE_ERROR_MAP_SCALE 0.5f
 
+/* Pixel samples of the methods' images in a compare run (lucent_compare_desc.samples). */
+enum { LUCENT_COMPARE_DEFAULT_SAMPLES = 16 };
+
 /* A compare run; a zero field means the default. */
 typedef struct lucent_compare_desc {
     const char *const *scenes; /* scene files (1..LUCENT_COMPARE_MAX_SCENES, required) */
@@ -93,6 +96,10 @@ typedef struct lucent_compare_desc {
                                           render.time_limit, where 0 means none) */
     int frames;                    /* GL frames timed per method, the median kept (0: 5; more
                                           than LUCENT_COMPARE_MAX_FRAMES count as that many) */
+    int samples;                   /* each method's image is the mean of this many frames jittered over the
+                                      pixel (render.samples), as the reference averages each pixel's area
+                                      (0: the scene's render.samples where above 1, else
+                                      LUCENT_COMPARE_DEFAULT_SAMPLES); the timed frames are single */
     double scale;                  /* multiply every scene's width and height (0: keep them) */
     const char *out;               /* folder for every file (made if absent; NULL: no files, and
                                           the renderer's default cache) */

@@ -75,6 +75,8 @@ typedef struct lucent_view_settings {
     int width, height;           /* pixels */
     lucent_render_method method; /* the GL renderer's method */
     int shadow_map_size;         /* texels per side of each light's shadow map */
+    int samples;                 /* pixel samples: lucent_render's image is the mean of this many frames, the
+                                    camera jittered over the pixel (as TAA accumulates); 1: the centre */
     int bounce;                  /* light between surfaces: surfels per side of each light's reflective
                                     shadow map (one bounce, docs/render.md); 0: none */
     double background[3];        /* linear RGB (an environment light shows through) */

@@ -284,6 +284,7 @@ static lucent_status run_method(const run *r, scene_store *ss, lucent_renderer *
     lucent_render_result res = {0};
     lucent_status s = eval_method_settings(method, &rs);
     char why[512];
+    eval_image_samples(r->d.samples, &rs);
     if (s == LUCENT_OK && eval_method_unavailable(&rs, ss->scene, why, sizeof why)) {
         skip_method(r, ss, method, why);
         return LUCENT_OK;

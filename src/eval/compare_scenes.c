@@ -74,6 +74,7 @@ static lucent_status render_methods(const run *r, const scene_store *ss, const l
         lucent_render_settings rs = scene->render;
         lucent_render_result res = {0};
         s = eval_method_settings(ss->methods[m].name, &rs);
+        eval_image_samples(r->d.samples, &rs);
         if (s == LUCENT_OK) s = lucent_render(rend, &rs, &res);
         if (s == LUCENT_OK) images[m] = res.image, res.image = NULL;
         lucent_render_result_free(&res);
@@ -184,7 +185,10 @@ static bool software_gl(const char *renderer)
 void eval_warn_slow(const run *r)
 {
     if (!r->d.on_event || !software_gl(r->device)) return;
-    int frames = (r->d.frames < LUCENT_COMPARE_MAX_FRAMES ? r->d.frames : LUCENT_COMPARE_MAX_FRAMES) + 1;
+    int timed = r->d.frames < LUCENT_COMPARE_MAX_FRAMES ? r->d.frames : LUCENT_COMPARE_MAX_FRAMES;
+    lucent_render_settings probe = lucent_render_settings_defaults();
+    eval_image_samples(r->d.samples, &probe);
+    int frames = timed + probe.view.samples; /* the image's samples, then the timed frames */
     for (int i = 0; i < r->d.method_count; i++) {
         const char *m = r->d.methods[i];
         for (size_t k = 0; k < sizeof k_slow / sizeof k_slow[0]; k++) {
@@ -194,10 +198,10 @@ void eval_warn_slow(const run *r)
             char reason[400];
             snprintf(reason, sizeof reason,
                      "%s is slow on a software GL renderer (%.120s): about %.0f s a frame on 2 cores at 256 x 256 "
-                     "(bunny-skin, --scale 0.5), %d frames a scene (--frames %d and the first): about %.0f "
-                     "min for %d scene%s; --frames 1 or leaving it out saves most of it",
-                     m, r->device, k_slow[k].seconds, frames, frames - 1, total / 60 < 1 ? 1 : total / 60,
-                     r->d.scene_count, r->d.scene_count == 1 ? "" : "s");
+                     "(bunny-skin, --scale 0.5), %d frames a scene (--frames %d and the image's --samples %d): "
+                     "about %.0f min for %d scene%s; --frames 1 --samples 1 or leaving it out saves most of it",
+                     m, r->device, k_slow[k].seconds, frames, timed, probe.view.samples,
+                     total / 60 < 1 ? 1 : total / 60, r->d.scene_count, r->d.scene_count == 1 ? "" : "s");
             r->d.on_event(&(lucent_eval_event){.kind = LUCENT_EVAL_SLOW, .name = m, .reason = reason, .index = -1},
                           r->d.user);
         }

@@ -3,6 +3,7 @@
  * settings table), the tonemapping of its PNGs and the size --scale gives a scene. */
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "eval/internal.h"
 #include "lucent/kernel.h"
@@ -26,9 +27,19 @@ bool eval_method_unavailable(const lucent_render_settings *rs, const lucent_scen
     return false;
 }
 
+void eval_image_samples(int samples, lucent_render_settings *rs)
+{
+    if (samples > 0)
+        rs->view.samples = samples;
+    else if (rs->view.samples <= 1)
+        rs->view.samples = LUCENT_COMPARE_DEFAULT_SAMPLES;
+}
+
 void eval_method_describe(const lucent_render_settings *rs, char *dest, size_t size)
 {
     lucent_render_method_describe(rs, dest, size);
+    size_t len = strlen(dest);
+    if (rs->view.samples > 1 && len < size) snprintf(dest + len, size - len, "; %d pixel samples", rs->view.samples);
 }
 
 lucent_tonemap_desc eval_tonemap(const lucent_render_settings *rs)

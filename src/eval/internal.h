@@ -33,6 +33,10 @@ lucent_status eval_method_settings(const char *method, lucent_render_settings *s
 bool eval_method_unavailable(const lucent_render_settings *settings, const lucent_scene *scene, char *reason,
                              size_t size);
 
+/* The pixel samples of a method's image: `samples` (a compare run's; 0: the settings' own where above 1,
+ * else LUCENT_COMPARE_DEFAULT_SAMPLES). */
+void eval_image_samples(int samples, lucent_render_settings *settings);
+
 /* What distinguishes a method's run, for the tables: "svd rank 3, 11 taps, ...". */
 void eval_method_describe(const lucent_render_settings *settings, char *dest, size_t size);
 

@@ -123,11 +123,9 @@ static void light_block(const lucent_renderer *r, int i, gl_frame_block *b)
 static void frame_block(const lucent_renderer *r, gl_frame_block *b)
 {
     const lucent_camera *cam = &r->scene->camera;
-    double view[16], proj[16], vp[16], f[3], len = 0;
+    double vp[16], f[3], len = 0;
     memset(b, 0, sizeof *b);
-    lucent_camera_view(cam, view);
-    lucent_camera_projection(cam, (double)r->targets.width / r->targets.height, proj);
-    lucent_mat4_mul(proj, view, vp);
+    gl_renderer_view_proj(r, vp);
     lucent_mat4_to_float(vp, b->view_proj);
     for (int i = 0; i < 3; i++) f[i] = cam->target[i] - cam->position[i], len += f[i] * f[i];
     for (int i = 0; i < 3; i++) {

@@ -11,16 +11,21 @@
 
 /* ---- read-back ---- */
 
-/* The final target's rgb as the image, its alpha (coverage) as the mask. */
-lucent_status gl_renderer_read_back(lucent_renderer *r, lucent_render_result *res)
+lucent_status gl_renderer_read_back(lucent_renderer *r, lucent_render_result *res, int k, int n)
 {
     const gl_targets *t = &r->targets;
     lucent_image *rgba = NULL;
     lucent_status s = gl_read_image(t->fbo_final, 0, t->width, t->height, 4, true, &rgba);
-    if (s == LUCENT_OK) s = lucent_image_convert_channels(rgba, 3, &res->image);
-    if (s == LUCENT_OK) s = lucent_image_create(t->width, t->height, 1, &res->mask);
-    size_t n = (size_t)t->width * (size_t)t->height;
-    for (size_t i = 0; s == LUCENT_OK && i < n; i++) res->mask->data[i] = rgba->data[4 * i + 3] > 0.5f ? 1.0f : 0.0f;
+    if (s == LUCENT_OK && k == 0) s = lucent_image_create(t->width, t->height, 3, &res->image);
+    if (s == LUCENT_OK && k == 0) s = lucent_image_create(t->width, t->height, 1, &res->mask);
+    size_t count = (size_t)t->width * (size_t)t->height;
+    float w = 1.0f / (float)n;
+    for (size_t i = 0; s == LUCENT_OK && i < count; i++) {
+        for (int c = 0; c < 3; c++) res->image->data[3 * i + c] += w * rgba->data[4 * i + c];
+        res->mask->data[i] += w * rgba->data[4 * i + 3];
+    }
+    for (size_t i = 0; s == LUCENT_OK && k == n - 1 && i < count; i++)
+        res->mask->data[i] = res->mask->data[i] > 0.5f ? 1.0f : 0.0f;
     lucent_image_destroy(rgba);
     return s;
 }

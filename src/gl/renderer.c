@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/mat4.h"
 #include "gl/methods/method.h"
 
 lucent_renderer_desc lucent_renderer_defaults(void)
@@ -36,6 +37,19 @@ void gl_renderer_object_albedo(const lucent_renderer *r, int object, double dest
     const lucent_baked *b = gl_tables_of(&r->tables, object);
     bool mc = o->albedo_source == LUCENT_ALBEDO_FROM_MATERIAL && (b->have & LUCENT_BAKE_BOUNDARY);
     memcpy(dest, mc ? b->boundary_albedo : o->albedo, 3 * sizeof *dest);
+}
+
+void gl_renderer_view_proj(const lucent_renderer *r, double dest[16])
+{
+    const lucent_camera *cam = &r->scene->camera;
+    double view[16], proj[16], w = r->targets.width, h = r->targets.height;
+    lucent_camera_view(cam, view);
+    lucent_camera_projection(cam, w / h, proj);
+    for (int c = 0; c < 4; c++) { /* clip x += (2 jx / w) clip w: the image moves jx pixels */
+        proj[4 * c] += 2 * r->jitter[0] / w * proj[4 * c + 3];
+        proj[4 * c + 1] += 2 * r->jitter[1] / h * proj[4 * c + 3];
+    }
+    lucent_mat4_mul(proj, view, dest);
 }
 
 void gl_renderer_draw_objects(const lucent_renderer *r)
@@ -148,13 +162,33 @@ lucent_status lucent_render_frame(lucent_renderer *r, const lucent_render_settin
     return frame(r, settings, dest ? dest : &t);
 }
 
+/* The radical inverse of k in base b (Halton's sequence). */
+static double halton(int k, int b)
+{
+    double f = 1, x = 0;
+    for (; k > 0; k /= b) f /= b, x += f * (k % b);
+    return x;
+}
+
+/* render.samples frames, each with the camera offset within the pixel by the Halton (2, 3) point k
+ * (one sample: the centre), averaged as they are read back; the first frame's times. */
 lucent_status lucent_render(lucent_renderer *r, const lucent_render_settings *settings, lucent_render_result *dest)
 {
     memset(dest, 0, sizeof *dest);
-    lucent_status s = frame(r, settings, &dest->times);
-    double t0 = lucent_clock_ms();
-    if (s == LUCENT_OK) s = gl_renderer_read_back(r, dest);
-    dest->readback_ms = lucent_clock_ms() - t0;
+    int n = settings && settings->view.samples > 1           ? settings->view.samples
+            : !settings && r->scene->render.view.samples > 1 ? r->scene->render.view.samples
+                                                             : 1;
+    lucent_status s = LUCENT_OK;
+    for (int k = 0; k < n && s == LUCENT_OK; k++) {
+        r->jitter[0] = n > 1 ? halton(k + 1, 2) - 0.5 : 0;
+        r->jitter[1] = n > 1 ? halton(k + 1, 3) - 0.5 : 0;
+        lucent_frame_times t;
+        s = frame(r, settings, k ? &t : &dest->times);
+        double t0 = lucent_clock_ms();
+        if (s == LUCENT_OK) s = gl_renderer_read_back(r, dest, k, n);
+        dest->readback_ms += lucent_clock_ms() - t0;
+    }
+    r->jitter[0] = r->jitter[1] = 0;
     if (s != LUCENT_OK) lucent_render_result_free(dest);
     return s;
 }

@@ -48,6 +48,7 @@ struct lucent_renderer {
     lucent_render_settings last;      /* the settings of the last frame */
     bool have_frame;
     lucent_frame_times last_times;
+    double jitter[2]; /* the camera's offset in pixels, within [-1/2, 1/2) (render.samples) */
 };
 
 /* The bake desc of the renderer for settings s and parts `what` (lucent/bake.h). */
@@ -59,13 +60,19 @@ lucent_bake_desc gl_renderer_bake_desc(const lucent_renderer *r, const lucent_re
  * uniform light; docs/render.md, "One boundary"); an albedo map is applied in the shader. */
 void gl_renderer_object_albedo(const lucent_renderer *r, int object, double dest[3]);
 
+/* The camera's view-projection for the targets' size, offset by r->jitter pixels (every pass that
+ * projects the scene: the frame block, points). */
+void gl_renderer_view_proj(const lucent_renderer *r, double dest[16]);
+
 /* Draws every visible object's triangles with the bound program (shadow casters, scene passes). */
 void gl_renderer_draw_objects(const lucent_renderer *r);
 
 /* ---- output.c ---- */
 
-/* Reads the final target back: rgb as the image, alpha (coverage) as the mask. */
-lucent_status gl_renderer_read_back(lucent_renderer *r, lucent_render_result *res);
+/* Reads the final target back, sample k of n of the pixel (render.samples): rgb / n added to the image,
+ * alpha (coverage) / n to the mask, which the last sample makes 1 where at least half the samples were
+ * covered (k 0 creates both). */
+lucent_status gl_renderer_read_back(lucent_renderer *r, lucent_render_result *res, int k, int n);
 
 /* ---- frame.c ---- */
 

@@ -203,6 +203,9 @@ static const lucent_setting k_view[] = {
      .parse = parse_method,
      .doc = "the GL renderer's method; ssss:<kernel>[rank] chooses the kernel too (ssss:svd3)"},
     SETTING_INT("shadow_map_size", view.shadow_map_size, 2048, 16, 16384, 0, "texels per side of each shadow map"),
+    SETTING_INT("samples", view.samples, 1, 1, 256, 0,
+                "pixel samples: the image is the mean of this many frames, the camera jittered over the pixel "
+                "(Halton 2, 3), as TAA and EEVEE's render samples converge; 1: the pixel's centre"),
     SETTING_INT("bounce", view.bounce, 32, 0, 64, 0,
                 "light between surfaces: one bounce of each shadowed light, from a reflective shadow map of this "
                 "many surfels per side (0: none; its cost is surfels x pixels)"),

@@ -342,14 +342,6 @@ static void invert(const double m[16], double d[16])
     for (int i = 0; i < 16; i++) d[i] = a[i] / det;
 }
 
-static void camera_vp(const lucent_renderer *r, double vp[16])
-{
-    double view[16], proj[16];
-    lucent_camera_view(&r->scene->camera, view);
-    lucent_camera_projection(&r->scene->camera, (double)r->targets.width / r->targets.height, proj);
-    lucent_mat4_mul(proj, view, vp);
-}
-
 static void bind_buffers(const points_state *st)
 {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, st->surfels);
@@ -593,7 +585,7 @@ static lucent_status draw(lucent_renderer *r, void *state, const lucent_render_s
 {
     points_state *st = state;
     double vp[16];
-    camera_vp(r, vp);
+    gl_renderer_view_proj(r, vp);
     bind_buffers(st);
     bool clouds = false;
     for (int i = 0; i < st->object_count; i++)
