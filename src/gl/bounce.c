@@ -38,7 +38,7 @@ lucent_status gl_bounce_resize(gl_bounce *b, int layers, int size)
     free_maps(b);
     if (!b->program) {
         lucent_status s =
-            gl_program_build(gl_embedded_source, NULL, "bounce.vert.glsl", "bounce.frag.glsl", NULL, &b->program);
+            gl_program_build(gl_embedded_source, NULL, "shadow.vert.glsl", "bounce.frag.glsl", NULL, &b->program);
         if (s != LUCENT_OK) return s;
     }
     size_t floats = (size_t)size * size * layers * 12;
