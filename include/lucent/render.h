@@ -144,12 +144,14 @@ typedef struct lucent_frame_times {
 /* What lucent_render returns. */
 typedef struct lucent_render_result {
     lucent_image *image;      /* RGB linear HDR radiance, settings->width x height */
-    lucent_image *mask;       /* 1 channel: 1 where an object covers the pixel's centre, else 0 */
-    lucent_frame_times times; /* the frame that made the image, its setup included */
+    lucent_image *mask;       /* 1 channel: 1 where an object covers the pixel's centre (with
+                                 render.samples > 1: at least half its samples), else 0 */
+    lucent_frame_times times; /* the (first) frame that made the image, its setup included */
     double readback_ms;       /* CPU milliseconds reading the images back */
 } lucent_render_result;
 
-/* Renders one frame with settings (NULL: the scene's) and reads it back. Settings may differ from
+/* Renders one frame with settings (NULL: the scene's) and reads it back; with render.samples N > 1, N
+ * frames with the camera jittered over the pixel, averaged (docs/render.md). Settings may differ from
  * call to call (method, kernel, taps, size...); only what changed is rebuilt. Free the result with
  * lucent_render_result_free. */
 lucent_status lucent_render(lucent_renderer *r, const lucent_render_settings *settings, lucent_render_result *dest);

@@ -175,9 +175,8 @@ static double halton(int k, int b)
 lucent_status lucent_render(lucent_renderer *r, const lucent_render_settings *settings, lucent_render_result *dest)
 {
     memset(dest, 0, sizeof *dest);
-    int n = settings && settings->view.samples > 1           ? settings->view.samples
-            : !settings && r->scene->render.view.samples > 1 ? r->scene->render.view.samples
-                                                             : 1;
+    int n = (settings ? settings : &r->scene->render)->view.samples;
+    n = n > 1 ? n : 1;
     lucent_status s = LUCENT_OK;
     for (int k = 0; k < n && s == LUCENT_OK; k++) {
         r->jitter[0] = n > 1 ? halton(k + 1, 2) - 0.5 : 0;
